@@ -1,0 +1,361 @@
+#pragma once
+/// \file
+/// The scene as plain data: what the loader reads from SimTwo's XML files, validated once,
+/// with no Simbody in sight. The model builder turns it into a multibody system; the viewer
+/// draws it. Every pose here is in the world frame at load time (robot placement applied)
+/// unless the field name says otherwise. Units are SI; angles are radians.
+
+#include <s2sim/error.hpp>
+#include <s2sim/math.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace s2sim::scene {
+
+/// A raw XML element kept for components that read their own parameters.
+struct Element {
+  std::string name;
+  std::vector<std::pair<std::string, std::string>> attributes;  ///< in document order
+  std::vector<Element> children;                                ///< in document order
+  std::string path;  ///< element path in its file, e.g. `robot/solids/cuboid[2]`
+
+  /// The attribute's raw (trimmed) text, or nullptr.
+  const std::string* attribute(std::string_view attr) const {
+    for (const auto& [k, v] : attributes)
+      if (k == attr) return &v;
+    return nullptr;
+  }
+  /// The first child named `child`, or nullptr.
+  const Element* child(std::string_view child_name) const {
+    for (const auto& c : children)
+      if (c.name == child_name) return &c;
+    return nullptr;
+  }
+};
+
+/// Constants of a `<defines>` scope. Names are case-insensitive.
+class ConstantTable {
+ public:
+  /// `<const>`: defines or overwrites.
+  void set(std::string_view name, double value);
+  /// `<arg>`: defines only when absent; returns whether it defined.
+  bool define_if_absent(std::string_view name, double value);
+  std::optional<double> find(std::string_view name) const;
+  std::size_t size() const { return entries_.size(); }
+  const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
+
+ private:
+  std::vector<std::pair<std::string, double>> entries_;  ///< upper-case name, value
+};
+
+/// An element and the constants in scope where it stands: what a component's Params read.
+struct ParamSource {
+  Element element;
+  std::string file;  ///< relative to the scene folder
+  std::shared_ptr<const ConstantTable> constants;
+};
+
+/// RGBA, each in 0..1.
+struct Color {
+  double r = 0.5, g = 0.5, b = 0.5, a = 1.0;
+};
+
+enum class ShapeType { box, cylinder, sphere };
+
+/// A collision primitive in its own frame. Cylinders are aligned with local Z.
+struct Shape {
+  ShapeType type = ShapeType::box;
+  Vec3 size_m{1, 1, 1};  ///< box: full edge lengths
+  double radius_m = 0;   ///< cylinder, sphere
+  double length_m = 0;   ///< cylinder, along local Z
+};
+
+/// SimTwo's `<surface>`. `explicit_surface` is SimTwo's "has surface" (an explicit mu >= 0,
+/// an omni/mecanum kind or a `<wheels>` tyre); without it the project's default friction
+/// applies.
+struct Surface {
+  bool explicit_surface = false;
+  double mu = -1;
+  double mu2 = -1;  ///< -1 when unset
+  double softness = 1e-5;
+  double bounce = 0;
+  double bounce_threshold_m_s = 0;
+};
+
+/// Anisotropic friction of a solid (§4.3).
+enum class FrictionKind { isotropic, omni, mecanum_left, mecanum_right };
+
+struct Mesh {
+  std::filesystem::path file;  ///< absolute, resolved against the scene folder; empty = none
+  std::filesystem::path shadow_file;
+  double scale = 1;
+  Vec3 offset_m;  ///< in the body frame, after scaling
+  bool shadow = true;
+};
+
+struct Visual {
+  Color color;  ///< alpha from `<transparency alpha>`
+  std::filesystem::path texture;  ///< absolute; empty = none
+  double texture_scale = 1;
+  Mesh mesh;
+  bool canvas = false;  ///< a paintable +Z face (cuboids)
+  int canvas_width_px = 256;
+  int canvas_height_px = 256;
+  bool liquid = false;
+  bool painting_target = false;
+};
+
+struct Material {
+  bool metallic = false;
+  bool ferromagnetic = false;
+  bool rfid_tag = false;
+};
+
+/// A `<camera>` shell's optics (§4.7).
+struct Camera {
+  double focal_length = 50;
+  int decimation = 4;
+  int width_px = 320;
+  int height_px = 240;
+};
+
+/// A primitive rigidly attached to a body (the solid's own primitive, a shell) or to the
+/// world (an obstacle, in which case `pose` is in the world frame).
+struct Geom {
+  std::string id;
+  Shape shape;
+  Pose pose;  ///< geometry frame in its body's frame (world frame for obstacles)
+  Surface surface;
+  FrictionKind friction = FrictionKind::isotropic;
+  Visual visual;
+  Material material;
+  bool is_shell = false;
+  std::optional<Camera> camera;
+  Location where;
+};
+
+/// The SimTwo element that made a body.
+enum class SolidKind { cuboid, cylinder, sphere, belt, propeller, tyre };
+
+struct Drag {
+  double coefficient = 0;  ///< quadratic drag Cd
+  double stokes = 1e-5;    ///< linear damping per step (SimTwo/ODE meaning, §4.4)
+  double roll = 1e-3;      ///< angular damping per step
+};
+
+struct Buoyancy {
+  double mass_kg = 0;  ///< force = mass * g; negative lifts
+  Vec3 point_m;        ///< application point in the body frame
+};
+
+/// A rigid body: a robot solid, a `<wheels>` tyre or a thing.
+struct Body {
+  std::string id;
+  SolidKind kind = SolidKind::cuboid;
+  int robot = -1;  ///< owning robot, -1 for a thing
+  Pose pose;       ///< body frame in the world at load
+  double mass_kg = 1;
+  Vec3 com_m;  ///< centre of mass in the body frame (moved by massive shells)
+  Mat3 inertia_kg_m2 = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};  ///< about the COM, body axes
+  std::vector<Geom> geoms;  ///< geoms[0] is the solid's own primitive, then its shells
+  Drag drag;
+  Buoyancy buoyancy;
+  double thrust_coefficient = 0;  ///< propellers
+  bool gravity = true;
+  Location where;
+};
+
+enum class JointType { hinge, slider, universal, ball, fixed };
+
+/// `<motor>` (§4.10).
+struct Motor {
+  double resistance_ohm = 1;
+  double inductance_H = 0;
+  double torque_constant_Nm_A = 1.4e-2;  ///< also the back-EMF constant, V·s/rad
+  double voltage_max_V = 24;
+  double current_max_A = 4;
+  bool active = true;
+  bool simple = false;
+};
+struct Gear {
+  double ratio = 10;
+  double ke = 0.05, be = 0.01, ke2 = 0, kv2 = 0;
+};
+struct Rotor {
+  double inertia_kg_m2 = 0;
+  double viscous_Nms_rad = 1e-3;
+  double coulomb_Nm = 0;
+};
+struct Encoder {
+  std::int64_t ppr = 1000;
+  double mean = 0;
+  double stdev = -1;
+};
+enum class ControllerMode { pid_speed, pid_position, state };
+struct MotorController {
+  ControllerMode mode = ControllerMode::pid_speed;
+  double kp = 1, ki = 0, kd = 0, kf = 0;
+  double period_s = 10;  ///< SimTwo's articulation default is 10 s until a period is given
+  bool active = false;
+};
+struct JointFriction {
+  double viscous = 1e-5;  ///< N·m·s/rad or N·s/m
+  double coulomb = 1e-3;  ///< N·m or N
+};
+struct Spring {
+  double stiffness = 0;      ///< N·m/rad or N/m
+  double zero_position = 0;  ///< rad (SimTwo converts degrees even for sliders, §16.14)
+};
+/// Everything that drives one axis (behaviour in the drive-train issue).
+struct DriveTrain {
+  Motor motor;
+  Gear gear;
+  Rotor rotor;
+  Encoder encoder;
+  MotorController controller;
+  JointFriction friction;
+  Spring spring;
+};
+
+struct Limits {
+  double min = -2 * 3.141592653589793;  ///< rad (hinge/universal) or m (slider)
+  double max = 2 * 3.141592653589793;
+  bool active = false;  ///< whether the stop engages (SimTwo: only inside (-pi, pi) for hinges)
+};
+
+struct JointDraw {
+  double radius_m = -1;  ///< -1 = not drawn
+  double height_m = 0.05;
+  Color color;
+};
+
+/// A joint between two bodies; a body index of -1 is the world.
+struct Joint {
+  std::string id;
+  JointType type = JointType::hinge;
+  int robot = -1;
+  int body1 = -1;  ///< the joint variable is body1's motion relative to body2 (ODE convention)
+  int body2 = -1;
+  Vec3 anchor_m;  ///< world
+  Vec3 axis1;     ///< unit, world
+  Vec3 axis2{0, 0, 1};
+  Limits limits1, limits2;
+  bool wrap1 = true, wrap2 = true;
+  DriveTrain drive1, drive2;
+  JointDraw draw;
+  std::string description;
+  bool from_wheels = false;  ///< made by the `<wheels>` generator
+  Location where;
+};
+
+/// Sensor beam (§4.11); several `<beam>` elements merge into one.
+struct Beam {
+  double length_m = 0.8;
+  double initial_width_m = 0.01;
+  double final_width_m = 0.015;
+  double angle_rad = 30 * 3.141592653589793 / 180;
+  int rays = 9;
+};
+struct Noise {
+  bool present = false;
+  double stdev = 0, stdev_p = 0, offset = 0, gain = 1, var_k = 0, var_d = 0;
+};
+struct SolenoidForce {
+  double fmax_N = 1, k1 = 0, k2 = 1;
+};
+
+/// A robot or world sensor (or tool), parsed; its behaviour is a component's.
+struct Sensor {
+  std::string kind;  ///< element name: IRSharp, ranger2d, ...
+  std::string id;
+  int robot = -1;  ///< -1 for a scene-level sensor
+  int body = -1;   ///< body it is attached to; -1 = world
+  Pose pose;       ///< sensor frame in its body frame (world frame when body = -1); the beam
+                   ///< is along the frame's +X (SimTwo's rotation of §9.2 applied)
+  bool absolute_coords = false;
+  bool is_tool = false;
+  Beam beam;
+  Noise noise;
+  std::vector<std::string> tags;
+  double period_s = 0.01;
+  SolenoidForce force;
+  Color color;
+  ParamSource params;
+  Location where;
+};
+
+/// An instance of a third-party or first-party kind placed with `<plugin>`.
+struct PluginInstance {
+  std::string kind;
+  std::string id;
+  int robot = -1;  ///< -1 for a scene-level instance
+  ParamSource params;
+  Location where;
+};
+
+/// A flat floor polygon with a detection tag (tracks, §7).
+struct TrackPolygon {
+  std::string tag;
+  Color color;
+  double z_m = 0;
+  std::vector<std::pair<double, double>> vertices;  ///< x, y in order
+  Location where;
+};
+
+struct Robot {
+  std::string id;
+  std::string kind;  ///< `<kind value>`, informative
+  std::filesystem::path file;
+  int main_body = -1;
+  std::vector<int> bodies;   ///< solids then tyres, in creation order
+  std::vector<int> joints;   ///< in creation order
+  std::vector<int> sensors;
+  std::vector<int> plugins;
+  Location where;
+};
+
+/// Project settings (§10.1) with S2Sim's own.
+struct Settings {
+  double physics_step_s = 1e-3;
+  int substeps = 1;  ///< physics substeps per tick
+  double control_period_s = 0.04;  ///< script / high-level controller period
+  double default_friction = 0.95;
+  Vec3 wind_m_s;
+  double erp = 0.4, cfm = 1e-5;  ///< ODE settings, kept for reference
+  bool ir_noise = false;
+  std::string source;  ///< which file the values came from ("defaults" when none)
+};
+
+struct Scene {
+  std::filesystem::path folder;  ///< absolute
+  std::filesystem::path file;    ///< the scene.xml, absolute
+  Settings settings;
+  std::vector<Robot> robots;
+  std::vector<Body> bodies;  ///< robot solids, tyres and things
+  std::vector<int> things;   ///< indices into bodies
+  std::vector<Joint> joints;
+  std::vector<Geom> obstacles;  ///< static, poses in world
+  std::vector<Sensor> sensors;
+  std::vector<TrackPolygon> tracks;
+  std::vector<PluginInstance> plugins;
+  ConstantTable globals;
+  std::vector<std::string> warnings;  ///< tolerated oddities (missing files, unknown tags)
+};
+
+/// Options of `load_scene`.
+struct LoadOptions {
+  /// Constants set before `scene.xml` is read, as if they led its `<defines>`.
+  std::vector<std::pair<std::string, double>> constants;
+};
+
+/// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`. Throws `s2sim::Error`
+/// (kind scene) naming file, element and attribute.
+Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
+
+}  // namespace s2sim::scene

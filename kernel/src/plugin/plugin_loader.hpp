@@ -1,0 +1,93 @@
+#pragma once
+/// \file
+/// Finds and loads plugin libraries (Boost.DLL) and creates components by kind name.
+
+#include <s2sim/component.hpp>
+#include <s2sim/plugin.hpp>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace s2sim::plugin {
+
+/// A created component with the library that made it kept alive as long as it lives.
+class ComponentPtr {
+ public:
+  ComponentPtr() = default;
+  ComponentPtr(Component* c, void (*destroy)(void*), std::shared_ptr<void> library)
+      : component_(c), destroy_(destroy), library_(std::move(library)) {}
+  ComponentPtr(ComponentPtr&& o) noexcept { *this = std::move(o); }
+  ComponentPtr& operator=(ComponentPtr&& o) noexcept {
+    reset();
+    component_ = o.component_;
+    destroy_ = o.destroy_;
+    library_ = std::move(o.library_);
+    o.component_ = nullptr;
+    return *this;
+  }
+  ComponentPtr(const ComponentPtr&) = delete;
+  ComponentPtr& operator=(const ComponentPtr&) = delete;
+  ~ComponentPtr() { reset(); }
+
+  Component* get() const { return component_; }
+  Component* operator->() const { return component_; }
+  explicit operator bool() const { return component_ != nullptr; }
+
+ private:
+  void reset() {
+    if (component_ != nullptr) destroy_(component_);  // before the library is released
+    component_ = nullptr;
+  }
+  Component* component_ = nullptr;
+  void (*destroy_)(void*) = nullptr;
+  std::shared_ptr<void> library_;  // a boost::dll::shared_library, type-erased
+};
+
+/// What is known of one kind after scanning.
+struct KindInfo {
+  std::string name;
+  Category category;
+  std::filesystem::path library;
+  std::string plugin_name;
+};
+
+/// Scans folders for plugin libraries (`lib*.so`), loading each only to read its
+/// descriptor, and creates components by kind name. Every refusal throws `s2sim::Error` of kind
+/// `plugin` whose message names the library file and the reason: no descriptor symbol, ABI or
+/// SDK version mismatch, struct-size mismatch, two plugins claiming one kind, unknown kind, a
+/// factory that fails.
+class PluginRegistry {
+ public:
+  /// The default search path: every folder of the environment variable S2SIM_PLUGIN_PATH
+  /// (':'-separated), then `<exe dir>/../plugins` and `<exe dir>/../lib/s2sim/plugins`, then
+  /// the build tree's plugin folder compiled in.
+  static std::vector<std::filesystem::path> default_search_path();
+
+  explicit PluginRegistry(std::vector<std::filesystem::path> search_path = default_search_path());
+
+  /// Loads one library explicitly and registers its kinds (throws on any refusal).
+  void load_library(const std::filesystem::path& file);
+
+  /// The kind's info, scanning the search path on first use. Throws (kind plugin) when no
+  /// plugin provides it, listing the folders searched.
+  const KindInfo& find(const std::string& kind);
+  /// Whether some plugin provides `kind` (scans on first use; never throws for a missing kind).
+  bool has(const std::string& kind);
+
+  /// Creates a component of `kind`. Throws when the kind is unknown or its factory fails.
+  ComponentPtr create(const std::string& kind);
+
+  /// Libraries that were skipped while scanning, with the reason (shown by `s2sim-run --plugins`).
+  const std::vector<std::string>& scan_warnings() const;
+  /// Every registered kind.
+  std::vector<KindInfo> kinds();
+
+ private:
+  struct Impl;
+  std::shared_ptr<Impl> impl_;
+};
+
+}  // namespace s2sim::plugin

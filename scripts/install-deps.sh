@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages S2Sim builds against. Idempotent: only missing packages are
+# installed, and nothing is downloaded when everything is present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libsimbody-dev libeigen3-dev libboost-dev libboost-filesystem-dev
+  libfcl-dev libassimp-dev
+  libimgui-dev libglfw3-dev libstb-dev
+  libgtest-dev libbenchmark-dev
+  libmujoco-dev libode-dev
+  xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "install-deps: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,196 @@
+#pragma once
+/// \file
+/// The component interface shared by the four plugin kinds (body, actuator, sensor,
+/// controller) and the two contexts the kernel hands a component: `ConfigureContext` once at
+/// load, `StepContext` on every tick of its schedule.
+///
+/// A component keeps no mutable state in its own members: it declares state slots with
+/// `ConfigureContext::declare_state` and reads and writes them through `StepContext::state`.
+/// The kernel owns that memory, so a simulation's whole state is copyable and `reset()` is
+/// exact. `update()` must not allocate.
+
+#include <s2sim/math.hpp>
+#include <s2sim/params.hpp>
+#include <s2sim/random.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace s2sim {
+
+/// A rigid body of the scene; index 0 is the world (ground), which never moves.
+struct BodyHandle {
+  std::int32_t index = -1;
+  constexpr bool valid() const { return index >= 0; }
+};
+/// One degree of freedom of a joint (a Universal joint has two).
+struct AxisHandle {
+  std::int32_t index = -1;
+  constexpr bool valid() const { return index >= 0; }
+};
+/// A signal the component publishes (a reading, a motor current...).
+struct SignalHandle {
+  std::int32_t index = -1;
+};
+/// An input: a value set from outside (`--set`, a controller, a script, a remote client).
+struct InputHandle {
+  std::int32_t index = -1;
+};
+/// A block of `count` doubles of the component's state.
+struct StateHandle {
+  std::int32_t offset = -1;
+  std::int32_t count = 0;
+};
+
+/// The four kinds of plugin component. Each kind has its own place in a tick (see `Stage`).
+enum class Category : std::uint32_t { body = 1, actuator = 2, sensor = 3, controller = 4 };
+
+/// Where in a tick a component runs. Inside one tick the stages run in this order, then the
+/// physics advances by one tick; inside one stage components run in scene order.
+enum class Stage : std::uint8_t {
+  sense = 0,          ///< sensors sample the state at the start of the tick
+  control = 1,        ///< high-level controllers (script, remote, C++), 40 ms by default
+  motor_control = 2,  ///< motor controllers (PID), 10 ms by default
+  actuate = 3,        ///< actuators and special bodies apply forces for the coming tick
+};
+
+namespace detail {
+/// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
+/// through `StepContext`. Its layout is part of the plugin ABI.
+struct WorldView {
+  const Pose* body_pose = nullptr;    ///< per body, body frame in world
+  const Twist* body_twist = nullptr;  ///< per body, world frame
+  Wrench* body_wrench = nullptr;      ///< per body, accumulated for the coming tick
+  const double* axis_position = nullptr;  ///< rad or m
+  const double* axis_velocity = nullptr;  ///< rad/s or m/s
+  double* axis_force = nullptr;           ///< N·m or N, accumulated for the coming tick
+  double* inputs = nullptr;
+  double* signals = nullptr;
+  double* state = nullptr;
+  std::uint64_t* random_state = nullptr;  ///< four words per component
+  double time_s = 0;
+  std::int64_t tick = 0;
+  double tick_s = 0;  ///< length of one tick (the physics step)
+};
+}  // namespace detail
+
+/// What a component sees on each tick of its schedule. Every accessor is inline and reads the
+/// kernel's arrays directly: no virtual call, no lookup by name, no allocation.
+class StepContext {
+ public:
+  StepContext(detail::WorldView* world, std::int32_t component_index, std::int64_t period_ticks)
+      : w_(world), component_(component_index), period_ticks_(period_ticks) {}
+
+  /// Simulated time at the start of this tick, seconds.
+  double time_s() const { return w_->time_s; }
+  /// Index of this tick on the grid (time = tick * tick_s).
+  std::int64_t tick() const { return w_->tick; }
+  /// Length of one physics tick, seconds.
+  double tick_s() const { return w_->tick_s; }
+  /// The component's period, seconds: the time since its previous update.
+  double period_s() const { return static_cast<double>(period_ticks_) * w_->tick_s; }
+
+  /// Pose of a body frame in the world at the start of the tick.
+  const Pose& body_pose(BodyHandle b) const { return w_->body_pose[b.index]; }
+  /// Velocity of a body (world frame) at the start of the tick.
+  const Twist& body_twist(BodyHandle b) const { return w_->body_twist[b.index]; }
+  /// Applies `force_N` (world frame) at `point_m` (world frame) for the coming tick.
+  void apply_force(BodyHandle b, const Vec3& force_N, const Vec3& point_m) {
+    Wrench& wr = w_->body_wrench[b.index];
+    wr.force_N += force_N;
+    wr.torque_Nm += cross(point_m - w_->body_pose[b.index].position, force_N);
+  }
+  /// Applies a pure torque (world frame) for the coming tick.
+  void apply_torque(BodyHandle b, const Vec3& torque_Nm) { w_->body_wrench[b.index].torque_Nm += torque_Nm; }
+
+  /// Joint position of an axis (rad, or m for a slider).
+  double axis_position(AxisHandle a) const { return w_->axis_position[a.index]; }
+  /// Joint velocity of an axis (rad/s, or m/s).
+  double axis_velocity(AxisHandle a) const { return w_->axis_velocity[a.index]; }
+  /// Adds a generalised force (N·m, or N) on an axis for the coming tick; positive drives the
+  /// axis position up.
+  void apply_axis_force(AxisHandle a, double force) { w_->axis_force[a.index] += force; }
+
+  /// Current value of an input.
+  double input(InputHandle i) const { return w_->inputs[i.index]; }
+  /// Sets an input (controllers set the references that motor controllers read).
+  void set_input(InputHandle i, double v) { w_->inputs[i.index] = v; }
+  /// Publishes a signal value; it holds until published again.
+  void publish(SignalHandle s, double v) { w_->signals[s.index] = v; }
+  /// The component's state block.
+  double* state(StateHandle h) { return w_->state + h.offset; }
+  /// The component's own random stream.
+  RandomStream random() { return RandomStream(w_->random_state + 4 * component_); }
+
+ private:
+  detail::WorldView* w_;
+  std::int32_t component_;
+  std::int64_t period_ticks_;
+};
+
+/// What a component sees once, at load: its parameters, the bodies and axes it may use, and
+/// the declarations of its signals, inputs, state and schedule. Every lookup throws
+/// `s2sim::Error` with the component's location when the name is unknown.
+class ConfigureContext {
+ public:
+  virtual ~ConfigureContext() = default;
+
+  /// The component's XML element.
+  virtual const Params& params() const = 0;
+  /// Its instance ID as written in the scene.
+  virtual std::string_view id() const = 0;
+  /// The prefix of its signals: `robots/<robot>/<kind>s/<id>` or `<kind>s/<id>` at scene level.
+  virtual std::string_view signal_prefix() const = 0;
+  /// The owning robot's ID, empty for a scene-level component.
+  virtual std::string_view robot() const = 0;
+  /// Length of one physics tick, seconds.
+  virtual double tick_s() const = 0;
+
+  /// A body by name: a solid ID of the owning robot, `world`, or a full path
+  /// `robots/<robot>/solids/<solid>` or `things/<thing>`.
+  virtual BodyHandle body(std::string_view name) = 0;
+  /// Mass of a body, kg (0 for the world).
+  virtual double body_mass_kg(BodyHandle b) const = 0;
+  /// An axis by name: a joint ID of the owning robot (`<joint>:2` for a Universal joint's
+  /// second axis) or a full path `robots/<robot>/axes/<axis>`.
+  virtual AxisHandle axis(std::string_view name) = 0;
+  /// Whether the axis is linear (a slider, metres) rather than rotational (radians).
+  virtual bool axis_is_linear(AxisHandle a) const = 0;
+  /// The signal prefix of an axis, `robots/<robot>/axes/<axis>`.
+  virtual std::string axis_prefix(AxisHandle a) const = 0;
+
+  /// Declares a signal `<signal_prefix>/<name>` with its unit ("m", "rad/s", "A", "1"...).
+  virtual SignalHandle declare_signal(std::string_view name, std::string_view unit) = 0;
+  /// Declares a signal by its full name (for example an axis's `.../current`).
+  virtual SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) = 0;
+  /// Declares, or joins when another component declared it already, the input
+  /// `<signal_prefix>/<name>`; `initial` is its value at reset.
+  virtual InputHandle declare_input(std::string_view name, std::string_view unit,
+                                    double initial) = 0;
+  /// Same with a full name, e.g. `robots/r/axes/left/ref_speed`.
+  virtual InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
+                                       double initial) = 0;
+  /// Declares `count` doubles of state set to `initial` at reset.
+  virtual StateHandle declare_state(std::string_view name, int count, double initial) = 0;
+  /// Runs `update()` in `stage` every `period_s` from `phase_s`; both must be whole multiples
+  /// of the tick. Without a call the component runs every tick in its kind's default stage.
+  virtual void set_schedule(Stage stage, double period_s, double phase_s = 0.0) = 0;
+};
+
+/// Base of every plugin component.
+class Component {
+ public:
+  virtual ~Component() = default;
+  /// Reads parameters, resolves names to handles, declares what it needs. May throw to refuse
+  /// the scene; the message should say which parameter is wrong (Params does this for you).
+  virtual void configure(ConfigureContext& ctx) = 0;
+  /// Sets the state declared in configure() to its starting values (after `initial`s are
+  /// applied). Called before the first tick and at every reset.
+  virtual void initialize(StepContext& ctx) {}
+  /// One update on a tick of the component's schedule. Must not allocate or throw.
+  virtual void update(StepContext& ctx) = 0;
+};
+
+}  // namespace s2sim

@@ -1,0 +1,66 @@
+#pragma once
+/// \file
+/// A component's parameters, read from its XML element in the scene.
+
+#include <s2sim/math.hpp>
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <string_view>
+
+namespace s2sim {
+
+/// Accepted range of a number; `min`/`max` are inclusive unless the `_exclusive` flag is set.
+struct Range {
+  double min = -std::numeric_limits<double>::infinity();
+  double max = std::numeric_limits<double>::infinity();
+  bool min_exclusive = false;
+  bool max_exclusive = false;
+
+  /// Strictly positive numbers.
+  static constexpr Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true}; }
+  /// Zero or more.
+  static constexpr Range non_negative() { return {0.0}; }
+};
+
+/// Read-only view of a component's XML element. A `path` names an attribute: `"gain"` is the
+/// attribute `gain` of the component's own element, `"motor.ri"` the attribute `ri` of its
+/// first child `<motor>`, `"a.b.c"` the attribute `c` of `<a><b>`. Numbers are SimTwo
+/// expressions evaluated with the constants in scope where the element stands.
+///
+/// Every getter throws `s2sim::Error` naming the file, the element and the attribute when the
+/// value is present but unusable (a failing expression, a wrong type, out of `range`), and the
+/// getters without a default also when it is absent.
+class Params {
+ public:
+  virtual ~Params() = default;
+
+  /// Whether the attribute at `path` is present.
+  virtual bool has(std::string_view path) const = 0;
+  /// Whether a child element `<name>` (dotted path allowed) is present.
+  virtual bool has_element(std::string_view path) const = 0;
+
+  /// A required number.
+  virtual double number(std::string_view path, Range range = {}) const = 0;
+  /// A number, or `fallback` when absent.
+  virtual double number(std::string_view path, double fallback, Range range = {}) const = 0;
+  /// A required integer (an expression whose value is integral).
+  virtual std::int64_t integer(std::string_view path) const = 0;
+  /// An integer, or `fallback` when absent.
+  virtual std::int64_t integer(std::string_view path, std::int64_t fallback) const = 0;
+  /// A boolean (`1`/`true`/`0`/`false`), or `fallback` when absent.
+  virtual bool boolean(std::string_view path, bool fallback) const = 0;
+  /// A required string, whitespace-trimmed.
+  virtual std::string text(std::string_view path) const = 0;
+  /// A string, or `fallback` when absent.
+  virtual std::string text(std::string_view path, std::string_view fallback) const = 0;
+  /// The `x`, `y`, `z` attributes of the element at `element_path`, each defaulting to
+  /// `fallback`'s component.
+  virtual Vec3 vec3(std::string_view element_path, Vec3 fallback = {}) const = 0;
+
+  /// "file: element" of the component's element, for messages of the component's own.
+  virtual std::string location() const = 0;
+};
+
+}  // namespace s2sim
