@@ -27,7 +27,8 @@ struct Vec3 {
     z -= o.z;
     return *this;
   }
-  constexpr bool operator==(const Vec3&) const = default;
+  constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
+  constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 };
 constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }
 constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
@@ -61,7 +62,12 @@ struct Mat3 {
   }
   /// Column j, e.g. the body's local axis j expressed in the parent frame.
   constexpr Vec3 column(int j) const { return {m[0][j], m[1][j], m[2][j]}; }
-  constexpr bool operator==(const Mat3&) const = default;
+  constexpr bool operator==(const Mat3& o) const {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        if (m[i][j] != o.m[i][j]) return false;
+    return true;
+  }
 };
 
 /// A unit quaternion (w, x, y, z) for an orientation.

@@ -1,0 +1,145 @@
+#include "options.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <string_view>
+
+namespace s2sim::runner {
+namespace {
+
+Error usage_error(const std::string& message) {
+  return Error(ErrorKind::usage, message + " (see s2sim-run --help)");
+}
+
+double parse_number(std::string_view option, const std::string& text) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v))
+    throw usage_error(std::string(option) + ": '" + text + "' is not a number");
+  return v;
+}
+
+std::pair<std::string, double> parse_assignment(std::string_view option, const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw usage_error(std::string(option) + ": expected NAME=VALUE, got '" + text + "'");
+  return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
+}
+
+}  // namespace
+
+const char* usage_text() {
+  return R"(Usage: s2sim-run SCENE [options]
+Runs a SimTwo/S2Sim scene headless. SCENE is a scene folder or its scene.xml.
+
+Options:
+  --duration S         simulated seconds to run (default 10)
+  --realtime           pace the run to the wall clock
+  --fast               run as fast as possible (default)
+  --log FILE.csv       write signals to a CSV file (header: name [unit])
+  --signals PATTERN... signals to log, glob patterns (* and ?); default: all
+  --log-period S       seconds between CSV rows (default: every physics step)
+  --summary FILE.json  write the final summary as JSON
+  --no-timing          leave wall_time and rtf out of the JSON (byte-identical reruns)
+  --seed N             seed of every random stream (default 1)
+  --set INPUT=VALUE... hold an input for the whole run, e.g.
+                       --set robots/arm/axes/J1/ref_torque=0.5
+  --define NAME=VALUE  a constant defined before scene.xml is read
+  --physics-step S     override the physics step (seconds)
+  --substeps N         override the physics substeps per step
+  --plugin-path DIR    search DIR for plugins (repeatable; replaces the default path)
+  --list-signals       print every signal with its unit and exit
+  --list-inputs        print every input with its unit and exit
+  --quiet              no progress bar, no summary on the terminal
+  --version, --help
+
+Exit codes: 0 ok, 1 internal error, 2 bad scene, 3 plugin error, 4 bad usage
+(unknown signal or input, bad option), 5 the simulation failed (non-finite state).
+)";
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  auto is_option = [](const std::string& a) { return a.size() > 2 && a[0] == '-' && a[1] == '-'; };
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    auto value = [&]() -> const std::string& {
+      if (i + 1 >= args.size() || is_option(args[i + 1]))
+        throw usage_error(a + " needs a value");
+      return args[++i];
+    };
+    // Options that take several values read until the next option.
+    auto values = [&](std::vector<std::string>& out) {
+      if (i + 1 >= args.size() || is_option(args[i + 1]))
+        throw usage_error(a + " needs at least one value");
+      while (i + 1 < args.size() && !is_option(args[i + 1])) out.push_back(args[++i]);
+    };
+    if (a == "--duration") {
+      o.duration_s = parse_number(a, value());
+      if (o.duration_s < 0) throw usage_error("--duration must not be negative");
+    } else if (a == "--realtime") {
+      o.realtime = true;
+    } else if (a == "--fast") {
+      o.realtime = false;
+    } else if (a == "--log") {
+      o.log_file = value();
+    } else if (a == "--signals") {
+      values(o.signal_patterns);
+    } else if (a == "--log-period") {
+      o.log_period_s = parse_number(a, value());
+      if (!(*o.log_period_s > 0)) throw usage_error("--log-period must be positive");
+    } else if (a == "--summary") {
+      o.summary_file = value();
+    } else if (a == "--no-timing") {
+      o.summary_timing = false;
+    } else if (a == "--seed") {
+      const std::string& v = value();
+      char* end = nullptr;
+      errno = 0;
+      o.seed = std::strtoull(v.c_str(), &end, 10);
+      if (v.empty() || v[0] == '-' || end != v.c_str() + v.size() || errno == ERANGE)
+        throw usage_error("--seed: '" + v + "' is not a non-negative integer");
+    } else if (a == "--set") {
+      std::vector<std::string> sets;
+      values(sets);
+      for (const auto& s : sets) o.inputs.push_back(parse_assignment(a, s));
+    } else if (a == "--define") {
+      o.constants.push_back(parse_assignment(a, value()));
+    } else if (a == "--physics-step") {
+      o.physics_step_s = parse_number(a, value());
+      if (!(*o.physics_step_s > 0)) throw usage_error("--physics-step must be positive");
+    } else if (a == "--substeps") {
+      const double n = parse_number(a, value());
+      if (n < 1 || n != std::floor(n) || n > 1000)
+        throw usage_error("--substeps must be an integer from 1 to 1000");
+      o.substeps = static_cast<int>(n);
+    } else if (a == "--plugin-path") {
+      o.plugin_path.push_back(value());
+    } else if (a == "--quiet") {
+      o.quiet = true;
+    } else if (a == "--list-signals") {
+      o.list_signals = true;
+    } else if (a == "--list-inputs") {
+      o.list_inputs = true;
+    } else if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--version") {
+      o.version = true;
+    } else if (is_option(a) || (a.size() > 1 && a[0] == '-')) {
+      throw usage_error("unknown option '" + a + "'");
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      throw usage_error("unexpected argument '" + a + "' (the scene is already '" + o.scene + "')");
+    }
+  }
+  if (o.scene.empty() && !o.help && !o.version) throw usage_error("no scene given");
+  return o;
+}
+
+}  // namespace s2sim::runner

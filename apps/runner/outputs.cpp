@@ -1,0 +1,188 @@
+#include "outputs.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <cinttypes>
+#include <cmath>
+
+namespace s2sim::runner {
+namespace {
+
+std::string format(const char* fmt, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, fmt, v);
+  return buf;
+}
+
+/// JSON string escaping for IDs (quotes, backslashes, control characters).
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (unsigned char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += static_cast<char>(c);
+    } else if (c < 0x20) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", c);
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  return out + "\"";
+}
+
+/// Shortest text that reads back to the same double; non-finite values become null.
+std::string json_number(double v) {
+  if (!std::isfinite(v)) return "null";
+  for (int precision = 15; precision <= 17; ++precision) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) return buf;
+  }
+  return format("%.17g", v);
+}
+
+struct PoseRow {
+  std::string name;
+  double x, y, z, yaw;
+};
+
+std::vector<PoseRow> robot_rows(const Simulation& sim) {
+  std::vector<PoseRow> rows;
+  for (const auto& r : sim.scene().robots) {
+    if (r.main_body < 0) continue;
+    const Pose& p = sim.body_pose(r.main_body + 1);
+    rows.push_back({r.id, p.position.x, p.position.y, p.position.z, yaw_of(p.rotation)});
+  }
+  return rows;
+}
+
+std::vector<PoseRow> thing_rows(const Simulation& sim) {
+  std::vector<PoseRow> rows;
+  for (int b : sim.scene().things) {
+    const Pose& p = sim.body_pose(b + 1);
+    rows.push_back({sim.scene().bodies[b].id, p.position.x, p.position.y, p.position.z,
+                    yaw_of(p.rotation)});
+  }
+  return rows;
+}
+
+std::string robot_name(const Simulation& sim, int robot) {
+  return robot >= 0 ? sim.scene().robots[robot].id : std::string();
+}
+
+}  // namespace
+
+CsvLog::CsvLog(const std::string& file, const Simulation& sim,
+               const std::vector<std::string>& patterns)
+    : path_(file) {
+  if (patterns.empty()) {
+    for (std::size_t i = 0; i < sim.signal_count(); ++i) signals_.push_back(i);
+  } else {
+    for (const auto& p : patterns) {
+      const auto matched = sim.match_signals(p);
+      if (matched.empty()) {
+        // A plain name gets the "did you mean" of signal_index().
+        if (p.find_first_of("*?") == std::string::npos) (void)sim.signal_index(p);
+        throw Error(ErrorKind::usage, "--signals: pattern '" + p + "' matches no signal");
+      }
+      signals_.insert(signals_.end(), matched.begin(), matched.end());
+    }
+  }
+  out_ = std::fopen(file.c_str(), "w");
+  if (out_ == nullptr) throw Error(ErrorKind::usage, "--log: cannot write '" + file + "'");
+  std::fputs("time [s]", out_);
+  for (std::size_t i : signals_) {
+    const SignalInfo& info = sim.signal_info(i);
+    std::fprintf(out_, ",%s [%s]", info.name.c_str(), info.unit.c_str());
+  }
+  std::fputc('\n', out_);
+}
+
+CsvLog::~CsvLog() {
+  if (out_ != nullptr) std::fclose(out_);
+}
+
+void CsvLog::write_row(const Simulation& sim) {
+  std::fprintf(out_, "%.6f", sim.time_s());
+  for (std::size_t i : signals_) std::fprintf(out_, ",%.10g", sim.signal(i));
+  std::fputc('\n', out_);
+  if (std::ferror(out_)) throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
+}
+
+std::string summary_text(const Simulation& sim, const RunTiming& t) {
+  std::string s;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "simulated %.3f s in %.3f s wall: %.1fx real time, %" PRId64 " steps of %g ms\n",
+                sim.time_s(), t.wall_s, t.wall_s > 0 ? sim.time_s() / t.wall_s : 0.0, t.steps,
+                sim.tick_s() * 1e3);
+  s += line;
+  auto rows = [&](const char* title, const std::vector<PoseRow>& r) {
+    if (r.empty()) return;
+    s += title;
+    for (const auto& p : r) {
+      std::snprintf(line, sizeof line, "  %-20s x %9.4f  y %9.4f  z %9.4f  yaw %8.2f deg\n",
+                    p.name.c_str(), p.x, p.y, p.z, p.yaw * 180.0 / M_PI);
+      s += line;
+    }
+  };
+  rows("robots:\n", robot_rows(sim));
+  rows("things:\n", thing_rows(sim));
+  return s;
+}
+
+std::string summary_json(const Simulation& sim, const RunTiming& t, bool with_timing) {
+  std::string s = "{\n";
+  s += "  \"sim_time\": " + json_number(sim.time_s()) + ",\n";
+  if (with_timing) {
+    s += "  \"wall_time\": " + json_number(t.wall_s) + ",\n";
+    s += "  \"rtf\": " + json_number(t.wall_s > 0 ? sim.time_s() / t.wall_s : 0.0) + ",\n";
+  }
+  s += "  \"steps\": " + std::to_string(t.steps) + ",\n";
+  auto poses = [&](const char* key, const std::vector<PoseRow>& rows) {
+    s += std::string("  \"") + key + "\": [";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& p = rows[i];
+      s += (i ? ",\n    " : "\n    ");
+      s += "{\"name\": " + json_string(p.name) + ", \"x\": " + json_number(p.x) +
+           ", \"y\": " + json_number(p.y) + ", \"z\": " + json_number(p.z) +
+           ", \"yaw\": " + json_number(p.yaw) + "}";
+    }
+    s += rows.empty() ? "],\n" : "\n  ],\n";
+  };
+  poses("robots", robot_rows(sim));
+  poses("things", thing_rows(sim));
+  s += "  \"axes\": [";
+  for (std::size_t a = 0; a < sim.axis_count(); ++a) {
+    const auto& ax = sim.axis(a);
+    s += (a ? ",\n    " : "\n    ");
+    s += "{\"robot\": " + json_string(robot_name(sim, ax.robot)) +
+         ", \"name\": " + json_string(ax.name) + ", \"pos\": " + json_number(sim.axis_position(a)) +
+         ", \"vel\": " + json_number(sim.axis_velocity(a)) + "}";
+  }
+  s += sim.axis_count() ? "\n  ]\n" : "]\n";
+  s += "}\n";
+  return s;
+}
+
+void ProgressBar::update(double sim_s, double total_s, double wall_s, bool force) {
+  if (!enabled_ || (!force && wall_s - last_draw_wall_s_ < 0.1)) return;
+  last_draw_wall_s_ = wall_s;
+  const double fraction = total_s > 0 ? std::min(1.0, sim_s / total_s) : 1.0;
+  constexpr int width = 40;
+  const int filled = static_cast<int>(fraction * width);
+  char bar[width + 1];
+  for (int i = 0; i < width; ++i) bar[i] = i < filled ? '#' : '.';
+  bar[width] = '\0';
+  std::fprintf(stderr, "\r[%s] %5.1f%%  t = %8.3f s  %6.1fx real time", bar, fraction * 100,
+               sim_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+  std::fflush(stderr);
+}
+
+void ProgressBar::finish() {
+  if (enabled_ && last_draw_wall_s_ >= 0) std::fputc('\n', stderr);
+}
+
+}  // namespace s2sim::runner

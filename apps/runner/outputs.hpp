@@ -1,0 +1,53 @@
+#pragma once
+/// \file
+/// What s2sim-run writes: the CSV log, the final summary (terminal and JSON), the progress bar.
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+namespace s2sim::runner {
+
+/// A CSV file with a header `name [unit]` and one row per logged tick. Rows are formatted
+/// into a reused buffer: no allocation per row.
+class CsvLog {
+ public:
+  /// Throws s2sim::Error (usage) when the file cannot be written or a pattern matches nothing.
+  CsvLog(const std::string& file, const Simulation& sim, const std::vector<std::string>& patterns);
+  ~CsvLog();
+  CsvLog(const CsvLog&) = delete;
+  CsvLog& operator=(const CsvLog&) = delete;
+  void write_row(const Simulation& sim);
+
+ private:
+  std::FILE* out_ = nullptr;
+  std::string path_;
+  std::vector<std::size_t> signals_;
+};
+
+struct RunTiming {
+  double wall_s = 0;
+  std::int64_t steps = 0;
+};
+
+/// The summary as text for the terminal.
+std::string summary_text(const Simulation& sim, const RunTiming& timing);
+/// The summary as JSON: sim_time, wall_time, rtf, steps, robots, things, axes.
+std::string summary_json(const Simulation& sim, const RunTiming& timing, bool with_timing);
+
+/// A one-line progress bar on a terminal (stderr), redrawn at most ten times a second.
+class ProgressBar {
+ public:
+  explicit ProgressBar(bool enabled) : enabled_(enabled) {}
+  /// Redraws when 0.1 s of wall time has passed since the last draw, or when `force`.
+  void update(double sim_s, double total_s, double wall_s, bool force = false);
+  void finish();
+
+ private:
+  bool enabled_;
+  double last_draw_wall_s_ = -1;
+};
+
+}  // namespace s2sim::runner

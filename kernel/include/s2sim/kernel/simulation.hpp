@@ -1,0 +1,123 @@
+#pragma once
+/// \file
+/// The façade: everything the runner, the viewer, the tests and the benchmarks use to load a
+/// scene, step it and read it. No Simbody type appears here.
+
+#include <s2sim/kernel/scene.hpp>
+#include <s2sim/math.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace s2sim {
+
+/// How to load a simulation. Unset optionals keep the scene's settings.
+struct SimulationOptions {
+  std::uint64_t seed = 1;  ///< seeds every component's random stream
+  std::optional<double> physics_step_s;
+  std::optional<int> substeps;
+  /// Plugin folders; empty = PluginRegistry::default_search_path().
+  std::vector<std::filesystem::path> plugin_path;
+  /// Constants defined before scene.xml is read (as `--define`).
+  std::vector<std::pair<std::string, double>> constants;
+};
+
+/// A named value with its unit, e.g. `robots/r/axes/left/speed` in `rad/s`.
+struct SignalInfo {
+  std::string name;
+  std::string unit;
+};
+
+/// A loaded scene ready to step. Time advances on an integer tick grid (one tick = one physics
+/// step); in each tick sensors sample, controllers run, motor controllers run, actuators
+/// apply their loads, then the physics advances (docs/scheduling.md).
+class Simulation {
+ public:
+  /// Loads `scene_path` (a folder or its scene.xml), builds the model, loads the plugins the
+  /// scene names and configures every component. Throws s2sim::Error: kind scene for bad
+  /// scene input, kind plugin for a plugin that cannot be loaded or refuses its parameters.
+  static std::unique_ptr<Simulation> load(const std::filesystem::path& scene_path,
+                                          const SimulationOptions& options = {});
+  ~Simulation();
+
+  const scene::Scene& scene() const;
+  /// Loader and model warnings (missing files, inert sensors...).
+  const std::vector<std::string>& warnings() const;
+
+  double time_s() const;
+  std::int64_t tick() const;
+  double tick_s() const;
+
+  /// Advances `ticks` ticks.
+  void step(std::int64_t ticks = 1);
+  /// Steps until time_s() >= t (rounded to the nearest tick).
+  void run_until(double t_s);
+  /// Back to t = 0: initial configuration, inputs at their initial values, components
+  /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
+  void reset();
+
+  // Signals: every readable value, by index (fast) or name.
+  std::size_t signal_count() const;
+  const SignalInfo& signal_info(std::size_t index) const;
+  std::optional<std::size_t> find_signal(std::string_view name) const;
+  /// Like find_signal but throws (kind usage) naming the signal and suggesting close names.
+  std::size_t signal_index(std::string_view name) const;
+  double signal(std::size_t index) const;
+  double signal(std::string_view name) const { return signal(signal_index(name)); }
+  /// Signals whose names match a glob pattern (`*` any run of characters, `?` one).
+  std::vector<std::size_t> match_signals(std::string_view pattern) const;
+
+  // Inputs: values set from outside that hold until set again.
+  std::size_t input_count() const;
+  const SignalInfo& input_info(std::size_t index) const;
+  /// Throws (kind usage) naming the input and suggesting close names.
+  std::size_t input_index(std::string_view name) const;
+  void set_input(std::size_t index, double value);
+  void set_input(std::string_view name, double value) { set_input(input_index(name), value); }
+  double input(std::size_t index) const;
+
+  // Bodies: index 0 is the world, scene body i is body i + 1.
+  int body_count() const;
+  const Pose& body_pose(int body) const;
+  const Twist& body_twist(int body) const;
+
+  // Axes (joint degrees of freedom), in scene joint order.
+  struct AxisView {
+    std::string name;
+    int robot;
+    int joint;
+    bool linear;
+  };
+  std::size_t axis_count() const;
+  const AxisView& axis(std::size_t index) const;
+  double axis_position(std::size_t index) const;
+  double axis_velocity(std::size_t index) const;
+
+  /// Kinetic and gravitational potential energy of all bodies, J (validation).
+  double kinetic_energy_J() const;
+  double potential_energy_J() const;
+
+  /// A copy of the whole simulation state; restoring it continues exactly as from there.
+  struct Snapshot {
+    std::vector<double> values;
+    std::vector<std::uint64_t> random;
+  };
+  Snapshot save() const;
+  void restore(const Snapshot& snapshot);
+
+  struct Impl;
+
+ private:
+  explicit Simulation(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Process exit code for an error kind (0 ok, 2 scene, 3 plugin, 4 usage, 5 runtime).
+int exit_code(ErrorKind kind);
+
+}  // namespace s2sim

@@ -1,0 +1,614 @@
+// The only translation unit that sees Simbody (with its Custom force below).
+#include "model/multibody.hpp"
+
+#include <Simbody.h>
+
+#include <cmath>
+#include <deque>
+#include <string>
+
+namespace s2sim::model {
+namespace {
+
+SimTK::Vec3 to_simtk(const Vec3& v) { return {v.x, v.y, v.z}; }
+Vec3 from_simtk(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+
+SimTK::Rotation to_simtk(const Mat3& m) {
+  SimTK::Mat33 r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r(i, j) = m.m[i][j];
+  return SimTK::Rotation(r);  // re-orthonormalised: scene rotations carry rounding
+}
+Mat3 from_simtk(const SimTK::Rotation& r) {
+  Mat3 m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m.m[i][j] = r.asMat33()(i, j);
+  return m;
+}
+SimTK::Transform to_simtk(const Pose& p) {
+  return SimTK::Transform(to_simtk(p.rotation), to_simtk(p.position));
+}
+
+Error scene_error(const Location& where, const std::string& message) {
+  return Error(ErrorKind::scene, where, message);
+}
+
+/// Two unit vectors perpendicular to `a` and to each other.
+void perpendiculars(const SimTK::UnitVec3& a, SimTK::UnitVec3& p1, SimTK::UnitVec3& p2) {
+  p1 = a.perp();
+  p2 = SimTK::UnitVec3(SimTK::cross(a, p1));
+}
+
+/// How an axis's value is realised.
+struct AxisImpl {
+  // Tree joint: a mobilizer coordinate.
+  SimTK::MobilizedBodyIndex mobod;
+  int coordinate = 0;  // which q/u of the mobilizer
+  double sign = 1;     // axis value = sign * q (ODE convention: body1 relative to body2)
+  // Loop joint: measured from the two bodies.
+  int body1 = -1, body2 = -1;           // kernel body indices (0 = world)
+  SimTK::UnitVec3 axis_in_body2;        // rotation axis or slide direction, body2 frame
+  SimTK::Rotation relative0;            // initial body1 orientation in body2 frame
+  SimTK::Vec3 offset0_in_body2;         // initial body1 origin in body2 frame
+  SimTK::Vec3 anchor_in_body1;          // slider force application point
+};
+
+}  // namespace
+
+struct Multibody::Impl {
+  SimTK::MultibodySystem system;
+  SimTK::SimbodyMatterSubsystem matter{system};
+  SimTK::GeneralForceSubsystem forces{system};
+  SimTK::Force::Gravity gravity{forces, matter, SimTK::Vec3(0, 0, -9.81)};
+  std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod
+  std::vector<Pose> initial_pose;                        // kernel body -> pose at load
+  std::vector<AxisInfo> axes;
+  std::vector<AxisImpl> axis_impl;
+  std::vector<std::string> warnings;
+  /// A joint stop: a linear spring-damper on one axis outside [low, high], never pulling.
+  struct Stop {
+    int axis;
+    double low, high;
+    double stiffness = 0, damping = 0;
+  };
+  std::vector<Stop> stops;
+  std::vector<Wrench> wrenches;
+  std::vector<double> axis_forces;
+  SimTK::State initial_state;
+  SimTK::State current;
+  SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
+  bool half_kick_pending = true;
+  bool has_quaternions = false;
+  bool has_constraints = false;
+  double tick_s = 1e-3;
+  int substeps = 1;
+  std::int64_t ticks = 0;
+
+  const SimTK::State& state() const { return current; }
+  const SimTK::MobilizedBody& mobod(int body) const {
+    return matter.getMobilizedBody(mobod_of_body[body]);
+  }
+  SimTK::MobilizedBody& upd_mobod(int body) { return matter.updMobilizedBody(mobod_of_body[body]); }
+};
+
+namespace {
+
+/// An axis's value (rad or m), ODE convention; `state` realized to Position.
+double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
+  const AxisImpl& ax = m.axis_impl[a];
+  if (!m.axes[a].loop) return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneQ(s, ax.coordinate);
+  const auto& b1 = m.mobod(ax.body1);
+  const auto& b2 = m.mobod(ax.body2);
+  const SimTK::Rotation& R2 = b2.getBodyRotation(s);
+  if (m.axes[a].linear) {
+    const SimTK::Vec3 offset = ~R2 * (b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s));
+    return SimTK::dot(offset - ax.offset0_in_body2, ax.axis_in_body2);
+  }
+  // Rotation of body1 relative to body2 since load, about the axis (in (-pi, pi]).
+  const SimTK::Rotation delta = (~R2 * b1.getBodyRotation(s)) * ~ax.relative0;
+  const SimTK::Mat33& D = delta.asMat33();
+  const SimTK::Vec3 vee(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
+  return std::atan2(0.5 * SimTK::dot(vee, ax.axis_in_body2), (D.trace() - 1.0) / 2.0);
+}
+
+/// An axis's rate (rad/s or m/s); `state` realized to Velocity.
+double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
+  const AxisImpl& ax = m.axis_impl[a];
+  if (!m.axes[a].loop) return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneU(s, ax.coordinate);
+  const auto& b1 = m.mobod(ax.body1);
+  const auto& b2 = m.mobod(ax.body2);
+  const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
+  if (m.axes[a].linear) {
+    const SimTK::Vec3 r = b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s);
+    const SimTK::Vec3 v = b1.getBodyOriginVelocity(s) - b2.getBodyOriginVelocity(s) -
+                          SimTK::cross(b2.getBodyAngularVelocity(s), r);
+    return SimTK::dot(v, axis_G);
+  }
+  return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
+}
+
+/// Applies the kernel's loads for the tick: body wrenches and axis forces.
+class AppliedLoads : public SimTK::Force::Custom::Implementation {
+ public:
+  explicit AppliedLoads(const Multibody::Impl* impl) : m_(impl) {}
+
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
+    const auto& mb = *m_;
+    for (std::size_t b = 1; b < mb.wrenches.size(); ++b) {
+      const Wrench& w = mb.wrenches[b];
+      body_forces[mb.mobod_of_body[b]] +=
+          SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+    }
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a) {
+      double f = mb.axis_forces[a];
+      for (const auto& stop : mb.stops) {
+        if (stop.axis != static_cast<int>(a)) continue;
+        const double q = axis_value(mb, state, a), qdot = axis_rate(mb, state, a);
+        if (q > stop.high)
+          f += std::min(0.0, -stop.stiffness * (q - stop.high) - stop.damping * qdot);
+        else if (q < stop.low)
+          f += std::max(0.0, -stop.stiffness * (q - stop.low) - stop.damping * qdot);
+      }
+      if (f == 0.0) continue;
+      const AxisImpl& ax = mb.axis_impl[a];
+      if (!mb.axes[a].loop) {
+        mb.matter.getMobilizedBody(ax.mobod)
+            .applyOneMobilityForce(state, ax.coordinate, ax.sign * f, mobility_forces);
+        continue;
+      }
+      // Loop joint: equal and opposite loads on the two bodies about / along the axis.
+      const auto& b1 = mb.mobod(ax.body1);
+      const auto& b2 = mb.mobod(ax.body2);
+      const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
+      if (mb.axes[a].linear) {
+        const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
+        const SimTK::Vec3 force = f * axis_G;
+        b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
+        b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
+                                 body_forces);
+      } else {
+        b1.applyBodyTorque(state, f * axis_G, body_forces);
+        b2.applyBodyTorque(state, -f * axis_G, body_forces);
+      }
+    }
+  }
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+
+ private:
+  const Multibody::Impl* m_;
+};
+
+/// Orientation of a joint frame whose `primary` axis is `a` (and, for a Universal joint, whose
+/// Y axis is as close as possible to `b`).
+SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
+  return SimTK::Rotation(SimTK::UnitVec3(to_simtk(a)), primary);
+}
+
+}  // namespace
+
+Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.tick_s = tick_s;
+  const int n_bodies = static_cast<int>(scene.bodies.size());
+  m.mobod_of_body.assign(n_bodies + 1, SimTK::MobilizedBodyIndex());
+  m.mobod_of_body[0] = SimTK::GroundIndex;
+  m.initial_pose.assign(n_bodies + 1, Pose{});
+  for (int i = 0; i < n_bodies; ++i) m.initial_pose[i + 1] = scene.bodies[i].pose;
+
+  // Spanning forest of the joint graph: world-connected bodies hang from Ground through their
+  // joint, every other group gets a Free root (the robot's main body where there is one).
+  const int n_joints = static_cast<int>(scene.joints.size());
+  std::vector<std::vector<int>> incident(n_bodies);
+  for (int j = 0; j < n_joints; ++j) {
+    const auto& jt = scene.joints[j];
+    if (jt.body1 >= 0) incident[jt.body1].push_back(j);
+    if (jt.body2 >= 0) incident[jt.body2].push_back(j);
+  }
+  struct TreeEdge {
+    int joint, parent, child;  // scene body indices, parent -1 = world, joint -1 = Free
+  };
+  std::vector<TreeEdge> tree;
+  std::vector<int> loops;
+  std::vector<char> visited(n_bodies, 0), used(n_joints, 0);
+  std::deque<int> queue;
+  auto expand = [&]() {
+    while (!queue.empty()) {
+      const int b = queue.front();
+      queue.pop_front();
+      for (int j : incident[b]) {
+        if (used[j]) continue;
+        used[j] = 1;
+        const auto& jt = scene.joints[j];
+        const int other = jt.body1 == b ? jt.body2 : jt.body1;
+        if (other < 0 || visited[other]) {
+          loops.push_back(j);
+        } else {
+          visited[other] = 1;
+          tree.push_back({j, b, other});
+          queue.push_back(other);
+        }
+      }
+    }
+  };
+  for (int j = 0; j < n_joints; ++j) {
+    const auto& jt = scene.joints[j];
+    if (jt.body2 >= 0 && jt.body1 >= 0) continue;
+    const int b = jt.body1 >= 0 ? jt.body1 : jt.body2;
+    if (b < 0) throw scene_error(jt.where, "joint '" + jt.id + "' connects the world to itself");
+    if (used[j]) continue;  // already met as a loop while expanding another world joint
+    used[j] = 1;
+    if (visited[b]) {
+      loops.push_back(j);
+      continue;
+    }
+    visited[b] = 1;
+    tree.push_back({j, -1, b});
+    queue.push_back(b);
+    expand();
+  }
+  std::vector<int> root_order;
+  for (const auto& r : scene.robots)
+    if (r.main_body >= 0) root_order.push_back(r.main_body);
+  for (int b = 0; b < n_bodies; ++b) root_order.push_back(b);
+  for (int b : root_order) {
+    if (visited[b]) continue;
+    visited[b] = 1;
+    tree.push_back({-1, -1, b});
+    queue.push_back(b);
+    expand();
+  }
+
+  auto kernel_index = [](int scene_body) { return scene_body + 1; };
+  auto pose_of = [&](int scene_body) {
+    return scene_body < 0 ? SimTK::Transform() : to_simtk(scene.bodies[scene_body].pose);
+  };
+
+  // Bodies and mobilizers in tree order (parents first).
+  std::vector<int> free_bodies;
+  struct AxisPending {
+    int joint, which;
+    SimTK::MobilizedBodyIndex mobod;
+    int coordinate;
+    double sign;
+  };
+  std::vector<AxisPending> tree_axes;
+  for (const TreeEdge& e : tree) {
+    const auto& sb = scene.bodies[e.child];
+    SimTK::Inertia inertia_com;
+    try {
+      const Mat3& I = sb.inertia_kg_m2;
+      inertia_com = SimTK::Inertia(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2],
+                                   I.m[1][2]);
+      const SimTK::Vec3 com = to_simtk(sb.com_m);
+      SimTK::Body::Rigid body(
+          SimTK::MassProperties(sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
+      SimTK::MobilizedBody& parent = m.upd_mobod(kernel_index(e.parent));
+      SimTK::MobilizedBodyIndex index;
+      if (e.joint < 0) {
+        SimTK::MobilizedBody::Free free(m.matter.updGround(), SimTK::Transform(), body,
+                                        SimTK::Transform());
+        index = free.getMobilizedBodyIndex();
+        free_bodies.push_back(e.child);
+      } else {
+        const auto& jt = scene.joints[e.joint];
+        const SimTK::Transform X_GP = pose_of(e.parent);
+        const SimTK::Transform X_GC = pose_of(e.child);
+        const bool child_is_body1 = jt.body1 == e.child;
+        const double sign = child_is_body1 ? 1.0 : -1.0;
+        const SimTK::Vec3 anchor = to_simtk(jt.anchor_m);
+        auto frames = [&](const SimTK::Rotation& R_GJ, SimTK::Transform& F,
+                          SimTK::Transform& M) {
+          const SimTK::Transform X_GJ(R_GJ, anchor);
+          F = ~X_GP * X_GJ;
+          M = ~X_GC * X_GJ;
+        };
+        SimTK::Transform F, M;
+        switch (jt.type) {
+          case scene::JointType::hinge: {
+            frames(joint_frame(jt.axis1, SimTK::ZAxis), F, M);
+            index = SimTK::MobilizedBody::Pin(parent, F, body, M).getMobilizedBodyIndex();
+            tree_axes.push_back({e.joint, 0, index, 0, sign});
+            break;
+          }
+          case scene::JointType::slider: {
+            frames(joint_frame(jt.axis1, SimTK::XAxis), F, M);
+            index = SimTK::MobilizedBody::Slider(parent, F, body, M).getMobilizedBodyIndex();
+            tree_axes.push_back({e.joint, 0, index, 0, sign});
+            break;
+          }
+          case scene::JointType::universal: {
+            // Simbody: rotation about F's X (fixed in the parent), then about the new Y (fixed
+            // in the child). ODE: axis1 fixed in body1, axis2 fixed in body2.
+            const Vec3 first = child_is_body1 ? jt.axis2 : jt.axis1;
+            const Vec3 second = child_is_body1 ? jt.axis1 : jt.axis2;
+            if (norm(cross(first, second)) < 1e-6)
+              throw scene_error(jt.where, "Universal joint '" + jt.id +
+                                              "': axis and axis2 must not be parallel");
+            const SimTK::Rotation R(SimTK::UnitVec3(to_simtk(first)), SimTK::XAxis,
+                                    to_simtk(second), SimTK::YAxis);
+            frames(R, F, M);
+            index =
+                SimTK::MobilizedBody::Universal(parent, F, body, M).getMobilizedBodyIndex();
+            const int coord_axis1 = child_is_body1 ? 1 : 0;
+            tree_axes.push_back({e.joint, 0, index, coord_axis1, sign});
+            tree_axes.push_back({e.joint, 1, index, 1 - coord_axis1, sign});
+            break;
+          }
+          case scene::JointType::ball:
+            frames(SimTK::Rotation(), F, M);
+            index = SimTK::MobilizedBody::Ball(parent, F, body, M).getMobilizedBodyIndex();
+            break;
+          case scene::JointType::fixed:
+            index = SimTK::MobilizedBody::Weld(parent, ~X_GP * X_GC, body, SimTK::Transform())
+                        .getMobilizedBodyIndex();
+            break;
+        }
+      }
+      m.mobod_of_body[kernel_index(e.child)] = index;
+      if (!sb.gravity) m.gravity.setDefaultBodyIsExcluded(index, true);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& ex) {
+      throw scene_error(e.joint >= 0 ? scene.joints[e.joint].where : sb.where,
+                        "Simbody refused body '" + sb.id + "': " + ex.what());
+    }
+  }
+
+  // Loop-closing joints become constraints.
+  std::vector<std::pair<int, AxisImpl>> loop_axes;  // joint, impl (which encoded in order)
+  for (int j : loops) {
+    const auto& jt = scene.joints[j];
+    const int k1 = kernel_index(jt.body1), k2 = kernel_index(jt.body2);
+    SimTK::MobilizedBody& b1 = m.upd_mobod(k1);
+    SimTK::MobilizedBody& b2 = m.upd_mobod(k2);
+    const SimTK::Transform X_G1 = pose_of(jt.body1), X_G2 = pose_of(jt.body2);
+    const SimTK::Vec3 anchor = to_simtk(jt.anchor_m);
+    const SimTK::Vec3 p1 = ~X_G1 * anchor, p2 = ~X_G2 * anchor;
+    auto axis_in = [&](const SimTK::Transform& X, const Vec3& a) {
+      return SimTK::UnitVec3(~X.R() * to_simtk(a));
+    };
+    AxisImpl base;
+    base.body1 = k1;
+    base.body2 = jt.body2 < 0 ? 0 : k2;
+    base.relative0 = ~X_G2.R() * X_G1.R();
+    base.offset0_in_body2 = ~X_G2 * X_G1.p();
+    base.anchor_in_body1 = p1;
+    switch (jt.type) {
+      case scene::JointType::fixed:
+        SimTK::Constraint::Weld(b1, SimTK::Transform(p1), b2,
+                                SimTK::Transform(~X_G2.R() * X_G1.R(), p2));
+        break;
+      case scene::JointType::ball:
+        SimTK::Constraint::Ball(b1, p1, b2, p2);
+        break;
+      case scene::JointType::hinge: {
+        SimTK::Constraint::Ball(b1, p1, b2, p2);
+        SimTK::UnitVec3 q1, q2;
+        const SimTK::UnitVec3 a2 = axis_in(X_G2, jt.axis1);
+        perpendiculars(a2, q1, q2);
+        const SimTK::UnitVec3 a1 = axis_in(X_G1, jt.axis1);
+        SimTK::Constraint::ConstantAngle(b2, q1, b1, a1);
+        SimTK::Constraint::ConstantAngle(b2, q2, b1, a1);
+        AxisImpl ax = base;
+        ax.axis_in_body2 = a2;
+        loop_axes.push_back({j, ax});
+        break;
+      }
+      case scene::JointType::universal: {
+        SimTK::Constraint::Ball(b1, p1, b2, p2);
+        SimTK::Constraint::ConstantAngle(b1, axis_in(X_G1, jt.axis1), b2, axis_in(X_G2, jt.axis2));
+        AxisImpl ax1 = base, ax2 = base;
+        ax1.axis_in_body2 = axis_in(X_G2, jt.axis1);
+        ax2.axis_in_body2 = axis_in(X_G2, jt.axis2);
+        loop_axes.push_back({j, ax1});
+        loop_axes.push_back({j, ax2});
+        break;
+      }
+      case scene::JointType::slider: {
+        SimTK::Constraint::ConstantOrientation(b2, SimTK::Rotation(), b1, ~base.relative0);
+        const SimTK::UnitVec3 a2 = axis_in(X_G2, jt.axis1);
+        SimTK::Constraint::PointOnLine(b2, a2, p2, b1, p1);
+        AxisImpl ax = base;
+        ax.axis_in_body2 = a2;
+        loop_axes.push_back({j, ax});
+        break;
+      }
+    }
+  }
+
+  // The axis table, in joint order (then axis 1, axis 2).
+  for (int j = 0; j < n_joints; ++j) {
+    const auto& jt = scene.joints[j];
+    auto add = [&](int which, const AxisImpl& impl, bool loop) {
+      AxisInfo info;
+      info.name = which == 0 ? jt.id : jt.id + ":2";
+      info.robot = jt.robot;
+      info.joint = j;
+      info.which = which;
+      info.linear = jt.type == scene::JointType::slider;
+      info.loop = loop;
+      m.axes.push_back(info);
+      m.axis_impl.push_back(impl);
+    };
+    for (const auto& t : tree_axes)
+      if (t.joint == j) {
+        AxisImpl impl;
+        impl.mobod = t.mobod;
+        impl.coordinate = t.coordinate;
+        impl.sign = t.sign;
+        add(t.which, impl, false);
+      }
+    int which = 0;
+    for (const auto& [lj, impl] : loop_axes)
+      if (lj == j) add(which++, impl, true);
+  }
+  m.wrenches.assign(n_bodies + 1, Wrench{});
+  m.axis_forces.assign(m.axes.size(), 0.0);
+
+  SimTK::Force::Custom(m.forces, new AppliedLoads(&m));
+
+  // Joint stops, in axis values (limits as written, whatever the mobilizer's direction).
+  for (std::size_t a = 0; a < m.axes.size(); ++a) {
+    const auto& jt = scene.joints[m.axes[a].joint];
+    const scene::Limits& lim = m.axes[a].which == 0 ? jt.limits1 : jt.limits2;
+    if (lim.active) m.stops.push_back({static_cast<int>(a), lim.min, lim.max});
+  }
+
+  try {
+    m.system.realizeTopology();
+    SimTK::State state = m.system.getDefaultState();
+    for (int b : free_bodies)
+      m.mobod(kernel_index(b)).setQToFitTransform(state, pose_of(b));
+    m.system.realize(state, SimTK::Stage::Position);
+    if (!m.stops.empty()) {
+      // Stiffness from the axis's effective (articulated) inertia so that a stop rings at
+      // omega*h = 0.2, far inside the integrator's stability limit, critically damped.
+      SimTK::Matrix M_inv;
+      m.matter.calcMInv(state, M_inv);
+      const double omega = 0.2 * substeps / tick_s;
+      for (auto& stop : m.stops) {
+        const AxisImpl& ax = m.axis_impl[stop.axis];
+        double inertia;
+        if (!m.axes[stop.axis].loop) {
+          const int u = m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(state) + ax.coordinate;
+          inertia = 1.0 / M_inv(u, u);
+        } else {
+          // A loop axis: body1's mass (slider) or inertia about the axis (hinge), a fair bound.
+          const auto& mp = m.mobod(ax.body1).getBodyMassProperties(state);
+          const SimTK::Vec3 axis_B1 = ~m.mobod(ax.body1).getBodyRotation(state) *
+                                      (m.mobod(ax.body2).getBodyRotation(state) * ax.axis_in_body2);
+          inertia = m.axes[stop.axis].linear
+                        ? mp.getMass()
+                        : SimTK::dot(axis_B1, mp.getInertia() * axis_B1);
+        }
+        stop.stiffness = inertia * omega * omega;
+        stop.damping = 2.0 * inertia * omega;
+      }
+    }
+    m.system.realize(state, SimTK::Stage::Velocity);
+    m.initial_state = state;
+  } catch (const std::exception& ex) {
+    throw scene_error(Location{scene.file.string(), "", ""},
+                      std::string("the multibody system could not be built: ") + ex.what());
+  }
+  m.substeps = substeps;
+  m.has_quaternions = m.initial_state.getNQ() != m.initial_state.getNU();
+  m.has_constraints = m.matter.getNumConstraints() > 0;
+  m.udot.resize(m.initial_state.getNU());
+  m.qdot.resize(m.initial_state.getNQ());
+  reset();
+}
+
+Multibody::~Multibody() = default;
+
+int Multibody::body_count() const { return static_cast<int>(impl_->mobod_of_body.size()); }
+const std::vector<AxisInfo>& Multibody::axes() const { return impl_->axes; }
+const std::vector<std::string>& Multibody::warnings() const { return impl_->warnings; }
+Wrench* Multibody::applied_wrenches() { return impl_->wrenches.data(); }
+double* Multibody::applied_axis_forces() { return impl_->axis_forces.data(); }
+double Multibody::time_s() const { return static_cast<double>(impl_->ticks) * impl_->tick_s; }
+
+void Multibody::reset() {
+  impl_->ticks = 0;
+  impl_->current = impl_->initial_state;
+  impl_->half_kick_pending = true;
+  impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
+}
+
+// Semi-explicit Euler, u first then q with the new u, started with a half step of u
+// (leapfrog): the same single acceleration evaluation per step, but positions are second
+// order and exact under constant acceleration (free fall), and the generalized speeds u live
+// at the middle of the step (docs/models/integrator.md).
+void Multibody::step() {
+  Impl& m = *impl_;
+  SimTK::State& s = m.current;
+  const double h = m.tick_s / m.substeps;
+  for (int k = 0; k < m.substeps; ++k) {
+    // The applied loads changed outside Simbody's knowledge: drop any cached forces.
+    s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+    m.system.realize(s, SimTK::Stage::Acceleration);
+    const SimTK::Vector& udot = s.getUDot();
+    for (int i = 0; i < udot.size(); ++i) m.udot[i] = udot[i];
+    const double kick = m.half_kick_pending ? 0.5 * h : h;
+    m.half_kick_pending = false;
+    SimTK::Vector& u = s.updU();
+    for (int i = 0; i < u.size(); ++i) u[i] += kick * m.udot[i];
+    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
+    SimTK::Vector& q = s.updQ();
+    for (int i = 0; i < q.size(); ++i) q[i] += h * m.qdot[i];
+    s.updTime() = (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
+    m.system.realize(s, SimTK::Stage::Time);
+    if (m.has_quaternions) m.matter.normalizeQuaternions(s);
+    if (m.has_constraints) m.system.project(s, 1e-10);
+  }
+  ++m.ticks;
+  m.system.realize(s, SimTK::Stage::Velocity);
+  // A NaN anywhere poisons the sums: one cheap check per tick.
+  double sum = 0;
+  const SimTK::Vector& q = s.getQ();
+  const SimTK::Vector& u = s.getU();
+  for (int i = 0; i < q.size(); ++i) sum += q[i];
+  for (int i = 0; i < u.size(); ++i) sum += u[i];
+  if (!std::isfinite(sum))
+    throw Error(ErrorKind::runtime, "the simulation state became non-finite at t = " +
+                                        std::to_string(time_s()) + " s");
+}
+
+void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
+                     double* axis_velocity) const {
+  const Impl& m = *impl_;
+  const SimTK::State& s = m.state();
+  m.system.realize(s, SimTK::Stage::Velocity);
+  poses[0] = Pose{};
+  twists[0] = Twist{};
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const SimTK::Transform& X = mob.getBodyTransform(s);
+    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
+    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
+    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
+  }
+  for (std::size_t a = 0; a < m.axis_impl.size(); ++a) {
+    axis_position[a] = axis_value(m, s, a);
+    axis_velocity[a] = axis_rate(m, s, a);
+  }
+}
+
+double Multibody::kinetic_energy_J() const {
+  const SimTK::State& s = impl_->state();
+  impl_->system.realize(s, SimTK::Stage::Velocity);
+  return impl_->matter.calcKineticEnergy(s);
+}
+
+double Multibody::potential_energy_J() const {
+  const SimTK::State& s = impl_->state();
+  impl_->system.realize(s, SimTK::Stage::Dynamics);
+  return impl_->gravity.getPotentialEnergy(s);
+}
+
+std::vector<double> Multibody::save() const {
+  const SimTK::State& s = impl_->state();
+  std::vector<double> out;
+  out.push_back(static_cast<double>(impl_->ticks));
+  out.push_back(impl_->half_kick_pending ? 1.0 : 0.0);
+  for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
+    for (int i = 0; i < v->size(); ++i) out.push_back((*v)[i]);
+  return out;
+}
+
+void Multibody::restore(const std::vector<double>& saved) {
+  Impl& m = *impl_;
+  SimTK::State s = m.initial_state;
+  std::size_t k = 0;
+  m.ticks = static_cast<std::int64_t>(saved.at(k++));
+  m.half_kick_pending = saved.at(k++) != 0.0;
+  for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
+    for (int i = 0; i < v->size(); ++i) (*v)[i] = saved.at(k++);
+  s.setTime(time_s());
+  m.current = s;
+  m.system.realize(m.current, SimTK::Stage::Velocity);
+}
+
+}  // namespace s2sim::model

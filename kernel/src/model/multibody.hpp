@@ -1,0 +1,69 @@
+#pragma once
+/// \file
+/// The scene's bodies and joints as a Simbody multibody system. Simbody never leaks out of
+/// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
+/// and writes plain arrays of applied loads.
+
+#include <s2sim/kernel/scene.hpp>
+#include <s2sim/math.hpp>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace s2sim::model {
+
+/// One degree of freedom of a joint.
+struct AxisInfo {
+  std::string name;  ///< the joint ID, `<ID>:2` for a Universal joint's second axis
+  int robot = -1;
+  int joint = -1;     ///< index into Scene::joints
+  int which = 0;      ///< 0 or 1 (Universal second axis)
+  bool linear = false;
+  bool loop = false;  ///< closes a kinematic loop (realised by constraints, not a mobilizer)
+};
+
+/// Builds and integrates the multibody system. Body index 0 is the world; scene body i is
+/// body i + 1. The kernel writes the loads for the coming tick into `applied_wrenches()` and
+/// `applied_axis_forces()` before `step()`; they are held constant over the tick's substeps.
+class Multibody {
+ public:
+  /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses.
+  Multibody(const scene::Scene& scene, double tick_s, int substeps);
+  ~Multibody();
+  Multibody(const Multibody&) = delete;
+  Multibody& operator=(const Multibody&) = delete;
+
+  int body_count() const;
+  const std::vector<AxisInfo>& axes() const;
+  /// Things the builder had to simplify (e.g. a limit on a loop-closing joint).
+  const std::vector<std::string>& warnings() const;
+
+  Wrench* applied_wrenches();
+  double* applied_axis_forces();
+
+  /// Back to the initial configuration at rest, t = 0.
+  void reset();
+  /// Advances one tick. Throws s2sim::Error (runtime) if the state becomes non-finite.
+  void step();
+  double time_s() const;
+
+  /// Copies the current state into the kernel's buffers (sizes: body_count(), axes().size()).
+  void read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity) const;
+
+  /// Kinetic energy, J.
+  double kinetic_energy_J() const;
+  /// Gravitational potential energy relative to z = 0, J.
+  double potential_energy_J() const;
+
+  /// The integrator state as plain numbers (t, q, u, z): copy it to snapshot a run.
+  std::vector<double> save() const;
+  void restore(const std::vector<double>& saved);
+
+  struct Impl;  // Simbody's objects, defined in multibody.cpp
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace s2sim::model
