@@ -81,6 +81,7 @@ class PluginRegistry {
   ComponentPtr create(const std::string& kind);
 
   /// Libraries that were skipped while scanning, with the reason (shown by `s2sim-run --plugins`).
+  /// Does not scan by itself: empty until the first `find`/`has`/`create`/`kinds`.
   const std::vector<std::string>& scan_warnings() const;
   /// Every registered kind.
   std::vector<KindInfo> kinds();
