@@ -1,0 +1,113 @@
+// Components used by the simulation tests, built exactly like a third-party plugin: against
+// the SDK headers alone, loaded from a scene by kind name.
+#include <s2sim/sdk.hpp>
+
+#include <string>
+
+namespace {
+
+using namespace s2sim;
+
+// A torsion spring on an axis: torque = -k (q - zero). Reads typed, ranged parameters.
+class AxisSpring : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    axis_ = ctx.axis(p.text("axis"));
+    stiffness_ = p.number("stiffness", Range::positive());
+    zero_rad_ = p.number("zero_deg", 0.0) * 3.141592653589793 / 180.0;
+    torque_ = ctx.declare_signal("torque", ctx.axis_is_linear(axis_) ? "N" : "N*m");
+  }
+  void update(StepContext& ctx) override {
+    const double t = -stiffness_ * (ctx.axis_position(axis_) - zero_rad_);
+    ctx.apply_axis_force(axis_, t);
+    ctx.publish(torque_, t);
+  }
+
+ private:
+  AxisHandle axis_;
+  double stiffness_ = 0, zero_rad_ = 0;
+  SignalHandle torque_;
+};
+
+// Sets an input to `value` times its update count, on its own period and phase.
+class ReferenceController : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    input_ = ctx.declare_input_at(p.text("input"), p.text("unit", "1"), 0.0);
+    value_ = p.number("value", 1.0);
+    ctx.set_schedule(Stage::control, p.number("period_ms", 40.0) / 1000.0,
+                     p.number("phase_ms", 0.0) / 1000.0);
+    updates_state_ = ctx.declare_state("updates", 1, 0.0);
+    updates_ = ctx.declare_signal("updates", "1");
+  }
+  void update(StepContext& ctx) override {
+    double& n = ctx.state(updates_state_)[0];
+    n += 1;
+    ctx.set_input(input_, value_ * n);
+    ctx.publish(updates_, n);
+  }
+
+ private:
+  InputHandle input_;
+  double value_ = 1;
+  StateHandle updates_state_;
+  SignalHandle updates_;
+};
+
+// Publishes the value of an input as it sees it in its stage (actuator or sensor kind).
+class Echo : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    input_ = ctx.declare_input_at(ctx.params().text("input"), ctx.params().text("unit", "1"), 0.0);
+    seen_ = ctx.declare_signal("seen", "1");
+  }
+  void update(StepContext& ctx) override { ctx.publish(seen_, ctx.input(input_)); }
+
+ private:
+  InputHandle input_;
+  SignalHandle seen_;
+};
+
+// Gaussian noise from the component's own random stream.
+class Noise : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    value_ = ctx.declare_signal("value", "1");
+    stdev_ = ctx.params().number("stdev", 1.0, Range::non_negative());
+  }
+  void update(StepContext& ctx) override { ctx.publish(value_, ctx.random().normal(0, stdev_)); }
+
+ private:
+  SignalHandle value_;
+  double stdev_ = 1;
+};
+
+// Pushes a body with a constant world force at a point given in the body frame.
+class BodyPush : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    body_ = ctx.body(p.text("solid"));
+    force_ = p.vec3("force");
+    point_ = p.vec3("point");
+  }
+  void update(StepContext& ctx) override {
+    ctx.apply_force(body_, force_, ctx.body_pose(body_) * point_);
+  }
+
+ private:
+  BodyHandle body_;
+  Vec3 force_, point_;
+};
+
+}  // namespace
+
+S2SIM_PLUGIN("s2sim_test_scene_plugins",
+             S2SIM_KIND("test_axis_spring", Category::actuator, AxisSpring),
+             S2SIM_KIND("test_reference_controller", Category::controller, ReferenceController),
+             S2SIM_KIND("test_echo_actuator", Category::actuator, Echo),
+             S2SIM_KIND("test_echo_sensor", Category::sensor, Echo),
+             S2SIM_KIND("test_noise", Category::sensor, Noise),
+             S2SIM_KIND("test_body_push", Category::body, BodyPush))
