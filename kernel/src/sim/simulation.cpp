@@ -448,7 +448,13 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
                                      const std::string& id, int robot,
                                      const scene::ParamSource& params, const Location& where,
                                      std::optional<Category> required) {
-  const plugin::KindInfo& info = registry.find(kind);
+  const plugin::KindInfo* found = nullptr;
+  try {
+    found = &registry.find(kind);
+  } catch (const Error& e) {
+    throw Error(ErrorKind::plugin, where, e.message());  // say where the scene asks for it
+  }
+  const plugin::KindInfo& info = *found;
   if (required && info.category != *required)
     throw Error(ErrorKind::plugin, where,
                 "kind '" + kind + "' from " + info.library.string() + " is not a sensor kind");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 namespace s2sim::model {
@@ -81,8 +82,9 @@ TEST(Multibody, HingePendulumLargeAnglePeriodWithinTwoTenthsOfAPercent) {
         4.0 * std::sqrt(inertia_pivot / (m * kG * L)) * test::elliptic_k(std::sin(a / 2));
     const double period = pendulum_period(a, 1e-3);
     EXPECT_NEAR(period, exact, 0.002 * exact) << "amplitude " << amplitude_deg << " deg";
-    RecordProperty("period_error_" + std::to_string(int(amplitude_deg)) + "deg",
-                   std::to_string((period - exact) / exact));
+    char error[32];
+    std::snprintf(error, sizeof error, "%.3e", (period - exact) / exact);
+    RecordProperty("period_error_" + std::to_string(int(amplitude_deg)) + "deg", error);
   }
 }
 

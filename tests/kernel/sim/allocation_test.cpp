@@ -1,0 +1,67 @@
+// "No allocation in the step loop", checked: every operator new in this test binary is counted.
+// Simbody's forward dynamics allocates small temporaries itself (and constraint projection
+// more); what S2Sim controls -- scheduler, components, loads, reading back -- must add none.
+#include <s2sim/kernel/simulation.hpp>
+
+#include "model/multibody.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <new>
+
+namespace {
+std::atomic<long> allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  ++allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace s2sim {
+namespace {
+
+struct Counts {
+  long simulation = 0;  // per 1000 ticks of Simulation::step
+  long simbody = 0;     // per 1000 steps of the bare multibody model of the same scene
+};
+
+Counts count(const std::filesystem::path& scene, const SimulationOptions& o) {
+  Counts c;
+  auto sim = Simulation::load(scene, o);
+  sim->step(10);  // first steps may size caches
+  long before = allocations.load();
+  sim->step(1000);
+  c.simulation = allocations.load() - before;
+
+  model::Multibody bare(sim->scene(), sim->tick_s(), sim->scene().settings.substeps);
+  for (int i = 0; i < 10; ++i) bare.step();
+  before = allocations.load();
+  for (int i = 0; i < 1000; ++i) bare.step();
+  c.simbody = allocations.load() - before;
+  return c;
+}
+
+TEST(Allocation, TheKernelAddsNoAllocationToSimbodysOwn) {
+  SimulationOptions o;
+  o.plugin_path = {std::filesystem::path(S2SIM_TEST_PLUGIN_DIR) / "scene"};
+  // Components of every category, a hinge, a free thing.
+  const Counts a = count(
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/components", o);
+  EXPECT_EQ(a.simulation, a.simbody);
+  // The default scene: hinges, a slider with stops, a universal joint, a closed loop.
+  const Counts b =
+      count(std::filesystem::path(S2SIM_SOURCE_DIR) / "scenes/default", SimulationOptions{});
+  EXPECT_EQ(b.simulation, b.simbody);
+  RecordProperty("simbody_allocations_per_step_components", std::to_string(a.simbody / 1000.0));
+  RecordProperty("simbody_allocations_per_step_default", std::to_string(b.simbody / 1000.0));
+}
+
+}  // namespace
+}  // namespace s2sim
