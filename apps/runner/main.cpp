@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// 2^53: tick counts stay exact as doubles, and far beyond any real run.
+constexpr double kMaxTicks = 9007199254740992.0;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -46,11 +50,20 @@ int run(const s2sim::runner::Options& o) {
   }
   for (const auto& [name, value] : o.inputs) sim->set_input(name, value);
 
+  // llround() of a value beyond int64 is undefined (LLONG_MIN on x86): refuse an endless
+  // duration and clamp the log period (a huge one legitimately means "the first row only").
+  if (o.duration_s / sim->tick_s() > kMaxTicks) {
+    char message[128];
+    std::snprintf(message, sizeof message, "--duration: %g s is too many physics steps of %g s",
+                  o.duration_s, sim->tick_s());
+    throw Error(ErrorKind::usage, message);
+  }
+
   std::optional<runner::CsvLog> log;
   if (!o.log_file.empty()) log.emplace(o.log_file, *sim, o.signal_patterns);
-  const std::int64_t log_every =
-      o.log_period_s ? std::max<std::int64_t>(1, std::llround(*o.log_period_s / sim->tick_s())) : 1;
-
+  const double period_ticks =
+      o.log_period_s ? std::min(*o.log_period_s / sim->tick_s(), kMaxTicks) : 1.0;
+  const std::int64_t log_every = std::max<std::int64_t>(1, std::llround(period_ticks));
   const auto total_ticks = static_cast<std::int64_t>(std::llround(o.duration_s / sim->tick_s()));
   runner::ProgressBar progress(!o.quiet && isatty(STDERR_FILENO));
   if (log) log->write_row(*sim);
@@ -72,11 +85,13 @@ int run(const s2sim::runner::Options& o) {
   runner::RunTiming timing{seconds_since(start), done};
   progress.update(sim->time_s(), o.duration_s, timing.wall_s, true);
   progress.finish();
+  if (log) log->close();
 
   if (!o.quiet) std::fputs(runner::summary_text(*sim, timing).c_str(), stdout);
   if (!o.summary_file.empty()) {
     std::ofstream out(o.summary_file, std::ios::binary);
     out << runner::summary_json(*sim, timing, o.summary_timing);
+    out.close();  // flushes: a write error (full disk) only shows after this
     if (!out) throw Error(ErrorKind::usage, "--summary: cannot write '" + o.summary_file + "'");
   }
   return 0;

@@ -41,8 +41,8 @@ Options:
   --realtime           pace the run to the wall clock
   --fast               run as fast as possible (default)
   --log FILE.csv       write signals to a CSV file (header: name [unit])
-  --signals PATTERN... signals to log, glob patterns (* and ?); default: all
-  --log-period S       seconds between CSV rows (default: every physics step)
+  --signals PATTERN... signals to log, glob patterns (* and ?); default: all (needs --log)
+  --log-period S       seconds between CSV rows (default: every physics step; needs --log)
   --summary FILE.json  write the final summary as JSON
   --no-timing          leave wall_time and rtf out of the JSON (byte-identical reruns)
   --seed N             seed of every random stream (default 1)
@@ -139,6 +139,12 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (o.scene.empty() && !o.help && !o.version) throw usage_error("no scene given");
+  // Both only shape the CSV: without --log they would be silently ignored (and a misspelt
+  // --signals pattern never reported).
+  if (o.log_file.empty() && !o.help && !o.version) {
+    if (!o.signal_patterns.empty()) throw usage_error("--signals selects the columns of --log");
+    if (o.log_period_s) throw usage_error("--log-period sets the rows of --log");
+  }
   return o;
 }
 

@@ -77,8 +77,17 @@ std::string robot_name(const Simulation& sim, int robot) {
 CsvLog::CsvLog(const std::string& file, const Simulation& sim,
                const std::vector<std::string>& patterns)
     : path_(file) {
+  // The kernel publishes `time` as a signal too; the log writes it first, so leaving it out
+  // and skipping repeats (overlapping patterns) keeps column names unique.
+  std::vector<bool> taken(sim.signal_count(), false);
+  if (const auto time = sim.find_signal("time")) taken[*time] = true;
+  auto take = [&](std::size_t i) {
+    if (!taken[i]) signals_.push_back(i);
+    taken[i] = true;
+  };
   if (patterns.empty()) {
-    for (std::size_t i = 0; i < sim.signal_count(); ++i) signals_.push_back(i);
+    for (std::size_t i = 0; i < sim.signal_count(); ++i)
+      take(i);
   } else {
     for (const auto& p : patterns) {
       const auto matched = sim.match_signals(p);
@@ -87,7 +96,8 @@ CsvLog::CsvLog(const std::string& file, const Simulation& sim,
         if (p.find_first_of("*?") == std::string::npos) (void)sim.signal_index(p);
         throw Error(ErrorKind::usage, "--signals: pattern '" + p + "' matches no signal");
       }
-      signals_.insert(signals_.end(), matched.begin(), matched.end());
+      for (std::size_t i : matched)
+        take(i);
     }
   }
   out_ = std::fopen(file.c_str(), "w");
@@ -102,6 +112,15 @@ CsvLog::CsvLog(const std::string& file, const Simulation& sim,
 
 CsvLog::~CsvLog() {
   if (out_ != nullptr) std::fclose(out_);
+}
+
+void CsvLog::close() {
+  if (out_ == nullptr) return;
+  const bool failed = std::ferror(out_) != 0;
+  const bool close_failed = std::fclose(out_) != 0;  // the final flush happens here
+  out_ = nullptr;
+  if (failed || close_failed)
+    throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
 }
 
 void CsvLog::write_row(const Simulation& sim) {

@@ -11,7 +11,8 @@
 namespace s2sim::runner {
 
 /// A CSV file with a header `name [unit]` and one row per logged tick. Rows are formatted
-/// into a reused buffer: no allocation per row.
+/// into a reused buffer: no allocation per row. The first column is always `time [s]`; every
+/// other signal appears at most once.
 class CsvLog {
  public:
   /// Throws s2sim::Error (usage) when the file cannot be written or a pattern matches nothing.
@@ -20,6 +21,9 @@ class CsvLog {
   CsvLog(const CsvLog&) = delete;
   CsvLog& operator=(const CsvLog&) = delete;
   void write_row(const Simulation& sim);
+  /// Flushes and closes the file. Throws s2sim::Error (runtime) when the last rows could not
+  /// be written (a full disk shows up here on short runs, not in write_row).
+  void close();
 
  private:
   std::FILE* out_ = nullptr;

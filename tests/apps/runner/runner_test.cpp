@@ -1,0 +1,418 @@
+// s2sim-run as a user sees it: the real binary runs the shared SimTwo scenes and small broken
+// scenes written to a temp folder; the tests check exit codes, messages, the CSV log and the
+// JSON summary. Nothing here depends on ground contact (bodies still fall through the floor).
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+// Boost 1.74's JSON parser still includes the deprecated boost/bind.hpp, which warns unless
+// the old global placeholders are asked for explicitly.
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace pt = boost::property_tree;
+using ::testing::AllOf;
+using ::testing::Contains;
+using ::testing::Each;
+using ::testing::ElementsAreArray;
+using ::testing::EndsWith;
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+const fs::path kRunner = fs::path(S2SIM_BIN_DIR) / "s2sim-run";
+const fs::path kShared = S2SIM_SHARED_SCENES;
+
+#define SKIP_WITHOUT_SHARED_SCENES() \
+  if (!fs::is_directory(kShared))    \
+  GTEST_SKIP() << kShared.string()   \
+               << " is absent: the shared SimTwo scenes are needed for this test"
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p, std::ios::binary) << text;
+}
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, sep))
+    parts.push_back(part);
+  return parts;
+}
+
+// The shell sees every argument verbatim: glob patterns such as robots/*/z must not expand.
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;  ///< exit code; 128 + signal when the runner crashed
+  std::string out;
+  std::string err;
+};
+
+struct Csv {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+};
+
+Csv read_csv(const fs::path& p) {
+  Csv csv;
+  const auto lines = split(read_file(p), '\n');
+  if (lines.empty()) return csv;
+  csv.header = split(lines[0], ',');
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    csv.rows.push_back(split(lines[i], ','));
+  return csv;
+}
+
+std::size_t column(const Csv& csv, const std::string& name) {
+  for (std::size_t i = 0; i < csv.header.size(); ++i)
+    if (csv.header[i] == name) return i;
+  ADD_FAILURE() << "no column '" << name << "'";
+  return 0;
+}
+
+pt::ptree read_json(const fs::path& p) {
+  pt::ptree tree;
+  pt::read_json(p.string(), tree);  // throws (test error) on malformed JSON
+  return tree;
+}
+
+std::vector<std::string> names(const pt::ptree& summary, const std::string& key) {
+  std::vector<std::string> out;
+  for (const auto& [k, item] : summary.get_child(key))
+    out.push_back(item.get<std::string>("name"));
+  return out;
+}
+
+// Every test gets its own folder: ctest runs tests of this binary in parallel.
+class Runner : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::exists(kRunner)) << kRunner << " not built";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = std::string(info->test_suite_name()) + "_" + info->name();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::path(::testing::TempDir()) /
+           ("s2sim_runner_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  // A failing test leaves its outputs behind for a look.
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// Runs s2sim-run in dir_ (relative output paths land there).
+  Result run(const std::vector<std::string>& args) const {
+    // Appended piece by piece: `"literal" + std::string&&` trips a false GCC 12 -Wrestrict.
+    std::string cmd = "cd ";
+    cmd += quote(dir_.string());
+    cmd += " && ";
+    cmd += quote(kRunner.string());
+    for (const auto& a : args) {
+      cmd += ' ';
+      cmd += quote(a);
+    }
+    cmd += " >stdout.txt 2>stderr.txt </dev/null";
+    const int status = std::system(cmd.c_str());
+    Result r;
+    if (WIFEXITED(status)) r.status = WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) r.status = 128 + WTERMSIG(status);
+    r.out = read_file(dir_ / "stdout.txt");
+    r.err = read_file(dir_ / "stderr.txt");
+    return r;
+  }
+
+  static std::string scene(const std::string& name) { return (kShared / name).string(); }
+  static std::string motor() { return scene("MotorModel_V3AGM"); }
+
+  fs::path dir_;
+};
+
+// --- The shared scenes run ---------------------------------------------------------------
+
+struct SharedScene {
+  std::string folder;
+  std::vector<std::string> robots;
+  std::vector<std::pair<std::string, std::string>> axes;  ///< (robot, axis)
+};
+
+// Names the case in gtest and ctest output instead of dumping the struct's bytes.
+void PrintTo(const SharedScene& s, std::ostream* os) {
+  *os << s.folder;
+}
+
+class SharedSceneRun : public Runner, public ::testing::WithParamInterface<SharedScene> {};
+
+TEST_P(SharedSceneRun, FiveSecondsGiveTheSummary) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const SharedScene& s = GetParam();
+  const Result r = run({scene(s.folder), "--duration", "5", "--quiet", "--summary", "f.json"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.out, "") << "--quiet prints nothing on stdout";
+
+  const pt::ptree j = read_json(dir_ / "f.json");
+  EXPECT_DOUBLE_EQ(j.get<double>("sim_time"), 5.0);
+  EXPECT_EQ(j.get<long>("steps"), 5000);
+  EXPECT_THAT(names(j, "robots"), ElementsAreArray(s.robots));
+  std::vector<std::pair<std::string, std::string>> axes;
+  for (const auto& [k, ax] : j.get_child("axes")) {
+    axes.emplace_back(ax.get<std::string>("robot"), ax.get<std::string>("name"));
+    // null (a non-finite value) would not read as a double.
+    EXPECT_TRUE(std::isfinite(ax.get<double>("pos")));
+    EXPECT_TRUE(std::isfinite(ax.get<double>("vel")));
+  }
+  EXPECT_THAT(axes, ElementsAreArray(s.axes));
+  for (const char* key : {"robots", "things"})
+    for (const auto& [k, item] : j.get_child(key))
+      for (const char* c : {"x", "y", "z", "yaw"})
+        EXPECT_TRUE(std::isfinite(item.get<double>(c))) << key << " " << c;
+  // Without --no-timing the summary carries the wall time.
+  EXPECT_GT(j.get<double>("wall_time"), 0.0);
+  EXPECT_GT(j.get<double>("rtf"), 0.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, SharedSceneRun,
+    ::testing::Values(SharedScene{"base",
+                                  {"Classic", "Conveyor Belt"},
+                                  {{"Classic", "W1"}, {"Classic", "W2"}, {"Classic", "W3"}}},
+                      SharedScene{"default", {"belt"}, {}},
+                      SharedScene{"MotorModel_V3AGM", {"Motor"}, {{"Motor", "InertialBoard"}}}),
+    [](const auto& param_info) { return param_info.param.folder; });
+
+// --- Determinism --------------------------------------------------------------------------
+
+TEST_F(Runner, SameSeedGivesByteIdenticalLogAndSummary) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const std::vector<std::string> args = {scene("base"), "--duration",  "2",      "--seed",
+                                         "7",           "--no-timing", "--log",  "a.csv",
+                                         "--summary",   "a.json",      "--quiet"};
+  ASSERT_EQ(run(args).status, 0);
+  const std::string csv1 = read_file(dir_ / "a.csv");
+  const std::string json1 = read_file(dir_ / "a.json");
+  ASSERT_EQ(run(args).status, 0);
+  const std::string csv2 = read_file(dir_ / "a.csv");
+  const std::string json2 = read_file(dir_ / "a.json");
+
+  ASSERT_GT(csv1.size(), 1000u);
+  EXPECT_EQ(csv1.size(), csv2.size());
+  // Not EXPECT_EQ: a failure would print megabytes.
+  EXPECT_TRUE(csv1 == csv2)
+      << "CSV logs differ from byte "
+      << std::mismatch(csv1.begin(), csv1.end(), csv2.begin(), csv2.end()).first - csv1.begin();
+  EXPECT_EQ(json1, json2);
+  EXPECT_THAT(json1, AllOf(Not(HasSubstr("wall_time")), Not(HasSubstr("rtf"))));
+}
+
+// --- The CSV log --------------------------------------------------------------------------
+
+TEST_F(Runner, CsvHeaderNamesEverySignalOnceWithItsUnit) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--duration", "0.01", "--quiet", "--log", "all.csv"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = read_csv(dir_ / "all.csv");
+  ASSERT_FALSE(csv.header.empty());
+  EXPECT_EQ(csv.header[0], "time [s]");
+  EXPECT_THAT(csv.header, Contains("robots/Motor/axes/InertialBoard/pos [rad]"));
+  EXPECT_THAT(csv.header, Contains("robots/Motor/axes/InertialBoard/ref_torque [N*m]"));
+  for (const auto& c : csv.header)
+    EXPECT_THAT(c, ::testing::MatchesRegex("[^ ]+ \\[[^]]*\\]")) << "not 'name [unit]'";
+  const std::set<std::string> unique(csv.header.begin(), csv.header.end());
+  EXPECT_EQ(unique.size(), csv.header.size()) << "a column appears twice";
+
+  // The columns are exactly what --list-signals names, in the same order.
+  const Result list = run({motor(), "--list-signals", "--quiet"});
+  ASSERT_EQ(list.status, 0) << list.err;
+  EXPECT_THAT(csv.header, ElementsAreArray(split(list.out, '\n')));
+
+  ASSERT_EQ(csv.rows.size(), 11u);  // t = 0 and each of the 10 ticks
+  for (const auto& row : csv.rows)
+    EXPECT_EQ(row.size(), csv.header.size());
+}
+
+TEST_F(Runner, SignalPatternsRestrictTheColumns) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r =
+      run({motor(), "--duration", "0.01", "--quiet", "--log", "z.csv", "--signals", "robots/*/z"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = read_csv(dir_ / "z.csv");
+  ASSERT_GE(csv.header.size(), 2u);
+  EXPECT_EQ(csv.header[0], "time [s]");
+  const std::vector<std::string> rest(csv.header.begin() + 1, csv.header.end());
+  EXPECT_THAT(rest, Each(EndsWith("/z [m]")));
+  EXPECT_THAT(rest, Contains("robots/Motor/z [m]"));
+
+  // Overlapping patterns, and `time` itself, add no column twice.
+  ASSERT_EQ(run({motor(), "--duration", "0.01", "--quiet", "--log", "z2.csv", "--signals", "time",
+                 "robots/*/z", "robots/Motor/z"})
+                .status,
+            0);
+  EXPECT_EQ(read_csv(dir_ / "z2.csv").header, csv.header);
+}
+
+TEST_F(Runner, LogPeriodGivesOneRowPerPeriodIncludingTimeZero) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--duration", "1", "--quiet", "--log", "p.csv", "--log-period",
+                        "0.01", "--signals", "robots/Motor/z"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Csv csv = read_csv(dir_ / "p.csv");
+  ASSERT_EQ(csv.rows.size(), 101u);
+  for (std::size_t i = 0; i < csv.rows.size(); ++i)
+    EXPECT_NEAR(std::stod(csv.rows[i][0]), 0.01 * static_cast<double>(i), 1e-9) << "row " << i;
+  EXPECT_EQ(csv.rows.back()[0], "1.000000");
+}
+
+// --- Inputs -------------------------------------------------------------------------------
+
+TEST_F(Runner, SetTorqueTurnsTheUndrivenAxis) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const std::string input = "robots/Motor/axes/InertialBoard/ref_torque";
+  const Result r =
+      run({motor(), "--duration", "2", "--quiet", "--summary", "on.json", "--set", input + "=0.5",
+           "--log", "on.csv", "--log-period", "0.1", "--signals", input});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const pt::ptree on = read_json(dir_ / "on.json");
+  ASSERT_EQ(on.get_child("axes").size(), 1u);
+  EXPECT_GT(on.get_child("axes").front().second.get<double>("pos"), 0.1);
+  EXPECT_GT(on.get_child("axes").front().second.get<double>("vel"), 0.0);
+  // The input holds for the whole run, from the first logged row on.
+  const Csv csv = read_csv(dir_ / "on.csv");
+  const std::size_t col = column(csv, input + " [N*m]");
+  ASSERT_EQ(csv.rows.size(), 21u);
+  for (const auto& row : csv.rows)
+    EXPECT_EQ(row.at(col), "0.5") << "at t = " << row[0];
+
+  ASSERT_EQ(run({motor(), "--duration", "2", "--quiet", "--summary", "off.json"}).status, 0);
+  const pt::ptree off = read_json(dir_ / "off.json");
+  EXPECT_NEAR(off.get_child("axes").front().second.get<double>("pos"), 0.0, 1e-6);
+  EXPECT_NEAR(off.get_child("axes").front().second.get<double>("vel"), 0.0, 1e-6);
+}
+
+// --- Exit codes and messages --------------------------------------------------------------
+
+TEST_F(Runner, MissingSceneFolderIsASceneErrorNamingThePath) {
+  const std::string missing = (dir_ / "no_such_scene").string();
+  const Result r = run({missing, "--quiet"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_THAT(r.err, HasSubstr(missing));
+}
+
+TEST_F(Runner, MalformedSceneXmlIsASceneErrorWithFileAndLine) {
+  write_file(dir_ / "broken/scene.xml",
+             "<?xml version=\"1.0\"?>\n<scene>\n  <robot>\n    <ID name='x' y=/>\n  </robot>\n"
+             "</scene>\n");
+  const Result r = run({(dir_ / "broken").string(), "--quiet"});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_THAT(r.err, HasSubstr("scene.xml:4"));
+}
+
+TEST_F(Runner, UnknownPluginKindIsAPluginErrorNamingKindAndFolders) {
+  write_file(dir_ / "plugged/scene.xml",
+             "<?xml version=\"1.0\"?>\n<scene>\n  <plugin kind='no_such_kind'/>\n</scene>\n");
+  const Result r = run({(dir_ / "plugged").string(), "--quiet"});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_THAT(r.err, AllOf(HasSubstr("no_such_kind"), HasSubstr("searched")));
+
+  // With --plugin-path the folder named is the one searched.
+  const fs::path empty = dir_ / "empty_plugins";
+  fs::create_directories(empty);
+  const Result r2 = run({(dir_ / "plugged").string(), "--quiet", "--plugin-path", empty.string()});
+  EXPECT_EQ(r2.status, 3);
+  EXPECT_THAT(r2.err, AllOf(HasSubstr("no_such_kind"), HasSubstr(empty.string())));
+}
+
+TEST_F(Runner, UnknownOptionIsAUsageError) {
+  const Result r = run({"some_scene", "--bogus"});
+  EXPECT_EQ(r.status, 4);
+  EXPECT_THAT(r.err, HasSubstr("--bogus"));
+}
+
+TEST_F(Runner, UnknownInputIsAUsageErrorWithASuggestion) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--quiet", "--set", "nosuch/input=1"});
+  EXPECT_EQ(r.status, 4);
+  EXPECT_THAT(r.err, AllOf(HasSubstr("nosuch/input"), HasSubstr("did you mean")));
+}
+
+TEST_F(Runner, UnknownSignalIsAUsageError) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--quiet", "--log", "x.csv", "--signals", "nosuch"});
+  EXPECT_EQ(r.status, 4);
+  EXPECT_THAT(r.err, HasSubstr("nosuch"));
+  EXPECT_FALSE(fs::exists(dir_ / "x.csv")) << "no log is started for a bad pattern";
+  // Without --log, --signals would otherwise be silently ignored.
+  EXPECT_EQ(run({motor(), "--quiet", "--signals", "nosuch"}).status, 4);
+  EXPECT_EQ(run({motor(), "--quiet", "--log-period", "0.1"}).status, 4);
+}
+
+TEST_F(Runner, BadNumbersAreUsageErrors) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--duration", "abc"});
+  EXPECT_EQ(r.status, 4);
+  EXPECT_THAT(r.err, HasSubstr("abc"));
+  // More ticks than an int64 holds must not wrap round into "0 steps, exit 0".
+  EXPECT_EQ(run({motor(), "--quiet", "--duration", "1e20"}).status, 4);
+}
+
+TEST_F(Runner, HelpPrintsUsage) {
+  const Result r = run({"--help"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_THAT(r.out, HasSubstr("Usage"));
+}
+
+TEST_F(Runner, ListSignalsPrintsNamesWithUnits) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  const Result r = run({motor(), "--list-signals", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto lines = split(r.out, '\n');
+  EXPECT_THAT(lines, Contains("time [s]"));
+  EXPECT_THAT(lines, Contains("robots/Motor/axes/InertialBoard/pos [rad]"));
+}
+
+TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
+  SKIP_WITHOUT_SHARED_SCENES();
+  if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full to simulate a full disk";
+  // A short log fits in the stdio buffer: only the final flush fails.
+  const Result log = run({motor(), "--quiet", "--duration", "0.001", "--log", "/dev/full"});
+  EXPECT_EQ(log.status, 5);
+  EXPECT_THAT(log.err, HasSubstr("/dev/full"));
+  const Result summary = run({motor(), "--quiet", "--duration", "0.001", "--summary", "/dev/full"});
+  EXPECT_EQ(summary.status, 4);
+  EXPECT_THAT(summary.err, HasSubstr("/dev/full"));
+}
+
+}  // namespace
