@@ -201,7 +201,7 @@ enum class ControllerMode { pid_speed, pid_position, state };
 struct MotorController {
   ControllerMode mode = ControllerMode::pid_speed;
   double kp = 1, ki = 0, kd = 0, kf = 0;
-  double period_s = 10;  ///< SimTwo's articulation default is 10 s until a period is given
+  double period_s = 10;  ///< SimTwo's articulation default is 10 s; the loader uses 10 ms
   bool active = false;
 };
 struct JointFriction {
@@ -210,7 +210,7 @@ struct JointFriction {
 };
 struct Spring {
   double stiffness = 0;      ///< N·m/rad or N/m
-  double zero_position = 0;  ///< rad (SimTwo converts degrees even for sliders, §16.14)
+  double zero_position = 0;  ///< rad, or m for sliders (SimTwo converts degrees even there)
 };
 /// Everything that drives one axis (behaviour in the drive-train issue).
 struct DriveTrain {
@@ -227,6 +227,7 @@ struct Limits {
   double min = -2 * 3.141592653589793;  ///< rad (hinge/universal) or m (slider)
   double max = 2 * 3.141592653589793;
   bool active = false;  ///< whether the stop engages (SimTwo: only inside (-pi, pi) for hinges)
+  // When active, a rotational side that SimTwo's ODE would never reach is ±infinity.
 };
 
 struct JointDraw {
@@ -317,6 +318,12 @@ struct Robot {
   std::vector<int> joints;   ///< in creation order
   std::vector<int> sensors;
   std::vector<int> plugins;
+  /// Placement of §9.3, kept so that a run-time re-placement (SimTwo's `SetRobotPos`) can
+  /// start again from the file coordinates: a file point p is at
+  /// origin_m + offset_m + Rz(yaw_rad)·(p − origin_m) in the world.
+  Vec3 origin_m;       ///< P0: the main body's position in the robot file
+  Vec3 offset_m;       ///< scene `<pos>`: the main body ends at origin_m + offset_m
+  double yaw_rad = 0;  ///< scene `<rot_deg z>`
   Location where;
 };
 

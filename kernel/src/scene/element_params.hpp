@@ -1,0 +1,54 @@
+#pragma once
+/// \file
+/// `s2sim::Params` over a scene element: what a component (sensor, plugin instance) reads its
+/// parameters through. Numbers are SimTwo expressions evaluated with the constants in scope
+/// where the element stands; every error names file, element path and attribute.
+
+#include <s2sim/kernel/scene.hpp>
+#include <s2sim/params.hpp>
+
+#include <string>
+#include <string_view>
+
+namespace s2sim::scene {
+
+class ElementParams final : public Params {
+ public:
+  explicit ElementParams(ParamSource source);
+
+  bool has(std::string_view path) const override;
+  bool has_element(std::string_view path) const override;
+  double number(std::string_view path, Range range = {}) const override;
+  double number(std::string_view path, double fallback, Range range = {}) const override;
+  std::int64_t integer(std::string_view path) const override;
+  std::int64_t integer(std::string_view path, std::int64_t fallback) const override;
+  bool boolean(std::string_view path, bool fallback) const override;
+  std::string text(std::string_view path) const override;
+  std::string text(std::string_view path, std::string_view fallback) const override;
+  Vec3 vec3(std::string_view element_path, Vec3 fallback = {}) const override;
+  std::string location() const override;
+
+  const ParamSource& source() const { return source_; }
+
+ private:
+  /// An attribute path resolved: its element (nullptr when absent), the path that element
+  /// has or would have, and the attribute name.
+  struct Target {
+    const Element* element = nullptr;
+    std::string element_path;
+    std::string attribute;
+    const std::string* value = nullptr;  ///< raw text, nullptr when absent
+  };
+  Target resolve(std::string_view path) const;
+  /// The element at a dotted element path ("" = the component's own), or nullptr.
+  const Element* find_element(std::string_view path, std::string* element_path) const;
+  [[noreturn]] void fail(const Target& t, const std::string& message) const;
+  double evaluate(const Target& t) const;
+  std::int64_t to_integer(const Target& t) const;
+  void check(const Target& t, double v, const Range& range) const;
+
+  ParamSource source_;
+  ConstantTable empty_;  ///< used when the source has no constants
+};
+
+}  // namespace s2sim::scene

@@ -1,0 +1,129 @@
+/// \file
+/// `<sensors>` / `<tools>` of robots and scene-level sensor files (simtwo-format.md §4.11).
+/// Only the common children are parsed here; a sensor's behaviour reads the rest through its
+/// ParamSource.
+
+#include "scene/loading.hpp"
+#include "scene/rotation.hpp"
+#include "scene/xml.hpp"
+
+#include <array>
+#include <memory>
+
+namespace s2sim::scene::detail {
+namespace {
+
+bool is_sensor_element(std::string_view name) {
+  static constexpr std::array<std::string_view, 12> kinds = {
+      "IR",  "IRSharp", "capacitive", "inductive", "floorline", "ranger2d",
+      "imu", "RFID",    "beacon",     "pentip",    "solenoid",  "spraygun"};
+  for (auto k : kinds)
+    if (k == name) return true;
+  return false;
+}
+
+}  // namespace
+
+void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int robot, bool is_tool) {
+  Scene& scene = ctx.scene;
+  for (const Element& el : list.children) {
+    // Other names (`nranger2d`...) are disabled sensors, and `<defines>` is not processed.
+    if (!is_sensor_element(el.name)) continue;
+    Sensor s;
+    s.kind = el.name;
+    s.robot = robot;
+    s.is_tool = is_tool;
+    s.where = r.at(el);
+    s.color = Color{128 / 255.0, 128 / 255.0, 128 / 255.0, 1};
+    std::string id_value, id_name;
+    bool has_name = false;
+    const Element* solid_el = nullptr;
+    Vec3 pos, rot_deg;
+
+    for (const Element& c : el.children) {
+      const std::string& n = c.name;
+      if (n == "ID") {
+        id_value = r.text(c, "value", id_value);
+        if (r.has(c, "name")) {
+          id_name = r.text(c, "name", "");
+          has_name = true;
+        }
+      } else if (n == "solid") {
+        solid_el = &c;
+      } else if (n == "absolute_coords") {
+        s.absolute_coords = true;
+      } else if (n == "pos") {
+        pos = r.xyz(c, pos);
+      } else if (n == "rot_deg") {
+        rot_deg = r.xyz(c, rot_deg);
+      } else if (n == "beam") {  // several <beam> elements accumulate
+        Beam& b = s.beam;
+        b.length_m = r.number(c, "length", b.length_m);
+        b.initial_width_m = r.number(c, "initial_width", b.initial_width_m);
+        b.final_width_m = r.number(c, "final_width", b.final_width_m);
+        if (auto deg = r.optional_number(c, "angle")) b.angle_rad = deg_to_rad(*deg);
+        b.rays = static_cast<int>(r.integer(c, "rays", b.rays));
+        if (b.rays < 1) r.fail(c, "rays", "must be >= 1, got " + std::to_string(b.rays));
+      } else if (n == "noise") {
+        Noise& z = s.noise;
+        z.present = true;
+        z.stdev = r.number(c, "stdev", z.stdev);
+        z.stdev_p = r.number(c, "stdev_p", z.stdev_p);
+        z.offset = r.number(c, "offset", z.offset);
+        z.gain = r.number(c, "gain", z.gain);
+        z.var_k = r.number(c, "var_k", z.var_k);
+        z.var_d = r.number(c, "var_d", z.var_d);
+      } else if (n == "tag") {
+        s.tags.push_back(r.text(c, "value", ""));
+      } else if (n == "period") {
+        s.period_s = r.number(c, "value", s.period_s);
+        if (!(s.period_s > 0)) r.fail(c, "value", "must be > 0, got " + format_number(s.period_s));
+      } else if (n == "force") {
+        s.force.fmax_N = r.number(c, "fmax", s.force.fmax_N);
+        s.force.k1 = r.number(c, "k1", s.force.k1);
+        s.force.k2 = r.number(c, "k2", s.force.k2);
+      } else if (n == "color_rgb") {
+        s.color = r.color_rgb(c, s.color);
+      }
+    }
+    s.id = has_name ? id_name : id_value;
+    s.pose = Pose{pos, sensor_rotation_from_rot_deg(rot_deg)};
+
+    if (robot >= 0) {
+      const Robot& rb = scene.robots[static_cast<std::size_t>(robot)];
+      s.body = rb.main_body;
+      if (solid_el) {
+        const std::string sid = r.text(*solid_el, "id", "");
+        s.body = find_body(scene, rb.bodies, sid, false);
+        if (s.body < 0) r.fail(*solid_el, "id", "no solid with ID '" + sid + "' in this robot");
+      }
+      if (s.body < 0) r.fail(el, "", "sensor of a robot without solids");
+      // absolute_coords: the pose is in the robot frame at load; keep it in the body frame.
+      if (s.absolute_coords)
+        s.pose = scene.bodies[static_cast<std::size_t>(s.body)].pose.inverse() * s.pose;
+    } else if (solid_el) {
+      ctx.warn(r.at(*solid_el), "<solid> of a scene-level sensor ignored (world-fixed)");
+    }
+
+    s.params = ParamSource{el, r.file(), std::make_shared<ConstantTable>(r.constants())};
+    scene.sensors.push_back(std::move(s));
+    if (robot >= 0)
+      scene.robots[static_cast<std::size_t>(robot)].sensors.push_back(
+          static_cast<int>(scene.sensors.size() - 1));
+  }
+}
+
+void load_sensors_file(LoadContext& ctx, const std::filesystem::path& file,
+                       const ConstantTable& globals, const std::string& root_name) {
+  const std::string display = ctx.display(file);
+  const Element root = read_xml_file(file, display);
+  if (root.name != root_name)
+    throw Error(
+        ErrorKind::scene, Location{display, root.path, ""},
+        "expected a <" + root_name + "> file (as the scene element), found <" + root.name + ">");
+  ConstantTable scope = globals;  // a copy, although sensor lists do not process <defines>
+  const Reader r(display, scope);
+  load_sensors(ctx, r, root, -1, root_name == "tools");
+}
+
+}  // namespace s2sim::scene::detail

@@ -1,0 +1,113 @@
+/// \file
+/// `<shells>` (simtwo-format.md §4.6): extra primitives rigidly attached to a robot body.
+/// Massive shells are merged physically (S2Sim deviation from quirk 19): the body frame
+/// stays, mass adds, the centre of mass moves and inertias combine by the parallel-axis
+/// theorem with the shell's rotation (shell cylinders along their own Z).
+
+#include "scene/loading.hpp"
+#include "scene/mass.hpp"
+#include "scene/rotation.hpp"
+
+namespace s2sim::scene::detail {
+
+void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int robot) {
+  Scene& scene = ctx.scene;
+  for (const Element& el : shells.children) {
+    const std::string& kind = el.name;
+    if (kind != "cuboid" && kind != "cylinder" && kind != "sphere" && kind != "camera") continue;
+    const Robot& rb = scene.robots[static_cast<std::size_t>(robot)];
+
+    Geom g;
+    g.is_shell = true;
+    g.id = "Shell";
+    g.where = r.at(el);
+    g.visual.color = Color{128 / 255.0, 128 / 255.0, 128 / 255.0, 1};
+    g.shape.type = kind == "cylinder" ? ShapeType::cylinder
+                   : kind == "sphere" ? ShapeType::sphere
+                                      : ShapeType::box;
+    int body = rb.main_body;
+    double mass = 0;
+    const Element* mass_el = nullptr;
+    Vec3 size{1, 1, 1};
+    const Element* size_el = nullptr;
+    double radius = 1;
+    const Element* radius_el = nullptr;
+    const char* radius_attr = "radius";
+    Vec3 pos, rot_deg;
+    Camera camera;
+
+    for (const Element& c : el.children) {
+      const std::string& n = c.name;
+      if (n == "ID") {
+        g.id = r.text(c, "value", g.id);
+      } else if (n == "solid") {
+        const std::string id = r.text(c, "id", "");
+        body = find_body(scene, rb.bodies, id, false);
+        if (body < 0) r.fail(c, "id", "no solid with ID '" + id + "' in this robot");
+      } else if (n == "mass") {
+        mass = r.number(c, "value", mass);
+        mass_el = &c;
+      } else if (n == "size") {
+        size = r.xyz(c, size);
+        size_el = &c;
+        if (r.has(c, "radius")) {
+          radius = r.number(c, "radius", radius);
+          radius_el = &c;
+          radius_attr = "radius";
+        }
+      } else if (n == "radius") {
+        if (r.has(c, "value")) {
+          radius = r.number(c, "value", radius);
+          radius_el = &c;
+          radius_attr = "value";
+        }
+      } else if (n == "pos") {
+        pos = r.xyz(c, pos);
+      } else if (n == "rot_deg") {
+        rot_deg = r.xyz(c, rot_deg);
+      } else if (n == "surface") {
+        read_surface(r, c, g.surface);
+      } else if (n == "focal" && kind == "camera") {
+        camera.focal_length = r.number(c, "length", camera.focal_length);
+      } else if (n == "frame" && kind == "camera") {
+        camera.decimation = static_cast<int>(r.integer(c, "decimation", camera.decimation));
+        camera.width_px = static_cast<int>(r.integer(c, "width", camera.width_px));
+        camera.height_px = static_cast<int>(r.integer(c, "height", camera.height_px));
+      } else {
+        read_visual_child(ctx, r, c, g.shape.type, g.visual, g.material);
+      }
+    }
+    if (body < 0) r.fail(el, "", "shell of a robot without solids");
+
+    auto positive = [&](const Element* where, const char* attr, double v) {
+      if (!(v > 0)) r.fail(where ? *where : el, attr, "must be > 0, got " + format_number(v));
+    };
+    if (mass < 0)
+      r.fail(mass_el ? *mass_el : el, "value", "mass must be >= 0, got " + format_number(mass));
+    if (g.shape.type == ShapeType::box) {
+      positive(size_el, "x", size.x);
+      positive(size_el, "y", size.y);
+      positive(size_el, "z", size.z);
+      g.shape.size_m = size;
+    } else if (g.shape.type == ShapeType::cylinder) {
+      positive(size_el, "x", size.x);  // shell cylinders: radius = size x (quirk 6)
+      positive(size_el, "z", size.z);
+      g.shape.radius_m = size.x;
+      g.shape.length_m = size.z;
+    } else {
+      positive(radius_el, radius_attr, radius);
+      g.shape.radius_m = radius;
+    }
+    if (kind == "camera") g.camera = camera;
+    g.pose = Pose{pos, rotation_from_rot_deg(rot_deg)};
+
+    Body& b = scene.bodies[static_cast<std::size_t>(body)];
+    if (mass > 0) {
+      const Mat3& R = g.pose.rotation;
+      add_rigid_part(b, mass, pos, R * uniform_inertia(g.shape, mass) * R.transposed());
+    }
+    b.geoms.push_back(std::move(g));
+  }
+}
+
+}  // namespace s2sim::scene::detail

@@ -1,0 +1,83 @@
+// The tolerant XML reader: element paths, comments, BOM, text before the declaration, and
+// syntax errors with their line.
+
+#include "scene/xml.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace s2sim::scene {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(Xml, ElementPathsIndexOnlyRepeatedNames) {
+  const Element root = parse_xml(R"(<robot>
+    <solids>
+      <cuboid><ID value=' a '/></cuboid>
+      <!-- a comment is no element -->
+      <cylinder/>
+      <cuboid><ID value='b'/><pos x='1'/></cuboid>
+    </solids>
+  </robot>)",
+                                 "r.xml");
+  EXPECT_EQ(root.name, "robot");
+  EXPECT_EQ(root.path, "robot");
+  const Element& solids = root.children.at(0);
+  EXPECT_EQ(solids.path, "robot/solids");
+  ASSERT_EQ(solids.children.size(), 3u);
+  EXPECT_EQ(solids.children[0].path, "robot/solids/cuboid[1]");
+  EXPECT_EQ(solids.children[1].path, "robot/solids/cylinder");
+  EXPECT_EQ(solids.children[2].path, "robot/solids/cuboid[2]");
+  EXPECT_EQ(solids.children[2].children[1].path, "robot/solids/cuboid[2]/pos");
+  ASSERT_NE(solids.children[0].child("ID"), nullptr);
+  EXPECT_EQ(*solids.children[0].child("ID")->attribute("value"), "a");  // trimmed
+  EXPECT_EQ(solids.children[0].child("nothing"), nullptr);
+}
+
+TEST(Xml, AttributesInDocumentOrder) {
+  const Element e = parse_xml("<size z='3' x='1' y='2'/>", "s.xml");
+  ASSERT_EQ(e.attributes.size(), 3u);
+  EXPECT_EQ(e.attributes[0].first, "z");
+  EXPECT_EQ(e.attributes[2].first, "y");
+  EXPECT_EQ(e.attribute("w"), nullptr);
+}
+
+TEST(Xml, ToleratesBomLeadingTextAndOddComments) {
+  const Element e = parse_xml(
+      "\xEF\xBB\xBF \n\n  <?xml version=\"1.0\" ?>\n<!---->\n<scene><!--------><a/></scene>",
+      "scene.xml");
+  EXPECT_EQ(e.name, "scene");
+  ASSERT_EQ(e.children.size(), 1u);
+  EXPECT_EQ(e.children[0].name, "a");
+}
+
+TEST(Xml, SyntaxErrorNamesFileAndLine) {
+  try {
+    parse_xml(" \n\n<scene>\n  <a x='1'\n  <b/>\n</scene>", "scene.xml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::scene);
+    EXPECT_EQ(e.where().file, "scene.xml:5");  // leading lines are counted
+    EXPECT_THAT(std::string(e.what()), HasSubstr("scene.xml:5: expected"));
+  }
+}
+
+TEST(Xml, EmptyFileIsAnError) {
+  EXPECT_THROW(parse_xml("  \n ", "x.xml"), Error);
+  EXPECT_THROW(read_xml_file("/nonexistent/file.xml", "file.xml"), Error);
+}
+
+}  // namespace
+}  // namespace s2sim::scene
+
+TEST(Xml, MismatchedClosingTagIsAnErrorWithItsLine) {
+  try {
+    s2sim::scene::parse_xml("<robot>\n  <solids>\n  </solid>\n</robot>\n", "bot.xml");
+    FAIL() << "a mismatched closing tag loaded";
+  } catch (const s2sim::Error& e) {
+    EXPECT_EQ(e.kind(), s2sim::ErrorKind::scene);
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("bot.xml:3"));
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("closing tag"));
+  }
+}
