@@ -34,21 +34,25 @@ int run(const s2sim::runner::Options& o) {
   so.physics_step_s = o.physics_step_s;
   so.substeps = o.substeps;
   so.constants = o.constants;
-  for (const auto& p : o.plugin_path) so.plugin_path.emplace_back(p);
+  for (const auto& p : o.plugin_path)
+    so.plugin_path.emplace_back(p);
   auto sim = Simulation::load(o.scene, so);
   if (!o.quiet)
-    for (const auto& w : sim->warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& w : sim->warnings())
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   if (o.list_signals || o.list_inputs) {
     if (o.list_signals)
       for (std::size_t i = 0; i < sim->signal_count(); ++i)
-        std::printf("%s [%s]\n", sim->signal_info(i).name.c_str(), sim->signal_info(i).unit.c_str());
+        std::printf("%s [%s]\n", sim->signal_info(i).name.c_str(),
+                    sim->signal_info(i).unit.c_str());
     if (o.list_inputs)
       for (std::size_t i = 0; i < sim->input_count(); ++i)
         std::printf("%s [%s]\n", sim->input_info(i).name.c_str(), sim->input_info(i).unit.c_str());
     return 0;
   }
-  for (const auto& [name, value] : o.inputs) sim->set_input(name, value);
+  for (const auto& [name, value] : o.inputs)
+    sim->set_input(name, value);
 
   // llround() of a value beyond int64 is undefined (LLONG_MIN on x86): refuse an endless
   // duration and clamp the log period (a huge one legitimately means "the first row only").

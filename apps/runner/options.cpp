@@ -69,15 +69,15 @@ Options parse_options(int argc, char** argv) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];
     auto value = [&]() -> const std::string& {
-      if (i + 1 >= args.size() || is_option(args[i + 1]))
-        throw usage_error(a + " needs a value");
+      if (i + 1 >= args.size() || is_option(args[i + 1])) throw usage_error(a + " needs a value");
       return args[++i];
     };
     // Options that take several values read until the next option.
     auto values = [&](std::vector<std::string>& out) {
       if (i + 1 >= args.size() || is_option(args[i + 1]))
         throw usage_error(a + " needs at least one value");
-      while (i + 1 < args.size() && !is_option(args[i + 1])) out.push_back(args[++i]);
+      while (i + 1 < args.size() && !is_option(args[i + 1]))
+        out.push_back(args[++i]);
     };
     if (a == "--duration") {
       o.duration_s = parse_number(a, value());
@@ -107,7 +107,8 @@ Options parse_options(int argc, char** argv) {
     } else if (a == "--set") {
       std::vector<std::string> sets;
       values(sets);
-      for (const auto& s : sets) o.inputs.push_back(parse_assignment(a, s));
+      for (const auto& s : sets)
+        o.inputs.push_back(parse_assignment(a, s));
     } else if (a == "--define") {
       o.constants.push_back(parse_assignment(a, value()));
     } else if (a == "--physics-step") {

@@ -62,8 +62,8 @@ std::vector<PoseRow> thing_rows(const Simulation& sim) {
   std::vector<PoseRow> rows;
   for (int b : sim.scene().things) {
     const Pose& p = sim.body_pose(b + 1);
-    rows.push_back({sim.scene().bodies[b].id, p.position.x, p.position.y, p.position.z,
-                    yaw_of(p.rotation)});
+    rows.push_back(
+        {sim.scene().bodies[b].id, p.position.x, p.position.y, p.position.z, yaw_of(p.rotation)});
   }
   return rows;
 }
@@ -125,7 +125,8 @@ void CsvLog::close() {
 
 void CsvLog::write_row(const Simulation& sim) {
   std::fprintf(out_, "%.6f", sim.time_s());
-  for (std::size_t i : signals_) std::fprintf(out_, ",%.10g", sim.signal(i));
+  for (std::size_t i : signals_)
+    std::fprintf(out_, ",%.10g", sim.signal(i));
   std::fputc('\n', out_);
   if (std::ferror(out_)) throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
 }
@@ -193,10 +194,11 @@ void ProgressBar::update(double sim_s, double total_s, double wall_s, bool force
   constexpr int width = 40;
   const int filled = static_cast<int>(fraction * width);
   char bar[width + 1];
-  for (int i = 0; i < width; ++i) bar[i] = i < filled ? '#' : '.';
+  for (int i = 0; i < width; ++i)
+    bar[i] = i < filled ? '#' : '.';
   bar[width] = '\0';
-  std::fprintf(stderr, "\r[%s] %5.1f%%  t = %8.3f s  %6.1fx real time", bar, fraction * 100,
-               sim_s, wall_s > 0 ? sim_s / wall_s : 0.0);
+  std::fprintf(stderr, "\r[%s] %5.1f%%  t = %8.3f s  %6.1fx real time", bar, fraction * 100, sim_s,
+               wall_s > 0 ? sim_s / wall_s : 0.0);
   std::fflush(stderr);
 }
 

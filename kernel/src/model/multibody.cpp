@@ -10,19 +10,25 @@
 namespace s2sim::model {
 namespace {
 
-SimTK::Vec3 to_simtk(const Vec3& v) { return {v.x, v.y, v.z}; }
-Vec3 from_simtk(const SimTK::Vec3& v) { return {v[0], v[1], v[2]}; }
+SimTK::Vec3 to_simtk(const Vec3& v) {
+  return {v.x, v.y, v.z};
+}
+Vec3 from_simtk(const SimTK::Vec3& v) {
+  return {v[0], v[1], v[2]};
+}
 
 SimTK::Rotation to_simtk(const Mat3& m) {
   SimTK::Mat33 r;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r(i, j) = m.m[i][j];
+    for (int j = 0; j < 3; ++j)
+      r(i, j) = m.m[i][j];
   return SimTK::Rotation(r);  // re-orthonormalised: scene rotations carry rounding
 }
 Mat3 from_simtk(const SimTK::Rotation& r) {
   Mat3 m;
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m.m[i][j] = r.asMat33()(i, j);
+    for (int j = 0; j < 3; ++j)
+      m.m[i][j] = r.asMat33()(i, j);
   return m;
 }
 SimTK::Transform to_simtk(const Pose& p) {
@@ -46,11 +52,11 @@ struct AxisImpl {
   int coordinate = 0;  // which q/u of the mobilizer
   double sign = 1;     // axis value = sign * q (ODE convention: body1 relative to body2)
   // Loop joint: measured from the two bodies.
-  int body1 = -1, body2 = -1;           // kernel body indices (0 = world)
-  SimTK::UnitVec3 axis_in_body2;        // rotation axis or slide direction, body2 frame
-  SimTK::Rotation relative0;            // initial body1 orientation in body2 frame
-  SimTK::Vec3 offset0_in_body2;         // initial body1 origin in body2 frame
-  SimTK::Vec3 anchor_in_body1;          // slider force application point
+  int body1 = -1, body2 = -1;     // kernel body indices (0 = world)
+  SimTK::UnitVec3 axis_in_body2;  // rotation axis or slide direction, body2 frame
+  SimTK::Rotation relative0;      // initial body1 orientation in body2 frame
+  SimTK::Vec3 offset0_in_body2;   // initial body1 origin in body2 frame
+  SimTK::Vec3 anchor_in_body1;    // slider force application point
 };
 
 }  // namespace
@@ -96,7 +102,8 @@ namespace {
 /// An axis's value (rad or m), ODE convention; `state` realized to Position.
 double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
-  if (!m.axes[a].loop) return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneQ(s, ax.coordinate);
+  if (!m.axes[a].loop)
+    return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneQ(s, ax.coordinate);
   const auto& b1 = m.mobod(ax.body1);
   const auto& b2 = m.mobod(ax.body2);
   const SimTK::Rotation& R2 = b2.getBodyRotation(s);
@@ -114,7 +121,8 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
 /// An axis's rate (rad/s or m/s); `state` realized to Velocity.
 double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
-  if (!m.axes[a].loop) return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneU(s, ax.coordinate);
+  if (!m.axes[a].loop)
+    return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneU(s, ax.coordinate);
   const auto& b1 = m.mobod(ax.body1);
   const auto& b2 = m.mobod(ax.body2);
   const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
@@ -153,8 +161,8 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
       if (f == 0.0) continue;
       const AxisImpl& ax = mb.axis_impl[a];
       if (!mb.axes[a].loop) {
-        mb.matter.getMobilizedBody(ax.mobod)
-            .applyOneMobilityForce(state, ax.coordinate, ax.sign * f, mobility_forces);
+        mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate,
+                                                                   ax.sign * f, mobility_forces);
         continue;
       }
       // Loop joint: equal and opposite loads on the two bodies about / along the axis.
@@ -195,7 +203,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   m.mobod_of_body.assign(n_bodies + 1, SimTK::MobilizedBodyIndex());
   m.mobod_of_body[0] = SimTK::GroundIndex;
   m.initial_pose.assign(n_bodies + 1, Pose{});
-  for (int i = 0; i < n_bodies; ++i) m.initial_pose[i + 1] = scene.bodies[i].pose;
+  for (int i = 0; i < n_bodies; ++i)
+    m.initial_pose[i + 1] = scene.bodies[i].pose;
 
   // Spanning forest of the joint graph: world-connected bodies hang from Ground through their
   // joint, every other group gets a Free root (the robot's main body where there is one).
@@ -251,7 +260,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   std::vector<int> root_order;
   for (const auto& r : scene.robots)
     if (r.main_body >= 0) root_order.push_back(r.main_body);
-  for (int b = 0; b < n_bodies; ++b) root_order.push_back(b);
+  for (int b = 0; b < n_bodies; ++b)
+    root_order.push_back(b);
   for (int b : root_order) {
     if (visited[b]) continue;
     visited[b] = 1;
@@ -279,11 +289,11 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
     SimTK::Inertia inertia_com;
     try {
       const Mat3& I = sb.inertia_kg_m2;
-      inertia_com = SimTK::Inertia(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2],
-                                   I.m[1][2]);
+      inertia_com =
+          SimTK::Inertia(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2], I.m[1][2]);
       const SimTK::Vec3 com = to_simtk(sb.com_m);
-      SimTK::Body::Rigid body(
-          SimTK::MassProperties(sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
+      SimTK::Body::Rigid body(SimTK::MassProperties(
+          sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
       SimTK::MobilizedBody& parent = m.upd_mobod(kernel_index(e.parent));
       SimTK::MobilizedBodyIndex index;
       if (e.joint < 0) {
@@ -298,8 +308,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
         const bool child_is_body1 = jt.body1 == e.child;
         const double sign = child_is_body1 ? 1.0 : -1.0;
         const SimTK::Vec3 anchor = to_simtk(jt.anchor_m);
-        auto frames = [&](const SimTK::Rotation& R_GJ, SimTK::Transform& F,
-                          SimTK::Transform& M) {
+        auto frames = [&](const SimTK::Rotation& R_GJ, SimTK::Transform& F, SimTK::Transform& M) {
           const SimTK::Transform X_GJ(R_GJ, anchor);
           F = ~X_GP * X_GJ;
           M = ~X_GC * X_GJ;
@@ -324,13 +333,12 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
             const Vec3 first = child_is_body1 ? jt.axis2 : jt.axis1;
             const Vec3 second = child_is_body1 ? jt.axis1 : jt.axis2;
             if (norm(cross(first, second)) < 1e-6)
-              throw scene_error(jt.where, "Universal joint '" + jt.id +
-                                              "': axis and axis2 must not be parallel");
+              throw scene_error(
+                  jt.where, "Universal joint '" + jt.id + "': axis and axis2 must not be parallel");
             const SimTK::Rotation R(SimTK::UnitVec3(to_simtk(first)), SimTK::XAxis,
                                     to_simtk(second), SimTK::YAxis);
             frames(R, F, M);
-            index =
-                SimTK::MobilizedBody::Universal(parent, F, body, M).getMobilizedBodyIndex();
+            index = SimTK::MobilizedBody::Universal(parent, F, body, M).getMobilizedBodyIndex();
             const int coord_axis1 = child_is_body1 ? 1 : 0;
             tree_axes.push_back({e.joint, 0, index, coord_axis1, sign});
             tree_axes.push_back({e.joint, 1, index, 1 - coord_axis1, sign});
@@ -479,9 +487,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
           const auto& mp = m.mobod(ax.body1).getBodyMassProperties(state);
           const SimTK::Vec3 axis_B1 = ~m.mobod(ax.body1).getBodyRotation(state) *
                                       (m.mobod(ax.body2).getBodyRotation(state) * ax.axis_in_body2);
-          inertia = m.axes[stop.axis].linear
-                        ? mp.getMass()
-                        : SimTK::dot(axis_B1, mp.getInertia() * axis_B1);
+          inertia = m.axes[stop.axis].linear ? mp.getMass()
+                                             : SimTK::dot(axis_B1, mp.getInertia() * axis_B1);
         }
         stop.stiffness = inertia * omega * omega;
         stop.damping = 2.0 * inertia * omega;
@@ -503,12 +510,24 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
 
 Multibody::~Multibody() = default;
 
-int Multibody::body_count() const { return static_cast<int>(impl_->mobod_of_body.size()); }
-const std::vector<AxisInfo>& Multibody::axes() const { return impl_->axes; }
-const std::vector<std::string>& Multibody::warnings() const { return impl_->warnings; }
-Wrench* Multibody::applied_wrenches() { return impl_->wrenches.data(); }
-double* Multibody::applied_axis_forces() { return impl_->axis_forces.data(); }
-double Multibody::time_s() const { return static_cast<double>(impl_->ticks) * impl_->tick_s; }
+int Multibody::body_count() const {
+  return static_cast<int>(impl_->mobod_of_body.size());
+}
+const std::vector<AxisInfo>& Multibody::axes() const {
+  return impl_->axes;
+}
+const std::vector<std::string>& Multibody::warnings() const {
+  return impl_->warnings;
+}
+Wrench* Multibody::applied_wrenches() {
+  return impl_->wrenches.data();
+}
+double* Multibody::applied_axis_forces() {
+  return impl_->axis_forces.data();
+}
+double Multibody::time_s() const {
+  return static_cast<double>(impl_->ticks) * impl_->tick_s;
+}
 
 void Multibody::reset() {
   impl_->ticks = 0;
@@ -530,15 +549,19 @@ void Multibody::step() {
     s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
     m.system.realize(s, SimTK::Stage::Acceleration);
     const SimTK::Vector& udot = s.getUDot();
-    for (int i = 0; i < udot.size(); ++i) m.udot[i] = udot[i];
+    for (int i = 0; i < udot.size(); ++i)
+      m.udot[i] = udot[i];
     const double kick = m.half_kick_pending ? 0.5 * h : h;
     m.half_kick_pending = false;
     SimTK::Vector& u = s.updU();
-    for (int i = 0; i < u.size(); ++i) u[i] += kick * m.udot[i];
+    for (int i = 0; i < u.size(); ++i)
+      u[i] += kick * m.udot[i];
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);
     SimTK::Vector& q = s.updQ();
-    for (int i = 0; i < q.size(); ++i) q[i] += h * m.qdot[i];
-    s.updTime() = (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
+    for (int i = 0; i < q.size(); ++i)
+      q[i] += h * m.qdot[i];
+    s.updTime() =
+        (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
     m.system.realize(s, SimTK::Stage::Time);
     if (m.has_quaternions) m.matter.normalizeQuaternions(s);
     if (m.has_constraints) m.system.project(s, 1e-10);
@@ -549,11 +572,13 @@ void Multibody::step() {
   double sum = 0;
   const SimTK::Vector& q = s.getQ();
   const SimTK::Vector& u = s.getU();
-  for (int i = 0; i < q.size(); ++i) sum += q[i];
-  for (int i = 0; i < u.size(); ++i) sum += u[i];
+  for (int i = 0; i < q.size(); ++i)
+    sum += q[i];
+  for (int i = 0; i < u.size(); ++i)
+    sum += u[i];
   if (!std::isfinite(sum))
-    throw Error(ErrorKind::runtime, "the simulation state became non-finite at t = " +
-                                        std::to_string(time_s()) + " s");
+    throw Error(ErrorKind::runtime,
+                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
 }
 
 void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
@@ -594,7 +619,8 @@ std::vector<double> Multibody::save() const {
   out.push_back(static_cast<double>(impl_->ticks));
   out.push_back(impl_->half_kick_pending ? 1.0 : 0.0);
   for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
-    for (int i = 0; i < v->size(); ++i) out.push_back((*v)[i]);
+    for (int i = 0; i < v->size(); ++i)
+      out.push_back((*v)[i]);
   return out;
 }
 
@@ -605,7 +631,8 @@ void Multibody::restore(const std::vector<double>& saved) {
   m.ticks = static_cast<std::int64_t>(saved.at(k++));
   m.half_kick_pending = saved.at(k++) != 0.0;
   for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
-    for (int i = 0; i < v->size(); ++i) (*v)[i] = saved.at(k++);
+    for (int i = 0; i < v->size(); ++i)
+      (*v)[i] = saved.at(k++);
   s.setTime(time_s());
   m.current = s;
   m.system.realize(m.current, SimTK::Stage::Velocity);

@@ -17,8 +17,8 @@ namespace s2sim::model {
 struct AxisInfo {
   std::string name;  ///< the joint ID, `<ID>:2` for a Universal joint's second axis
   int robot = -1;
-  int joint = -1;     ///< index into Scene::joints
-  int which = 0;      ///< 0 or 1 (Universal second axis)
+  int joint = -1;  ///< index into Scene::joints
+  int which = 0;   ///< 0 or 1 (Universal second axis)
   bool linear = false;
   bool loop = false;  ///< closes a kinematic loop (realised by constraints, not a mobilizer)
 };

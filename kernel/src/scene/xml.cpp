@@ -4,8 +4,8 @@
 
 #include "scene/xml.hpp"
 
-#include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/detail/rapidxml.hpp>
+#include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
 
 #include <algorithm>

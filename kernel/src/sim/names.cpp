@@ -28,7 +28,8 @@ bool glob_match(std::string_view pattern, std::string_view text) {
       return false;
     }
   }
-  while (p < pattern.size() && pattern[p] == '*') ++p;
+  while (p < pattern.size() && pattern[p] == '*')
+    ++p;
   return p == pattern.size();
 }
 
@@ -53,14 +54,16 @@ std::vector<std::string> closest_names(std::string_view wanted,
                                        const std::vector<std::string>& names, std::size_t count) {
   std::vector<std::pair<std::size_t, const std::string*>> scored;
   scored.reserve(names.size());
-  for (const auto& n : names) scored.emplace_back(edit_distance(wanted, n), &n);
+  for (const auto& n : names)
+    scored.emplace_back(edit_distance(wanted, n), &n);
   const std::size_t k = std::min(count, scored.size());
   std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(k), scored.end(),
                     [](const auto& x, const auto& y) {
                       return x.first != y.first ? x.first < y.first : *x.second < *y.second;
                     });
   std::vector<std::string> out;
-  for (std::size_t i = 0; i < k; ++i) out.push_back(*scored[i].second);
+  for (std::size_t i = 0; i < k; ++i)
+    out.push_back(*scored[i].second);
   return out;
 }
 
@@ -70,7 +73,8 @@ std::string unknown_name_message(std::string_view what, std::string_view wanted,
   const auto close = closest_names(wanted, names);
   if (!close.empty()) {
     msg += "; did you mean";
-    for (std::size_t i = 0; i < close.size(); ++i) msg += (i ? ", '" : " '") + close[i] + "'";
+    for (std::size_t i = 0; i < close.size(); ++i)
+      msg += (i ? ", '" : " '") + close[i] + "'";
     msg += "?";
   }
   return msg;

@@ -16,7 +16,8 @@ bool glob_match(std::string_view pattern, std::string_view text);
 
 /// Up to `count` names closest to `wanted` (edit distance), for error messages.
 std::vector<std::string> closest_names(std::string_view wanted,
-                                       const std::vector<std::string>& names, std::size_t count = 3);
+                                       const std::vector<std::string>& names,
+                                       std::size_t count = 3);
 
 /// "unknown signal 'x'; did you mean 'a', 'b'?" from closest_names.
 std::string unknown_name_message(std::string_view what, std::string_view wanted,

@@ -143,7 +143,8 @@ struct Simulation::Impl {
   std::size_t add_signal(std::string name, std::string unit, Source source, std::int32_t index) {
     // Duplicate scene IDs are legal in SimTwo; later ones get a "#n" suffix.
     std::string unique = name;
-    for (int n = 2; signal_by_name.count(unique); ++n) unique = name + "#" + std::to_string(n);
+    for (int n = 2; signal_by_name.count(unique); ++n)
+      unique = name + "#" + std::to_string(n);
     signal_by_name.emplace(unique, signal_infos.size());
     signal_infos.push_back({unique, std::move(unit)});
     signal_entries.push_back({source, index});
@@ -177,13 +178,16 @@ struct Simulation::Impl {
     add_signal("time", "s", Source::time, 0);
     auto add_body = [&](const std::string& p, int body) {
       const std::pair<const char*, Source> fields[] = {
-          {"x", Source::body_x},   {"y", Source::body_y},         {"z", Source::body_z},
+          {"x", Source::body_x},       {"y", Source::body_y},         {"z", Source::body_z},
           {"roll", Source::body_roll}, {"pitch", Source::body_pitch}, {"yaw", Source::body_yaw},
-          {"vx", Source::body_vx}, {"vy", Source::body_vy},       {"vz", Source::body_vz},
-          {"wx", Source::body_wx}, {"wy", Source::body_wy},       {"wz", Source::body_wz}};
+          {"vx", Source::body_vx},     {"vy", Source::body_vy},       {"vz", Source::body_vz},
+          {"wx", Source::body_wx},     {"wy", Source::body_wy},       {"wz", Source::body_wz}};
       for (const auto& [name, source] : fields) {
         const std::string_view n = name;
-        const char* unit = n[0] == 'v' ? "m/s" : n[0] == 'w' ? "rad/s" : n.size() == 1 ? "m" : "rad";
+        const char* unit = n[0] == 'v'     ? "m/s"
+                           : n[0] == 'w'   ? "rad/s"
+                           : n.size() == 1 ? "m"
+                                           : "rad";
         add_signal(p + "/" + name, unit, source, body);
       }
     };
@@ -194,18 +198,18 @@ struct Simulation::Impl {
         add_body(robot_prefix(static_cast<int>(r)) + "/solids/" + sim::segment(scene.bodies[b].id),
                  b + 1);
     }
-    for (int b : scene.things) add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
+    for (int b : scene.things)
+      add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
     for (std::size_t a = 0; a < axis_views.size(); ++a) {
       const AxisView& ax = axis_views[a];
-      const std::string p =
-          (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) + "/axes/" +
-          sim::segment(ax.name);
+      const std::string p = (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) +
+                            "/axes/" + sim::segment(ax.name);
       const auto i = static_cast<std::int32_t>(a);
       add_signal(p + "/pos", ax.linear ? "m" : "rad", Source::axis_position, i);
       add_signal(p + "/speed", ax.linear ? "m/s" : "rad/s", Source::axis_velocity, i);
       add_signal(p + "/torque", ax.linear ? "N" : "N*m", Source::axis_force, i);
-      ref_torque_input.push_back(add_input(p + "/ref_torque", ax.linear ? "N" : "N*m", 0.0,
-                                           scene.joints[ax.joint].where));
+      ref_torque_input.push_back(
+          add_input(p + "/ref_torque", ax.linear ? "N" : "N*m", 0.0, scene.joints[ax.joint].where));
     }
   }
 
@@ -255,7 +259,8 @@ struct Simulation::Impl {
         slot.component->update(ctx);
       }
     }
-    for (std::size_t a = 0; a < axis_views.size(); ++a) axis_force[a] += inputs[ref_torque_input[a]];
+    for (std::size_t a = 0; a < axis_views.size(); ++a)
+      axis_force[a] += inputs[ref_torque_input[a]];
     std::copy(axis_force, axis_force + axis_views.size(), axis_force_applied.begin());
     multibody->step();
     ++tick;
@@ -330,8 +335,10 @@ class ConfigureContextImpl final : public ConfigureContext {
     const auto& bodies = sim_.scene.bodies;
     if (n.find('/') == std::string::npos) {
       if (slot().robot < 0)
-        throw fail("a scene-level component names bodies by full path ('things/<id>' or "
-                   "'robots/<robot>/solids/<id>'), got '" + n + "'");
+        throw fail(
+            "a scene-level component names bodies by full path ('things/<id>' or "
+            "'robots/<robot>/solids/<id>'), got '" +
+            n + "'");
       for (int b : sim_.scene.robots[slot().robot].bodies)
         if (bodies[b].id == n) return BodyHandle{b + 1};
       throw fail(unknown("solid", n, robot_body_names(slot().robot)));
@@ -388,8 +395,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.add_signal(n, std::string(unit), Source::published, index);
     return SignalHandle{index};
   }
-  InputHandle declare_input(std::string_view name, std::string_view unit,
-                            double initial) override {
+  InputHandle declare_input(std::string_view name, std::string_view unit, double initial) override {
     return declare_input_at(slot().prefix + "/" + std::string(name), unit, initial);
   }
   InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
@@ -409,8 +415,8 @@ class ConfigureContextImpl final : public ConfigureContext {
       const double rounded = std::round(ticks);
       if (!std::isfinite(ticks) || std::abs(ticks - rounded) > 1e-6 * std::max(1.0, ticks))
         throw fail(std::string(what) + " " + std::to_string(t) +
-                   " s is not a whole multiple of the physics step " +
-                   std::to_string(sim_.tick_s) + " s");
+                   " s is not a whole multiple of the physics step " + std::to_string(sim_.tick_s) +
+                   " s");
       return static_cast<std::int64_t>(rounded);
     };
     const std::int64_t period = to_ticks(period_s, "period");
@@ -434,7 +440,8 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   std::vector<std::string> robot_body_names(int robot) const {
     std::vector<std::string> names;
-    for (int b : sim_.scene.robots[robot].bodies) names.push_back(sim_.scene.bodies[b].id);
+    for (int b : sim_.scene.robots[robot].bodies)
+      names.push_back(sim_.scene.bodies[b].id);
     return names;
   }
 
@@ -513,13 +520,13 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     throw Error(ErrorKind::usage, "the physics step must be positive, got " +
                                       std::to_string(m.scene.settings.physics_step_s) + " s");
   if (m.scene.settings.substeps < 1)
-    throw Error(ErrorKind::usage, "substeps must be at least 1, got " +
-                                      std::to_string(m.scene.settings.substeps));
+    throw Error(ErrorKind::usage,
+                "substeps must be at least 1, got " + std::to_string(m.scene.settings.substeps));
   m.tick_s = m.scene.settings.physics_step_s;
 
-  m.multibody =
-      std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
-  for (const auto& w : m.multibody->warnings()) m.warnings.push_back(w);
+  m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
+  for (const auto& w : m.multibody->warnings())
+    m.warnings.push_back(w);
   for (const auto& ax : m.multibody->axes())
     m.axis_views.push_back({ax.name, ax.robot, ax.joint, ax.linear});
   m.poses.resize(static_cast<std::size_t>(m.multibody->body_count()));
@@ -565,24 +572,40 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
 }
 
-const scene::Scene& Simulation::scene() const { return impl_->scene; }
-const std::vector<std::string>& Simulation::warnings() const { return impl_->warnings; }
-double Simulation::time_s() const { return static_cast<double>(impl_->tick) * impl_->tick_s; }
-std::int64_t Simulation::tick() const { return impl_->tick; }
-double Simulation::tick_s() const { return impl_->tick_s; }
+const scene::Scene& Simulation::scene() const {
+  return impl_->scene;
+}
+const std::vector<std::string>& Simulation::warnings() const {
+  return impl_->warnings;
+}
+double Simulation::time_s() const {
+  return static_cast<double>(impl_->tick) * impl_->tick_s;
+}
+std::int64_t Simulation::tick() const {
+  return impl_->tick;
+}
+double Simulation::tick_s() const {
+  return impl_->tick_s;
+}
 
 void Simulation::step(std::int64_t ticks) {
-  for (std::int64_t i = 0; i < ticks; ++i) impl_->step_once();
+  for (std::int64_t i = 0; i < ticks; ++i)
+    impl_->step_once();
 }
 
 void Simulation::run_until(double t_s) {
   const auto target = static_cast<std::int64_t>(std::llround(t_s / impl_->tick_s));
-  while (impl_->tick < target) impl_->step_once();
+  while (impl_->tick < target)
+    impl_->step_once();
 }
 
-void Simulation::reset() { impl_->reset(); }
+void Simulation::reset() {
+  impl_->reset();
+}
 
-std::size_t Simulation::signal_count() const { return impl_->signal_infos.size(); }
+std::size_t Simulation::signal_count() const {
+  return impl_->signal_infos.size();
+}
 const SignalInfo& Simulation::signal_info(std::size_t i) const {
   return impl_->signal_infos.at(i);
 }
@@ -594,10 +617,13 @@ std::optional<std::size_t> Simulation::find_signal(std::string_view name) const 
 std::size_t Simulation::signal_index(std::string_view name) const {
   if (auto i = find_signal(name)) return *i;
   std::vector<std::string> names;
-  for (const auto& s : impl_->signal_infos) names.push_back(s.name);
+  for (const auto& s : impl_->signal_infos)
+    names.push_back(s.name);
   throw Error(ErrorKind::usage, sim::unknown_name_message("signal", name, names));
 }
-double Simulation::signal(std::size_t index) const { return impl_->read_signal(index); }
+double Simulation::signal(std::size_t index) const {
+  return impl_->read_signal(index);
+}
 std::vector<std::size_t> Simulation::match_signals(std::string_view pattern) const {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < impl_->signal_infos.size(); ++i)
@@ -605,13 +631,18 @@ std::vector<std::size_t> Simulation::match_signals(std::string_view pattern) con
   return out;
 }
 
-std::size_t Simulation::input_count() const { return impl_->input_infos.size(); }
-const SignalInfo& Simulation::input_info(std::size_t i) const { return impl_->input_infos.at(i); }
+std::size_t Simulation::input_count() const {
+  return impl_->input_infos.size();
+}
+const SignalInfo& Simulation::input_info(std::size_t i) const {
+  return impl_->input_infos.at(i);
+}
 std::size_t Simulation::input_index(std::string_view name) const {
   auto it = impl_->input_by_name.find(std::string(name));
   if (it != impl_->input_by_name.end()) return it->second;
   std::vector<std::string> names;
-  for (const auto& s : impl_->input_infos) names.push_back(s.name);
+  for (const auto& s : impl_->input_infos)
+    names.push_back(s.name);
   throw Error(ErrorKind::usage, sim::unknown_name_message("input", name, names));
 }
 void Simulation::set_input(std::size_t index, double value) {
@@ -620,21 +651,39 @@ void Simulation::set_input(std::size_t index, double value) {
                                       "' must be finite, got " + std::to_string(value));
   impl_->inputs.at(index) = value;
 }
-double Simulation::input(std::size_t index) const { return impl_->inputs.at(index); }
+double Simulation::input(std::size_t index) const {
+  return impl_->inputs.at(index);
+}
 
-int Simulation::body_count() const { return static_cast<int>(impl_->poses.size()); }
-const Pose& Simulation::body_pose(int body) const { return impl_->poses.at(body); }
-const Twist& Simulation::body_twist(int body) const { return impl_->twists.at(body); }
+int Simulation::body_count() const {
+  return static_cast<int>(impl_->poses.size());
+}
+const Pose& Simulation::body_pose(int body) const {
+  return impl_->poses.at(body);
+}
+const Twist& Simulation::body_twist(int body) const {
+  return impl_->twists.at(body);
+}
 
-std::size_t Simulation::axis_count() const { return impl_->axis_views.size(); }
+std::size_t Simulation::axis_count() const {
+  return impl_->axis_views.size();
+}
 const Simulation::AxisView& Simulation::axis(std::size_t i) const {
   return impl_->axis_views.at(i);
 }
-double Simulation::axis_position(std::size_t i) const { return impl_->axis_position.at(i); }
-double Simulation::axis_velocity(std::size_t i) const { return impl_->axis_velocity.at(i); }
+double Simulation::axis_position(std::size_t i) const {
+  return impl_->axis_position.at(i);
+}
+double Simulation::axis_velocity(std::size_t i) const {
+  return impl_->axis_velocity.at(i);
+}
 
-double Simulation::kinetic_energy_J() const { return impl_->multibody->kinetic_energy_J(); }
-double Simulation::potential_energy_J() const { return impl_->multibody->potential_energy_J(); }
+double Simulation::kinetic_energy_J() const {
+  return impl_->multibody->kinetic_energy_J();
+}
+double Simulation::potential_energy_J() const {
+  return impl_->multibody->potential_energy_J();
+}
 
 Simulation::Snapshot Simulation::save() const {
   const Impl& m = *impl_;
@@ -659,8 +708,10 @@ void Simulation::restore(const Snapshot& snapshot) {
   std::vector<std::vector<double>*> blocks = {&m.inputs, &m.published, &m.state,
                                               &m.axis_force_applied};
   std::size_t multibody_size = v.size();
-  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it) multibody_size -= (*it)->size() + 1;
-  m.multibody->restore(std::vector<double>(v.begin(), v.begin() + static_cast<long>(multibody_size)));
+  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it)
+    multibody_size -= (*it)->size() + 1;
+  m.multibody->restore(
+      std::vector<double>(v.begin(), v.begin() + static_cast<long>(multibody_size)));
   std::size_t k = multibody_size;
   for (auto* b : blocks) {
     const auto n = static_cast<std::size_t>(v.at(k++));

@@ -60,9 +60,9 @@ namespace detail {
 /// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
 /// through `StepContext`. Its layout is part of the plugin ABI.
 struct WorldView {
-  const Pose* body_pose = nullptr;    ///< per body, body frame in world
-  const Twist* body_twist = nullptr;  ///< per body, world frame
-  Wrench* body_wrench = nullptr;      ///< per body, accumulated for the coming tick
+  const Pose* body_pose = nullptr;        ///< per body, body frame in world
+  const Twist* body_twist = nullptr;      ///< per body, world frame
+  Wrench* body_wrench = nullptr;          ///< per body, accumulated for the coming tick
   const double* axis_position = nullptr;  ///< rad or m
   const double* axis_velocity = nullptr;  ///< rad/s or m/s
   double* axis_force = nullptr;           ///< N·m or N, accumulated for the coming tick
@@ -103,7 +103,9 @@ class StepContext {
     wr.torque_Nm += cross(point_m - w_->body_pose[b.index].position, force_N);
   }
   /// Applies a pure torque (world frame) for the coming tick.
-  void apply_torque(BodyHandle b, const Vec3& torque_Nm) { w_->body_wrench[b.index].torque_Nm += torque_Nm; }
+  void apply_torque(BodyHandle b, const Vec3& torque_Nm) {
+    w_->body_wrench[b.index].torque_Nm += torque_Nm;
+  }
 
   /// Joint position of an axis (rad, or m for a slider).
   double axis_position(AxisHandle a) const { return w_->axis_position[a.index]; }

@@ -30,12 +30,18 @@ struct Vec3 {
   constexpr bool operator==(const Vec3& o) const { return x == o.x && y == o.y && z == o.z; }
   constexpr bool operator!=(const Vec3& o) const { return !(*this == o); }
 };
-constexpr Vec3 operator*(double s, const Vec3& v) { return v * s; }
-constexpr double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3 operator*(double s, const Vec3& v) {
+  return v * s;
+}
+constexpr double dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 constexpr Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
+inline double norm(const Vec3& v) {
+  return std::sqrt(dot(v, v));
+}
 
 /// A 3x3 matrix, row-major: m[row][col].
 struct Mat3 {
@@ -57,7 +63,8 @@ struct Mat3 {
   constexpr Mat3 transposed() const {
     Mat3 r;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) r.m[i][j] = m[j][i];
+      for (int j = 0; j < 3; ++j)
+        r.m[i][j] = m[j][i];
     return r;
   }
   /// Column j, e.g. the body's local axis j expressed in the parent frame.
@@ -107,7 +114,9 @@ struct Pose {
 };
 
 /// Heading of a frame: atan2 of its local +X axis projected on the world XY plane (radians).
-inline double yaw_of(const Mat3& r) { return std::atan2(r.m[1][0], r.m[0][0]); }
+inline double yaw_of(const Mat3& r) {
+  return std::atan2(r.m[1][0], r.m[0][0]);
+}
 
 /// Velocity of a body: angular velocity and the linear velocity of the body origin, both in
 /// the world frame.

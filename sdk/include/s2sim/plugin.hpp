@@ -93,28 +93,27 @@ void destroy_component(void* component) noexcept {
 #endif
 
 /// One kind entry for S2SIM_PLUGIN: scene name, `s2sim::Category`, component class.
-#define S2SIM_KIND(name, category, Type)                                    \
-  s2sim_kind_entry {                                                        \
-    name, static_cast<std::uint32_t>(category),                             \
-        &::s2sim::detail::create_component<Type>,                           \
-        &::s2sim::detail::destroy_component<Type>                           \
+#define S2SIM_KIND(name, category, Type)                                                  \
+  s2sim_kind_entry {                                                                      \
+    name, static_cast<std::uint32_t>(category), &::s2sim::detail::create_component<Type>, \
+        &::s2sim::detail::destroy_component<Type>                                         \
   }
 
 /// Defines the plugin's descriptor and its exported entry point.
 #define S2SIM_PLUGIN(plugin_name, ...)                                                      \
-  namespace {                                                                              \
-  const s2sim_kind_entry s2sim_plugin_kinds_[] = {__VA_ARGS__};                            \
-  const s2sim_plugin_descriptor s2sim_plugin_descriptor_ = {                               \
-      S2SIM_PLUGIN_ABI_VERSION,                                                            \
-      sizeof(s2sim_plugin_descriptor),                                                     \
-      sizeof(s2sim_kind_entry),                                                            \
-      S2SIM_SDK_VERSION_MAJOR,                                                             \
-      S2SIM_SDK_VERSION_MINOR,                                                             \
-      S2SIM_SDK_VERSION_PATCH,                                                             \
-      plugin_name,                                                                         \
-      static_cast<std::uint32_t>(sizeof(s2sim_plugin_kinds_) / sizeof(s2sim_kind_entry)), \
-      s2sim_plugin_kinds_};                                                                \
-  }                                                                                        \
+  namespace {                                                                               \
+  const s2sim_kind_entry s2sim_plugin_kinds_[] = {__VA_ARGS__};                             \
+  const s2sim_plugin_descriptor s2sim_plugin_descriptor_ = {                                \
+      S2SIM_PLUGIN_ABI_VERSION,                                                             \
+      sizeof(s2sim_plugin_descriptor),                                                      \
+      sizeof(s2sim_kind_entry),                                                             \
+      S2SIM_SDK_VERSION_MAJOR,                                                              \
+      S2SIM_SDK_VERSION_MINOR,                                                              \
+      S2SIM_SDK_VERSION_PATCH,                                                              \
+      plugin_name,                                                                          \
+      static_cast<std::uint32_t>(sizeof(s2sim_plugin_kinds_) / sizeof(s2sim_kind_entry)),   \
+      s2sim_plugin_kinds_};                                                                 \
+  }                                                                                         \
   extern "C" S2SIM_EXPORT const s2sim_plugin_descriptor* s2sim_plugin_descriptor_v1(void) { \
-    return &s2sim_plugin_descriptor_;                                                      \
+    return &s2sim_plugin_descriptor_;                                                       \
   }

@@ -48,7 +48,8 @@ class RandomStream {
   /// no hidden cached value lives outside the kernel-owned state).
   double normal(double mean = 0.0, double stdev = 1.0) {
     double u1 = uniform();
-    while (u1 <= 0.0) u1 = uniform();
+    while (u1 <= 0.0)
+      u1 = uniform();
     const double u2 = uniform();
     return mean + stdev * std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
   }

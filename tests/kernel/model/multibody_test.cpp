@@ -55,8 +55,8 @@ double pendulum_period(double amplitude_rad, double dt) {
   scene::Scene s;
   const double L = 1.0, radius = 0.02, m = 1.0;
   const Vec3 pivot{0, 0, 2};
-  s.bodies.push_back(test::sphere("bob", m, radius,
-                                  {L * std::sin(amplitude_rad), 0, 2 - L * std::cos(amplitude_rad)}));
+  s.bodies.push_back(test::sphere(
+      "bob", m, radius, {L * std::sin(amplitude_rad), 0, 2 - L * std::cos(amplitude_rad)}));
   s.joints.push_back(test::joint("J", JointType::hinge, 0, -1, pivot, {0, 1, 0}));
   test::add_robot(s, "pendulum");
   Runner r(s, dt);
@@ -97,7 +97,8 @@ TEST(Multibody, SliderUnderGravityFollowsGSinAlpha) {
   s.joints.push_back(test::joint("rail", JointType::slider, 0, -1, {0, 0, 5}, axis));
   test::add_robot(s, "slider");
   Runner r(s);
-  for (int n = 1; n <= 1000; ++n) r.step();
+  for (int n = 1; n <= 1000; ++n)
+    r.step();
   const double t = 1.0, expected = 0.5 * kG * std::sin(alpha) * t * t;
   EXPECT_NEAR(r.pos[0], expected, 1e-6 * expected);
   // The block stays on the rail.
@@ -114,7 +115,8 @@ TEST(Multibody, PassiveDoublePendulumEnergyDriftBelowHalfAPercentOver10s) {
   s.bodies.push_back(test::box("upper", 1.0, {Lr, 0.04, 0.04}, {Lr / 2, 0, 2}));
   const Mat3 r45 = test::rotation_about({0, 1, 0}, 45 * M_PI / 180);
   const Vec3 elbow{Lr, 0, 2};
-  s.bodies.push_back(test::box("lower", 0.8, {Lr, 0.04, 0.04}, elbow + r45 * Vec3{Lr / 2, 0, 0}, r45));
+  s.bodies.push_back(
+      test::box("lower", 0.8, {Lr, 0.04, 0.04}, elbow + r45 * Vec3{Lr / 2, 0, 0}, r45));
   s.joints.push_back(test::joint("shoulder", JointType::hinge, 0, -1, pivot, {0, 1, 0}));
   s.joints.push_back(test::joint("elbow", JointType::hinge, 1, 0, elbow, {0, 1, 0}));
   test::add_robot(s, "double");
@@ -183,7 +185,7 @@ TEST(Multibody, HingeStopHoldsAPendulum) {
     max_angle = std::max(max_angle, r.pos[0]);
   }
   EXPECT_LT(max_angle, M_PI / 4 + 3 * M_PI / 180);  // overshoot of the compliant stop
-  EXPECT_NEAR(r.pos[0], M_PI / 4, 2 * M_PI / 180);    // resting on it
+  EXPECT_NEAR(r.pos[0], M_PI / 4, 2 * M_PI / 180);  // resting on it
   EXPECT_LT(std::abs(r.vel[0]), 0.05);
 }
 
@@ -233,7 +235,8 @@ TEST(Multibody, KinematicLoopIsClosedByConstraints) {
   test::add_robot(s, "fourbar");
   Runner r(s);
   int loops = 0;
-  for (const auto& a : r.mb.axes()) loops += a.loop;
+  for (const auto& a : r.mb.axes())
+    loops += a.loop;
   EXPECT_EQ(loops, 1);
   double peak = 0, worst_parallel = 0, worst_level = 0, worst_loop_axis = 0;
   for (int n = 0; n < 3000; ++n) {
@@ -260,12 +263,15 @@ TEST(Multibody, SaveAndRestoreContinueBitForBit) {
   s.joints.push_back(test::joint("b", JointType::hinge, 1, 0, {0.5, 0, 2}, {0, 1, 0}));
   test::add_robot(s, "r");
   Runner r(s);
-  for (int n = 0; n < 300; ++n) r.step();
+  for (int n = 0; n < 300; ++n)
+    r.step();
   const auto saved = r.mb.save();
-  for (int n = 0; n < 500; ++n) r.step();
+  for (int n = 0; n < 500; ++n)
+    r.step();
   const auto first = r.pos;
   r.mb.restore(saved);
-  for (int n = 0; n < 500; ++n) r.step();
+  for (int n = 0; n < 500; ++n)
+    r.step();
   EXPECT_EQ(r.pos, first);
   r.mb.reset();
   r.read();

@@ -21,8 +21,12 @@ void* operator new(std::size_t n) {
   if (void* p = std::malloc(n ? n : 1)) return p;
   throw std::bad_alloc();
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
 
 namespace s2sim {
 namespace {
@@ -41,9 +45,11 @@ Counts count(const std::filesystem::path& scene, const SimulationOptions& o) {
   c.simulation = allocations.load() - before;
 
   model::Multibody bare(sim->scene(), sim->tick_s(), sim->scene().settings.substeps);
-  for (int i = 0; i < 10; ++i) bare.step();
+  for (int i = 0; i < 10; ++i)
+    bare.step();
   before = allocations.load();
-  for (int i = 0; i < 1000; ++i) bare.step();
+  for (int i = 0; i < 1000; ++i)
+    bare.step();
   c.simbody = allocations.load() - before;
   return c;
 }
@@ -52,8 +58,8 @@ TEST(Allocation, TheKernelAddsNoAllocationToSimbodysOwn) {
   SimulationOptions o;
   o.plugin_path = {std::filesystem::path(S2SIM_TEST_PLUGIN_DIR) / "scene"};
   // Components of every category, a hinge, a free thing.
-  const Counts a = count(
-      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/components", o);
+  const Counts a =
+      count(std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/components", o);
   EXPECT_EQ(a.simulation, a.simbody);
   // The default scene: hinges, a slider with stops, a universal joint, a closed loop.
   const Counts b =

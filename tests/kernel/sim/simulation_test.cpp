@@ -135,7 +135,8 @@ TEST(Simulation, SnapshotRestoresEverythingBitForBit) {
   const auto snapshot = sim->save();
   sim->step(500);
   std::vector<double> expected;
-  for (std::size_t i = 0; i < sim->signal_count(); ++i) expected.push_back(sim->signal(i));
+  for (std::size_t i = 0; i < sim->signal_count(); ++i)
+    expected.push_back(sim->signal(i));
   sim->restore(snapshot);
   EXPECT_EQ(sim->tick(), 333);
   sim->step(500);

@@ -100,7 +100,7 @@ struct Mesh {
 };
 
 struct Visual {
-  Color color;  ///< alpha from `<transparency alpha>`
+  Color color;                    ///< alpha from `<transparency alpha>`
   std::filesystem::path texture;  ///< absolute; empty = none
   double texture_scale = 1;
   Mesh mesh;
@@ -314,8 +314,8 @@ struct Robot {
   std::string kind;  ///< `<kind value>`, informative
   std::filesystem::path file;
   int main_body = -1;
-  std::vector<int> bodies;   ///< solids then tyres, in creation order
-  std::vector<int> joints;   ///< in creation order
+  std::vector<int> bodies;  ///< solids then tyres, in creation order
+  std::vector<int> joints;  ///< in creation order
   std::vector<int> sensors;
   std::vector<int> plugins;
   /// Placement of §9.3, kept so that a run-time re-placement (SimTwo's `SetRobotPos`) can
@@ -330,7 +330,7 @@ struct Robot {
 /// Project settings (§10.1) with S2Sim's own.
 struct Settings {
   double physics_step_s = 1e-3;
-  int substeps = 1;  ///< physics substeps per tick
+  int substeps = 1;                ///< physics substeps per tick
   double control_period_s = 0.04;  ///< script / high-level controller period
   double default_friction = 0.95;
   Vec3 wind_m_s;
