@@ -3,6 +3,7 @@
 /// Their `<defines>` write into the global table G (quirk 16, kept).
 
 #include "scene/loading.hpp"
+#include "scene/primitive.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
 
@@ -32,26 +33,13 @@ void load_obstacles_file(LoadContext& ctx, const std::filesystem::path& file,
                    : el.name == "sphere" ? ShapeType::sphere
                                          : ShapeType::box;
     std::string id;
-    Vec3 size{1, 1, 1};
-    const Element* size_el = nullptr;
-    double radius = 0;
-    const Element* radius_el = nullptr;
-    Vec3 pos, rot_deg;
+    PrimitiveFields prim;
+    prim.radius = 0;  // obstacle spheres need an explicit <radius value> (§5)
     for (const Element& c : el.children) {
       const std::string& n = c.name;
       if (n == "ID") {
         id = r.text(c, "name", r.text(c, "value", id));
-      } else if (n == "size") {
-        size = r.xyz(c, size);
-        size.x = r.number(c, "radius", size.x);  // `size radius` sets x (§5)
-        size_el = &c;
-      } else if (n == "radius") {
-        radius = r.number(c, "value", radius);
-        radius_el = &c;
-      } else if (n == "pos") {
-        pos = r.xyz(c, pos);
-      } else if (n == "rot_deg") {
-        rot_deg = r.xyz(c, rot_deg);
+      } else if (prim.read(r, c, /*size_radius_sets_x=*/true)) {
       } else if (n == "surface") {
         read_surface(r, c, g.surface);
       } else {
@@ -59,13 +47,14 @@ void load_obstacles_file(LoadContext& ctx, const std::filesystem::path& file,
       }
     }
     auto positive = [&](const Element* where, const char* attr, double v) {
-      if (!(v > 0)) r.fail(where ? *where : el, attr, "must be > 0, got " + format_number(v));
+      PrimitiveFields::require_positive(r, el, where, attr, v);
     };
+    const Vec3& size = prim.size;
+    const double radius = prim.radius;
+    const Element* size_el = prim.size_el;
+    const Element* radius_el = prim.radius_el;
     if (g.shape.type == ShapeType::box) {
-      positive(size_el, "x", size.x);
-      positive(size_el, "y", size.y);
-      positive(size_el, "z", size.z);
-      g.shape.size_m = size;
+      g.shape.size_m = prim.box_size(r, el);
     } else if (g.shape.type == ShapeType::cylinder) {
       g.shape.radius_m = std::max(radius, size.x);  // quirk 6, kept
       positive(radius > size.x ? radius_el : size_el, radius > size.x ? "value" : "x",
@@ -78,11 +67,11 @@ void load_obstacles_file(LoadContext& ctx, const std::filesystem::path& file,
       g.shape.radius_m = radius;
     }
     if (id.empty())
-      id = "Obstacle at (" + format_number(pos.x) + ", " + format_number(pos.y) + ", " +
-           format_number(pos.z) + ")";
+      id = "Obstacle at (" + format_number(prim.pos.x) + ", " + format_number(prim.pos.y) + ", " +
+           format_number(prim.pos.z) + ")";
     g.id = id_prefix + id;
     // Offset applied as R_off·R_local (S2Sim fixes quirk 17's R_local·R_off).
-    g.pose = offset * Pose{pos, rotation_from_rot_deg(rot_deg)};
+    g.pose = offset * Pose{prim.pos, rotation_from_rot_deg(prim.rot_deg)};
     ctx.scene.obstacles.push_back(std::move(g));
   }
 }

@@ -6,6 +6,7 @@
 
 #include "scene/loading.hpp"
 #include "scene/mass.hpp"
+#include "scene/primitive.hpp"
 #include "scene/rotation.hpp"
 
 namespace s2sim::scene::detail {
@@ -28,12 +29,7 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
     int body = rb.main_body;
     double mass = 0;
     const Element* mass_el = nullptr;
-    Vec3 size{1, 1, 1};
-    const Element* size_el = nullptr;
-    double radius = 1;
-    const Element* radius_el = nullptr;
-    const char* radius_attr = "radius";
-    Vec3 pos, rot_deg;
+    PrimitiveFields prim;
     Camera camera;
 
     for (const Element& c : el.children) {
@@ -47,24 +43,7 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
       } else if (n == "mass") {
         mass = r.number(c, "value", mass);
         mass_el = &c;
-      } else if (n == "size") {
-        size = r.xyz(c, size);
-        size_el = &c;
-        if (r.has(c, "radius")) {
-          radius = r.number(c, "radius", radius);
-          radius_el = &c;
-          radius_attr = "radius";
-        }
-      } else if (n == "radius") {
-        if (r.has(c, "value")) {
-          radius = r.number(c, "value", radius);
-          radius_el = &c;
-          radius_attr = "value";
-        }
-      } else if (n == "pos") {
-        pos = r.xyz(c, pos);
-      } else if (n == "rot_deg") {
-        rot_deg = r.xyz(c, rot_deg);
+      } else if (prim.read(r, c)) {
       } else if (n == "surface") {
         read_surface(r, c, g.surface);
       } else if (n == "focal" && kind == "camera") {
@@ -79,32 +58,27 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
     }
     if (body < 0) r.fail(el, "", "shell of a robot without solids");
 
-    auto positive = [&](const Element* where, const char* attr, double v) {
-      if (!(v > 0)) r.fail(where ? *where : el, attr, "must be > 0, got " + format_number(v));
-    };
     if (mass < 0)
       r.fail(mass_el ? *mass_el : el, "value", "mass must be >= 0, got " + format_number(mass));
     if (g.shape.type == ShapeType::box) {
-      positive(size_el, "x", size.x);
-      positive(size_el, "y", size.y);
-      positive(size_el, "z", size.z);
-      g.shape.size_m = size;
+      g.shape.size_m = prim.box_size(r, el);
     } else if (g.shape.type == ShapeType::cylinder) {
-      positive(size_el, "x", size.x);  // shell cylinders: radius = size x (quirk 6)
-      positive(size_el, "z", size.z);
-      g.shape.radius_m = size.x;
-      g.shape.length_m = size.z;
+      // Shell cylinders: radius = size x, length = size z (quirk 6).
+      PrimitiveFields::require_positive(r, el, prim.size_el, "x", prim.size.x);
+      PrimitiveFields::require_positive(r, el, prim.size_el, "z", prim.size.z);
+      g.shape.radius_m = prim.size.x;
+      g.shape.length_m = prim.size.z;
     } else {
-      positive(radius_el, radius_attr, radius);
-      g.shape.radius_m = radius;
+      PrimitiveFields::require_positive(r, el, prim.radius_el, prim.radius_attr, prim.radius);
+      g.shape.radius_m = prim.radius;
     }
     if (kind == "camera") g.camera = camera;
-    g.pose = Pose{pos, rotation_from_rot_deg(rot_deg)};
+    g.pose = Pose{prim.pos, rotation_from_rot_deg(prim.rot_deg)};
 
     Body& b = scene.bodies[static_cast<std::size_t>(body)];
     if (mass > 0) {
       const Mat3& R = g.pose.rotation;
-      add_rigid_part(b, mass, pos, R * uniform_inertia(g.shape, mass) * R.transposed());
+      add_rigid_part(b, mass, prim.pos, R * uniform_inertia(g.shape, mass) * R.transposed());
     }
     b.geoms.push_back(std::move(g));
   }

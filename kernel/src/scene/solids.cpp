@@ -4,6 +4,7 @@
 
 #include "scene/loading.hpp"
 #include "scene/mass.hpp"
+#include "scene/primitive.hpp"
 #include "scene/rotation.hpp"
 
 #include <array>
@@ -124,13 +125,7 @@ std::optional<int> load_solid(LoadContext& ctx, const Reader& r, const Element& 
   double mass = 1;
   const Element* mass_el = nullptr;
   std::array<double, 6> inertia = {-1, -1, -1, 0, 0, 0};  // I11 I22 I33 I12 I13 I23
-  Vec3 size{1, 1, 1};
-  const Element* size_el = nullptr;
-  // SimTwo keeps one radius variable set by <size radius> and <radius value>, in order.
-  double radius = 1;
-  const Element* radius_el = nullptr;
-  std::string radius_attr;
-  Vec3 pos, rot_deg;
+  PrimitiveFields prim;
   const Element* mother_el = nullptr;
   Surface surface;
   bool mu_given = false, mu2_given = false;
@@ -150,24 +145,7 @@ std::optional<int> load_solid(LoadContext& ctx, const Reader& r, const Element& 
                                                            "I12", "I13", "I23"};
       for (std::size_t i = 0; i < names.size(); ++i)
         inertia[i] = r.number(c, names[i], inertia[i]);
-    } else if (n == "size") {
-      size = r.xyz(c, size);
-      size_el = &c;
-      if (r.has(c, "radius")) {
-        radius = r.number(c, "radius", radius);
-        radius_el = &c;
-        radius_attr = "radius";
-      }
-    } else if (n == "radius") {
-      if (r.has(c, "value")) {
-        radius = r.number(c, "value", radius);
-        radius_el = &c;
-        radius_attr = "value";
-      }
-    } else if (n == "pos") {
-      pos = r.xyz(c, pos);
-    } else if (n == "rot_deg") {
-      rot_deg = r.xyz(c, rot_deg);
+    } else if (prim.read(r, c)) {
     } else if (n == "solid") {
       mother_el = &c;
     } else if (n == "surface") {
@@ -204,27 +182,24 @@ std::optional<int> load_solid(LoadContext& ctx, const Reader& r, const Element& 
   Shape& shape = geom.shape;
   shape.type = shape_type;
   auto positive = [&](const Element* where, const char* attr, double v) {
-    if (!(v > 0)) r.fail(where ? *where : el, attr, "must be > 0, got " + format_number(v));
+    PrimitiveFields::require_positive(r, el, where, attr, v);
   };
   if (shape_type == ShapeType::box) {
-    positive(size_el, "x", size.x);
-    positive(size_el, "y", size.y);
-    positive(size_el, "z", size.z);
-    shape.size_m = size;
+    shape.size_m = prim.box_size(r, el);
   } else if (shape_type == ShapeType::cylinder) {
     // Quirk 6, kept: the radius is `radius` when it differs from 1, else size x.
-    if (radius != 1) {
-      positive(radius_el, radius_attr.c_str(), radius);
-      shape.radius_m = radius;
+    if (prim.radius != 1) {
+      positive(prim.radius_el, prim.radius_attr, prim.radius);
+      shape.radius_m = prim.radius;
     } else {
-      positive(size_el, "x", size.x);
-      shape.radius_m = size.x;
+      positive(prim.size_el, "x", prim.size.x);
+      shape.radius_m = prim.size.x;
     }
-    positive(size_el, "z", size.z);
-    shape.length_m = size.z;
+    positive(prim.size_el, "z", prim.size.z);
+    shape.length_m = prim.size.z;
   } else {
-    positive(radius_el, radius_attr.empty() ? "radius" : radius_attr.c_str(), radius);
-    shape.radius_m = radius;
+    positive(prim.radius_el, prim.radius_attr, prim.radius);
+    shape.radius_m = prim.radius;
   }
 
   body.mass_kg = mass;
@@ -236,7 +211,7 @@ std::optional<int> load_solid(LoadContext& ctx, const Reader& r, const Element& 
     body.inertia_kg_m2 = uniform_inertia(shape, mass);
   }
 
-  Pose local{pos, rotation_from_rot_deg(rot_deg)};
+  Pose local{prim.pos, rotation_from_rot_deg(prim.rot_deg)};
   if (mother_el) {
     const std::string mother = r.text(*mother_el, "id", "");
     const int m = find_body(scene, list, mother, false);
