@@ -148,47 +148,57 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
       body_forces[mb.mobod_of_body[b]] +=
           SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
     }
-    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a) {
-      double f = mb.axis_forces[a];
-      for (const auto& stop : mb.stops) {
-        if (stop.axis != static_cast<int>(a)) continue;
-        const double q = axis_value(mb, state, a), qdot = axis_rate(mb, state, a);
-        if (q > stop.high)
-          f += std::min(0.0, -stop.stiffness * (q - stop.high) - stop.damping * qdot);
-        else if (q < stop.low)
-          f += std::max(0.0, -stop.stiffness * (q - stop.low) - stop.damping * qdot);
-      }
-      if (f == 0.0) continue;
-      const AxisImpl& ax = mb.axis_impl[a];
-      if (!mb.axes[a].loop) {
-        mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate,
-                                                                   ax.sign * f, mobility_forces);
-        continue;
-      }
-      // Loop joint: equal and opposite loads on the two bodies about / along the axis.
-      const auto& b1 = mb.mobod(ax.body1);
-      const auto& b2 = mb.mobod(ax.body2);
-      const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
-      if (mb.axes[a].linear) {
-        const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
-        const SimTK::Vec3 force = f * axis_G;
-        b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
-        b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
-                                 body_forces);
-      } else {
-        b1.applyBodyTorque(state, f * axis_G, body_forces);
-        b2.applyBodyTorque(state, -f * axis_G, body_forces);
-      }
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+      if (mb.axis_forces[a] != 0.0)
+        apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
+    for (const auto& stop : mb.stops) {
+      const auto a = static_cast<std::size_t>(stop.axis);
+      const double q = axis_value(mb, state, a);
+      if (q <= stop.high && q >= stop.low) continue;
+      const double limit = q > stop.high ? stop.high : stop.low;
+      const double f = -stop.stiffness * (q - limit) - stop.damping * axis_rate(mb, state, a);
+      // A stop pushes back into the range, never pulls toward the limit.
+      const double push = q > stop.high ? std::min(0.0, f) : std::max(0.0, f);
+      if (push != 0.0) apply_axis_force(state, a, push, body_forces, mobility_forces);
     }
   }
+
+ private:
+  /// A generalized force on one axis: a mobility force for a tree joint, equal and opposite
+  /// body loads about / along the axis for a loop joint.
+  void apply_axis_force(const SimTK::State& state, std::size_t a, double f,
+                        SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                        SimTK::Vector& mobility_forces) const {
+    const auto& mb = *m_;
+    const AxisImpl& ax = mb.axis_impl[a];
+    if (!mb.axes[a].loop) {
+      mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate, ax.sign * f,
+                                                                 mobility_forces);
+      return;
+    }
+    const auto& b1 = mb.mobod(ax.body1);
+    const auto& b2 = mb.mobod(ax.body2);
+    const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
+    if (mb.axes[a].linear) {
+      const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
+      const SimTK::Vec3 force = f * axis_G;
+      b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
+      b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
+                               body_forces);
+    } else {
+      b1.applyBodyTorque(state, f * axis_G, body_forces);
+      b2.applyBodyTorque(state, -f * axis_G, body_forces);
+    }
+  }
+
+ public:
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
 
  private:
   const Multibody::Impl* m_;
 };
 
-/// Orientation of a joint frame whose `primary` axis is `a` (and, for a Universal joint, whose
-/// Y axis is as close as possible to `b`).
+/// Orientation of a joint frame whose `primary` axis is `a`.
 SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
   return SimTK::Rotation(SimTK::UnitVec3(to_simtk(a)), primary);
 }
