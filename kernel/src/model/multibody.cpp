@@ -3,6 +3,7 @@
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <string>
@@ -80,6 +81,12 @@ struct Multibody::Impl {
   std::vector<Stop> stops;
   std::vector<Wrench> wrenches;
   std::vector<double> axis_forces;
+  std::vector<double> axis_friction;
+  // Velocity-level Coulomb friction on tree axes (preallocated: stepping must not allocate).
+  std::vector<int> braked;                 // axes with a bound this substep
+  std::vector<SimTK::Vector> minv_column;  // per braked axis: M^-1 * e_axis
+  std::vector<double> delassus, impulse;   // braked x braked, braked
+  SimTK::Vector unit_force;
   SimTK::State initial_state;
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
@@ -135,6 +142,9 @@ double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a)
   return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
 }
 
+/// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
+constexpr double kLoopFrictionSpeed = 1e-2;
+
 /// Applies the kernel's loads for the tick: body wrenches and axis forces.
 class AppliedLoads : public SimTK::Force::Custom::Implementation {
  public:
@@ -151,6 +161,13 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.axis_forces[a] != 0.0)
         apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+      if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
+        // No velocity-level brake on a constraint-realised axis: a steep regularisation.
+        const double v = axis_rate(mb, state, a);
+        const double f = -mb.axis_friction[a] * std::clamp(v / kLoopFrictionSpeed, -1.0, 1.0);
+        apply_axis_force(state, a, f, body_forces, mobility_forces);
+      }
     for (const auto& stop : mb.stops) {
       const auto a = static_cast<std::size_t>(stop.axis);
       const double q = axis_value(mb, state, a);
@@ -197,6 +214,28 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
  private:
   const Multibody::Impl* m_;
 };
+
+/// The gear-reflected rotor inertia N²·J of a hinge or Universal joint's motors, carried by
+/// the joint's child body as a massless disk on the axis (axial N²·J, N²·J/2 across): exact
+/// for the spin of the axis when the parent does not turn about it, and a valid inertia
+/// whatever the body (docs/models/multibody.md).
+SimTK::Inertia reflected_rotor_inertia(const scene::Joint& jt, const scene::Body& child) {
+  SimTK::Inertia sum(0);
+  if (jt.type != scene::JointType::hinge && jt.type != scene::JointType::universal) return sum;
+  const SimTK::Rotation R_GB = to_simtk(child.pose.rotation);
+  auto add = [&](const scene::DriveTrain& d, const Vec3& axis_G) {
+    const double J = d.gear.ratio * d.gear.ratio * d.rotor.inertia_kg_m2;
+    if (!d.motor.active || !(J > 0)) return;
+    const SimTK::UnitVec3 a(~R_GB * to_simtk(axis_G));
+    const SimTK::Mat33 aa = a * ~a;
+    const SimTK::Mat33 disk = J * aa + 0.5 * J * (SimTK::Mat33(1) - aa);
+    sum += SimTK::Inertia(
+        SimTK::SymMat33(disk(0, 0), disk(1, 0), disk(1, 1), disk(2, 0), disk(2, 1), disk(2, 2)));
+  };
+  add(jt.drive1, jt.axis1);
+  if (jt.type == scene::JointType::universal) add(jt.drive2, jt.axis2);
+  return sum;
+}
 
 /// Orientation of a joint frame whose `primary` axis is `a`.
 SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
@@ -301,6 +340,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
       const Mat3& I = sb.inertia_kg_m2;
       inertia_com =
           SimTK::Inertia(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2], I.m[1][2]);
+      if (e.joint >= 0) inertia_com += reflected_rotor_inertia(scene.joints[e.joint], sb);
       const SimTK::Vec3 com = to_simtk(sb.com_m);
       SimTK::Body::Rigid body(SimTK::MassProperties(
           sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
@@ -464,6 +504,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   }
   m.wrenches.assign(n_bodies + 1, Wrench{});
   m.axis_forces.assign(m.axes.size(), 0.0);
+  m.axis_friction.assign(m.axes.size(), 0.0);
 
   SimTK::Force::Custom(m.forces, new AppliedLoads(&m));
 
@@ -514,6 +555,11 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   m.has_quaternions = m.initial_state.getNQ() != m.initial_state.getNU();
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.udot.resize(m.initial_state.getNU());
+  m.unit_force.resize(m.initial_state.getNU());
+  m.braked.reserve(m.axes.size());
+  m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
+  m.delassus.assign(m.axes.size() * m.axes.size(), 0.0);
+  m.impulse.assign(m.axes.size(), 0.0);
   m.qdot.resize(m.initial_state.getNQ());
   reset();
 }
@@ -535,6 +581,9 @@ Wrench* Multibody::applied_wrenches() {
 double* Multibody::applied_axis_forces() {
   return impl_->axis_forces.data();
 }
+double* Multibody::applied_axis_friction() {
+  return impl_->axis_friction.data();
+}
 double Multibody::time_s() const {
   return static_cast<double>(impl_->ticks) * impl_->tick_s;
 }
@@ -545,6 +594,54 @@ void Multibody::reset() {
   impl_->half_kick_pending = true;
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
 }
+
+namespace {
+
+/// Coulomb friction on tree axes as a velocity-level brake (ODE's joint motor with zero target
+/// speed): after the kick, find impulses p_k, |p_k| <= F_k·kick, that stop the braked axes where
+/// the bounds allow, coupled through M^-1 (projected Gauss-Seidel on the small Delassus
+/// matrix W = M^-1 restricted to the braked axes). Loop axes get a regularised force instead.
+void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
+  m.braked.clear();
+  for (std::size_t a = 0; a < m.axis_friction.size(); ++a)
+    if (m.axis_friction[a] > 0.0 && !m.axes[a].loop) m.braked.push_back(static_cast<int>(a));
+  if (m.braked.empty()) return;
+  const std::size_t n = m.braked.size();
+  auto u_index = [&](int a) {
+    const AxisImpl& ax = m.axis_impl[a];
+    return m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(s) + ax.coordinate;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    m.unit_force = 0.0;
+    m.unit_force[u_index(m.braked[k])] = 1.0;
+    m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[k]);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < n; ++k)
+      m.delassus[i * n + k] = m.minv_column[k][u_index(m.braked[i])];
+  SimTK::Vector& u = s.updU();
+  for (std::size_t k = 0; k < n; ++k)
+    m.impulse[k] = 0.0;
+  // Generalized-coordinate impulses; sign conventions cancel (W is symmetric in u space).
+  for (int iteration = 0; iteration < (n == 1 ? 1 : 8); ++iteration) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = m.braked[i];
+      const double v = u[u_index(a)];
+      const double w = m.delassus[i * n + i];
+      if (!(w > 0)) continue;
+      const double bound = m.axis_friction[a] * kick_s;
+      const double p_new = std::clamp(m.impulse[i] - v / w, -bound, bound);
+      const double dp = p_new - m.impulse[i];
+      if (dp == 0.0) continue;
+      m.impulse[i] = p_new;
+      const SimTK::Vector& column = m.minv_column[i];
+      for (int j = 0; j < u.size(); ++j)  // by hand: Vector expressions allocate
+        u[j] += dp * column[j];
+    }
+  }
+}
+
+}  // namespace
 
 // Semi-explicit Euler, u first then q with the new u, started with a half step of u
 // (leapfrog): the same single acceleration evaluation per step, but positions are second
@@ -566,6 +663,7 @@ void Multibody::step() {
     SimTK::Vector& u = s.updU();
     for (int i = 0; i < u.size(); ++i)
       u[i] += kick * m.udot[i];
+    brake_axes(m, s, kick);
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);
     SimTK::Vector& q = s.updQ();
     for (int i = 0; i < q.size(); ++i)

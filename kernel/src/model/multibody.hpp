@@ -41,6 +41,9 @@ class Multibody {
 
   Wrench* applied_wrenches();
   double* applied_axis_forces();
+  /// Per axis, the Coulomb friction bound (N·m or N) for the coming tick, solved at velocity
+  /// level after the other forces: an axis whose load stays under the bound sticks.
+  double* applied_axis_friction();
 
   /// Back to the initial configuration at rest, t = 0.
   void reset();

@@ -248,8 +248,10 @@ struct Simulation::Impl {
   void step_once() {
     Wrench* wrenches = multibody->applied_wrenches();
     double* axis_force = multibody->applied_axis_forces();
+    double* axis_friction = multibody->applied_axis_friction();
     std::fill(wrenches, wrenches + poses.size(), Wrench{});
     std::fill(axis_force, axis_force + axis_views.size(), 0.0);
+    std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
     for (const auto& order : stage_order) {
       for (int c : order) {
         const ComponentSlot& slot = components[c];
@@ -563,6 +565,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.axis_position = m.axis_position.data();
   m.world.axis_velocity = m.axis_velocity.data();
   m.world.axis_force = m.multibody->applied_axis_forces();
+  m.world.axis_friction = m.multibody->applied_axis_friction();
   m.world.inputs = m.inputs.data();
   m.world.signals = m.published.data();
   m.world.state = m.state.data();
