@@ -87,6 +87,10 @@ struct Multibody::Impl {
   std::vector<SimTK::Vector> minv_column;  // per braked axis: M^-1 * e_axis
   std::vector<double> delassus, impulse;   // braked x braked, braked
   SimTK::Vector unit_force;
+  SubstepForces* substep_forces = nullptr;
+  std::vector<Pose> substep_poses;
+  std::vector<Twist> substep_twists;
+  std::vector<Wrench> substep_wrenches;
   SimTK::State initial_state;
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
@@ -145,6 +149,9 @@ double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a)
 /// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
 constexpr double kLoopFrictionSpeed = 1e-2;
 
+/// Body poses and velocities (kernel indices); `state` realized to Velocity.
+void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists);
+
 /// Applies the kernel's loads for the tick: body wrenches and axis forces.
 class AppliedLoads : public SimTK::Force::Custom::Implementation {
  public:
@@ -158,6 +165,12 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
       body_forces[mb.mobod_of_body[b]] +=
           SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
     }
+    if (mb.substep_forces)
+      for (std::size_t b = 1; b < mb.substep_wrenches.size(); ++b) {
+        const Wrench& w = mb.substep_wrenches[b];
+        body_forces[mb.mobod_of_body[b]] +=
+            SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+      }
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.axis_forces[a] != 0.0)
         apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
@@ -584,6 +597,43 @@ double* Multibody::applied_axis_forces() {
 double* Multibody::applied_axis_friction() {
   return impl_->axis_friction.data();
 }
+void Multibody::set_substep_forces(SubstepForces* forces) {
+  Impl& m = *impl_;
+  m.substep_forces = forces;
+  m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
+  m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
+  m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
+}
+
+std::vector<double> Multibody::apparent_mass_kg() const {
+  const Impl& m = *impl_;
+  const SimTK::State& s = m.initial_state;
+  m.system.realize(s, SimTK::Stage::Position);
+  const int nb = m.matter.getNumBodies();
+  std::vector<double> out(m.mobod_of_body.size(), 0.0);
+  SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
+  SimTK::Vector f, udot;
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
+    double smallest = SimTK::Infinity;
+    for (int axis = 0; axis < 3; ++axis) {
+      SimTK::Vec3 force(0);
+      force[axis] = 1;
+      load.setToZero();
+      load[mob.getMobilizedBodyIndex()] = SimTK::SpatialVec(SimTK::cross(com_G, force), force);
+      m.matter.multiplyBySystemJacobianTranspose(s, load, f);
+      m.matter.multiplyByMInv(s, f, udot);
+      m.matter.multiplyBySystemJacobian(s, udot, accel);
+      const SimTK::SpatialVec& A = accel[mob.getMobilizedBodyIndex()];
+      const double a = (A[1] + SimTK::cross(A[0], com_G))[axis];
+      if (a > 1e-12) smallest = std::min(smallest, 1 / a);
+    }
+    out[b] = smallest;
+  }
+  return out;
+}
+
 double Multibody::time_s() const {
   return static_cast<double>(impl_->ticks) * impl_->tick_s;
 }
@@ -596,6 +646,18 @@ void Multibody::reset() {
 }
 
 namespace {
+
+void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists) {
+  poses[0] = Pose{};
+  twists[0] = Twist{};
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const SimTK::Transform& X = mob.getBodyTransform(s);
+    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
+    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
+    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
+  }
+}
 
 /// Coulomb friction on tree axes as a velocity-level brake (ODE's joint motor with zero target
 /// speed): after the kick, find impulses p_k, |p_k| <= F_k·kick, that stop the braked axes where
@@ -652,6 +714,12 @@ void Multibody::step() {
   SimTK::State& s = m.current;
   const double h = m.tick_s / m.substeps;
   for (int k = 0; k < m.substeps; ++k) {
+    if (m.substep_forces) {
+      m.system.realize(s, SimTK::Stage::Velocity);
+      read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+      m.substep_forces->compute(m.substep_poses.data(), m.substep_twists.data(), h,
+                                m.substep_wrenches.data());
+    }
     // The applied loads changed outside Simbody's knowledge: drop any cached forces.
     s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
     m.system.realize(s, SimTK::Stage::Acceleration);
@@ -694,15 +762,7 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
   const Impl& m = *impl_;
   const SimTK::State& s = m.state();
   m.system.realize(s, SimTK::Stage::Velocity);
-  poses[0] = Pose{};
-  twists[0] = Twist{};
-  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
-    const SimTK::Transform& X = mob.getBodyTransform(s);
-    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
-    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
-    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
-  }
+  read_bodies(m, s, poses, twists);
   for (std::size_t a = 0; a < m.axis_impl.size(); ++a) {
     axis_position[a] = axis_value(m, s, a);
     axis_velocity[a] = axis_rate(m, s, a);

@@ -4,6 +4,8 @@
 /// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
 /// and writes plain arrays of applied loads.
 
+#include "model/substep_forces.hpp"
+
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -44,6 +46,13 @@ class Multibody {
   /// Per axis, the Coulomb friction bound (N·m or N) for the coming tick, solved at velocity
   /// level after the other forces: an axis whose load stays under the bound sticks.
   double* applied_axis_friction();
+
+  /// Loads recomputed from the state at every substep (contact); null = none. Not owned.
+  void set_substep_forces(SubstepForces* forces);
+  /// Per kernel body (0 = world, 0 kg): the smallest mass that a force at the body's centre
+  /// of mass meets in the initial configuration, over the three world axes (a free body: its
+  /// mass; a wheel: its share of the robot's). Infinite for a body welded to the world.
+  std::vector<double> apparent_mass_kg() const;
 
   /// Back to the initial configuration at rest, t = 0.
   void reset();

@@ -106,6 +106,7 @@ class Simulation {
   struct Snapshot {
     std::vector<double> values;
     std::vector<std::uint64_t> random;
+    std::vector<double> contacts;  ///< the contact points' memory (friction, impacts)
   };
   Snapshot save() const;
   void restore(const Snapshot& snapshot);
