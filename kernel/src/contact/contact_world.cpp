@@ -9,6 +9,7 @@ namespace s2sim::contact {
 namespace {
 
 constexpr double kMaxApparentMass = 1e12;  // a body that cannot move (welded to the world)
+constexpr double kBeltTopCosine = 0.7;     // contacts within 45° of the belt's +Z ride it
 
 Shape make_shape(const scene::Geom& g, std::int32_t body) {
   Shape s;
@@ -326,13 +327,18 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
     const Twist& t = twists[body];
     return t.linear_m_s + cross(t.angular_rad_s, p.point_m - poses[body].position);
   };
-  auto belt_velocity = [&](const Shape& s, std::int32_t index) {
+  // A conveyor's surface moves on its top face only (+Z of the belt); its sides and its
+  // underside are the frame. `toward_other` is the normal pointing from the belt to the other.
+  auto belt_velocity = [&](const Shape& s, std::int32_t index, const Vec3& toward_other) {
     if (!s.belt || s.belt_speed_input < 0 || !inputs_) return Vec3{};
-    return world_pose_[index].rotation.column(0) * inputs_[s.belt_speed_input];
+    const Mat3& r = world_pose_[index].rotation;
+    if (dot(toward_other, r.column(2)) < kBeltTopCosine) return Vec3{};
+    return r.column(0) * inputs_[s.belt_speed_input];
   };
   PointKinematics kin;
-  kin.relative_velocity_m_s = point_velocity(body_a) + belt_velocity(a, shape_a) -
-                              point_velocity(body_b) - (b ? belt_velocity(*b, other) : Vec3{});
+  kin.relative_velocity_m_s = point_velocity(body_a) + belt_velocity(a, shape_a, -p.normal) -
+                              point_velocity(body_b) -
+                              (b ? belt_velocity(*b, other, p.normal) : Vec3{});
   const PairMaterial material = combine_surfaces(a, b, default_mu_);
   if (material.anisotropic)
     kin.friction_axis =

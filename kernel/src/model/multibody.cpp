@@ -705,6 +705,10 @@ void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
 
 }  // namespace
 
+namespace {
+void advance(Multibody::Impl& m, SimTK::State& s, double h);
+}  // namespace
+
 // Semi-explicit Euler, u first then q with the new u, started with a half step of u
 // (leapfrog): the same single acceleration evaluation per step, but positions are second
 // order and exact under constant acceleration (free fall), and the generalized speeds u live
@@ -713,6 +717,35 @@ void Multibody::step() {
   Impl& m = *impl_;
   SimTK::State& s = m.current;
   const double h = m.tick_s / m.substeps;
+  try {
+    advance(m, s, h);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Simbody refuses a state that went non-finite inside the tick (a blow-up).
+    throw Error(ErrorKind::runtime, "the simulation failed at t = " + std::to_string(time_s()) +
+                                        " s (" + e.what() +
+                                        "); the scene may need a smaller step or more substeps");
+  }
+  ++m.ticks;
+  m.system.realize(s, SimTK::Stage::Velocity);
+  // A NaN anywhere poisons the sums: one cheap check per tick.
+  double sum = 0;
+  const SimTK::Vector& q = s.getQ();
+  const SimTK::Vector& u = s.getU();
+  for (int i = 0; i < q.size(); ++i)
+    sum += q[i];
+  for (int i = 0; i < u.size(); ++i)
+    sum += u[i];
+  if (!std::isfinite(sum))
+    throw Error(ErrorKind::runtime,
+                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
+}
+
+namespace {
+
+/// The substeps of one tick.
+void advance(Multibody::Impl& m, SimTK::State& s, double h) {
   for (int k = 0; k < m.substeps; ++k) {
     if (m.substep_forces) {
       m.system.realize(s, SimTK::Stage::Velocity);
@@ -742,20 +775,9 @@ void Multibody::step() {
     if (m.has_quaternions) m.matter.normalizeQuaternions(s);
     if (m.has_constraints) m.system.project(s, 1e-10);
   }
-  ++m.ticks;
-  m.system.realize(s, SimTK::Stage::Velocity);
-  // A NaN anywhere poisons the sums: one cheap check per tick.
-  double sum = 0;
-  const SimTK::Vector& q = s.getQ();
-  const SimTK::Vector& u = s.getU();
-  for (int i = 0; i < q.size(); ++i)
-    sum += q[i];
-  for (int i = 0; i < u.size(); ++i)
-    sum += u[i];
-  if (!std::isfinite(sum))
-    throw Error(ErrorKind::runtime,
-                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
 }
+
+}  // namespace
 
 void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
                      double* axis_velocity) const {
