@@ -83,30 +83,6 @@ Aabb bounds(const Shape& s, const Pose& pose) {
   return {pose.position - e, pose.position + e};
 }
 
-/// Inverse of a symmetric positive-definite inertia (zero where singular: no rotation term).
-Mat3 inverse(const Mat3& a) {
-  const auto& m = a.m;
-  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
-  const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
-  const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
-  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
-  Mat3 r;
-  if (!(std::abs(det) > 1e-300)) {
-    r.m[0][0] = r.m[1][1] = r.m[2][2] = 0;
-    return r;
-  }
-  r.m[0][0] = c00 / det;
-  r.m[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
-  r.m[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
-  r.m[1][0] = c01 / det;
-  r.m[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
-  r.m[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
-  r.m[2][0] = c02 / det;
-  r.m[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
-  r.m[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
-  return r;
-}
-
 std::uint64_t pair_key(std::int32_t shape_a, std::uint64_t other_id, std::int32_t feature) {
   return (static_cast<std::uint64_t>(shape_a) << 40) | (other_id << 16) |
          static_cast<std::uint16_t>(feature);
@@ -188,15 +164,25 @@ void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
     if (s.belt && s.body == body) s.belt_speed_input = input;
 }
 
-double ContactWorld::inverse_point_mass(std::int32_t body, const Vec3& point, const Vec3& normal,
-                                        const Pose* poses) const {
-  // 1/m + (r × n)ᵀ I⁻¹ (r × n): how a force along the normal at the point accelerates it. The
-  // body's own inertia stands for its rotation; its apparent mass for its translation.
-  if (body == 0) return 0.0;
+void ContactWorld::add_point_compliance(std::int32_t body, const Vec3& point, const Pose* poses,
+                                        Mat3& compliance) const {
+  // K = 1/m·1 + [r]ₓᵀ I⁻¹ [r]ₓ: a force f at the point accelerates it by K·f. The body's own
+  // inertia stands for its rotation, its apparent mass for its translation.
+  if (body == 0) return;
   const Pose& pose = poses[body];
   const Vec3 r = point - (pose * com_m_[body]);
-  const Vec3 w = pose.rotation.transposed() * cross(r, normal);
-  return 1 / apparent_mass_kg_[body] + dot(w, inverse_inertia_[body] * w);
+  const Mat3& R = pose.rotation;
+  const Mat3 inverse_inertia_world = R * inverse_inertia_[body] * R.transposed();
+  Mat3 cross_r;  // [r]ₓ
+  cross_r.m[0][0] = cross_r.m[1][1] = cross_r.m[2][2] = 0;
+  cross_r.m[0][1] = -r.z, cross_r.m[0][2] = r.y;
+  cross_r.m[1][0] = r.z, cross_r.m[1][2] = -r.x;
+  cross_r.m[2][0] = -r.y, cross_r.m[2][1] = r.x;
+  const Mat3 k = cross_r.transposed() * inverse_inertia_world * cross_r;
+  const double inverse_mass = 1 / apparent_mass_kg_[body];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      compliance.m[i][j] += k.m[i][j] + (i == j ? inverse_mass : 0.0);
 }
 
 bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
@@ -343,9 +329,12 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   if (material.anisotropic)
     kin.friction_axis =
         (material.anisotropy_on_a ? world_pose_[shape_a] : world_pose_[other]).rotation.column(2);
+  Mat3 compliance;
+  compliance.m[0][0] = compliance.m[1][1] = compliance.m[2][2] = 0;
+  add_point_compliance(body_a, p.point_m, poses, compliance);
+  add_point_compliance(body_b, p.point_m, poses, compliance);
   auto mass_along = [&](const Vec3& direction) {
-    return 1 / (inverse_point_mass(body_a, p.point_m, direction, poses) +
-                inverse_point_mass(body_b, p.point_m, direction, poses));
+    return 1 / dot(direction, compliance * direction);
   };
   kin.mass_kg = mass_along(p.normal);
   const Vec3 helper = std::abs(p.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};

@@ -1,6 +1,8 @@
 // The only translation unit that sees Simbody (with its Custom force below).
 #include "model/multibody.hpp"
 
+#include "model/loose_bodies.hpp"
+
 #include <Simbody.h>
 
 #include <algorithm>
@@ -67,8 +69,10 @@ struct Multibody::Impl {
   SimTK::SimbodyMatterSubsystem matter{system};
   SimTK::GeneralForceSubsystem forces{system};
   SimTK::Force::Gravity gravity{forces, matter, SimTK::Vec3(0, 0, -9.81)};
-  std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod
-  std::vector<Pose> initial_pose;                        // kernel body -> pose at load
+  std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
+  LooseBodies loose;                  // bodies with no joint, integrated outside Simbody
+  std::vector<double> loose_mass_kg;  // per kernel body
+  std::vector<Pose> initial_pose;     // kernel body -> pose at load
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
   std::vector<std::string> warnings;
@@ -161,12 +165,14 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
                  SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
     const auto& mb = *m_;
     for (std::size_t b = 1; b < mb.wrenches.size(); ++b) {
+      if (!mb.mobod_of_body[b].isValid()) continue;  // a loose body
       const Wrench& w = mb.wrenches[b];
       body_forces[mb.mobod_of_body[b]] +=
           SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
     }
     if (mb.substep_forces)
       for (std::size_t b = 1; b < mb.substep_wrenches.size(); ++b) {
+        if (!mb.mobod_of_body[b].isValid()) continue;
         const Wrench& w = mb.substep_wrenches[b];
         body_forces[mb.mobod_of_body[b]] +=
             SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
@@ -257,7 +263,8 @@ SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
 
 }  // namespace
 
-Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
+Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
+                     bool lone_bodies_in_simbody)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.tick_s = tick_s;
@@ -319,6 +326,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
     queue.push_back(b);
     expand();
   }
+  m.loose_mass_kg.assign(n_bodies + 1, 0.0);
   std::vector<int> root_order;
   for (const auto& r : scene.robots)
     if (r.main_body >= 0) root_order.push_back(r.main_body);
@@ -327,6 +335,11 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   for (int b : root_order) {
     if (visited[b]) continue;
     visited[b] = 1;
+    if (incident[b].empty() && !lone_bodies_in_simbody) {
+      m.loose.add(b + 1, scene.bodies[b]);
+      m.loose_mass_kg[b + 1] = scene.bodies[b].mass_kg;
+      continue;
+    }
     tree.push_back({-1, -1, b});
     queue.push_back(b);
     expand();
@@ -614,6 +627,10 @@ std::vector<double> Multibody::apparent_mass_kg() const {
   SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
   SimTK::Vector f, udot;
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) {  // a loose body: its own mass
+      out[b] = m.loose_mass_kg[b];
+      continue;
+    }
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
     const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
     double smallest = SimTK::Infinity;
@@ -642,6 +659,7 @@ void Multibody::reset() {
   impl_->ticks = 0;
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
+  impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
 }
 
@@ -651,12 +669,14 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
   poses[0] = Pose{};
   twists[0] = Twist{};
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) continue;
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
     const SimTK::Transform& X = mob.getBodyTransform(s);
     poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
     const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
     twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
   }
+  m.loose.read(poses, twists);
 }
 
 /// Coulomb friction on tree axes as a velocity-level brake (ODE's joint motor with zero target
@@ -730,7 +750,7 @@ void Multibody::step() {
   ++m.ticks;
   m.system.realize(s, SimTK::Stage::Velocity);
   // A NaN anywhere poisons the sums: one cheap check per tick.
-  double sum = 0;
+  double sum = m.loose.checksum();
   const SimTK::Vector& q = s.getQ();
   const SimTK::Vector& u = s.getU();
   for (int i = 0; i < q.size(); ++i)
@@ -765,6 +785,8 @@ void advance(Multibody::Impl& m, SimTK::State& s, double h) {
     for (int i = 0; i < u.size(); ++i)
       u[i] += kick * m.udot[i];
     brake_axes(m, s, kick);
+    m.loose.kick(m.wrenches.data(), m.substep_forces ? m.substep_wrenches.data() : nullptr, kick);
+    m.loose.drift(h);
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);
     SimTK::Vector& q = s.updQ();
     for (int i = 0; i < q.size(); ++i)
@@ -794,13 +816,13 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
 double Multibody::kinetic_energy_J() const {
   const SimTK::State& s = impl_->state();
   impl_->system.realize(s, SimTK::Stage::Velocity);
-  return impl_->matter.calcKineticEnergy(s);
+  return impl_->matter.calcKineticEnergy(s) + impl_->loose.kinetic_energy_J();
 }
 
 double Multibody::potential_energy_J() const {
   const SimTK::State& s = impl_->state();
   impl_->system.realize(s, SimTK::Stage::Dynamics);
-  return impl_->gravity.getPotentialEnergy(s);
+  return impl_->gravity.getPotentialEnergy(s) + impl_->loose.potential_energy_J();
 }
 
 std::vector<double> Multibody::save() const {
@@ -811,6 +833,7 @@ std::vector<double> Multibody::save() const {
   for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
     for (int i = 0; i < v->size(); ++i)
       out.push_back((*v)[i]);
+  impl_->loose.save(out);
   return out;
 }
 
@@ -823,6 +846,7 @@ void Multibody::restore(const std::vector<double>& saved) {
   for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
     for (int i = 0; i < v->size(); ++i)
       (*v)[i] = saved.at(k++);
+  m.loose.restore(saved, k);
   s.setTime(time_s());
   m.current = s;
   m.system.realize(m.current, SimTK::Stage::Velocity);

@@ -30,8 +30,11 @@ struct AxisInfo {
 /// `applied_axis_forces()` before `step()`; they are held constant over the tick's substeps.
 class Multibody {
  public:
-  /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses.
-  Multibody(const scene::Scene& scene, double tick_s, int substeps);
+  /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses. Bodies without
+  /// any joint are integrated by LooseBodies unless `lone_bodies_in_simbody` (for tests that
+  /// compare the two).
+  Multibody(const scene::Scene& scene, double tick_s, int substeps,
+            bool lone_bodies_in_simbody = false);
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;

@@ -712,6 +712,16 @@ double Simulation::axis_velocity(std::size_t i) const {
   return impl_->axis_velocity.at(i);
 }
 
+std::size_t Simulation::contact_count() const {
+  return static_cast<std::size_t>(*impl_->contacts->contact_count());
+}
+const ContactInfo& Simulation::contact(std::size_t index) const {
+  if (index >= contact_count())
+    throw Error(ErrorKind::usage,
+                "contact " + std::to_string(index) + " of " + std::to_string(contact_count()));
+  return impl_->contacts->contacts()[index];
+}
+
 double Simulation::kinetic_energy_J() const {
   return impl_->multibody->kinetic_energy_J();
 }

@@ -18,8 +18,8 @@ fs::path shared(const std::string& name) {
   return fs::path(S2SIM_SHARED_SCENES) / name;
 }
 
-#define REQUIRE_SHARED(name)                                                   \
-  if (!fs::exists(shared(name) / "scene.xml"))                                 \
+#define REQUIRE_SHARED(name)                   \
+  if (!fs::exists(shared(name) / "scene.xml")) \
   GTEST_SKIP() << "SimTwo's reference scenes are not at " << S2SIM_SHARED_SCENES
 
 /// A copy of a shared scene with `from` replaced by `to` in `file`.
@@ -97,8 +97,9 @@ TEST(SharedScenesContact, BaseBeltCarriesABoxAndABallAtTheBeltSpeed) {
 TEST(SharedScenesContact, BaseRobotDrivenIntoAnObstacleStopsAtIt) {
   REQUIRE_SHARED("base");
   // Turn the differential robot toward the red block (x -0.25..0.25, y 1.5..2.5) and push.
-  const fs::path dir = edited_copy("base", "scene.xml", "<pos x='0' y='-1' z='0'/>\n    <rot_deg z='0'/>",
-                                   "<pos x='0' y='0.9' z='0'/>\n    <rot_deg z='90'/>");
+  const fs::path dir =
+      edited_copy("base", "scene.xml", "<pos x='0' y='-1' z='0'/>\n    <rot_deg z='0'/>",
+                  "<pos x='0' y='0.9' z='0'/>\n    <rot_deg z='90'/>");
   auto sim = Simulation::load(dir);
   sim->set_input("robots/Classic/axes/W1/ref_torque", 0.05);
   sim->set_input("robots/Classic/axes/W2/ref_torque", -0.05);

@@ -3,6 +3,7 @@
 /// The façade: everything the runner, the viewer, the tests and the benchmarks use to load a
 /// scene, step it and read it. No Simbody type appears here.
 
+#include <s2sim/component.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -97,6 +98,10 @@ class Simulation {
   const AxisView& axis(std::size_t index) const;
   double axis_position(std::size_t index) const;
   double axis_velocity(std::size_t index) const;
+
+  /// Contacts of the last physics substep (points, normals, forces, bodies).
+  std::size_t contact_count() const;
+  const ContactInfo& contact(std::size_t index) const;
 
   /// Kinetic and gravitational potential energy of all bodies, J (validation).
   double kinetic_energy_J() const;
