@@ -155,6 +155,8 @@ TEST(Contact, BoxRestingOnTheGroundSinksAndDriftsLessThanAMillimetre) {
   Runner run(s);
   run.step(10000);
   const Vec3 p = run.poses[1].position;
+  RecordProperty("sink_mm", std::to_string((0.05 - p.z) * 1e3));
+  RecordProperty("drift_mm", std::to_string(std::hypot(p.x - 0.5, p.y - 0.5) * 1e3));
   EXPECT_LT(0.05 - p.z, 1e-3);
   EXPECT_GT(0.05 - p.z, 0.0);
   EXPECT_LT(std::hypot(p.x - 0.5, p.y - 0.5), 1e-3);
