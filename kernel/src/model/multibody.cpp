@@ -99,7 +99,7 @@ struct Multibody::Impl {
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
   bool half_kick_pending = true;
-  bool has_quaternions = false;
+  std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
   bool has_constraints = false;
   double tick_s = 1e-3;
   int substeps = 1;
@@ -578,7 +578,14 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
                       std::string("the multibody system could not be built: ") + ex.what());
   }
   m.substeps = substeps;
-  m.has_quaternions = m.initial_state.getNQ() != m.initial_state.getNU();
+  // Free and Ball mobilizers keep their orientation as a quaternion in their first four q's.
+  // Normalising them here costs a fraction of Simbody's normalizeQuaternions(), which walks
+  // the whole tree through its state digest.
+  for (SimTK::MobilizedBodyIndex i(1); i < m.matter.getNumBodies(); ++i) {
+    const auto& mob = m.matter.getMobilizedBody(i);
+    if (mob.getNumQ(m.initial_state) != mob.getNumU(m.initial_state))
+      m.quaternion_q.push_back(mob.getFirstQIndex(m.initial_state));
+  }
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.udot.resize(m.initial_state.getNU());
   m.unit_force.resize(m.initial_state.getNU());
@@ -791,10 +798,17 @@ void advance(Multibody::Impl& m, SimTK::State& s, double h) {
     SimTK::Vector& q = s.updQ();
     for (int i = 0; i < q.size(); ++i)
       q[i] += h * m.qdot[i];
+    for (int first : m.quaternion_q) {
+      double n2 = 0;
+      for (int c = 0; c < 4; ++c)
+        n2 += q[first + c] * q[first + c];
+      const double inverse_norm = 1 / std::sqrt(n2);
+      for (int c = 0; c < 4; ++c)
+        q[first + c] *= inverse_norm;
+    }
     s.updTime() =
         (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
     m.system.realize(s, SimTK::Stage::Time);
-    if (m.has_quaternions) m.matter.normalizeQuaternions(s);
     if (m.has_constraints) m.system.project(s, 1e-10);
   }
 }
