@@ -1,4 +1,4 @@
-// Sweep and prune finds exactly the overlapping pairs that a brute-force test finds.
+// The broad phase finds exactly the overlapping pairs that a brute-force test finds.
 #include "contact/broad_phase.hpp"
 
 #include <gtest/gtest.h>
