@@ -207,3 +207,49 @@ TEST(Contact, DrivenWheelRollsAtRadiusTimesSpinWithinHalfAPercent) {
 
 }  // namespace
 }  // namespace s2sim::contact
+
+namespace s2sim::contact {
+namespace {
+
+/// A carriage on a rail along X carries a wheel whose axle is along X too, pressed into the
+/// ground; a force pushes the carriage along the rail, i.e. along the axle. Returns the
+/// carriage's travel after 1 s.
+double push_along_the_axle(scene::FrictionKind kind, double force_N) {
+  const double radius = 0.03, axle = radius - 5e-4;
+  scene::Scene s;
+  s.bodies.push_back(test::box("carriage", 1.0, {0.1, 0.1, 0.02}, {0, 0, axle}));
+  scene::Body wheel = test::sphere("wheel", 0.1, radius, {0, 0, axle});
+  wheel.geoms[0].shape.type = scene::ShapeType::cylinder;
+  wheel.geoms[0].shape.length_m = 0.02;
+  wheel.geoms[0].pose.rotation = test::rotation_about({0, 1, 0}, M_PI / 2);  // Z along X
+  wheel.geoms[0].friction = kind;
+  wheel.geoms[0].surface.explicit_surface = true;
+  wheel.geoms[0].surface.mu = 1.0;
+  wheel.geoms[0].surface.mu2 = 0.001;
+  s.bodies.push_back(wheel);
+  s.joints.push_back(test::joint("rail", JointType::slider, 0, -1, {0, 0, axle}, {1, 0, 0}));
+  s.joints.push_back(test::joint("axle", JointType::hinge, 1, 0, {0, 0, axle}, {1, 0, 0}));
+  test::add_robot(s, "cart");
+  Runner run(s);
+  for (int n = 0; n < 1000; ++n) {
+    run.mb.applied_axis_forces()[0] = force_N;
+    run.step();
+  }
+  return run.pos[0];
+}
+
+TEST(Contact, OmniWheelSlidesAlongItsAxleWhereAPlainWheelGrips) {
+  // The wheel presses with about 9 N (0.5 mm at the contact stiffness); 2 N along the axle.
+  const double plain = push_along_the_axle(scene::FrictionKind::isotropic, 2.0);
+  const double omni = push_along_the_axle(scene::FrictionKind::omni, 2.0);
+  EXPECT_LT(std::abs(plain), 1e-3) << "a plain wheel holds sideways";
+  // Omni: mu2 = 0.001 along the axle, so nearly free: x = F/(2m)·t² for 1.1 kg.
+  EXPECT_NEAR(omni, 0.5 * 2.0 / 1.1, 0.02) << "an omni wheel rolls on its rollers";
+  // Mecanum rollers at 45°: the axle direction is half gripped, half free: in between.
+  const double mecanum = push_along_the_axle(scene::FrictionKind::mecanum_left, 2.0);
+  EXPECT_GT(mecanum, 0.01);
+  EXPECT_LT(mecanum, omni);
+}
+
+}  // namespace
+}  // namespace s2sim::contact
