@@ -65,6 +65,7 @@ void MotorController::initialize(StepContext& ctx) {
 void MotorController::update(StepContext& ctx) {
   double* s = ctx.state(state_);
   if (!motor_active_ || ctx.input(active_) == 0.0) {
+    if (s[kWasActive] != 0.0) ctx.set_input(ref_voltage_, 0.0);  // release the motor once
     s[kWasActive] = 0.0;
     return;
   }

@@ -215,6 +215,23 @@ TEST(MotorController, PidSpeedReaches10RadPerSecondAndSettlesWithoutWindUp) {
   EXPECT_GT(low, 9.0) << "undershoot";
 }
 
+TEST(MotorController, ReferencesHoldUntilSetAndDeactivationReleasesTheMotor) {
+  auto sim = load_bench();
+  sim->set_input(axis("ref_voltage"), 4);
+  sim->run_until(2.0);  // a reference holds until it is set again
+  EXPECT_EQ(sim->signal(axis("voltage")), 4.0);
+  sim->set_input(axis("controller_active"), 1);
+  sim->set_input(axis("ref_speed"), 5);
+  sim->step(1);  // tick 2000: the controller's tick overwrites ref_voltage
+  EXPECT_NE(sim->input(sim->input_index(axis("ref_voltage"))), 4.0);
+  sim->run_until(2.5);
+  EXPECT_NEAR(sim->signal(axis("speed")), 5, 0.05);
+  sim->set_input(axis("controller_active"), 0);
+  sim->step(10);  // within one controller period
+  EXPECT_EQ(sim->input(sim->input_index(axis("ref_voltage"))), 0.0);
+  EXPECT_EQ(sim->signal(axis("voltage")), 0.0);
+}
+
 TEST(MotorController, PidPositionWithWrapTakesTheShortWayRound) {
   const std::vector<std::pair<std::string, std::string>> position = {
       {"mode='pidspeed' kp='kp' ki='ki' kd='kd' kf='kf'", "mode='pidposition' kp='8' kd='0.3'"}};
