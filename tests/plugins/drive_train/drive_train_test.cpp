@@ -232,6 +232,28 @@ TEST(MotorController, ReferencesHoldUntilSetAndDeactivationReleasesTheMotor) {
   EXPECT_EQ(sim->signal(axis("voltage")), 0.0);
 }
 
+TEST(MotorController, SimTwoLawAndStateFeedbackAlsoRegulate) {
+  // SimTwo's law (integral and derivative with the physics step) on the bench's pidspeed.
+  auto simtwo = Simulation::load(
+      bench_with({{"mode='pidspeed' kp='kp'", "mode='pidspeed' law='simtwo' kp='kp'"}}),
+      bench_options({{"ki", 0.1}}));
+  simtwo->set_input(axis("controller_active"), 1);
+  simtwo->set_input(axis("ref_speed"), 10);
+  simtwo->run_until(2.0);
+  std::printf("  SimTwo law, pidspeed 10 rad/s: %.4f rad/s after 2 s\n",
+              simtwo->signal(axis("speed")));
+  EXPECT_NEAR(simtwo->signal(axis("speed")), 10, 0.2);
+  // State feedback to 1 rad: u = Kp e + Ki ∫e + Kd (w_ref − w).
+  auto state = Simulation::load(bench_with({{"mode='pidspeed' kp='kp' ki='ki' kd='kd' kf='kf'",
+                                             "mode='state' kp='8' ki='0' kd='0.3' kf='0'"}}),
+                                bench_options());
+  state->set_input(axis("controller_active"), 1);
+  state->set_input(axis("ref_pos"), 1.0);
+  state->run_until(2.0);
+  std::printf("  state feedback to 1 rad: %.5f rad after 2 s\n", state->signal(axis("pos")));
+  EXPECT_NEAR(state->signal(axis("pos")), 1.0, 0.002);  // friction band Tc Ra/(Ks Kp) = 7e-4
+}
+
 TEST(MotorController, PidPositionWithWrapTakesTheShortWayRound) {
   const std::vector<std::pair<std::string, std::string>> position = {
       {"mode='pidspeed' kp='kp' ki='ki' kd='kd' kf='kf'", "mode='pidposition' kp='8' kd='0.3'"}};
@@ -388,6 +410,18 @@ TEST(DriveTrain, SnapshotAndResetAreExactWithMotorState) {
   sim->set_input(axis("ref_speed"), 7);
   sim->step(523);
   EXPECT_EQ(sim->signal(axis("current")), i);
+}
+
+TEST(DcMotor, RotorInertiaIsReflectedAsNSquaredJ) {
+  // Open circuit (imax 0), no friction: a 0.01 N·m torque accelerates flywheel + N²·J.
+  const double ratio = 2, rotor = 1e-4, flywheel = 1e-3;
+  auto sim = load_bench({{"imax", 0}, {"fc", 0}, {"bv", 0}, {"ratio", ratio}, {"rotor_j", rotor}});
+  sim->set_input(axis("ref_torque"), 0.01);
+  sim->run_until(1.0);
+  const double expected = 0.01 * (1.0 - 0.0005) / (flywheel + ratio * ratio * rotor);
+  std::printf("  w after 1 s = %.6f rad/s, 0.01 N*m / (1e-3 + 2^2 * 1e-4) = %.6f\n",
+              sim->signal(axis("speed")), expected);
+  EXPECT_NEAR(sim->signal(axis("speed")), expected, 1e-6 * expected);
 }
 
 TEST(DcMotor, SimTwoBackEmfSwitchUsesKwOverN) {
