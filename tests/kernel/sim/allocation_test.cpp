@@ -16,6 +16,9 @@ namespace {
 std::atomic<long> allocations{0};
 }
 
+// The replacements below pair malloc with free; GCC cannot see that they replace each other.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
 void* operator new(std::size_t n) {
   ++allocations;
   if (void* p = std::malloc(n ? n : 1)) return p;

@@ -1,6 +1,4 @@
-// scenes/nxt, the paper's Lego NXT differential robot. Driving needs the contact layer
-// (issue 3): until it is merged the robot falls through the floor, so the driving test is
-// disabled; the integrator enables it after merging. The rest runs without contact.
+// scenes/nxt, the paper's Lego NXT differential robot, on the floor (contact layer).
 #include "bench_util.hpp"
 
 #include <cmath>
@@ -21,8 +19,7 @@ TEST(Nxt, WheelsInTheAirTurnAtTheFreeRunningSpeedOfEq311) {
   EXPECT_NEAR(sim->signal("robots/nxt/axes/left/speed"), -w, 1e-3 * w);
 }
 
-// Needs the contact layer (issue 3): enable after merging it.
-TEST(Nxt, DISABLED_At6VoltsDrivesStraight1MetreAtTheSpeedRTimesWPredicts) {
+TEST(Nxt, At6VoltsDrivesStraight1MetreAtTheSpeedRTimesWPredicts) {
   auto sim = Simulation::load(kNxt, bench_options());
   const double r = 0.028;
   const double w = (6 - kRa * kTc / kKs) / (kKs + kRa * kB / kKs);  // (3.11): 11.516 rad/s
