@@ -82,8 +82,11 @@ TEST(Allocation, TheKernelAddsNoAllocationToSimbodysOwn) {
   EXPECT_EQ(c.simulation, c.simbody);
   const auto base = std::filesystem::path(S2SIM_SHARED_SCENES) / "base";
   if (std::filesystem::exists(base / "scene.xml")) {
+    // With motors the drive train's brakes follow the motion: axes that slide get Coulomb's
+    // law as a force and skip Simbody's allocating M^-1 products, so the simulation may
+    // allocate less than the bare model braked on every axis, never more.
     const Counts d = count(base, SimulationOptions{});
-    EXPECT_EQ(d.simulation, d.simbody);
+    EXPECT_LE(d.simulation, d.simbody);
   }
   RecordProperty("simbody_allocations_per_step_components", std::to_string(a.simbody / 1000.0));
   RecordProperty("simbody_allocations_per_step_default", std::to_string(b.simbody / 1000.0));
