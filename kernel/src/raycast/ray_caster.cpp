@@ -1,0 +1,308 @@
+#include "raycast/ray_caster.hpp"
+
+#include "raycast/primitives.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace s2sim::raycast {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPad = 1e-9;  // AABB padding against round-off on cell and box edges
+constexpr int kMaxCellsPerAxis = 256;
+
+Mat3 abs_matrix(const Mat3& r) {
+  Mat3 a;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      a.m[i][j] = std::abs(r.m[i][j]);
+  return a;
+}
+
+Vec3 inverse_direction(const Vec3& d) {
+  return {d.x != 0 ? 1 / d.x : kInf, d.y != 0 ? 1 / d.y : kInf, d.z != 0 ? 1 / d.z : kInf};
+}
+
+}  // namespace
+
+RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(poses) {
+  walls_ = scene.settings.world_walls;
+  wall_distance_ = scene.settings.world_wall_distance_m;
+  for (const auto& g : scene.obstacles)
+    add_geom(g, 0);
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    for (const auto& g : scene.bodies[b].geoms)
+      add_geom(g, static_cast<std::int32_t>(b + 1));
+
+  // Static grid over the obstacles' XY bounds.
+  for (auto& e : statics_) {
+    e.world = e.local;
+    compute_aabb(e);
+  }
+  stamp_.assign(statics_.size(), 0);
+  if (!statics_.empty()) {
+    double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
+    for (const auto& e : statics_) {
+      x0 = std::min(x0, e.lo.x);
+      y0 = std::min(y0, e.lo.y);
+      x1 = std::max(x1, e.hi.x);
+      y1 = std::max(y1, e.hi.y);
+    }
+    const double ex = std::max(x1 - x0, 1e-6), ey = std::max(y1 - y0, 1e-6);
+    const double n = static_cast<double>(statics_.size());
+    cell_ = std::sqrt(ex * ey / (2 * n));  // about two cells per obstacle
+    cell_ = std::max({cell_, ex / kMaxCellsPerAxis, ey / kMaxCellsPerAxis, 1e-6});
+    nx_ = std::clamp(static_cast<int>(std::ceil(ex / cell_)), 1, kMaxCellsPerAxis);
+    ny_ = std::clamp(static_cast<int>(std::ceil(ey / cell_)), 1, kMaxCellsPerAxis);
+    grid_x0_ = x0;
+    grid_y0_ = y0;
+    auto cell_range = [&](const GeomEntry& e, int& ix0, int& ix1, int& iy0, int& iy1) {
+      ix0 = std::clamp(static_cast<int>(std::floor((e.lo.x - x0) / cell_)), 0, nx_ - 1);
+      ix1 = std::clamp(static_cast<int>(std::floor((e.hi.x - x0) / cell_)), 0, nx_ - 1);
+      iy0 = std::clamp(static_cast<int>(std::floor((e.lo.y - y0) / cell_)), 0, ny_ - 1);
+      iy1 = std::clamp(static_cast<int>(std::floor((e.hi.y - y0) / cell_)), 0, ny_ - 1);
+    };
+    cell_start_.assign(static_cast<std::size_t>(nx_ * ny_ + 1), 0);
+    int ix0, ix1, iy0, iy1;
+    for (const auto& e : statics_) {
+      cell_range(e, ix0, ix1, iy0, iy1);
+      for (int iy = iy0; iy <= iy1; ++iy)
+        for (int ix = ix0; ix <= ix1; ++ix)
+          ++cell_start_[static_cast<std::size_t>(iy * nx_ + ix + 1)];
+    }
+    for (std::size_t c = 1; c < cell_start_.size(); ++c)
+      cell_start_[c] += cell_start_[c - 1];
+    cell_items_.assign(static_cast<std::size_t>(cell_start_.back()), 0);
+    std::vector<std::int32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+    for (std::size_t i = 0; i < statics_.size(); ++i) {
+      cell_range(statics_[i], ix0, ix1, iy0, iy1);
+      for (int iy = iy0; iy <= iy1; ++iy)
+        for (int ix = ix0; ix <= ix1; ++ix)
+          cell_items_[static_cast<std::size_t>(fill[static_cast<std::size_t>(iy * nx_ + ix)]++)] =
+              static_cast<std::int32_t>(i);
+    }
+  }
+  order_.resize(moving_.size());
+  for (std::size_t i = 0; i < order_.size(); ++i)
+    order_[i] = static_cast<std::int32_t>(i);
+  order_lo_x_.assign(moving_.size(), 0.0);
+}
+
+void RayCaster::add_geom(const scene::Geom& g, std::int32_t body) {
+  GeomEntry e;
+  e.body = body;
+  e.type = g.shape.type;
+  e.half = g.shape.size_m * 0.5;
+  e.radius = g.shape.radius_m;
+  e.half_length = 0.5 * g.shape.length_m;
+  if (g.material.metallic) e.material |= material_metallic;
+  if (g.material.ferromagnetic) e.material |= material_ferromagnetic;
+  if (g.material.rfid_tag) e.material |= material_rfid_tag;
+  if (g.visual.canvas) e.material |= material_canvas;
+  e.local = g.pose;
+  (body == 0 ? statics_ : moving_).push_back(e);
+}
+
+void RayCaster::compute_aabb(GeomEntry& e) {
+  Vec3 half;
+  switch (e.type) {
+    case scene::ShapeType::box:
+      half = abs_matrix(e.world.rotation) * e.half;
+      break;
+    case scene::ShapeType::sphere:
+      half = {e.radius, e.radius, e.radius};
+      break;
+    case scene::ShapeType::cylinder:
+      half = abs_matrix(e.world.rotation) * Vec3{e.radius, e.radius, e.half_length};
+      break;
+  }
+  half += Vec3{kPad, kPad, kPad};
+  e.lo = e.world.position - half;
+  e.hi = e.world.position + half;
+}
+
+void RayCaster::update_moving() const {
+  for (auto& e : moving_) {
+    e.world = poses_[e.body] * e.local;
+    compute_aabb(e);
+  }
+  // Insertion sort by lo.x: nearly sorted from the previous tick, so about linear.
+  for (std::size_t i = 1; i < order_.size(); ++i) {
+    const std::int32_t k = order_[i];
+    const double x = moving_[static_cast<std::size_t>(k)].lo.x;
+    std::size_t j = i;
+    for (; j > 0 && moving_[static_cast<std::size_t>(order_[j - 1])].lo.x > x; --j)
+      order_[j] = order_[j - 1];
+    order_[j] = k;
+  }
+  max_width_x_ = 0;
+  for (std::size_t i = 0; i < order_.size(); ++i) {
+    const GeomEntry& e = moving_[static_cast<std::size_t>(order_[i])];
+    order_lo_x_[i] = e.lo.x;
+    max_width_x_ = std::max(max_width_x_, e.hi.x - e.lo.x);
+  }
+  moving_dirty_ = false;
+}
+
+bool RayCaster::test_geom(const GeomEntry& e, const Vec3& o, const Vec3& d, double t_max,
+                          RayHit& best) {
+  const Mat3 rt = e.world.rotation.transposed();
+  const Vec3 lo = rt * (o - e.world.position);
+  const Vec3 ld = rt * d;
+  double t = 0;
+  Vec3 n;
+  bool hit = false;
+  switch (e.type) {
+    case scene::ShapeType::box:
+      hit = ray_box(lo, ld, e.half, t_max, t, n);
+      break;
+    case scene::ShapeType::sphere:
+      hit = ray_sphere(lo, ld, e.radius, t_max, t, n);
+      break;
+    case scene::ShapeType::cylinder:
+      hit = ray_cylinder(lo, ld, e.radius, e.half_length, t_max, t, n);
+      break;
+  }
+  if (!hit || (best.hit && t >= best.distance_m)) return false;
+  best.hit = true;
+  best.distance_m = t;
+  best.point_m = o + d * t;
+  best.normal = e.world.rotation * n;
+  best.body = BodyHandle{e.body};
+  best.material = e.material;
+  return true;
+}
+
+void RayCaster::test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& best) const {
+  auto consider = [&](const Vec3& point, const Vec3& normal) {
+    double t = 0;
+    const double limit = best.hit ? best.distance_m : t_max;
+    if (!ray_plane(o, d, point, normal, limit, t)) return;
+    if (best.hit && t >= best.distance_m) return;
+    best.hit = true;
+    best.distance_m = t;
+    best.point_m = o + d * t;
+    best.normal = normal;
+    best.body = BodyHandle{0};
+    best.material = 0;
+  };
+  consider({0, 0, 0}, {0, 0, 1});
+  if (walls_) {
+    const double w = wall_distance_;
+    consider({w, 0, 0}, {-1, 0, 0});
+    consider({-w, 0, 0}, {1, 0, 0});
+    consider({0, w, 0}, {0, -1, 0});
+    consider({0, -w, 0}, {0, 1, 0});
+  }
+}
+
+RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_distance,
+                       std::int32_t ignore_body) const {
+  RayHit best;
+  const double len = norm(direction);
+  if (!(len > 0) || !(max_distance >= 0)) return best;
+  const Vec3 d = direction / len;
+  const Vec3& o = origin;
+  test_planes(o, d, max_distance, best);
+  auto limit = [&] { return best.hit ? best.distance_m : max_distance; };
+
+  // Static obstacles: walk the grid cells the ray's XY projection crosses.
+  if (nx_ > 0) {
+    double t0 = 0, t1 = limit();
+    const double gx1 = grid_x0_ + nx_ * cell_, gy1 = grid_y0_ + ny_ * cell_;
+    bool inside = true;
+    auto clip = [&](double oi, double di, double lo, double hi) {
+      if (di == 0) {
+        if (oi < lo || oi > hi) inside = false;
+        return;
+      }
+      double s0 = (lo - oi) / di, s1 = (hi - oi) / di;
+      if (s0 > s1) std::swap(s0, s1);
+      t0 = std::max(t0, s0);
+      t1 = std::min(t1, s1);
+    };
+    clip(o.x, d.x, grid_x0_, gx1);
+    clip(o.y, d.y, grid_y0_, gy1);
+    if (inside && t0 <= t1) {
+      if (++cast_id_ == 0) {  // wrapped: clear the mailboxes
+        std::fill(stamp_.begin(), stamp_.end(), 0u);
+        cast_id_ = 1;
+      }
+      const double px = o.x + d.x * t0, py = o.y + d.y * t0;
+      int ix = std::clamp(static_cast<int>(std::floor((px - grid_x0_) / cell_)), 0, nx_ - 1);
+      int iy = std::clamp(static_cast<int>(std::floor((py - grid_y0_) / cell_)), 0, ny_ - 1);
+      const int step_x = d.x > 0 ? 1 : -1, step_y = d.y > 0 ? 1 : -1;
+      double next_x = d.x > 0   ? (grid_x0_ + (ix + 1) * cell_ - o.x) / d.x
+                      : d.x < 0 ? (grid_x0_ + ix * cell_ - o.x) / d.x
+                                : kInf;
+      double next_y = d.y > 0   ? (grid_y0_ + (iy + 1) * cell_ - o.y) / d.y
+                      : d.y < 0 ? (grid_y0_ + iy * cell_ - o.y) / d.y
+                                : kInf;
+      const double dx = d.x != 0 ? cell_ / std::abs(d.x) : kInf;
+      const double dy = d.y != 0 ? cell_ / std::abs(d.y) : kInf;
+      for (;;) {
+        const auto c = static_cast<std::size_t>(iy * nx_ + ix);
+        for (std::int32_t k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+          const auto g = static_cast<std::size_t>(cell_items_[static_cast<std::size_t>(k)]);
+          if (stamp_[g] == cast_id_) continue;
+          stamp_[g] = cast_id_;
+          test_geom(statics_[g], o, d, limit(), best);
+        }
+        const double cell_exit = std::min({next_x, next_y, t1});
+        if ((best.hit && best.distance_m <= cell_exit) || cell_exit >= t1) break;
+        if (next_x < next_y) {
+          ix += step_x;
+          next_x += dx;
+        } else {
+          iy += step_y;
+          next_y += dy;
+        }
+        if (ix < 0 || ix >= nx_ || iy < 0 || iy >= ny_) break;
+      }
+    }
+  }
+
+  // Moving geoms: sweep along x.
+  if (!moving_.empty()) {
+    if (moving_dirty_) update_moving();
+    const double t_lim = limit();
+    const double xa = std::min(o.x, o.x + d.x * t_lim), xb = std::max(o.x, o.x + d.x * t_lim);
+    const Vec3 inv = inverse_direction(d);
+    auto first = std::lower_bound(order_lo_x_.begin(), order_lo_x_.end(), xa - max_width_x_);
+    for (auto i = static_cast<std::size_t>(first - order_lo_x_.begin()); i < order_.size(); ++i) {
+      if (order_lo_x_[i] > xb) break;
+      const GeomEntry& e = moving_[static_cast<std::size_t>(order_[i])];
+      if (e.hi.x < xa || (ignore_body > 0 && e.body == ignore_body)) continue;
+      double s0 = 0, s1 = 0;
+      if (!ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) continue;
+      test_geom(e, o, d, limit(), best);
+    }
+  }
+  return best;
+}
+
+RayHit RayCaster::cast_brute_force(const Vec3& origin, const Vec3& direction, double max_distance,
+                                   std::int32_t ignore_body) const {
+  RayHit best;
+  const double len = norm(direction);
+  if (!(len > 0) || !(max_distance >= 0)) return best;
+  const Vec3 d = direction / len;
+  test_planes(origin, d, max_distance, best);
+  if (moving_dirty_) update_moving();
+  for (const auto& e : statics_)
+    test_geom(e, origin, d, best.hit ? best.distance_m : max_distance, best);
+  for (const auto& e : moving_)
+    if (!(ignore_body > 0 && e.body == ignore_body))
+      test_geom(e, origin, d, best.hit ? best.distance_m : max_distance, best);
+  return best;
+}
+
+RayHit RayCaster::callback(const void* kernel, const Vec3& origin, const Vec3& direction,
+                           double max_distance, std::int32_t ignore_body) {
+  return static_cast<const RayCaster*>(kernel)->cast(origin, direction, max_distance, ignore_body);
+}
+
+}  // namespace s2sim::raycast
