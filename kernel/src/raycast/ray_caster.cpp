@@ -26,6 +26,12 @@ Vec3 inverse_direction(const Vec3& d) {
   return {d.x != 0 ? 1 / d.x : kInf, d.y != 0 ? 1 / d.y : kInf, d.z != 0 ? 1 / d.z : kInf};
 }
 
+/// A surface exactly at the ray's end counts: round-off must not decide whether a wall at
+/// the beam length is seen.
+double reach(double max_distance) {
+  return max_distance * (1 + 1e-12) + 1e-12;
+}
+
 }  // namespace
 
 RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(poses) {
@@ -204,6 +210,7 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
   RayHit best;
   const double len = norm(direction);
   if (!(len > 0) || !(max_distance >= 0)) return best;
+  max_distance = reach(max_distance);
   const Vec3 d = direction / len;
   const Vec3& o = origin;
   test_planes(o, d, max_distance, best);
@@ -289,6 +296,7 @@ RayHit RayCaster::cast_brute_force(const Vec3& origin, const Vec3& direction, do
   RayHit best;
   const double len = norm(direction);
   if (!(len > 0) || !(max_distance >= 0)) return best;
+  max_distance = reach(max_distance);
   const Vec3 d = direction / len;
   test_planes(origin, d, max_distance, best);
   if (moving_dirty_) update_moving();

@@ -30,7 +30,8 @@ class RayCaster {
   void invalidate() { moving_dirty_ = true; }
 
   /// The first entry into a collision surface along `origin + s·direction` (direction need
-  /// not be unit; it is normalised), s in [0, max_distance]. Geoms of `ignore_body` (> 0) are
+  /// not be unit; it is normalised), s in [0, max_distance] (a surface at max_distance, to
+  /// 1e-12 relative, counts). Geoms of `ignore_body` (> 0) are
   /// skipped; 0 or -1 skip nothing (the world is never ignored). Never allocates.
   RayHit cast(const Vec3& origin, const Vec3& direction, double max_distance,
               std::int32_t ignore_body) const;
