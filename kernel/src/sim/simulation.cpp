@@ -453,6 +453,17 @@ class ConfigureContextImpl final : public ConfigureContext {
     return out;
   }
   int body_count() const override { return static_cast<int>(sim_.poses.size()); }
+  SignalHandle published_signal(std::string_view full_name) const override {
+    auto it = sim_.signal_by_name.find(std::string(full_name));
+    if (it != sim_.signal_by_name.end() &&
+        sim_.signal_entries[it->second].source == Source::published)
+      return SignalHandle{sim_.signal_entries[it->second].index};
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < sim_.signal_infos.size(); ++i)
+      if (sim_.signal_entries[i].source == Source::published)
+        names.push_back(sim_.signal_infos[i].name);
+    throw fail(unknown("published signal", std::string(full_name), names));
+  }
   std::string body_id(BodyHandle b) const override {
     if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
     return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;

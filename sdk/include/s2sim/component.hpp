@@ -216,6 +216,10 @@ class StepContext {
   void set_input(InputHandle i, double v) { w_->inputs[i.index] = v; }
   /// Publishes a signal value; it holds until published again.
   void publish(SignalHandle s, double v) { w_->signals[s.index] = v; }
+  /// The current value of a signal a component publishes (found with
+  /// `ConfigureContext::published_signal`): how a controller reads a sensor. Sensors run
+  /// first in a tick, so a controller sees the readings of the same tick.
+  double signal(SignalHandle s) const { return w_->signals[s.index]; }
   /// The component's state block.
   double* state(StateHandle h) { return w_->state + h.offset; }
   /// The component's own random stream.
@@ -287,6 +291,10 @@ class ConfigureContext {
   virtual int body_count() const = 0;
   /// The scene ID of a body as written (a solid, tyre or thing ID); empty for the world.
   virtual std::string body_id(BodyHandle b) const = 0;
+  /// A signal published by a component configured before this one, by its full name (e.g.
+  /// `robots/r/sensors/ir0/value`), to read with `StepContext::signal()`. Scene sensors are
+  /// configured before `<plugin>` components, in scene order. Throws when there is none.
+  virtual SignalHandle published_signal(std::string_view full_name) const = 0;
 };
 
 /// Base of every plugin component.

@@ -392,3 +392,35 @@ TEST(SensorErrors, ZeroRaysAndABadScanModeAreErrors) {
 
 }  // namespace
 }  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+// --- robot sensors and readings in controllers -----------------------------------------------
+
+SimulationOptions with_reader() {
+  SimulationOptions o = options();
+  o.plugin_path.push_back(fs::path(S2SIM_TEST_PLUGIN_DIR) / "sensor-reader");
+  return o;
+}
+
+TEST(RobotSensors, SkipTheirOwnBodyButSeeTheRobotsOtherSolids) {
+  auto sim = Simulation::load(kFixtures / "controller", with_reader());
+  sim->step(10);
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/front/value"), 1.0, 1e-9);  // the wall
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/low/value"), 0.29, 1e-9);   // the bumper solid
+}
+
+TEST(Readings, AControllerReadsTheSensorThroughTheSdkInTheSameTick) {
+  auto sim = Simulation::load(kFixtures / "controller", with_reader());
+  sim->step(1);
+  EXPECT_EQ(sim->signal("controllers/reader/seen"), sim->signal("robots/bot/sensors/front/value"));
+  EXPECT_NEAR(sim->signal("controllers/reader/seen"), 1.0, 1e-9);
+  const fs::path dir =
+      fixture_with("controller", "scene.xml", "sensors/front/value", "sensors/frnt/value");
+  EXPECT_THAT([&] { Simulation::load(dir, with_reader()); },
+              ::testing::ThrowsMessage<Error>(HasSubstr("robots/bot/sensors/frnt/value")));
+}
+
+}  // namespace
+}  // namespace s2sim

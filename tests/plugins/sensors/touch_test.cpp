@@ -55,6 +55,7 @@ class FakeConfigure : public ConfigureContext {
   std::vector<FloorPolygon> floor_polygons() const override { return {}; }
   int body_count() const override { return 3; }
   std::string body_id(BodyHandle) const override { return {}; }
+  SignalHandle published_signal(std::string_view) const override { return {}; }
 };
 
 struct World {
