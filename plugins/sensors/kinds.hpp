@@ -86,12 +86,13 @@ class Ranger2D : public Component {
 
  private:
   double cast(StepContext& ctx, const Pose& world, int i) const;
+  void add_noise(StepContext& ctx, double* distances, int first, int last) const;
   SensorSetup s_;
   bool sweep_ = true;
   int n_ = 3;
   std::vector<Vec3> dirs_;  ///< per ray, in the sensor frame
   std::vector<SignalHandle> rays_;
-  StateHandle pending_;  ///< sweep: distances measured so far in this period
+  StateHandle pending_;  ///< the distances measured so far in this period
   SignalHandle sweeps_;
   StateHandle sweep_count_;
 };

@@ -31,8 +31,8 @@ void Ranger2D::configure(ConfigureContext& ctx) {
     rays_.push_back(ctx.declare_signal("ray/" + std::to_string(i), "m"));
   sweeps_ = ctx.declare_signal("sweeps", "1");
   sweep_count_ = ctx.declare_state("sweep_count", 1, 0.0);
+  pending_ = ctx.declare_state("pending", n_, -1.0);
   if (sweep_) {
-    pending_ = ctx.declare_state("pending", n_, -1.0);
     ctx.set_schedule(Stage::sense, ctx.tick_s());
   } else {
     s_.schedule(ctx);
@@ -47,27 +47,61 @@ void Ranger2D::initialize(StepContext& ctx) {
 double Ranger2D::cast(StepContext& ctx, const Pose& w, int i) const {
   const RayHit h = ctx.cast_ray(w.position, w.rotation * dirs_[static_cast<std::size_t>(i)],
                                 s_.spec.beam.length_m, s_.ignore);
-  if (!h.hit) return -1;
+  return h.hit ? h.distance_m : -1.0;
+}
+
+void Ranger2D::add_noise(StepContext& ctx, double* d, int first, int last) const {
+  // SimTwo's generic noise on every hit (-1 stays -1). The Gaussian draws come in pairs from
+  // one Box-Muller transform (cos and sin), used for two consecutive rays of this call: half
+  // the transcendental cost, and no value is kept between calls.
+  if (!s_.noise.on) return;
+  const GenericNoise& n = s_.noise;
   RandomStream r = ctx.random();
-  return s_.noise.apply(r, h.distance_m);
+  double spare = 0;
+  bool has_spare = false;
+  auto normal = [&]() {
+    if (has_spare) {
+      has_spare = false;
+      return spare;
+    }
+    double u1 = r.uniform();
+    while (u1 <= 0.0)
+      u1 = r.uniform();
+    const double radius = std::sqrt(-2.0 * std::log(u1)), angle = 2 * kPi * r.uniform();
+    spare = radius * std::sin(angle);
+    has_spare = true;
+    return radius * std::cos(angle);
+  };
+  for (int i = first; i < last; ++i) {
+    if (d[i] < 0) continue;
+    double v = n.gain * d[i] + n.offset;
+    if (n.stdev > 0) v += n.stdev * normal();
+    if (n.stdev_p > 0) v += n.stdev_p * std::abs(d[i]) * normal();
+    d[i] = v;
+  }
 }
 
 void Ranger2D::update(StepContext& ctx) {
   const Pose w = s_.world_pose(ctx);
   double& count = ctx.state(sweep_count_)[0];
+  double* pending = ctx.state(pending_);
   if (!sweep_) {
     for (int i = 0; i < n_; ++i)
-      ctx.publish(rays_[static_cast<std::size_t>(i)], cast(ctx, w, i));
+      pending[i] = cast(ctx, w, i);
+    add_noise(ctx, pending, 0, n_);
+    for (int i = 0; i < n_; ++i)
+      ctx.publish(rays_[static_cast<std::size_t>(i)], pending[i]);
     ctx.publish(sweeps_, ++count);
     return;
   }
   const std::int64_t p = s_.period_ticks;
   const std::int64_t j = ctx.tick() % p;
   const auto first = static_cast<int>((static_cast<std::int64_t>(n_) * j + p / 2) / p);
-  const auto last = static_cast<int>((static_cast<std::int64_t>(n_) * (j + 1) + p / 2) / p);
-  double* pending = ctx.state(pending_);
-  for (int i = first; i < last && i < n_; ++i)
+  const auto last =
+      std::min(n_, static_cast<int>((static_cast<std::int64_t>(n_) * (j + 1) + p / 2) / p));
+  for (int i = first; i < last; ++i)
     pending[i] = cast(ctx, w, i);
+  add_noise(ctx, pending, first, last);
   if (j == p - 1) {
     for (int i = 0; i < n_; ++i)
       ctx.publish(rays_[static_cast<std::size_t>(i)], pending[i]);

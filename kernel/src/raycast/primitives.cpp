@@ -116,25 +116,4 @@ bool ray_plane(const Vec3& o, const Vec3& d, const Vec3& point, const Vec3& norm
   return true;
 }
 
-bool ray_aabb(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec3& hi, double t_max,
-              double& t0, double& t1) {
-  double a = 0, b = t_max;
-  for (int i = 0; i < 3; ++i) {
-    const double oi = comp(o, i), inv = comp(inv_d, i);
-    const double l = comp(lo, i), h = comp(hi, i);
-    if (std::isinf(inv)) {
-      if (oi < l || oi > h) return false;
-      continue;
-    }
-    double s0 = (l - oi) * inv, s1 = (h - oi) * inv;
-    if (s0 > s1) std::swap(s0, s1);
-    a = std::max(a, s0);
-    b = std::min(b, s1);
-    if (a > b) return false;
-  }
-  t0 = a;
-  t1 = b;
-  return true;
-}
-
 }  // namespace s2sim::raycast

@@ -10,6 +10,9 @@
 
 #include <s2sim/math.hpp>
 
+#include <cmath>
+#include <utility>
+
 namespace s2sim::raycast {
 
 /// Axis-aligned box centred at the origin with half extents `half` (slab test).
@@ -28,8 +31,25 @@ bool ray_plane(const Vec3& o, const Vec3& d, const Vec3& point, const Vec3& norm
                double& t);
 
 /// Whether the segment o + s d, s in [0, t_max], meets the box [lo, hi] (world AABB test);
-/// `inv_d` is 1/d per component (±inf for 0). On success [t0, t1] is the overlap.
-bool ray_aabb(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec3& hi, double t_max,
-              double& t0, double& t1);
+/// `inv_d` is 1/d per component (±inf for 0). On success [t0, t1] is the overlap. Inline: it
+/// is the broad phase's innermost test.
+inline bool ray_aabb(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec3& hi, double t_max,
+                     double& t0, double& t1) {
+  double a = 0, b = t_max;
+  auto slab = [&](double oi, double inv, double l, double h) {
+    if (std::isinf(inv)) return oi >= l && oi <= h;
+    double s0 = (l - oi) * inv, s1 = (h - oi) * inv;
+    if (s0 > s1) std::swap(s0, s1);
+    a = s0 > a ? s0 : a;
+    b = s1 < b ? s1 : b;
+    return a <= b;
+  };
+  if (!slab(o.x, inv_d.x, lo.x, hi.x) || !slab(o.y, inv_d.y, lo.y, hi.y) ||
+      !slab(o.z, inv_d.z, lo.z, hi.z))
+    return false;
+  t0 = a;
+  t1 = b;
+  return true;
+}
 
 }  // namespace s2sim::raycast

@@ -13,6 +13,7 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPad = 1e-9;  // AABB padding against round-off on cell and box edges
 constexpr int kMaxCellsPerAxis = 256;
+constexpr std::size_t kSmallStatic = 16;  // up to this many obstacles: no grid walk
 
 Mat3 abs_matrix(const Mat3& r) {
   Mat3 a;
@@ -95,6 +96,7 @@ RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(pose
   for (std::size_t i = 0; i < order_.size(); ++i)
     order_[i] = static_cast<std::int32_t>(i);
   order_lo_x_.assign(moving_.size(), 0.0);
+  order_box_.assign(5 * moving_.size(), 0.0);
 }
 
 void RayCaster::add_geom(const scene::Geom& g, std::int32_t body) {
@@ -148,6 +150,12 @@ void RayCaster::update_moving() const {
   for (std::size_t i = 0; i < order_.size(); ++i) {
     const GeomEntry& e = moving_[static_cast<std::size_t>(order_[i])];
     order_lo_x_[i] = e.lo.x;
+    double* box = &order_box_[5 * i];
+    box[0] = e.hi.x;
+    box[1] = e.lo.y;
+    box[2] = e.hi.y;
+    box[3] = e.lo.z;
+    box[4] = e.hi.z;
     max_width_x_ = std::max(max_width_x_, e.hi.x - e.lo.x);
   }
   moving_dirty_ = false;
@@ -183,11 +191,10 @@ bool RayCaster::test_geom(const GeomEntry& e, const Vec3& o, const Vec3& d, doub
 }
 
 void RayCaster::test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& best) const {
-  auto consider = [&](const Vec3& point, const Vec3& normal) {
-    double t = 0;
-    const double limit = best.hit ? best.distance_m : t_max;
-    if (!ray_plane(o, d, point, normal, limit, t)) return;
-    if (best.hit && t >= best.distance_m) return;
+  // Axis-aligned planes seen from their front side only: the ground (normal +Z) and the walls
+  // (normals toward the origin).
+  auto consider = [&](double t, const Vec3& normal) {
+    if (!(t >= 0) || t > (best.hit ? best.distance_m : t_max)) return;
     best.hit = true;
     best.distance_m = t;
     best.point_m = o + d * t;
@@ -195,29 +202,36 @@ void RayCaster::test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& 
     best.body = BodyHandle{0};
     best.material = 0;
   };
-  consider({0, 0, 0}, {0, 0, 1});
+  if (d.z < 0 && o.z >= 0) consider(-o.z / d.z, {0, 0, 1});
   if (walls_) {
     const double w = wall_distance_;
-    consider({w, 0, 0}, {-1, 0, 0});
-    consider({-w, 0, 0}, {1, 0, 0});
-    consider({0, w, 0}, {0, -1, 0});
-    consider({0, -w, 0}, {0, 1, 0});
+    if (d.x > 0 && o.x <= w) consider((w - o.x) / d.x, {-1, 0, 0});
+    if (d.x < 0 && o.x >= -w) consider((-w - o.x) / d.x, {1, 0, 0});
+    if (d.y > 0 && o.y <= w) consider((w - o.y) / d.y, {0, -1, 0});
+    if (d.y < 0 && o.y >= -w) consider((-w - o.y) / d.y, {0, 1, 0});
   }
 }
 
 RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_distance,
                        std::int32_t ignore_body) const {
   RayHit best;
-  const double len = norm(direction);
-  if (!(len > 0) || !(max_distance >= 0)) return best;
+  const double len2 = dot(direction, direction);
+  if (!(len2 > 0) || !(max_distance >= 0)) return best;
   max_distance = reach(max_distance);
-  const Vec3 d = direction / len;
+  // Sensors pass unit directions: skip the square root when it is one already.
+  const Vec3 d = std::abs(len2 - 1) < 1e-15 ? direction : direction / std::sqrt(len2);
   const Vec3& o = origin;
   test_planes(o, d, max_distance, best);
   auto limit = [&] { return best.hit ? best.distance_m : max_distance; };
 
-  // Static obstacles: walk the grid cells the ray's XY projection crosses.
-  if (nx_ > 0) {
+  const Vec3 inv = inverse_direction(d);
+  double s0 = 0, s1 = 0;
+  if (statics_.size() <= kSmallStatic) {
+    // A few obstacles: their boxes one by one beat walking a grid.
+    for (const auto& e : statics_)
+      if (ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) test_geom(e, o, d, limit(), best);
+  } else {
+    // Static obstacles: walk the grid cells the ray's XY projection crosses.
     double t0 = 0, t1 = limit();
     const double gx1 = grid_x0_ + nx_ * cell_, gy1 = grid_y0_ + ny_ * cell_;
     bool inside = true;
@@ -256,7 +270,8 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
           const auto g = static_cast<std::size_t>(cell_items_[static_cast<std::size_t>(k)]);
           if (stamp_[g] == cast_id_) continue;
           stamp_[g] = cast_id_;
-          test_geom(statics_[g], o, d, limit(), best);
+          const GeomEntry& e = statics_[g];
+          if (ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) test_geom(e, o, d, limit(), best);
         }
         const double cell_exit = std::min({next_x, next_y, t1});
         if ((best.hit && best.distance_m <= cell_exit) || cell_exit >= t1) break;
@@ -277,13 +292,16 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
     if (moving_dirty_) update_moving();
     const double t_lim = limit();
     const double xa = std::min(o.x, o.x + d.x * t_lim), xb = std::max(o.x, o.x + d.x * t_lim);
-    const Vec3 inv = inverse_direction(d);
+    const double ya = std::min(o.y, o.y + d.y * t_lim), yb = std::max(o.y, o.y + d.y * t_lim);
+    const double za = std::min(o.z, o.z + d.z * t_lim), zb = std::max(o.z, o.z + d.z * t_lim);
     auto first = std::lower_bound(order_lo_x_.begin(), order_lo_x_.end(), xa - max_width_x_);
     for (auto i = static_cast<std::size_t>(first - order_lo_x_.begin()); i < order_.size(); ++i) {
       if (order_lo_x_[i] > xb) break;
+      // The segment's bounding box against the packed boxes first, then the slab test.
+      const double* box = &order_box_[5 * i];
+      if (box[0] < xa || box[1] > yb || box[2] < ya || box[3] > zb || box[4] < za) continue;
       const GeomEntry& e = moving_[static_cast<std::size_t>(order_[i])];
-      if (e.hi.x < xa || (ignore_body > 0 && e.body == ignore_body)) continue;
-      double s0 = 0, s1 = 0;
+      if (ignore_body > 0 && e.body == ignore_body) continue;
       if (!ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) continue;
       test_geom(e, o, d, limit(), best);
     }
@@ -294,10 +312,11 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
 RayHit RayCaster::cast_brute_force(const Vec3& origin, const Vec3& direction, double max_distance,
                                    std::int32_t ignore_body) const {
   RayHit best;
-  const double len = norm(direction);
-  if (!(len > 0) || !(max_distance >= 0)) return best;
+  const double len2 = dot(direction, direction);
+  if (!(len2 > 0) || !(max_distance >= 0)) return best;
   max_distance = reach(max_distance);
-  const Vec3 d = direction / len;
+  // Sensors pass unit directions: skip the square root when it is one already.
+  const Vec3 d = std::abs(len2 - 1) < 1e-15 ? direction : direction / std::sqrt(len2);
   test_planes(origin, d, max_distance, best);
   if (moving_dirty_) update_moving();
   for (const auto& e : statics_)

@@ -84,6 +84,9 @@ class RayCaster {
   // Moving sweep.
   mutable std::vector<std::int32_t> order_;  ///< moving geoms sorted by lo.x
   mutable std::vector<double> order_lo_x_;   ///< lo.x in that order (binary search)
+  /// The rest of the boxes in the same order, packed (the sweep reads only these): hi.x,
+  /// lo.y, hi.y, lo.z, hi.z per geom.
+  mutable std::vector<double> order_box_;
   mutable double max_width_x_ = 0;
   mutable bool moving_dirty_ = true;
 };

@@ -261,6 +261,24 @@ TEST(Ranger2D, InstantModeCastsEveryRayAtItsPeriod) {
   EXPECT_EQ(sim->signal("sensors/instant/sweeps"), 2.0);  // ticks 0 and 20
 }
 
+TEST(Ranger2D, NoiseHasItsStandardDeviationOnHitsOnly) {
+  auto sim = load("ranger");
+  std::vector<double> err;
+  const double a = 270 * kPi / 180;
+  for (int sweep = 0; sweep < 30; ++sweep) {
+    sim->step(1);
+    for (int i = 0; i < 360; ++i) {
+      const double phi = -a / 2 + a * i / 359;
+      const RayHit h = sim->cast_ray({0.1, -0.2, 0.5}, {std::cos(phi), std::sin(phi), 0}, 4);
+      ASSERT_TRUE(h.hit);
+      err.push_back(sim->signal("sensors/noisy/ray/" + std::to_string(i)) - h.distance_m);
+    }
+  }
+  const Stats s = stats(err);
+  EXPECT_NEAR(s.stdev / 0.01, 1.0, 0.05);
+  EXPECT_NEAR(s.mean, 0.0, 4 * 0.01 / std::sqrt(10800.0));
+}
+
 TEST(Ranger2D, DefaultScenesRangerReturnsTheSurroundingGeometry) {
   const fs::path scene = fs::path(S2SIM_SHARED_SCENES) / "default";
   if (!fs::exists(scene / "scene.xml")) GTEST_SKIP() << "no " << scene;
