@@ -427,6 +427,12 @@ TEST(RobotSensors, SkipTheirOwnBodyButSeeTheRobotsOtherSolids) {
   sim->step(10);
   EXPECT_NEAR(sim->signal("robots/bot/sensors/front/value"), 1.0, 1e-9);  // the wall
   EXPECT_NEAR(sim->signal("robots/bot/sensors/low/value"), 0.29, 1e-9);   // the bumper solid
+  // absolute_coords: the pose in the robot frame at load; the same place as `front`.
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/front_abs/value"), 1.0, 1e-9);
+  // solid id: on the bumper, looking back at the robot's main body.
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/on_bumper/value"), 0.1, 1e-9);
+  // A kind placed with <plugin> reads the same children from its parameters.
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/psonar/value"), 1.0, 1e-9);
 }
 
 TEST(Readings, AControllerReadsTheSensorThroughTheSdkInTheSameTick) {
