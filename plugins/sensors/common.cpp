@@ -41,6 +41,51 @@ void fail(const Params& p, const std::string& child, const std::string& attribut
   throw Error(ErrorKind::scene, Location{"", where, attribute}, message);
 }
 
+const ZigguratTables& ziggurat_tables() {
+  static const ZigguratTables tables = [] {
+    ZigguratTables t{};
+    const double m1 = 2147483648.0;  // 2^31
+    double dn = 3.442619855899, tn = dn;
+    const double vn = 9.91256303526217e-3;
+    const double q = vn / std::exp(-0.5 * dn * dn);
+    t.kn[0] = (dn / q) * m1;
+    t.kn[1] = 0;
+    t.wn[0] = q / m1;
+    t.wn[127] = dn / m1;
+    t.fn[0] = 1.0;
+    t.fn[127] = std::exp(-0.5 * dn * dn);
+    for (int i = 126; i >= 1; --i) {
+      dn = std::sqrt(-2 * std::log(vn / dn + std::exp(-0.5 * dn * dn)));
+      t.kn[i + 1] = (dn / tn) * m1;
+      tn = dn;
+      t.fn[i] = std::exp(-0.5 * dn * dn);
+      t.wn[i] = dn / m1;
+    }
+    return t;
+  }();
+  return tables;
+}
+
+double ziggurat_normal(RandomStream& r, const ZigguratTables& t) {
+  constexpr double kR = 3.442619855899;  // start of the tail
+  for (;;) {
+    const std::uint64_t u = r.next_u64();
+    const auto iz = static_cast<int>(u & 127);  // layer from the low bits
+    const auto hz = static_cast<std::int32_t>(static_cast<std::uint32_t>(u >> 32));  // value
+    const double x = hz * t.wn[iz];
+    if (std::abs(static_cast<double>(hz)) < t.kn[iz]) return x;  // inside the layer: ~99 %
+    if (iz == 0) {                                               // the tail beyond kR
+      double xt, y;
+      do {
+        xt = -std::log(1.0 - r.uniform()) / kR;
+        y = -std::log(1.0 - r.uniform());
+      } while (y + y < xt * xt);
+      return hz > 0 ? kR + xt : -kR - xt;
+    }
+    if (t.fn[iz] + r.uniform() * (t.fn[iz - 1] - t.fn[iz]) < std::exp(-0.5 * x * x)) return x;
+  }
+}
+
 void SensorSetup::read(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   if (const SensorSpec* s = ctx.sensor_spec()) {

@@ -38,6 +38,16 @@ struct GenericNoise {
   }
 };
 
+/// Standard normal deviates by Marsaglia and Tsang's ziggurat (128 layers), about five times
+/// cheaper than the SDK's Box-Muller: for sensors that draw one per ray. Each draw consumes a
+/// variable number of 64-bit words from the sensor's own stream (deterministic for a seed).
+/// The tables are built once, by `ziggurat_tables()` (call it in configure()).
+struct ZigguratTables {
+  double kn[128], wn[128], fn[128];
+};
+const ZigguratTables& ziggurat_tables();
+double ziggurat_normal(RandomStream& r, const ZigguratTables& t);
+
 /// The common part of every scene sensor: mount, beam, noise, tags, period.
 struct SensorSetup {
   SensorSpec spec;    ///< as resolved by the loader (or read from `<plugin>` parameters)

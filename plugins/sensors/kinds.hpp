@@ -91,6 +91,7 @@ class Ranger2D : public Component {
   bool sweep_ = true;
   int n_ = 3;
   std::vector<Vec3> dirs_;  ///< per ray, in the sensor frame
+  const ZigguratTables* zig_ = nullptr;
   std::vector<SignalHandle> rays_;
   StateHandle pending_;  ///< the distances measured so far in this period
   SignalHandle sweeps_;

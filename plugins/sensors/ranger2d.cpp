@@ -22,6 +22,7 @@ void Ranger2D::configure(ConfigureContext& ctx) {
   else
     fail(p, "scan", "mode", "must be 'sweep' or 'instant', got '" + mode + "'");
   n_ = std::max(3, s_.spec.beam.rays);
+  zig_ = &ziggurat_tables();
   const double a = s_.spec.beam.angle_rad;
   for (int i = 0; i < n_; ++i) {
     const double phi = -a / 2 + a * i / (n_ - 1);
@@ -51,27 +52,12 @@ double Ranger2D::cast(StepContext& ctx, const Pose& w, int i) const {
 }
 
 void Ranger2D::add_noise(StepContext& ctx, double* d, int first, int last) const {
-  // SimTwo's generic noise on every hit (-1 stays -1). The Gaussian draws come in pairs from
-  // one Box-Muller transform (cos and sin), used for two consecutive rays of this call: half
-  // the transcendental cost, and no value is kept between calls.
+  // SimTwo's generic noise on every hit (-1 stays -1); Gaussian draws by the ziggurat (one
+  // per ray: the SDK's Box-Muller would be a third of a ray's cost).
   if (!s_.noise.on) return;
   const GenericNoise& n = s_.noise;
   RandomStream r = ctx.random();
-  double spare = 0;
-  bool has_spare = false;
-  auto normal = [&]() {
-    if (has_spare) {
-      has_spare = false;
-      return spare;
-    }
-    double u1 = r.uniform();
-    while (u1 <= 0.0)
-      u1 = r.uniform();
-    const double radius = std::sqrt(-2.0 * std::log(u1)), angle = 2 * kPi * r.uniform();
-    spare = radius * std::sin(angle);
-    has_spare = true;
-    return radius * std::cos(angle);
-  };
+  auto normal = [&]() { return ziggurat_normal(r, *zig_); };
   for (int i = first; i < last; ++i) {
     if (d[i] < 0) continue;
     double v = n.gain * d[i] + n.offset;
