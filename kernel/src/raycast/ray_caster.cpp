@@ -111,6 +111,7 @@ void RayCaster::add_geom(const scene::Geom& g, std::int32_t body) {
   if (g.material.rfid_tag) e.material |= material_rfid_tag;
   if (g.visual.canvas) e.material |= material_canvas;
   e.local = g.pose;
+  e.local_identity = g.pose.position == Vec3{} && g.pose.rotation == Mat3::identity();
   (body == 0 ? statics_ : moving_).push_back(e);
 }
 
@@ -134,7 +135,7 @@ void RayCaster::compute_aabb(GeomEntry& e) {
 
 void RayCaster::update_moving() const {
   for (auto& e : moving_) {
-    e.world = poses_[e.body] * e.local;
+    e.world = e.local_identity ? poses_[e.body] : poses_[e.body] * e.local;
     compute_aabb(e);
   }
   // Insertion sort by lo.x: nearly sorted from the previous tick, so about linear.

@@ -55,9 +55,10 @@ class RayCaster {
     double radius = 0;       ///< sphere, cylinder
     double half_length = 0;  ///< cylinder
     std::uint32_t material = 0;
-    Pose local;   ///< geom frame in its body frame (obstacles: world)
-    Pose world;   ///< current world pose
-    Vec3 lo, hi;  ///< current world AABB
+    Pose local;                   ///< geom frame in its body frame (obstacles: world)
+    bool local_identity = false;  ///< the geom frame is the body frame (most solids)
+    Pose world;                   ///< current world pose
+    Vec3 lo, hi;                  ///< current world AABB
   };
 
   void add_geom(const scene::Geom& g, std::int32_t body);
