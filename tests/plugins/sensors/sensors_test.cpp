@@ -348,6 +348,20 @@ TEST(Imu, AtRestWithNoiseReadsGWithinItsBiasAndItsWhiteNoise) {
   EXPECT_GT(diff, 0.01);
 }
 
+TEST(Imu, TheBiasRandomWalkHasIncrementsOfBiasWalkTimesRootT) {
+  auto sim = load("imu", options(9));
+  const auto v = sample(*sim, "robots/rig/sensors/walk/gyro_x", 5001);
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    steps.push_back(v[i] - v[i - 1]);
+  const Stats s = stats(steps);
+  const double sigma = 0.01 * std::sqrt(0.001);  // bias_walk * sqrt(period)
+  EXPECT_NEAR(s.stdev / sigma, 1.0, 0.05);
+  EXPECT_NEAR(s.mean, 0.0, 4 * sigma / std::sqrt(5000.0));
+  // The other instrument's axes do not walk.
+  EXPECT_NEAR(sim->signal("robots/rig/sensors/walk/acc_z"), 9.81, 1e-9);
+}
+
 TEST(Imu, ASpinningBodyReadsItsRateAndTheCentripetalAcceleration) {
   auto sim = load("imu");
   sim->set_input("robots/rig/axes/spin/ref_torque", 0.5);
