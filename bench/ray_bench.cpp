@@ -86,11 +86,12 @@ fs::path cluttered_scene(int obstacles, int things) {
   return d;
 }
 
-void rays_per_second(int obstacles, int things) {
+void rays_per_second(int obstacles, int things, int ticks) {
   auto sim = s2sim::Simulation::load(cluttered_scene(obstacles, things));
   std::mt19937_64 rng(2);
   std::uniform_real_distribution<double> u(0, 1);
-  constexpr int kTicks = 200, kRaysPerTick = 5000;
+  const int kTicks = ticks;
+  constexpr int kRaysPerTick = 5000;
   std::vector<s2sim::Vec3> o(kRaysPerTick), d(kRaysPerTick);
   for (int i = 0; i < kRaysPerTick; ++i) {
     o[static_cast<std::size_t>(i)] = {-10 + 20 * u(rng), -10 + 20 * u(rng), 0.05 + 0.5 * u(rng)};
@@ -162,8 +163,10 @@ int main(int argc, char** argv) {
     const fs::path shared =
         (fs::path(S2SIM_SOURCE_DIR) / ".." / "shared" / "simtwo-scenes").lexically_normal();
     const double duration = argc > 1 ? std::atof(argv[1]) : 1.0;
-    rays_per_second(100, 20);
-    rays_per_second(1000, 100);
+    // A short duration (the smoke test) shortens the ray counts too.
+    const int ticks = std::clamp(static_cast<int>(200 * duration), 2, 200);
+    rays_per_second(100, 20, ticks);
+    rays_per_second(1000, 100, ticks);
     const fs::path base = shared / "base";
     if (!fs::exists(base / "scene.xml")) {
       std::printf("no %s: ranger cost not measured\n", base.string().c_str());
