@@ -50,6 +50,8 @@ RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(pose
     compute_aabb(e);
   }
   stamp_.assign(statics_.size(), 0);
+  for (const auto& e : statics_)
+    static_box_.insert(static_box_.end(), {e.lo.x, e.hi.x, e.lo.y, e.hi.y, e.lo.z, e.hi.z});
   if (!statics_.empty()) {
     double x0 = kInf, y0 = kInf, x1 = -kInf, y1 = -kInf;
     for (const auto& e : statics_) {
@@ -206,6 +208,10 @@ void RayCaster::test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& 
   if (d.z < 0 && o.z >= 0) consider(-o.z / d.z, {0, 0, 1});
   if (walls_) {
     const double w = wall_distance_;
+    // A ray that cannot reach x, y = ±w skips the four tests.
+    const double reach_x = std::abs(o.x) + std::abs(d.x) * t_max;
+    const double reach_y = std::abs(o.y) + std::abs(d.y) * t_max;
+    if (reach_x < w && reach_y < w) return;
     if (d.x > 0 && o.x <= w) consider((w - o.x) / d.x, {-1, 0, 0});
     if (d.x < 0 && o.x >= -w) consider((-w - o.x) / d.x, {1, 0, 0});
     if (d.y > 0 && o.y <= w) consider((w - o.y) / d.y, {0, -1, 0});
@@ -228,9 +234,20 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
   const Vec3 inv = inverse_direction(d);
   double s0 = 0, s1 = 0;
   if (statics_.size() <= kSmallStatic) {
-    // A few obstacles: their boxes one by one beat walking a grid.
-    for (const auto& e : statics_)
+    // A few obstacles: their packed boxes one by one, against the segment's box first, beat
+    // walking a grid.
+    const Vec3 end = o + d * limit();
+    const double xa = std::min(o.x, end.x), xb = std::max(o.x, end.x);
+    const double ya = std::min(o.y, end.y), yb = std::max(o.y, end.y);
+    const double za = std::min(o.z, end.z), zb = std::max(o.z, end.z);
+    const double* boxes = static_box_.data();
+    const std::size_t n = statics_.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* b = boxes + 6 * i;
+      if (b[5] < za || b[4] > zb || b[1] < xa || b[0] > xb || b[3] < ya || b[2] > yb) continue;
+      const GeomEntry& e = statics_[i];
       if (ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) test_geom(e, o, d, limit(), best);
+    }
   } else {
     // Static obstacles: walk the grid cells the ray's XY projection crosses.
     double t0 = 0, t1 = limit();
@@ -295,13 +312,23 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
     const double xa = std::min(o.x, o.x + d.x * t_lim), xb = std::max(o.x, o.x + d.x * t_lim);
     const double ya = std::min(o.y, o.y + d.y * t_lim), yb = std::max(o.y, o.y + d.y * t_lim);
     const double za = std::min(o.z, o.z + d.z * t_lim), zb = std::max(o.z, o.z + d.z * t_lim);
-    auto first = std::lower_bound(order_lo_x_.begin(), order_lo_x_.end(), xa - max_width_x_);
-    for (auto i = static_cast<std::size_t>(first - order_lo_x_.begin()); i < order_.size(); ++i) {
-      if (order_lo_x_[i] > xb) break;
+    // Locals, not members: test_geom() writes memory, which would make the compiler reload
+    // every member pointer on every iteration.
+    const double* lo_x = order_lo_x_.data();
+    const double* boxes = order_box_.data();
+    const std::int32_t* order = order_.data();
+    const std::size_t n = order_.size();
+    // A binary search pays off only past a few dozen geoms.
+    std::size_t i =
+        n <= 32
+            ? 0
+            : static_cast<std::size_t>(std::lower_bound(lo_x, lo_x + n, xa - max_width_x_) - lo_x);
+    for (; i < n && lo_x[i] <= xb; ++i) {
       // The segment's bounding box against the packed boxes first, then the slab test.
-      const double* box = &order_box_[5 * i];
-      if (box[0] < xa || box[1] > yb || box[2] < ya || box[3] > zb || box[4] < za) continue;
-      const GeomEntry& e = moving_[static_cast<std::size_t>(order_[i])];
+      const double* box = boxes + 5 * i;
+      // z first: most sensors look across the floor, where heights sort geoms out best.
+      if (box[3] > zb || box[4] < za || box[0] < xa || box[1] > yb || box[2] < ya) continue;
+      const GeomEntry& e = moving_[static_cast<std::size_t>(order[i])];
       if (ignore_body > 0 && e.body == ignore_body) continue;
       if (!ray_aabb(o, inv, e.lo, e.hi, limit(), s0, s1)) continue;
       test_geom(e, o, d, limit(), best);

@@ -75,6 +75,8 @@ class RayCaster {
   double wall_distance_ = 12;
 
   std::vector<GeomEntry> statics_;
+  std::vector<double>
+      static_box_;  ///< their world boxes packed: lo.x, hi.x, lo.y, hi.y, lo.z, hi.z
   mutable std::vector<GeomEntry> moving_;
   // Static grid (XY), CSR.
   double grid_x0_ = 0, grid_y0_ = 0, cell_ = 1;
