@@ -13,7 +13,16 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kPad = 1e-9;  // AABB padding against round-off on cell and box edges
 constexpr int kMaxCellsPerAxis = 256;
-constexpr std::size_t kSmallStatic = 16;  // up to this many obstacles: no grid walk
+constexpr std::size_t kSmallStatic = 16;   // up to this many obstacles: no grid walk
+constexpr std::size_t kFanMaxGeoms = 256;  // fan culling up to this many geoms
+
+/// A monotonic stand-in for atan2(y, x), in [0, 4): 1 per quarter turn, no trigonometry.
+double pseudo_angle(double x, double y) {
+  const double ax = std::abs(x), ay = std::abs(y);
+  const double r = ay / (ax + ay);  // 0 along x, 1 along y
+  if (x >= 0) return y >= 0 ? r : (r == 0 ? 0.0 : 4 - r);
+  return y >= 0 ? 2 - r : 2 + r;
+}
 
 Mat3 abs_matrix(const Mat3& r) {
   Mat3 a;
@@ -93,6 +102,14 @@ RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(pose
           cell_items_[static_cast<std::size_t>(fill[static_cast<std::size_t>(iy * nx_ + ix)]++)] =
               static_cast<std::int32_t>(i);
     }
+  }
+  const std::size_t total = statics_.size() + moving_.size();
+  fan_enabled_ = statics_.size() <= kSmallStatic && total > 0 && total <= kFanMaxGeoms;
+  if (fan_enabled_) {
+    fan_start_.assign(kFanSectors + 1, 0);
+    fan_items_.assign(kFanSectors * total, 0);
+    fan_first_.assign(total, 0);
+    fan_last_.assign(total, 0);
   }
   order_.resize(moving_.size());
   for (std::size_t i = 0; i < order_.size(); ++i)
@@ -232,6 +249,20 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
   auto limit = [&] { return best.hit ? best.distance_m : max_distance; };
 
   const Vec3 inv = inverse_direction(d);
+  if (fan_enabled_ && (d.x != 0 || d.y != 0)) {
+    if (!(fan_valid_ && o == fan_origin_)) {
+      if (has_last_origin_ && o == last_origin_)
+        build_fan(o);  // the second ray from this origin in this tick
+      else {
+        last_origin_ = o;
+        has_last_origin_ = true;
+      }
+    }
+    if (fan_valid_ && o == fan_origin_) {
+      cast_fan(o, d, inv, max_distance, ignore_body, best);
+      return best;
+    }
+  }
   double s0 = 0, s1 = 0;
   if (statics_.size() <= kSmallStatic) {
     // A few obstacles: their packed boxes one by one, against the segment's box first, beat
@@ -335,6 +366,88 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
     }
   }
   return best;
+}
+
+void RayCaster::build_fan(const Vec3& o) const {
+  if (moving_dirty_) update_moving();
+  const std::size_t n_static = statics_.size(), total = n_static + moving_.size();
+  constexpr double kEps = 1e-9;
+  std::fill(fan_start_.begin(), fan_start_.end(), 0);
+  auto sector = [](double a) {
+    a = a < 0 ? a + 4 : (a >= 4 ? a - 4 : a);
+    return std::min(kFanSectors - 1, static_cast<int>(a * (kFanSectors / 4.0)));
+  };
+  for (std::size_t g = 0; g < total; ++g) {
+    const GeomEntry& e = g < n_static ? statics_[g] : moving_[g - n_static];
+    int first = 0, last = kFanSectors - 1;  // the whole circle unless narrowed below
+    const double x0 = e.lo.x - o.x, x1 = e.hi.x - o.x, y0 = e.lo.y - o.y, y1 = e.hi.y - o.y;
+    const bool around = x0 <= kEps && x1 >= -kEps && y0 <= kEps && y1 >= -kEps;
+    if (!around) {
+      // The box's footprint seen from outside spans less than half a turn: the corners'
+      // pseudo-angles relative to the first one, each within (-2, 2], bound the interval.
+      const double ref = pseudo_angle(x0, y0);
+      double lo = 0, hi = 0;
+      const double cx[3] = {x1, x0, x1}, cy[3] = {y0, y1, y1};
+      for (int k = 0; k < 3; ++k) {
+        double delta = pseudo_angle(cx[k], cy[k]) - ref;
+        if (delta > 2) delta -= 4;
+        if (delta <= -2) delta += 4;
+        lo = std::min(lo, delta);
+        hi = std::max(hi, delta);
+      }
+      if (hi - lo < 1.9) {  // else (nearly half a turn) keep the whole circle
+        first = sector(ref + lo - kEps);
+        last = sector(ref + hi + kEps);
+      }
+    }
+    fan_first_[g] = first;
+    fan_last_[g] = last;
+    for (int k = first;; k = (k + 1) % kFanSectors) {
+      ++fan_start_[static_cast<std::size_t>(k) + 1];
+      if (k == last) break;
+    }
+  }
+  for (int k = 0; k < kFanSectors; ++k)
+    fan_start_[static_cast<std::size_t>(k) + 1] += fan_start_[static_cast<std::size_t>(k)];
+  // Fill, using the start offsets as cursors, then shift them back.
+  for (std::size_t g = 0; g < total; ++g)
+    for (int k = fan_first_[g];; k = (k + 1) % kFanSectors) {
+      fan_items_[static_cast<std::size_t>(fan_start_[static_cast<std::size_t>(k)]++)] =
+          static_cast<std::int32_t>(g);
+      if (k == fan_last_[g]) break;
+    }
+  for (int k = kFanSectors; k > 0; --k)
+    fan_start_[static_cast<std::size_t>(k)] = fan_start_[static_cast<std::size_t>(k) - 1];
+  fan_start_[0] = 0;
+  fan_origin_ = o;
+  fan_valid_ = true;
+  ++fan_builds_;
+}
+
+void RayCaster::cast_fan(const Vec3& o, const Vec3& d, const Vec3& inv, double max_distance,
+                         std::int32_t ignore_body, RayHit& best) const {
+  const int k =
+      std::min(kFanSectors - 1, static_cast<int>(pseudo_angle(d.x, d.y) * (kFanSectors / 4.0)));
+  const std::size_t n_static = statics_.size();
+  const std::int32_t* items = fan_items_.data();
+  const std::int32_t a = fan_start_[static_cast<std::size_t>(k)];
+  const std::int32_t b = fan_start_[static_cast<std::size_t>(k) + 1];
+  double s0 = 0, s1 = 0;
+  // The segment's bounding box (z first) before the slab test, as in the sweep.
+  const Vec3 end = o + d * (best.hit ? best.distance_m : max_distance);
+  const double xa = std::min(o.x, end.x), xb = std::max(o.x, end.x);
+  const double ya = std::min(o.y, end.y), yb = std::max(o.y, end.y);
+  const double za = std::min(o.z, end.z), zb = std::max(o.z, end.z);
+  for (std::int32_t i = a; i < b; ++i) {
+    const auto g = static_cast<std::size_t>(items[i]);
+    const GeomEntry& e = g < n_static ? statics_[g] : moving_[g - n_static];
+    if (e.lo.z > zb || e.hi.z < za || e.lo.x > xb || e.hi.x < xa || e.lo.y > yb || e.hi.y < ya)
+      continue;
+    if (g >= n_static && ignore_body > 0 && e.body == ignore_body) continue;
+    const double t_lim = best.hit ? best.distance_m : max_distance;
+    if (!ray_aabb(o, inv, e.lo, e.hi, t_lim, s0, s1)) continue;
+    test_geom(e, o, d, t_lim, best);
+  }
 }
 
 RayHit RayCaster::cast_brute_force(const Vec3& origin, const Vec3& direction, double max_distance,

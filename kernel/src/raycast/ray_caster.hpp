@@ -27,7 +27,11 @@ class RayCaster {
   RayCaster(const scene::Scene& scene, const Pose* poses);
 
   /// The body poses changed: the moving geoms' world boxes are recomputed on the next cast.
-  void invalidate() { moving_dirty_ = true; }
+  void invalidate() {
+    moving_dirty_ = true;
+    fan_valid_ = false;
+    has_last_origin_ = false;
+  }
 
   /// The first entry into a collision surface along `origin + s·direction` (direction need
   /// not be unit; it is normalised), s in [0, max_distance] (a surface at max_distance, to
@@ -46,6 +50,8 @@ class RayCaster {
 
   std::size_t static_geom_count() const { return statics_.size(); }
   std::size_t moving_geom_count() const { return moving_.size(); }
+  /// How many times rays sharing an origin built the fan culling (tests, benchmarks).
+  std::size_t fan_builds() const { return fan_builds_; }
 
  private:
   struct GeomEntry {
@@ -69,6 +75,11 @@ class RayCaster {
                         RayHit& best);
   /// Ground and walls.
   void test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& best) const;
+  /// Fan culling: sorts every geom into the azimuth sectors its box covers as seen from `o`.
+  void build_fan(const Vec3& o) const;
+  /// The cast through the fan of the current origin (after the planes).
+  void cast_fan(const Vec3& o, const Vec3& d, const Vec3& inv, double max_distance,
+                std::int32_t ignore_body, RayHit& best) const;
 
   const Pose* poses_;
   bool walls_ = true;
@@ -92,6 +103,18 @@ class RayCaster {
   mutable std::vector<double> order_box_;
   mutable double max_width_x_ = 0;
   mutable bool moving_dirty_ = true;
+  // Fan culling, for rays that share an origin (a ranger's, a sonar's): from the second ray
+  // from one origin in a tick, the geoms are bucketed by the azimuth sectors (seen from that
+  // origin) their boxes cover, and a ray visits only its sector's. Small scenes only (the
+  // static grid serves big ones); storage reserved at load.
+  static constexpr int kFanSectors = 64;
+  bool fan_enabled_ = false;
+  mutable bool fan_valid_ = false, has_last_origin_ = false;
+  mutable Vec3 fan_origin_, last_origin_;
+  mutable std::size_t fan_builds_ = 0;
+  mutable std::vector<std::int32_t> fan_start_;  ///< kFanSectors + 1 offsets into fan_items_
+  mutable std::vector<std::int32_t> fan_items_;  ///< geom ids: statics, then moving + S
+  mutable std::vector<std::int32_t> fan_first_, fan_last_;  ///< per geom, its sector range
 };
 
 }  // namespace s2sim::raycast

@@ -262,5 +262,52 @@ TEST(RayCaster, BroadPhaseAgreesWithBruteForceOnAClutteredScene) {
   EXPECT_GT(body_hits, 300);
 }
 
+TEST(RayCaster, FanCullingAgreesWithBruteForceForRaysSharingAnOrigin) {
+  // Few obstacles (fan culling on): fans of rays from one origin, as a ranger casts them,
+  // from origins in the open and inside boxes, with vertical rays mixed in.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  scene::Scene sc;
+  for (int i = 0; i < 12; ++i)
+    sc.obstacles.push_back(
+        box_geom({0.2 + 0.5 * (u(rng) + 1), 0.2 + 0.5 * (u(rng) + 1), 0.5},
+                 {{4 * u(rng), 4 * u(rng), 0.25}, rot_axis({0, 0, 1}, 3 * u(rng))}));
+  std::vector<Pose> poses(1);
+  for (int b = 0; b < 30; ++b) {
+    scene::Body body;
+    body.geoms.push_back(b % 2 ? sphere_geom(0.1 + 0.2 * (u(rng) + 1), {})
+                               : cylinder_geom(0.1 + 0.1 * (u(rng) + 1), 0.4, {}));
+    sc.bodies.push_back(body);
+    poses.push_back({{4 * u(rng), 4 * u(rng), 0.3 + 0.2 * u(rng)}, rot_axis({1, 0, 0}, u(rng))});
+  }
+  RayCaster rc(sc, poses.data());
+  int hits = 0;
+  for (int fan = 0; fan < 300; ++fan) {
+    if (fan % 10 == 0) {  // a new tick: bodies move
+      for (std::size_t b = 1; b < poses.size(); ++b)
+        poses[b].position += Vec3{0.2 * u(rng), 0.2 * u(rng), 0};
+      rc.invalidate();
+    }
+    // Some fans start inside a body or right at a box's corner region.
+    Vec3 o{4 * u(rng), 4 * u(rng), 0.3 + 0.2 * u(rng)};
+    if (fan % 7 == 0) o = poses[1 + static_cast<std::size_t>(fan) % 30].position;
+    const int ignore = fan % 3 == 0 ? 1 + fan % 30 : -1;
+    for (int i = 0; i < 120; ++i) {
+      const double phi = 2 * 3.141592653589793 * i / 120 + 0.01 * u(rng);
+      Vec3 d{std::cos(phi), std::sin(phi), 0.3 * u(rng)};
+      if (i % 17 == 0) d = {0, 0, -1};
+      const RayHit a = rc.cast(o, d, 6, ignore);
+      const RayHit b = rc.cast_brute_force(o, d, 6, ignore);
+      ASSERT_EQ(a.hit, b.hit) << fan << " " << i;
+      if (!a.hit) continue;
+      ++hits;
+      ASSERT_NEAR(a.distance_m, b.distance_m, 1e-12) << fan << " " << i;
+      ASSERT_EQ(a.body.index, b.body.index) << fan << " " << i;
+    }
+  }
+  EXPECT_GT(hits, 20000);
+  EXPECT_EQ(rc.fan_builds(), 300u);  // one per fan: the culling was used
+}
+
 }  // namespace
 }  // namespace s2sim::raycast
