@@ -107,7 +107,7 @@ class RayCaster {
   // from one origin in a tick, the geoms are bucketed by the azimuth sectors (seen from that
   // origin) their boxes cover, and a ray visits only its sector's. Small scenes only (the
   // static grid serves big ones); storage reserved at load.
-  static constexpr int kFanSectors = 64;
+  static constexpr int kFanSectors = 32;
   bool fan_enabled_ = false;
   mutable bool fan_valid_ = false, has_last_origin_ = false;
   mutable Vec3 fan_origin_, last_origin_;
