@@ -10,6 +10,8 @@
 /// - moving geoms get world AABBs recomputed lazily on the first cast after `invalidate()`
 ///   (once per tick), kept sorted by their lower x (insertion sort: nearly sorted from the
 ///   previous tick); a cast scans only the geoms whose x range can meet the ray's.
+/// - in small scenes, rays sharing an origin (a ranger's fan) use a per-tick, per-origin
+///   bucketing of every geom by the azimuth sectors its box covers (fan culling).
 /// The exact tests are the analytic ones of primitives.hpp in each geom's frame.
 
 #include <s2sim/component.hpp>
