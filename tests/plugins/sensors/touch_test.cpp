@@ -1,5 +1,5 @@
-// The touch sensor against a hand-made contact list (the contact engine is another issue):
-// a fake ConfigureContext and WorldView drive the component directly.
+// The touch sensor against a hand-made contact list (a fake ConfigureContext and WorldView
+// drive the component directly), then on a box resting on the floor (the contact layer).
 #include "kinds.hpp"
 
 #include <gtest/gtest.h>
@@ -134,6 +134,30 @@ TEST(Touch, MustBeAttachedToABody) {
   cfg.spec_.body = {0};
   Touch touch;
   EXPECT_THROW(touch.configure(cfg), Error);
+}
+
+}  // namespace
+}  // namespace s2sim::sensors
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include <filesystem>
+
+namespace s2sim::sensors {
+namespace {
+
+// With the contact layer: a box at rest on the floor presses with its weight on the sensor
+// under it; the one on top feels nothing.
+TEST(Touch, ABoxOnTheFloorFeelsItsWeightUnderneathAndNothingOnTop) {
+  SimulationOptions o;
+  o.plugin_path = {std::filesystem::path(S2SIM_PLUGIN_DIR)};
+  auto sim = Simulation::load(
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures/touch_floor", o);
+  sim->run_until(1.0);
+  EXPECT_EQ(sim->signal("robots/box/sensors/under/value"), 1.0);
+  EXPECT_NEAR(sim->signal("robots/box/sensors/under/force"), 2 * 9.81, 0.01 * 2 * 9.81);
+  EXPECT_EQ(sim->signal("robots/box/sensors/top/value"), 0.0);
+  EXPECT_EQ(sim->signal("robots/box/sensors/top/force"), 0.0);
 }
 
 }  // namespace
