@@ -34,6 +34,8 @@ Options:
   --duration S   simulated seconds timed per repeat (default 10)
   --warmup S     simulated seconds stepped before timing (default 0.5)
   --repeats N    timed repeats; the best is reported (default 3)
+  --set I=V      hold input I at V (e.g. a motor voltage, to time a robot that drives);
+                 repeatable; every scene must have the input
   --json FILE    also write the results as JSON
   --help
 )";
@@ -44,6 +46,7 @@ struct Options {
   double warmup_s = 0.5;
   int repeats = 3;
   std::string json_file;
+  std::vector<std::pair<std::string, double>> inputs;  ///< --set
 };
 
 struct Result {
@@ -101,6 +104,13 @@ Options parse_options(int argc, char** argv) {
       o.repeats = static_cast<int>(n);
     } else if (a == "--json") {
       o.json_file = value();
+    } else if (a == "--set") {
+      const std::string v = value();
+      const auto eq = v.find('=');
+      if (eq == std::string::npos || eq == 0)
+        usage_error("--set needs INPUT=VALUE, got '" + v + "'");
+      o.inputs.emplace_back(v.substr(0, eq),
+                            parse_number("--set " + v.substr(0, eq), v.substr(eq + 1)));
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);
@@ -147,6 +157,8 @@ Result measure(const fs::path& path, const Options& o) {
   for (int i = 0; i < o.repeats; ++i) {
     // reset() repeats a run bit for bit, so every repeat times the same work.
     if (i > 0) sim->reset();
+    for (const auto& [name, value] : o.inputs)  // reset() restores the inputs too
+      sim->set_input(name, value);
     sim->step(warmup);
     const auto start = Clock::now();
     sim->step(r.steps);

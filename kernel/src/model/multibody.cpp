@@ -93,7 +93,11 @@ struct Multibody::Impl {
   std::vector<int> axis_u;                 // per tree axis, its index in u (-1: loop axis)
   std::vector<double> axis_mobility;       // per axis, (M^-1)_aa at its last solve (0: none)
   std::vector<char> sliding;               // per axis: Coulomb friction as a plain force
-  bool bodies_fresh = false;               // substep_poses/twists hold the current state
+  // M^-1 columns of the braked axes are reused while the configuration stays put (a robot at
+  // rest): M depends on q only.
+  std::vector<int> columns_for;   // the braked axes the columns belong to
+  std::vector<double> columns_q;  // the q they were computed at
+  bool bodies_fresh = false;      // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   SubstepForces* substep_forces = nullptr;
   std::vector<Pose> substep_poses;
@@ -601,6 +605,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
   m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
   m.unit_force.resize(m.initial_state.getNU());
   m.braked.reserve(m.axes.size());
+  m.columns_for.reserve(m.axes.size());
+  m.columns_q.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
   m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
   m.delassus.assign(m.axes.size() * m.axes.size(), 0.0);
   m.impulse.assign(m.axes.size(), 0.0);
@@ -683,6 +689,8 @@ void Multibody::reset() {
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
   impl_->bodies_fresh = false;
+  impl_->columns_for.clear();
+  std::fill(impl_->axis_mobility.begin(), impl_->axis_mobility.end(), 0.0);
   impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
 }
@@ -718,6 +726,18 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
   }
 }
 
+/// Whether the M^-1 columns computed last are those of the axes braked now, at a configuration
+/// within 1e-7 (rad or m) of the current one in every coordinate.
+bool columns_still_valid(const Multibody::Impl& m, const SimTK::State& s) {
+  if (m.columns_for != m.braked) return false;
+  const SimTK::Vector& q = s.getQ();
+  const double* now = q.hasContiguousData() ? q.getContiguousScalarData() : nullptr;
+  if (!now) return false;
+  for (int i = 0; i < q.size(); ++i)
+    if (std::abs(now[i] - m.columns_q[static_cast<std::size_t>(i)]) > 1e-7) return false;
+  return true;
+}
+
 /// Which braked axes slide so fast that friction cannot stop them within a step (ten times
 /// the speed change the bound can make): they get Coulomb's law as a plain force and skip the
 /// impulse solve (and its M^-1 products). (M^-1)_aa is remembered from the last solve.
@@ -743,10 +763,16 @@ void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   if (m.braked.empty()) return;
   const std::size_t n = m.braked.size();
   auto u_index = [&](int a) { return m.axis_u[a]; };
-  for (std::size_t k = 0; k < n; ++k) {
-    m.unit_force = 0.0;
-    m.unit_force[u_index(m.braked[k])] = 1.0;
-    m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[k]);
+  if (!columns_still_valid(m, s)) {
+    for (std::size_t k = 0; k < n; ++k) {
+      m.unit_force = 0.0;
+      m.unit_force[u_index(m.braked[k])] = 1.0;
+      m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[k]);
+    }
+    m.columns_for = m.braked;
+    const SimTK::Vector& q = s.getQ();
+    for (int i = 0; i < q.size(); ++i)
+      m.columns_q[static_cast<std::size_t>(i)] = q[i];
   }
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < n; ++k)
@@ -898,7 +924,18 @@ std::vector<double> Multibody::save() const {
   for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
     for (int i = 0; i < v->size(); ++i)
       out.push_back((*v)[i]);
-  impl_->loose.save(out);
+  const Impl& m = *impl_;
+  m.loose.save(out);
+  // The brakes' memory decides what the next steps compute: part of the state.
+  out.insert(out.end(), m.axis_mobility.begin(), m.axis_mobility.end());
+  out.push_back(static_cast<double>(m.columns_for.size()));
+  for (std::size_t c = 0; c < m.columns_for.size(); ++c) {
+    out.push_back(m.columns_for[c]);
+    const SimTK::Vector& column = m.minv_column[c];
+    for (int i = 0; i < column.size(); ++i)
+      out.push_back(column[i]);
+  }
+  out.insert(out.end(), m.columns_q.begin(), m.columns_q.end());
   return out;
 }
 
@@ -911,7 +948,18 @@ void Multibody::restore(const std::vector<double>& saved) {
   for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
     for (int i = 0; i < v->size(); ++i)
       (*v)[i] = saved.at(k++);
-  m.loose.restore(saved, k);
+  k = m.loose.restore(saved, k);
+  for (double& w : m.axis_mobility)
+    w = saved.at(k++);
+  m.columns_for.resize(static_cast<std::size_t>(saved.at(k++)));
+  for (std::size_t c = 0; c < m.columns_for.size(); ++c) {
+    m.columns_for[c] = static_cast<int>(saved.at(k++));
+    SimTK::Vector& column = m.minv_column[c];
+    for (int i = 0; i < column.size(); ++i)
+      column[i] = saved.at(k++);
+  }
+  for (double& q : m.columns_q)
+    q = saved.at(k++);
   m.bodies_fresh = false;
   s.setTime(time_s());
   m.current = s;
