@@ -95,6 +95,8 @@ class App {
     if (!options.chart_signals.empty()) {
       for (std::size_t i : apps::select_signals(*state_.sim, options.chart_signals, "--chart"))
         state_.chart.add_signal(i);
+      state_.chart.clear_samples();  // the t = 0 sample again, now with these signals
+      state_.chart.record(*state_.sim);
       state_.windows.chart = state_.windows.chart || !options.hide_ui;
     }
     frame_camera_on_scene();

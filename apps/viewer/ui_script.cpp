@@ -47,8 +47,11 @@ void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
       wait_frames_ = std::stoi(rest.empty() ? "1" : rest) - 1;
       return;
     } else if (command == "click") {
+      // The click happens while this frame's UI is drawn and takes effect in the next frame's
+      // stepping: wait for that, so a following `print` sees its result.
       state.scripted_clicks.push_back(rest);
-      return;  // the click happens while this frame's UI is drawn
+      wait_frames_ = 1;
+      return;
     } else if (command == "run-until") {
       state.run.pause_at_s = std::stod(rest);
       state.run.playing = true;

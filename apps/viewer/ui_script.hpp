@@ -5,6 +5,7 @@
 ///
 ///   wait N               let N frames pass
 ///   click LABEL          press the button LABEL (e.g. Pause, Step, Reset, Apply, Export CSV)
+///                        and let the next frame act on it
 ///   run-until T          play until the simulated time reaches T seconds, then pause
 ///   speed X              times real time; 0 = as fast as possible
 ///   print time           print "time <t>" on stdout

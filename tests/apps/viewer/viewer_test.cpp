@@ -1,0 +1,320 @@
+// s2sim-view as a user (or the docs) drive it: the real binary under xvfb-run renders
+// screenshots, runs scripted UI commands (the same buttons a mouse presses) and exports its
+// chart; the tests check the pixels, the simulated time, the CSV against s2sim-run's and the
+// scene editor's error handling. Each run is a few seconds of Mesa llvmpipe.
+
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kViewer = fs::path(S2SIM_BIN_DIR) / "s2sim-view";
+const fs::path kRunner = fs::path(S2SIM_BIN_DIR) / "s2sim-run";
+const fs::path kSource = S2SIM_SOURCE_DIR;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+Result run(const std::string& command, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string full = command + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int raw = std::system(full.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+bool have_xvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+/// The scene the issue names: scenes/nxt once it exists, the default scene until then.
+fs::path robot_scene() {
+  return fs::exists(kSource / "scenes/nxt/scene.xml") ? kSource / "scenes/nxt"
+                                                      : kSource / "scenes/default";
+}
+
+class Viewer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is missing: install xvfb to run the viewer tests";
+    ASSERT_TRUE(fs::exists(kViewer)) << kViewer << " not built";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info->name();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::path(::testing::TempDir()) /
+           ("s2sim_viewer_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// s2sim-view under a virtual display of 1280x720.
+  Result view(const std::string& scene, const std::vector<std::string>& args) {
+    std::string command =
+        "xvfb-run -a -s '-screen 0 1280x720x24' " + quote(kViewer.string()) + " " + quote(scene);
+    for (const auto& a : args) {
+      command += ' ';  // two appends: GCC 12 warns (-Wrestrict) on " " + std::string
+      command += quote(a);
+    }
+    return run(command, dir_);
+  }
+
+  fs::path dir_;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const {
+    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+  }
+};
+
+Image read_png(const fs::path& file) {
+  Image image;
+  int channels = 0;
+  unsigned char* data = stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
+  if (data == nullptr) return image;
+  image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
+  stbi_image_free(data);
+  return image;
+}
+
+double luminance(const unsigned char* p) {
+  return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+}
+
+/// Whether some pixel within `radius` of (x, y) has the hue of `colour`: lighting scales a
+/// colour, so the test compares chromaticities (each channel over their sum).
+bool colour_near(const Image& image, double x, double y, const double colour[3], int radius) {
+  const double sum = colour[0] + colour[1] + colour[2];
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int px = static_cast<int>(std::lround(x)) + dx;
+      const int py = static_cast<int>(std::lround(y)) + dy;
+      if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
+      const unsigned char* p = image.at(px, py);
+      const double s = p[0] + p[1] + p[2] + 1e-9;
+      bool close = true;
+      for (int c = 0; c < 3; ++c)
+        close = close && std::abs(p[c] / s - colour[c] / sum) < 0.06;
+      if (close && s > 30) return true;
+    }
+  return false;
+}
+
+struct Projection {
+  double x = 0, y = 0;
+  double colour[3] = {0, 0, 0};
+};
+
+TEST_F(Viewer, ScreenshotShowsTheFloorTheRobotsInTheirColoursAndTheirShadows) {
+  const fs::path png = dir_ / "world.png";
+  const Result r = view(robot_scene().string(), {"--screenshot", png.string(), "--frames", "3",
+                                                 "--hide-ui", "--print-projections"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image image = read_png(png);
+  ASSERT_EQ(image.width, 1280) << "no PNG written";
+  ASSERT_EQ(image.height, 720);
+
+  // Not uniform: the luminance varies widely over the image.
+  double lo = 255, hi = 0;
+  for (int y = 0; y < image.height; y += 4)
+    for (int x = 0; x < image.width; x += 4) {
+      lo = std::min(lo, luminance(image.at(x, y)));
+      hi = std::max(hi, luminance(image.at(x, y)));
+    }
+  EXPECT_GT(hi - lo, 100);
+
+  // The floor: the lower middle of the view is light grey (with darker grid lines).
+  int grey = 0;
+  for (int x = 0; x < image.width; x += 8) {
+    const unsigned char* p = image.at(x, image.height - 40);
+    if (std::abs(p[0] - p[1]) < 12 && std::abs(p[1] - p[2]) < 12 && p[0] > 120) ++grey;
+  }
+  EXPECT_GT(grey, image.width / 8 / 2) << "the floor is not visible at the bottom of the view";
+
+  // Each robot's main body carries its colour where it projects; its shadow darkens the floor.
+  std::map<std::string, Projection> robots, shadows;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    std::string what, id;
+    Projection p;
+    in >> what >> id >> p.x >> p.y;
+    if (what == "robot") {
+      in >> p.colour[0] >> p.colour[1] >> p.colour[2];
+      robots[id] = p;
+    } else if (what == "shadow") {
+      shadows[id] = p;
+    }
+  }
+  ASSERT_FALSE(robots.empty()) << r.out;
+  int coloured = 0, shadowed = 0, saturated = 0;
+  for (const auto& [id, p] : robots) {
+    const double max_c = std::max({p.colour[0], p.colour[1], p.colour[2]});
+    const double min_c = std::min({p.colour[0], p.colour[1], p.colour[2]});
+    if (max_c - min_c < 0.2) continue;  // a grey body's hue says nothing
+    ++saturated;
+    if (colour_near(image, p.x, p.y, p.colour, 3))
+      ++coloured;
+    else
+      ADD_FAILURE() << id << ": no pixel of colour " << p.colour[0] << " " << p.colour[1] << " "
+                    << p.colour[2] << " near (" << p.x << ", " << p.y << ")";
+    const Projection& s = shadows[id];
+    const int sx = static_cast<int>(s.x), sy = static_cast<int>(s.y);
+    if (sx < 20 || sy < 0 || sx >= image.width - 20 || sy >= image.height) continue;
+    // Darker than the floor a little to each side (which the small shadow does not reach).
+    double darkest = 255;
+    for (int d = -1; d <= 1; ++d)
+      darkest = std::min(darkest, luminance(image.at(sx + d, sy)));
+    const double floor =
+        std::max(luminance(image.at(sx - 18, sy)), luminance(image.at(sx + 18, sy)));
+    if (darkest < 0.8 * floor) ++shadowed;
+  }
+  EXPECT_GT(saturated, 0);
+  EXPECT_EQ(coloured, saturated);
+  EXPECT_GT(shadowed, 0) << "no robot's shadow found on the floor";
+}
+
+std::vector<double> printed_times(const std::string& out) {
+  std::vector<double> times;
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("time ", 0) == 0) times.push_back(std::stod(line.substr(5)));
+  return times;
+}
+
+TEST_F(Viewer, PauseStepAndResetButtonsDriveTheSimulatedTime) {
+  const Result r =
+      view((kSource / "scenes/default").string(),
+           {"--do", "wait 5",     "--do", "click Pause", "--do", "print time", "--do", "wait 3",
+            "--do", "print time", "--do", "click Step",  "--do", "print time", "--do", "click Step",
+            "--do", "print time", "--do", "click Reset", "--do", "print time", "--do", "click Play",
+            "--do", "wait 2",     "--do", "print time"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 6u) << r.out;
+  const double tick_s = 0.001;  // the default scene's physics step
+  EXPECT_GT(t[0], 0.05) << "the scene did not play before Pause";
+  EXPECT_DOUBLE_EQ(t[1], t[0]) << "time moved while paused";
+  EXPECT_NEAR(t[2], t[0] + tick_s, 1e-9) << "Step did not advance exactly one tick";
+  EXPECT_NEAR(t[3], t[0] + 2 * tick_s, 1e-9);
+  EXPECT_EQ(t[4], 0.0) << "Reset did not go back to t = 0";
+  EXPECT_GT(t[5], 0.0) << "Play did not restart the run";
+}
+
+TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
+  // Any signal list works the same way; motor speed and current join when the drive train
+  // publishes them.
+  const std::vector<std::string> signals = {"robots/*/axes/*/pos", "robots/*/axes/*/speed"};
+  const fs::path scene = robot_scene();
+  const fs::path runner_csv = dir_ / "runner.csv", chart_csv = dir_ / "chart.csv";
+  std::string command = quote(kRunner.string()) + " " + quote(scene.string()) +
+                        " --duration 1 --seed 7 --quiet --log " + quote(runner_csv.string()) +
+                        " --signals";
+  for (const auto& s : signals) {
+    command += ' ';
+    command += quote(s);
+  }
+  const Result runner = run(command, dir_);
+  ASSERT_EQ(runner.status, 0) << runner.err;
+
+  std::vector<std::string> args = {"--seed", "7", "--hide-ui", "--chart"};
+  args.insert(args.end(), signals.begin(), signals.end());
+  for (const char* c : {"speed 0", "run-until 1", "show chart"})
+    args.insert(args.end(), {"--do", c});
+  args.insert(args.end(), {"--do", "chart-csv " + chart_csv.string(), "--do", "click Export CSV",
+                           "--do", "print time"});
+  const Result viewer = view(scene.string(), args);
+  ASSERT_EQ(viewer.status, 0) << viewer.err;
+  EXPECT_EQ(printed_times(viewer.out), std::vector<double>{1.0});
+  const std::string expected = read_file(runner_csv), got = read_file(chart_csv);
+  ASSERT_FALSE(got.empty()) << "the chart wrote no CSV";
+  EXPECT_GT(std::count(expected.begin(), expected.end(), '\n'), 1000);
+  EXPECT_TRUE(expected == got) << "the chart's CSV differs from s2sim-run's (first 300 bytes)\n"
+                               << expected.substr(0, 300) << "\n---\n"
+                               << got.substr(0, 300);
+}
+
+TEST_F(Viewer, SyntaxErrorInTheSceneEditorIsReportedWithItsLineAndKeepsTheScene) {
+  // A copy: applying writes the scene's files.
+  const fs::path scene = dir_ / "scene";
+  fs::copy(kSource / "scenes/default", scene, fs::copy_options::recursive);
+  const std::string original = read_file(scene / "scene.xml");
+  const Result r = view(scene.string(), {"--do", "wait 3", "--do", "editor-open scene.xml", "--do",
+                                         "editor-insert 12 <oops a=>", "--do", "click Apply",
+                                         "--do", "print editor-error", "--do", "print time", "--do",
+                                         "wait 5", "--do", "print time"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  int error_line = 0;
+  std::string message;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("editor-error ", 0) == 0) {
+      std::istringstream in(line.substr(13));
+      in >> error_line;
+      std::getline(in, message);
+    }
+  EXPECT_EQ(error_line, 12) << r.out;
+  EXPECT_NE(message.find("scene.xml:12"), std::string::npos) << message;
+  // The running scene is kept (time goes on) and the file on disk is the one it came from.
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 2u) << r.out;
+  EXPECT_GT(t[1], t[0]);
+  EXPECT_EQ(read_file(scene / "scene.xml"), original);
+}
+
+TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
+  const Result missing = view((dir_ / "nowhere").string(), {"--frames", "1"});
+  EXPECT_EQ(missing.status, 2) << missing.err;
+  EXPECT_NE(missing.err.find("nowhere"), std::string::npos) << missing.err;
+  const Result option = view((kSource / "scenes/default").string(), {"--frobnicate"});
+  EXPECT_EQ(option.status, 4);
+  EXPECT_NE(option.err.find("--frobnicate"), std::string::npos) << option.err;
+  const Result signal =
+      view((kSource / "scenes/default").string(), {"--frames", "1", "--chart", "no/such"});
+  EXPECT_EQ(signal.status, 4);
+  EXPECT_NE(signal.err.find("no/such"), std::string::npos) << signal.err;
+}
+
+}  // namespace
