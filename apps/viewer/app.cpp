@@ -110,12 +110,14 @@ class App {
     const double fixed_frame_s = 1.0 / 60;
     int frames = 0;
     auto last = Clock::now();
-    const auto first_frame = last;
+    std::vector<double> frame_times_s;  // for --report-fps
+    if (o.report_fps) frame_times_s.reserve(o.frames > 0 ? o.frames : 100000);
     while (!glfwWindowShouldClose(window_) && !state_.quit) {
       glfwPollEvents();
       const auto now = Clock::now();
       const double wall_dt_s = std::chrono::duration<double>(now - last).count();
       last = now;
+      if (o.report_fps && frames > 0) frame_times_s.push_back(wall_dt_s);
       state_.frame_time_s = state_.frame_time_s * 0.9 + wall_dt_s * 0.1;
 
       if (state_.pending_simulation) install(std::move(state_.pending_simulation));
@@ -151,11 +153,7 @@ class App {
       if (last_frame) break;
       if (!o.no_frame_cap && !scripted) cap_frame_rate(now);
     }
-    if (o.report_fps) {
-      const double wall_s = std::chrono::duration<double>(Clock::now() - first_frame).count();
-      std::printf("frames %d in %.3f s: %.1f frames per second\n", frames, wall_s,
-                  wall_s > 0 ? frames / wall_s : 0.0);
-    }
+    if (o.report_fps) report_frame_rate(frame_times_s);
     return 0;
   }
 
@@ -199,7 +197,7 @@ class App {
     state_.camera.target_m = to_f(centre);
     const double extent = std::max(0.5, norm(hi - lo));
     state_.camera.distance_m = static_cast<float>(
-        std::clamp(extent * 0.5 / std::tan(state_.camera.fov_y_rad / 2) * 1.1, 1.0, 200.0));
+        std::clamp(extent * 0.35 / std::tan(state_.camera.fov_y_rad / 2), 1.0, 200.0));
   }
 
   void follow_robot() {
@@ -282,6 +280,26 @@ class App {
       project(centre - light * (centre.z / light.z), "shadow", r.id, nullptr);
     }
     std::fflush(stdout);
+  }
+
+  /// Frames per second in the steady state: the first 10 frames (shader compilation, first
+  /// uploads) are left out; the median and 95th percentile show the spread.
+  static void report_frame_rate(std::vector<double> times_s) {
+    const std::size_t skip = std::min<std::size_t>(10, times_s.size() / 2);
+    times_s.erase(times_s.begin(), times_s.begin() + static_cast<long>(skip));
+    if (times_s.empty()) {
+      std::printf("frames: too few to measure\n");
+      return;
+    }
+    double total_s = 0;
+    for (double t : times_s)
+      total_s += t;
+    std::sort(times_s.begin(), times_s.end());
+    std::printf(
+        "frames %zu in %.3f s: %.1f frames per second (median frame %.2f ms, 95th "
+        "percentile %.2f ms)\n",
+        times_s.size(), total_s, times_s.size() / total_s, times_s[times_s.size() / 2] * 1e3,
+        times_s[times_s.size() * 95 / 100] * 1e3);
   }
 
   /// Without vsync (Xvfb), sleep so the loop does not spin faster than 60 frames a second.

@@ -65,7 +65,7 @@ class Renderer {
 
   std::vector<GpuMesh> meshes_;
   std::map<std::filesystem::path, unsigned> textures_;
-  unsigned lit_program_ = 0;
+  unsigned lit_program_ = 0, floor_program_ = 0;
   int floor_mesh_ = -1;
   Vec3f light_direction_ = normalized({0.35f, 0.25f, 1.0f});
   std::vector<const DrawItem*> transparent_;  ///< reused every frame
