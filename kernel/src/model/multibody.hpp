@@ -60,6 +60,11 @@ class Multibody {
   std::vector<double> save() const;
   void restore(const std::vector<double>& saved);
 
+  /// Moves a body whose mobilizer is Free on the world (a thing, or the root body of a robot
+  /// with everything jointed to it) to `pose`, at rest. Returns false, changing nothing, for
+  /// any other body. The leapfrog restarts with a half kick, as after reset().
+  bool place_free_body(int body, const Pose& pose);
+
   struct Impl;  // Simbody's objects, defined in multibody.cpp
 
  private:
