@@ -23,6 +23,16 @@ bool set_window(WindowFlags& w, const std::string& name, bool open) {
   return true;
 }
 
+namespace {
+/// Simulation index of the body with this ID (robot bodies and things), -1 if none.
+int find_body(const ViewerState& state, const std::string& id) {
+  const auto& bodies = state.sim->scene().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].id == id) return static_cast<int>(b) + 1;
+  return -1;
+}
+}  // namespace
+
 void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
   if (running_) {
     if (state.run.playing) return;
@@ -66,10 +76,17 @@ void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
         std::printf("time %.9f\n", state.sim->time_s());
       else if (rest == "tick")
         std::printf("tick %lld\n", static_cast<long long>(state.sim->tick()));
+      else if (rest.rfind("body ", 0) == 0) {
+        const int b = find_body(state, rest.substr(5));
+        if (b < 0) throw bad("no body with that ID");
+        const Vec3& p = state.sim->body_pose(b).position;
+        std::printf("body %s %.9f %.9f %.9f\n", rest.substr(5).c_str(), p.x, p.y, p.z);
+      } else if (rest.rfind("signal ", 0) == 0)
+        std::printf("signal %s %.10g\n", rest.substr(7).c_str(), state.sim->signal(rest.substr(7)));
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
       else
-        throw bad("print time, tick or editor-error");
+        throw bad("print time, tick, body ID, signal NAME or editor-error");
       std::fflush(stdout);
     } else if (command == "chart-add") {
       for (std::size_t i : state.sim->match_signals(rest))
@@ -79,12 +96,23 @@ void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
     } else if (command == "show" || command == "hide") {
       if (!set_window(state.windows, rest, command == "show")) throw bad("unknown window");
     } else if (command == "select") {
-      state.selected_body = -1;
-      const auto& bodies = state.sim->scene().bodies;
-      for (std::size_t b = 0; b < bodies.size(); ++b)
-        if (bodies[b].id == rest) state.selected_body = static_cast<int>(b) + 1;
+      state.selected_body = find_body(state, rest);
       if (state.selected_body < 0) throw bad("no body with that ID");
       state.windows.body = true;
+    } else if (command == "move") {
+      std::istringstream args(rest);
+      std::string id;
+      Vec3 p;
+      if (!(args >> id >> p.x >> p.y >> p.z)) throw bad("move BODY X Y Z");
+      const int b = find_body(state, id);
+      if (b < 0) throw bad("no body with that ID");
+      move_body(state, b, p);
+    } else if (command == "sheet-set") {
+      std::istringstream args(rest);
+      std::string cell;
+      double value = 0;
+      if (!(args >> cell >> value)) throw bad("sheet-set CELL VALUE");
+      state.sim->set_input("sheet/" + cell, value);
     } else if (command == "editor-open") {
       if (state.editor.files.empty()) load_editor_files(state);
       bool found = false;

@@ -11,6 +11,10 @@
 ///   print time           print "time <t>" on stdout
 ///   print editor-error   print "editor-error <line> <message>" (line -1 when unknown)
 ///   print tick           print "tick <n>"
+///   print body ID        print "body <ID> <x> <y> <z>" (its position, m)
+///   print signal NAME    print "signal <NAME> <value>"
+///   move BODY X Y Z      move a thing (or robot root body) there at rest, as a ctrl-drag does
+///   sheet-set CELL VALUE set the sheet cell (input sheet/CELL), as typing in the Sheet does
 ///   chart-add PATTERN    chart the signals matching PATTERN
 ///   chart-csv FILE       set the chart's CSV file name (then `click Export CSV`)
 ///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet,

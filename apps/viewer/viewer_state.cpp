@@ -15,6 +15,18 @@ bool button(ViewerState& state, const char* label) {
   return true;
 }
 
+bool move_body(ViewerState& state, int body, const Vec3& position_m) {
+  Pose pose = state.sim->body_pose(body);
+  pose.position = position_m;
+  try {
+    state.sim->place_body(body, pose);
+    return true;
+  } catch (const std::exception& e) {
+    state.log_message(e.what(), true);
+    return false;
+  }
+}
+
 std::unique_ptr<Simulation> load_simulation(const Options& o) {
   SimulationOptions so;
   so.seed = o.seed;

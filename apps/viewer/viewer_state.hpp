@@ -93,6 +93,11 @@ struct ViewerState {
 /// path a mouse click does.
 bool button(ViewerState& state, const char* label);
 
+/// Moves a body (a thing or a robot's root body) to `position_m` at rest, keeping its
+/// orientation (Simulation::place_body). A body that cannot move is reported in the log;
+/// returns false then.
+bool move_body(ViewerState& state, int body, const Vec3& position_m);
+
 /// Loads options.scene with the options' seed, step and constants; throws s2sim::Error.
 std::unique_ptr<Simulation> load_simulation(const Options& options);
 

@@ -304,6 +304,56 @@ TEST_F(Viewer, SyntaxErrorInTheSceneEditorIsReportedWithItsLineAndKeepsTheScene)
   EXPECT_EQ(read_file(scene / "scene.xml"), original);
 }
 
+/// The kernel's component fixture (a thing `box`, test plugins) with extra `<plugin>` lines.
+fs::path fixture_with_plugins(const fs::path& dir, const std::string& plugins) {
+  const fs::path scene = dir / "fixture";
+  fs::copy(kSource / "tests/kernel/sim/fixtures/components", scene, fs::copy_options::recursive);
+  std::string text = read_file(scene / "scene.xml");
+  const auto end = text.rfind("</scene>");
+  text.insert(end, plugins);
+  std::ofstream(scene / "scene.xml", std::ios::binary) << text;
+  return scene;
+}
+
+const std::string kTestPlugins = (fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene").string();
+
+TEST_F(Viewer, MovingAThingPlacesItAtRestWhereItIsDropped) {
+  const fs::path scene = fixture_with_plugins(dir_, "");
+  const Result r = view(scene.string(), {"--plugin-path", kTestPlugins, "--do", "wait 3", "--do",
+                                         "move box -1 0.5 2", "--do", "print body box", "--do",
+                                         "move bob 0 0 1", "--do", "print body box"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("body box -1.000000000 0.500000000 2.000000000"), std::string::npos)
+      << r.out;
+  // A jointed body is refused with a message, not a crash; the script goes on.
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;
+}
+
+TEST_F(Viewer, SheetCellsAreInputsThatControllersReadAndWrite) {
+  // A controller writes A1; two components read B2 (a number) and C1 (a button). The cells
+  // are set the way the Sheet window sets them.
+  const fs::path scene = fixture_with_plugins(
+      dir_,
+      "  <plugin kind='test_reference_controller' id='writer' input='sheet/A1' value='2.5' "
+      "period_ms='40'/>\n"
+      "  <plugin kind='test_echo_sensor' id='number' input='sheet/B2'/>\n"
+      "  <plugin kind='test_echo_sensor' id='button' input='sheet/C1' unit='button'/>\n");
+  const Result r = view(
+      scene.string(),
+      {"--plugin-path", kTestPlugins, "--show-window", "sheet", "--do", "wait 3", "--do",
+       "sheet-set B2 4", "--do", "click C1", "--do", "wait 2", "--do", "print signal sheet/A1",
+       "--do", "print signal sensors/number/seen", "--do", "print signal sensors/button/seen"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The controller writes value x its update count: 2.5 at its first update, then 5, 7.5...
+  const auto a1 = r.out.find("signal sheet/A1 ");
+  ASSERT_NE(a1, std::string::npos) << r.out;
+  const double written = std::stod(r.out.substr(a1 + 16));
+  EXPECT_GT(written, 0);
+  EXPECT_DOUBLE_EQ(std::fmod(written, 2.5), 0.0) << written;
+  EXPECT_NE(r.out.find("signal sensors/number/seen 4\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("signal sensors/button/seen 1\n"), std::string::npos) << r.out;
+}
+
 TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
   const Result missing = view((dir_ / "nowhere").string(), {"--frames", "1"});
   EXPECT_EQ(missing.status, 2) << missing.err;
