@@ -134,8 +134,8 @@ class App {
       int width = 0, height = 0;
       glfwGetFramebufferSize(window_, &width, &height);
       drawables_.update(*state_.sim);
-      renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints), state_.camera, width,
-                     height, state_.render);
+      renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints, state_.selected_body),
+                     state_.camera, width, height, state_.render);
       draw_windows();
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -38,6 +38,7 @@ uniform sampler2D u_texture;
 uniform bool u_use_texture;
 uniform float u_texture_scale;
 uniform bool u_lit;
+uniform bool u_highlight;
 uniform vec3 u_light_direction;
 uniform vec3 u_eye;
 out vec4 frag_color;
@@ -55,6 +56,7 @@ void main() {
   float diffuse = max(dot(n, u_light_direction), 0.0);
   float specular = pow(max(dot(n, normalize(u_light_direction + view)), 0.0), 32.0) * 0.2;
   vec3 color = base.rgb * (0.35 + 0.65 * diffuse) + vec3(specular);
+  if (u_highlight) color = mix(color, vec3(1.0, 0.85, 0.2), 0.35);
   frag_color = vec4(color, base.a);
 }
 )";
@@ -276,6 +278,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, in
   const int use_texture_loc = location(lit_program_, "u_use_texture");
   const int texture_scale_loc = location(lit_program_, "u_texture_scale");
   const int lit_loc = location(lit_program_, "u_lit");
+  const int highlight_loc = location(lit_program_, "u_highlight");
   auto draw_item = [&](const DrawItem& item, const Mat4& model) {
     float normals[9];
     normal_matrix(model, normals);
@@ -285,6 +288,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, in
     glUniform1i(use_texture_loc, item.texture != 0 ? 1 : 0);
     glUniform1f(texture_scale_loc, item.texture_scale);
     glUniform1i(lit_loc, item.lit ? 1 : 0);
+    glUniform1i(highlight_loc, item.highlighted ? 1 : 0);
     if (item.texture != 0) glBindTexture(GL_TEXTURE_2D, item.texture);
     draw_mesh(meshes_[item.mesh]);
   };

@@ -22,8 +22,9 @@ struct DrawItem {
   unsigned texture = 0;  ///< from Renderer::texture, 0 = none
   float texture_scale = 1;
   bool casts_shadow = true;
-  bool lit = true;         ///< false for markers such as sensor beams
-  bool two_sided = false;  ///< mesh files and flat polygons: no back-face culling
+  bool lit = true;           ///< false for markers such as sensor beams
+  bool two_sided = false;    ///< mesh files and flat polygons: no back-face culling
+  bool highlighted = false;  ///< the selected body: tinted
 };
 
 struct RenderSettings {

@@ -203,12 +203,14 @@ void SceneDrawables::update(const Simulation& sim) {
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
 }
 
-const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints) {
+const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int selected_body) {
   items_.clear();
   for (const auto& d : drawables_) {
     if (d.kind == Drawable::Kind::beam && !beams) continue;
     if (d.kind == Drawable::Kind::joint && !joints) continue;
     items_.push_back(d.item);
+    items_.back().highlighted =
+        selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
   }
   return items_;
 }

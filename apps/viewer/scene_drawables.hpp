@@ -33,8 +33,9 @@ class SceneDrawables {
   /// Updates every item's model matrix from the simulation's body poses. No allocation.
   void update(const Simulation& sim);
 
-  /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags).
-  const std::vector<DrawItem>& items(bool beams, bool joints);
+  /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags),
+  /// those of `selected_body` highlighted.
+  const std::vector<DrawItem>& items(bool beams, bool joints, int selected_body);
 
   /// The body hit first by the ray (world frame), or -1; `distance_m` is set on a hit.
   int pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const;

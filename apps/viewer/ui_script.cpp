@@ -145,6 +145,12 @@ void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
       state.camera.yaw_rad = yaw_deg * 3.14159265f / 180;
       state.camera.pitch_rad = pitch_deg * 3.14159265f / 180;
       state.camera.distance_m = distance_m;
+    } else if (command == "follow") {
+      const auto& robots = state.sim->scene().robots;
+      state.camera.follow_robot = -1;
+      for (std::size_t r = 0; r < robots.size(); ++r)
+        if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
+      if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
     } else if (command == "screenshot") {
       screenshot_file = rest;
       return;

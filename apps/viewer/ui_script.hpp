@@ -23,6 +23,7 @@
 ///   editor-open FILE     show the scene editor's file whose name is FILE
 ///   editor-insert LINE TEXT   insert TEXT and a line break before line LINE (1-based)
 ///   camera YAW PITCH DISTANCE  degrees, degrees, metres
+///   follow ROBOT         the camera follows the robot
 ///   screenshot FILE      save this frame as PNG
 ///   quit
 

@@ -35,8 +35,9 @@ struct EditorFile {
 struct EditorState {
   std::vector<EditorFile> files;
   int current = 0;
-  std::string error;    ///< the last apply's error, empty when it succeeded
-  int error_line = -1;  ///< 1-based line in `error_file`, -1 when unknown
+  std::string error;          ///< the last apply's error (full message), empty when it succeeded
+  std::string error_message;  ///< the same without its location
+  int error_line = -1;        ///< 1-based line in `error_file`, -1 when unknown
   std::string error_file;
   std::string status;
 };

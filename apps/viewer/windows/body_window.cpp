@@ -17,7 +17,9 @@ void draw_body_window(ViewerState& state) {
   const Simulation& sim = *state.sim;
   const int b = state.selected_body;
   if (b < 0) {
-    ImGui::TextWrapped("Click a body in the world view to see its data.");
+    ImGui::TextWrapped(
+        "Click a body in the world view to see its data. Ctrl-drag moves a thing (or a whole "
+        "robot by its main body) over the floor.");
   } else if (b == 0) {
     ImGui::Text("the world (an obstacle)");
   } else {

@@ -68,7 +68,8 @@ void plot(ViewerState& state) {
     view.window_s =
         std::clamp(view.window_s * std::pow(0.85, ImGui::GetIO().MouseWheel), 0.01, 1e6);
 
-  const double end_s = view.frozen ? view.frozen_end_s : sim.time_s();
+  // The newest samples at the right edge; before a full span has run, time 0 at the left.
+  const double end_s = std::max(view.frozen ? view.frozen_end_s : sim.time_s(), view.window_s);
   const double start_s = end_s - view.window_s;
   const auto first = static_cast<std::size_t>(
       std::lower_bound(times.begin(), times.end(), start_s) - times.begin());

@@ -102,12 +102,14 @@ bool apply_editor(ViewerState& state) {
     for (EditorFile* f : changed)
       write_file(f->path, f->on_disk);
     editor.error = e.what();
+    editor.error_message = e.what();
     editor.error_line = -1;
     editor.error_file.clear();
     if (const auto* error = dynamic_cast<const Error*>(&e)) {
       const auto [file, line] = split_line(error->where().file);
       editor.error_file = file;
       editor.error_line = line;
+      if (line > 0) editor.error_message = error->message();
     }
     editor.status = "not applied: the running scene is kept";
     state.log_message("scene editor: " + editor.error, true);
@@ -151,8 +153,8 @@ void draw_scene_editor_window(ViewerState& state) {
   if (!editor.error.empty()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1));
     if (editor.error_line > 0)
-      ImGui::TextWrapped("line %d of %s: %s", editor.error_line, editor.error_file.c_str(),
-                         editor.error.c_str());
+      ImGui::TextWrapped("%s, line %d: %s", editor.error_file.c_str(), editor.error_line,
+                         editor.error_message.c_str());
     else
       ImGui::TextWrapped("%s", editor.error.c_str());
     ImGui::PopStyleColor();
