@@ -87,15 +87,21 @@ class Viewer : public ::testing::Test {
     if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
   }
 
-  /// s2sim-view under a virtual display of 1280x720.
+  /// s2sim-view under a virtual display of 1280x720. The viewer's exit status goes through a
+  /// file: xvfb-run replaces it with its own when its clean-up races with another xvfb-run.
   Result view(const std::string& scene, const std::vector<std::string>& args) {
-    std::string command =
-        "xvfb-run -a -s '-screen 0 1280x720x24' " + quote(kViewer.string()) + " " + quote(scene);
+    const fs::path status = dir_ / "status.txt";
+    fs::remove(status);
+    std::string command = "xvfb-run -a -s '-screen 0 1280x720x24' sh -c '\"$0\" \"$@\"; echo $? >" +
+                          status.string() + "' " + quote(kViewer.string()) + " " + quote(scene);
     for (const auto& a : args) {
       command += ' ';  // two appends: GCC 12 warns (-Wrestrict) on " " + std::string
       command += quote(a);
     }
-    return run(command, dir_);
+    Result r = run(command, dir_);
+    const std::string code = read_file(status);
+    r.status = code.empty() ? -1 : std::stoi(code);
+    return r;
   }
 
   fs::path dir_;
