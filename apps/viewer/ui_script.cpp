@@ -33,7 +33,7 @@ int find_body(const ViewerState& state, const std::string& id) {
 }
 }  // namespace
 
-void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
+void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
   if (running_) {
     if (state.run.playing) return;
     running_ = false;
@@ -160,6 +160,18 @@ void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
     } else {
       throw bad("unknown command (see docs/viewer.md)");
     }
+  }
+}
+
+void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
+  try {
+    run_commands(state, screenshot_file);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception&) {
+    // std::stoi / std::stod on a word that is not a number.
+    throw Error(ErrorKind::usage,
+                "script command '" + commands_[next_ - 1] + "': expected a number");
   }
 }
 

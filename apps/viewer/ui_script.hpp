@@ -46,6 +46,8 @@ class UiScript {
   bool empty() const { return commands_.empty(); }
 
  private:
+  void run_commands(ViewerState& state, std::string& screenshot_file);
+
   std::vector<std::string> commands_;
   std::size_t next_ = 0;
   int wait_frames_ = 0;

@@ -367,6 +367,9 @@ TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
   const Result option = view((kSource / "scenes/default").string(), {"--frobnicate"});
   EXPECT_EQ(option.status, 4);
   EXPECT_NE(option.err.find("--frobnicate"), std::string::npos) << option.err;
+  const Result script = view((kSource / "scenes/default").string(), {"--do", "wait many"});
+  EXPECT_EQ(script.status, 4);
+  EXPECT_NE(script.err.find("wait many"), std::string::npos) << script.err;
   const Result signal =
       view((kSource / "scenes/default").string(), {"--frames", "1", "--chart", "no/such"});
   EXPECT_EQ(signal.status, 4);
