@@ -83,10 +83,14 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         std::printf("body %s %.9f %.9f %.9f\n", rest.substr(5).c_str(), p.x, p.y, p.z);
       } else if (rest.rfind("signal ", 0) == 0)
         std::printf("signal %s %.10g\n", rest.substr(7).c_str(), state.sim->signal(rest.substr(7)));
+      else if (rest == "camera")
+        std::printf("camera %.4f %.4f %.4f %.4f %.4f %.4f\n", state.camera.yaw_rad,
+                    state.camera.pitch_rad, state.camera.distance_m, state.camera.target_m.x,
+                    state.camera.target_m.y, state.camera.target_m.z);
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
       else
-        throw bad("print time, tick, body ID, signal NAME or editor-error");
+        throw bad("print time, tick, camera, body ID, signal NAME or editor-error");
       std::fflush(stdout);
     } else if (command == "chart-add") {
       for (std::size_t i : state.sim->match_signals(rest))

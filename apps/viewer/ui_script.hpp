@@ -12,6 +12,7 @@
 ///   print editor-error   print "editor-error <line> <message>" (line -1 when unknown)
 ///   print tick           print "tick <n>"
 ///   print body ID        print "body <ID> <x> <y> <z>" (its position, m)
+///   print camera         print "camera <yaw> <pitch> <distance> <target x y z>"
 ///   print signal NAME    print "signal <NAME> <value>"
 ///   move BODY X Y Z      move a thing (or robot root body) there at rest, as a ctrl-drag does
 ///   sheet-set CELL VALUE set the sheet cell (input sheet/CELL), as typing in the Sheet does

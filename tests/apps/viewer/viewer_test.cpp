@@ -282,6 +282,47 @@ TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
                                << got.substr(0, 300);
 }
 
+TEST_F(Viewer, ApplyingAnEditReloadsTheSceneAndKeepsTheCamera) {
+  const fs::path scene = dir_ / "scene";
+  fs::copy(kSource / "scenes/default", scene, fs::copy_options::recursive);
+  const Result r =
+      view(scene.string(), {"--do",
+                            "camera 30 20 4",
+                            "--do",
+                            "wait 20",
+                            "--do",
+                            "print camera",
+                            "--do",
+                            "editor-open scene.xml",
+                            "--do",
+                            "editor-insert 5 <robot><ID name='extra'/><pos x='3' y='3' z='0'/>"
+                            "<body file='pendulum.xml'/></robot>",
+                            "--do",
+                            "click Apply",
+                            "--do",
+                            "print editor-error",
+                            "--do",
+                            "print camera",
+                            "--do",
+                            "print time",
+                            "--do",
+                            "print signal robots/extra/y"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> cameras;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("camera ", 0) == 0) cameras.push_back(line);
+  ASSERT_EQ(cameras.size(), 2u) << r.out;
+  EXPECT_EQ(cameras[0], cameras[1]) << "the camera moved on reload";
+  EXPECT_NE(r.out.find("editor-error -1 \n"), std::string::npos) << r.out;
+  // The new scene runs from the start and has the new robot.
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_LT(t[0], 0.05);
+  EXPECT_NE(r.out.find("signal robots/extra/y 3\n"), std::string::npos) << r.out;
+  EXPECT_NE(read_file(scene / "scene.xml").find("name='extra'"), std::string::npos);
+}
+
 TEST_F(Viewer, SyntaxErrorInTheSceneEditorIsReportedWithItsLineAndKeepsTheScene) {
   // A copy: applying writes the scene's files.
   const fs::path scene = dir_ / "scene";
