@@ -128,6 +128,7 @@ class App {
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
       handle_mouse();
+      handle_keys();
       state_.run.advance(*state_.sim, scripted ? fixed_frame_s : wall_dt_s, state_.chart, scripted);
       follow_robot();
 
@@ -239,6 +240,16 @@ class App {
       state_.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
     if (io.MouseWheel != 0) state_.camera.zoom(io.MouseWheel);
     if (ImGui::IsMouseReleased(0) && io.MouseDragMaxDistanceSqr[0] < 9) pick(io.MousePos);
+  }
+
+  /// Space plays or pauses, S (or the right arrow) steps one tick, R resets, unless a text
+  /// field has the keyboard.
+  void handle_keys() {
+    if (ImGui::GetIO().WantCaptureKeyboard) return;
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) state_.run.playing = !state_.run.playing;
+    if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_RIGHT))
+      state_.run.request_step(1);
+    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) state_.run.request_reset();
   }
 
   /// The world-frame ray under the mouse (unit direction).

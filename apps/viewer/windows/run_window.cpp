@@ -27,6 +27,13 @@ void draw_run_window(ViewerState& state) {
     run.request_step(std::max<std::int64_t>(1, std::llround(0.01 / state.sim->tick_s())));
   ImGui::SameLine();
   if (button(state, "Reset")) run.request_reset();
+  ImGui::SameLine();
+  ImGui::TextDisabled("(?)");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip(
+        "Keys: space play/pause, S or right arrow step, R reset.\n"
+        "Mouse: left drag orbit, right drag pan, wheel zoom, click a body for its data,\n"
+        "ctrl + left drag moves a thing.");
 
   ImGui::Checkbox("As fast as possible", &run.as_fast_as_possible);
   if (!run.as_fast_as_possible) {
