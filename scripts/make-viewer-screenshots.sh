@@ -20,7 +20,7 @@ shot() {  # shot NAME SCENE ARGS...
 }
 default="$repo/scenes/default"
 
-shot viewer-world "$default" --do "run-until 1.2"
+shot viewer-world "$default" --do "wait 75"
 shot viewer-configuration "$default" --show-window configuration --do "run-until 0.8"
 shot viewer-chart "$default" --chart 'robots/pendulum/axes/swing/*' 'robots/cart_pole/axes/hinge/pos' \
   --do "hide run" --do "run-until 6"

@@ -44,9 +44,12 @@ void draw_run_window(ViewerState& state) {
   }
   ImGui::Text("t = %.3f s   tick %lld of %g ms", state.sim->time_s(),
               static_cast<long long>(state.sim->tick()), state.sim->tick_s() * 1e3);
-  ImGui::Text("real-time factor %.2fx%s   %.0f fps", run.measured_rtf(),
-              run.falling_behind() ? " (cannot keep up)" : "",
-              state.frame_time_s > 0 ? 1.0 / state.frame_time_s : 0.0);
+  const double fps = state.frame_time_s > 0 ? 1.0 / state.frame_time_s : 0.0;
+  if (run.playing)
+    ImGui::Text("real-time factor %.2fx%s   %.0f fps", run.measured_rtf(),
+                run.falling_behind() ? " (cannot keep up)" : "", fps);
+  else
+    ImGui::Text("paused   %.0f fps", fps);
   ImGui::TextDisabled("Windows:");
   ImGui::SameLine();
   ImGui::Checkbox("Config", &state.windows.configuration);
