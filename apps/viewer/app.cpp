@@ -7,6 +7,7 @@
 #include "ui_script.hpp"
 #include "viewer_state.hpp"
 #include "windows/windows.hpp"
+#include "world_input.hpp"
 
 #include <GLFW/glfw3.h>
 #include <imgui.h>
@@ -127,8 +128,7 @@ class App {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      handle_mouse();
-      handle_keys();
+      input_.update(state_, drawables_);
       state_.run.advance(*state_.sim, scripted ? fixed_frame_s : wall_dt_s, state_.chart, scripted);
       follow_robot();
 
@@ -208,89 +208,6 @@ class App {
     if (body >= 0) state_.camera.target_m = to_f(state_.sim->body_pose(body + 1).position);
   }
 
-  /// Left drag orbits, right (or shift-left) drag pans, the wheel zooms, a left click picks.
-  /// Left drag orbits, right (or shift-left) drag pans, the wheel zooms, a left click picks,
-  /// ctrl-left drag moves a thing (or a robot) over the floor at its height.
-  void handle_mouse() {
-    ImGuiIO& io = ImGui::GetIO();
-    if (dragged_body_ > 0) {
-      if (!io.MouseDown[0]) {
-        dragged_body_ = -1;
-        return;
-      }
-      Vec3f origin, direction;
-      mouse_ray(io.MousePos, origin, direction);
-      if (std::abs(direction.z) < 1e-6f) return;
-      const float t = (drag_height_m_ - origin.z) / direction.z;
-      if (t <= 0) return;
-      const Vec3f hit = origin + direction * t;
-      if (!move_body(state_, dragged_body_, to_d(hit + drag_offset_m_))) dragged_body_ = -1;
-      return;
-    }
-    if (io.WantCaptureMouse) return;
-    const float height = io.DisplaySize.y;
-    if (ImGui::IsMouseClicked(0) && io.KeyCtrl) {
-      start_drag(io.MousePos);
-      return;
-    }
-    const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
-    if (pan)
-      state_.camera.pan(io.MouseDelta.x, io.MouseDelta.y, height);
-    else if (io.MouseDown[0])
-      state_.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
-    if (io.MouseWheel != 0) state_.camera.zoom(io.MouseWheel);
-    if (ImGui::IsMouseReleased(0) && io.MouseDragMaxDistanceSqr[0] < 9) pick(io.MousePos);
-  }
-
-  /// Space plays or pauses, S (or the right arrow) steps one tick, R resets, unless a text
-  /// field has the keyboard.
-  void handle_keys() {
-    if (ImGui::GetIO().WantCaptureKeyboard) return;
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) state_.run.playing = !state_.run.playing;
-    if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_RIGHT))
-      state_.run.request_step(1);
-    if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) state_.run.request_reset();
-  }
-
-  /// The world-frame ray under the mouse (unit direction).
-  void mouse_ray(ImVec2 mouse_px, Vec3f& origin, Vec3f& direction) const {
-    const ImGuiIO& io = ImGui::GetIO();
-    const float aspect = io.DisplaySize.x / std::max(1.0f, io.DisplaySize.y);
-    const Mat4 inv = inverse(state_.camera.projection(aspect) * state_.camera.view());
-    const float nx = 2 * mouse_px.x / io.DisplaySize.x - 1;
-    const float ny = 1 - 2 * mouse_px.y / io.DisplaySize.y;
-    const Vec4f near_h = inv * Vec4f{nx, ny, -1, 1};
-    const Vec4f far_h = inv * Vec4f{nx, ny, 1, 1};
-    origin = {near_h.x / near_h.w, near_h.y / near_h.w, near_h.z / near_h.w};
-    const Vec3f far_p{far_h.x / far_h.w, far_h.y / far_h.w, far_h.z / far_h.w};
-    direction = normalized(far_p - origin);
-  }
-
-  void pick(ImVec2 mouse_px) {
-    Vec3f origin, direction;
-    mouse_ray(mouse_px, origin, direction);
-    float distance = 0;
-    const int body = drawables_.pick(origin, direction, distance);
-    state_.selected_body = body;
-    if (body >= 0) state_.windows.body = true;
-  }
-
-  void start_drag(ImVec2 mouse_px) {
-    Vec3f origin, direction;
-    mouse_ray(mouse_px, origin, direction);
-    float distance = 0;
-    const int body = drawables_.pick(origin, direction, distance);
-    if (body <= 0) return;
-    // Drag over the horizontal plane through the grabbed point, keeping the grab offset.
-    const Vec3f hit = origin + direction * distance;
-    drag_height_m_ = hit.z;
-    drag_offset_m_ = to_f(state_.sim->body_pose(body).position) - hit;
-    dragged_body_ = body;
-    state_.selected_body = body;
-  }
-
-  static Vec3 to_d(const Vec3f& v) { return {v.x, v.y, v.z}; }
-
   void draw_windows() {
     draw_run_window(state_);
     draw_configuration_window(state_);
@@ -367,9 +284,7 @@ class App {
   Renderer renderer_;
   SceneDrawables drawables_;
   UiScript script_;
-  int dragged_body_ = -1;  ///< body under a ctrl-drag, -1 = none
-  float drag_height_m_ = 0;
-  Vec3f drag_offset_m_;
+  WorldInput input_;
 };
 
 }  // namespace
