@@ -75,8 +75,9 @@ struct ViewerState {
   RenderSettings render;
   bool show_beams = true;
   bool show_joints = true;
-  int selected_body = -1;   ///< simulation body index, -1 = none
-  double frame_time_s = 0;  ///< smoothed wall time per frame
+  int selected_body = -1;          ///< simulation body index, -1 = none
+  float physics_step_ms_edit = 0;  ///< the configuration window's field, 0 = not edited yet
+  double frame_time_s = 0;         ///< smoothed wall time per frame
   bool quit = false;
   /// A freshly loaded simulation (scene editor, configuration) that the app swaps in at the
   /// start of the next frame, keeping the camera, the chart's signals and the windows.

@@ -18,7 +18,7 @@ void draw_configuration_window(ViewerState& state) {
   const scene::Settings& settings = sim.scene().settings;
 
   if (ImGui::CollapsingHeader("Physics and control", ImGuiTreeNodeFlags_DefaultOpen)) {
-    static float step_ms = 0;
+    float& step_ms = state.physics_step_ms_edit;
     if (step_ms <= 0) step_ms = static_cast<float>(sim.tick_s() * 1e3);
     ImGui::SetNextItemWidth(120);
     ImGui::InputFloat("physics step, ms", &step_ms, 0, 0, "%.3f");
