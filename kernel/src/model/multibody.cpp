@@ -1,8 +1,11 @@
 // The only translation unit that sees Simbody (with its Custom force below).
 #include "model/multibody.hpp"
 
+#include "model/loose_bodies.hpp"
+
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <string>
@@ -66,8 +69,10 @@ struct Multibody::Impl {
   SimTK::SimbodyMatterSubsystem matter{system};
   SimTK::GeneralForceSubsystem forces{system};
   SimTK::Force::Gravity gravity{forces, matter, SimTK::Vec3(0, 0, -9.81)};
-  std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod
-  std::vector<Pose> initial_pose;                        // kernel body -> pose at load
+  std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
+  LooseBodies loose;                  // bodies with no joint, integrated outside Simbody
+  std::vector<double> loose_mass_kg;  // per kernel body
+  std::vector<Pose> initial_pose;     // kernel body -> pose at load
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
   std::vector<std::string> warnings;
@@ -80,11 +85,21 @@ struct Multibody::Impl {
   std::vector<Stop> stops;
   std::vector<Wrench> wrenches;
   std::vector<double> axis_forces;
+  std::vector<double> axis_friction;
+  // Velocity-level Coulomb friction on tree axes (preallocated: stepping must not allocate).
+  std::vector<int> braked;                 // axes with a bound this substep
+  std::vector<SimTK::Vector> minv_column;  // per braked axis: M^-1 * e_axis
+  std::vector<double> delassus, impulse;   // braked x braked, braked
+  SimTK::Vector unit_force;
+  SubstepForces* substep_forces = nullptr;
+  std::vector<Pose> substep_poses;
+  std::vector<Twist> substep_twists;
+  std::vector<Wrench> substep_wrenches;
   SimTK::State initial_state;
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
   bool half_kick_pending = true;
-  bool has_quaternions = false;
+  std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
   bool has_constraints = false;
   double tick_s = 1e-3;
   int substeps = 1;
@@ -135,6 +150,12 @@ double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a)
   return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
 }
 
+/// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
+constexpr double kLoopFrictionSpeed = 1e-2;
+
+/// Body poses and velocities (kernel indices); `state` realized to Velocity.
+void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists);
+
 /// Applies the kernel's loads for the tick: body wrenches and axis forces.
 class AppliedLoads : public SimTK::Force::Custom::Implementation {
  public:
@@ -144,13 +165,28 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
                  SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
     const auto& mb = *m_;
     for (std::size_t b = 1; b < mb.wrenches.size(); ++b) {
+      if (!mb.mobod_of_body[b].isValid()) continue;  // a loose body
       const Wrench& w = mb.wrenches[b];
       body_forces[mb.mobod_of_body[b]] +=
           SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
     }
+    if (mb.substep_forces)
+      for (std::size_t b = 1; b < mb.substep_wrenches.size(); ++b) {
+        if (!mb.mobod_of_body[b].isValid()) continue;
+        const Wrench& w = mb.substep_wrenches[b];
+        body_forces[mb.mobod_of_body[b]] +=
+            SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+      }
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.axis_forces[a] != 0.0)
         apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+      if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
+        // No velocity-level brake on a constraint-realised axis: a steep regularisation.
+        const double v = axis_rate(mb, state, a);
+        const double f = -mb.axis_friction[a] * std::clamp(v / kLoopFrictionSpeed, -1.0, 1.0);
+        apply_axis_force(state, a, f, body_forces, mobility_forces);
+      }
     for (const auto& stop : mb.stops) {
       const auto a = static_cast<std::size_t>(stop.axis);
       const double q = axis_value(mb, state, a);
@@ -198,6 +234,28 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
   const Multibody::Impl* m_;
 };
 
+/// The gear-reflected rotor inertia N²·J of a hinge or Universal joint's motors, carried by
+/// the joint's child body as a massless disk on the axis (axial N²·J, N²·J/2 across): exact
+/// for the spin of the axis when the parent does not turn about it, and a valid inertia
+/// whatever the body (docs/models/multibody.md).
+SimTK::Inertia reflected_rotor_inertia(const scene::Joint& jt, const scene::Body& child) {
+  SimTK::Inertia sum(0);
+  if (jt.type != scene::JointType::hinge && jt.type != scene::JointType::universal) return sum;
+  const SimTK::Rotation R_GB = to_simtk(child.pose.rotation);
+  auto add = [&](const scene::DriveTrain& d, const Vec3& axis_G) {
+    const double J = d.gear.ratio * d.gear.ratio * d.rotor.inertia_kg_m2;
+    if (!d.motor.active || !(J > 0)) return;
+    const SimTK::UnitVec3 a(~R_GB * to_simtk(axis_G));
+    const SimTK::Mat33 aa = a * ~a;
+    const SimTK::Mat33 disk = J * aa + 0.5 * J * (SimTK::Mat33(1) - aa);
+    sum += SimTK::Inertia(
+        SimTK::SymMat33(disk(0, 0), disk(1, 0), disk(1, 1), disk(2, 0), disk(2, 1), disk(2, 2)));
+  };
+  add(jt.drive1, jt.axis1);
+  if (jt.type == scene::JointType::universal) add(jt.drive2, jt.axis2);
+  return sum;
+}
+
 /// Orientation of a joint frame whose `primary` axis is `a`.
 SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
   return SimTK::Rotation(SimTK::UnitVec3(to_simtk(a)), primary);
@@ -205,7 +263,8 @@ SimTK::Rotation joint_frame(const Vec3& a, SimTK::CoordinateAxis primary) {
 
 }  // namespace
 
-Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
+Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
+                     bool lone_bodies_in_simbody)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.tick_s = tick_s;
@@ -267,6 +326,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
     queue.push_back(b);
     expand();
   }
+  m.loose_mass_kg.assign(n_bodies + 1, 0.0);
   std::vector<int> root_order;
   for (const auto& r : scene.robots)
     if (r.main_body >= 0) root_order.push_back(r.main_body);
@@ -275,6 +335,11 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   for (int b : root_order) {
     if (visited[b]) continue;
     visited[b] = 1;
+    if (incident[b].empty() && !lone_bodies_in_simbody) {
+      m.loose.add(b + 1, scene.bodies[b]);
+      m.loose_mass_kg[b + 1] = scene.bodies[b].mass_kg;
+      continue;
+    }
     tree.push_back({-1, -1, b});
     queue.push_back(b);
     expand();
@@ -301,6 +366,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
       const Mat3& I = sb.inertia_kg_m2;
       inertia_com =
           SimTK::Inertia(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2], I.m[1][2]);
+      if (e.joint >= 0) inertia_com += reflected_rotor_inertia(scene.joints[e.joint], sb);
       const SimTK::Vec3 com = to_simtk(sb.com_m);
       SimTK::Body::Rigid body(SimTK::MassProperties(
           sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
@@ -464,6 +530,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
   }
   m.wrenches.assign(n_bodies + 1, Wrench{});
   m.axis_forces.assign(m.axes.size(), 0.0);
+  m.axis_friction.assign(m.axes.size(), 0.0);
 
   SimTK::Force::Custom(m.forces, new AppliedLoads(&m));
 
@@ -511,9 +578,21 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps)
                       std::string("the multibody system could not be built: ") + ex.what());
   }
   m.substeps = substeps;
-  m.has_quaternions = m.initial_state.getNQ() != m.initial_state.getNU();
+  // Free and Ball mobilizers keep their orientation as a quaternion in their first four q's.
+  // Normalising them here costs a fraction of Simbody's normalizeQuaternions(), which walks
+  // the whole tree through its state digest.
+  for (SimTK::MobilizedBodyIndex i(1); i < m.matter.getNumBodies(); ++i) {
+    const auto& mob = m.matter.getMobilizedBody(i);
+    if (mob.getNumQ(m.initial_state) != mob.getNumU(m.initial_state))
+      m.quaternion_q.push_back(mob.getFirstQIndex(m.initial_state));
+  }
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.udot.resize(m.initial_state.getNU());
+  m.unit_force.resize(m.initial_state.getNU());
+  m.braked.reserve(m.axes.size());
+  m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
+  m.delassus.assign(m.axes.size() * m.axes.size(), 0.0);
+  m.impulse.assign(m.axes.size(), 0.0);
   m.qdot.resize(m.initial_state.getNQ());
   reset();
 }
@@ -535,6 +614,50 @@ Wrench* Multibody::applied_wrenches() {
 double* Multibody::applied_axis_forces() {
   return impl_->axis_forces.data();
 }
+double* Multibody::applied_axis_friction() {
+  return impl_->axis_friction.data();
+}
+void Multibody::set_substep_forces(SubstepForces* forces) {
+  Impl& m = *impl_;
+  m.substep_forces = forces;
+  m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
+  m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
+  m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
+}
+
+std::vector<double> Multibody::apparent_mass_kg() const {
+  const Impl& m = *impl_;
+  const SimTK::State& s = m.initial_state;
+  m.system.realize(s, SimTK::Stage::Position);
+  const int nb = m.matter.getNumBodies();
+  std::vector<double> out(m.mobod_of_body.size(), 0.0);
+  SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
+  SimTK::Vector f, udot;
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) {  // a loose body: its own mass
+      out[b] = m.loose_mass_kg[b];
+      continue;
+    }
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
+    double smallest = SimTK::Infinity;
+    for (int axis = 0; axis < 3; ++axis) {
+      SimTK::Vec3 force(0);
+      force[axis] = 1;
+      load.setToZero();
+      load[mob.getMobilizedBodyIndex()] = SimTK::SpatialVec(SimTK::cross(com_G, force), force);
+      m.matter.multiplyBySystemJacobianTranspose(s, load, f);
+      m.matter.multiplyByMInv(s, f, udot);
+      m.matter.multiplyBySystemJacobian(s, udot, accel);
+      const SimTK::SpatialVec& A = accel[mob.getMobilizedBodyIndex()];
+      const double a = (A[1] + SimTK::cross(A[0], com_G))[axis];
+      if (a > 1e-12) smallest = std::min(smallest, 1 / a);
+    }
+    out[b] = smallest;
+  }
+  return out;
+}
+
 double Multibody::time_s() const {
   return static_cast<double>(impl_->ticks) * impl_->tick_s;
 }
@@ -543,8 +666,75 @@ void Multibody::reset() {
   impl_->ticks = 0;
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
+  impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
 }
+
+namespace {
+
+void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists) {
+  poses[0] = Pose{};
+  twists[0] = Twist{};
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) continue;
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const SimTK::Transform& X = mob.getBodyTransform(s);
+    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
+    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
+    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
+  }
+  m.loose.read(poses, twists);
+}
+
+/// Coulomb friction on tree axes as a velocity-level brake (ODE's joint motor with zero target
+/// speed): after the kick, find impulses p_k, |p_k| <= F_k·kick, that stop the braked axes where
+/// the bounds allow, coupled through M^-1 (projected Gauss-Seidel on the small Delassus
+/// matrix W = M^-1 restricted to the braked axes). Loop axes get a regularised force instead.
+void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
+  m.braked.clear();
+  for (std::size_t a = 0; a < m.axis_friction.size(); ++a)
+    if (m.axis_friction[a] > 0.0 && !m.axes[a].loop) m.braked.push_back(static_cast<int>(a));
+  if (m.braked.empty()) return;
+  const std::size_t n = m.braked.size();
+  auto u_index = [&](int a) {
+    const AxisImpl& ax = m.axis_impl[a];
+    return m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(s) + ax.coordinate;
+  };
+  for (std::size_t k = 0; k < n; ++k) {
+    m.unit_force = 0.0;
+    m.unit_force[u_index(m.braked[k])] = 1.0;
+    m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[k]);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t k = 0; k < n; ++k)
+      m.delassus[i * n + k] = m.minv_column[k][u_index(m.braked[i])];
+  SimTK::Vector& u = s.updU();
+  for (std::size_t k = 0; k < n; ++k)
+    m.impulse[k] = 0.0;
+  // Generalized-coordinate impulses; sign conventions cancel (W is symmetric in u space).
+  for (int iteration = 0; iteration < (n == 1 ? 1 : 8); ++iteration) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const int a = m.braked[i];
+      const double v = u[u_index(a)];
+      const double w = m.delassus[i * n + i];
+      if (!(w > 0)) continue;
+      const double bound = m.axis_friction[a] * kick_s;
+      const double p_new = std::clamp(m.impulse[i] - v / w, -bound, bound);
+      const double dp = p_new - m.impulse[i];
+      if (dp == 0.0) continue;
+      m.impulse[i] = p_new;
+      const SimTK::Vector& column = m.minv_column[i];
+      for (int j = 0; j < u.size(); ++j)  // by hand: Vector expressions allocate
+        u[j] += dp * column[j];
+    }
+  }
+}
+
+}  // namespace
+
+namespace {
+void advance(Multibody::Impl& m, SimTK::State& s, double h);
+}  // namespace
 
 // Semi-explicit Euler, u first then q with the new u, started with a half step of u
 // (leapfrog): the same single acceleration evaluation per step, but positions are second
@@ -554,32 +744,20 @@ void Multibody::step() {
   Impl& m = *impl_;
   SimTK::State& s = m.current;
   const double h = m.tick_s / m.substeps;
-  for (int k = 0; k < m.substeps; ++k) {
-    // The applied loads changed outside Simbody's knowledge: drop any cached forces.
-    s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
-    m.system.realize(s, SimTK::Stage::Acceleration);
-    const SimTK::Vector& udot = s.getUDot();
-    for (int i = 0; i < udot.size(); ++i)
-      m.udot[i] = udot[i];
-    const double kick = m.half_kick_pending ? 0.5 * h : h;
-    m.half_kick_pending = false;
-    SimTK::Vector& u = s.updU();
-    for (int i = 0; i < u.size(); ++i)
-      u[i] += kick * m.udot[i];
-    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
-    SimTK::Vector& q = s.updQ();
-    for (int i = 0; i < q.size(); ++i)
-      q[i] += h * m.qdot[i];
-    s.updTime() =
-        (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
-    m.system.realize(s, SimTK::Stage::Time);
-    if (m.has_quaternions) m.matter.normalizeQuaternions(s);
-    if (m.has_constraints) m.system.project(s, 1e-10);
+  try {
+    advance(m, s, h);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Simbody refuses a state that went non-finite inside the tick (a blow-up).
+    throw Error(ErrorKind::runtime, "the simulation failed at t = " + std::to_string(time_s()) +
+                                        " s (" + e.what() +
+                                        "); the scene may need a smaller step or more substeps");
   }
   ++m.ticks;
   m.system.realize(s, SimTK::Stage::Velocity);
   // A NaN anywhere poisons the sums: one cheap check per tick.
-  double sum = 0;
+  double sum = m.loose.checksum();
   const SimTK::Vector& q = s.getQ();
   const SimTK::Vector& u = s.getU();
   for (int i = 0; i < q.size(); ++i)
@@ -591,20 +769,58 @@ void Multibody::step() {
                 "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
 }
 
+namespace {
+
+/// The substeps of one tick.
+void advance(Multibody::Impl& m, SimTK::State& s, double h) {
+  for (int k = 0; k < m.substeps; ++k) {
+    if (m.substep_forces) {
+      m.system.realize(s, SimTK::Stage::Velocity);
+      read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+      m.substep_forces->compute(m.substep_poses.data(), m.substep_twists.data(), h,
+                                m.substep_wrenches.data());
+    }
+    // The applied loads changed outside Simbody's knowledge: drop any cached forces.
+    s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+    m.system.realize(s, SimTK::Stage::Acceleration);
+    const SimTK::Vector& udot = s.getUDot();
+    for (int i = 0; i < udot.size(); ++i)
+      m.udot[i] = udot[i];
+    const double kick = m.half_kick_pending ? 0.5 * h : h;
+    m.half_kick_pending = false;
+    SimTK::Vector& u = s.updU();
+    for (int i = 0; i < u.size(); ++i)
+      u[i] += kick * m.udot[i];
+    brake_axes(m, s, kick);
+    m.loose.kick(m.wrenches.data(), m.substep_forces ? m.substep_wrenches.data() : nullptr, kick);
+    m.loose.drift(h);
+    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
+    SimTK::Vector& q = s.updQ();
+    for (int i = 0; i < q.size(); ++i)
+      q[i] += h * m.qdot[i];
+    for (int first : m.quaternion_q) {
+      double n2 = 0;
+      for (int c = 0; c < 4; ++c)
+        n2 += q[first + c] * q[first + c];
+      const double inverse_norm = 1 / std::sqrt(n2);
+      for (int c = 0; c < 4; ++c)
+        q[first + c] *= inverse_norm;
+    }
+    s.updTime() =
+        (static_cast<double>(m.ticks) + static_cast<double>(k + 1) / m.substeps) * m.tick_s;
+    m.system.realize(s, SimTK::Stage::Time);
+    if (m.has_constraints) m.system.project(s, 1e-10);
+  }
+}
+
+}  // namespace
+
 void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
                      double* axis_velocity) const {
   const Impl& m = *impl_;
   const SimTK::State& s = m.state();
   m.system.realize(s, SimTK::Stage::Velocity);
-  poses[0] = Pose{};
-  twists[0] = Twist{};
-  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
-    const SimTK::Transform& X = mob.getBodyTransform(s);
-    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
-    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
-    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
-  }
+  read_bodies(m, s, poses, twists);
   for (std::size_t a = 0; a < m.axis_impl.size(); ++a) {
     axis_position[a] = axis_value(m, s, a);
     axis_velocity[a] = axis_rate(m, s, a);
@@ -614,13 +830,13 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
 double Multibody::kinetic_energy_J() const {
   const SimTK::State& s = impl_->state();
   impl_->system.realize(s, SimTK::Stage::Velocity);
-  return impl_->matter.calcKineticEnergy(s);
+  return impl_->matter.calcKineticEnergy(s) + impl_->loose.kinetic_energy_J();
 }
 
 double Multibody::potential_energy_J() const {
   const SimTK::State& s = impl_->state();
   impl_->system.realize(s, SimTK::Stage::Dynamics);
-  return impl_->gravity.getPotentialEnergy(s);
+  return impl_->gravity.getPotentialEnergy(s) + impl_->loose.potential_energy_J();
 }
 
 std::vector<double> Multibody::save() const {
@@ -631,6 +847,7 @@ std::vector<double> Multibody::save() const {
   for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
     for (int i = 0; i < v->size(); ++i)
       out.push_back((*v)[i]);
+  impl_->loose.save(out);
   return out;
 }
 
@@ -643,6 +860,7 @@ void Multibody::restore(const std::vector<double>& saved) {
   for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
     for (int i = 0; i < v->size(); ++i)
       (*v)[i] = saved.at(k++);
+  m.loose.restore(saved, k);
   s.setTime(time_s());
   m.current = s;
   m.system.realize(m.current, SimTK::Stage::Velocity);

@@ -4,6 +4,8 @@
 /// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
 /// and writes plain arrays of applied loads.
 
+#include "model/substep_forces.hpp"
+
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -28,8 +30,11 @@ struct AxisInfo {
 /// `applied_axis_forces()` before `step()`; they are held constant over the tick's substeps.
 class Multibody {
  public:
-  /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses.
-  Multibody(const scene::Scene& scene, double tick_s, int substeps);
+  /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses. Bodies without
+  /// any joint are integrated by LooseBodies unless `lone_bodies_in_simbody` (for tests that
+  /// compare the two).
+  Multibody(const scene::Scene& scene, double tick_s, int substeps,
+            bool lone_bodies_in_simbody = false);
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;
@@ -41,6 +46,16 @@ class Multibody {
 
   Wrench* applied_wrenches();
   double* applied_axis_forces();
+  /// Per axis, the Coulomb friction bound (N·m or N) for the coming tick, solved at velocity
+  /// level after the other forces: an axis whose load stays under the bound sticks.
+  double* applied_axis_friction();
+
+  /// Loads recomputed from the state at every substep (contact); null = none. Not owned.
+  void set_substep_forces(SubstepForces* forces);
+  /// Per kernel body (0 = world, 0 kg): the smallest mass that a force at the body's centre
+  /// of mass meets in the initial configuration, over the three world axes (a free body: its
+  /// mass; a wheel: its share of the robot's). Infinite for a body welded to the world.
+  std::vector<double> apparent_mass_kg() const;
 
   /// Back to the initial configuration at rest, t = 0.
   void reset();

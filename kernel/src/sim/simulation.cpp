@@ -1,5 +1,6 @@
 #include <s2sim/kernel/simulation.hpp>
 
+#include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
 #include "plugin/plugin_loader.hpp"
 #include "scene/element_params.hpp"
@@ -48,6 +49,8 @@ enum class Source : std::uint8_t {
   axis_position,
   axis_velocity,
   axis_force,
+  body_contact_force,
+  contact_count,
 };
 
 struct SignalEntry {
@@ -116,6 +119,7 @@ struct Simulation::Impl {
   double tick_s = 1e-3;
   std::int64_t tick = 0;
   std::unique_ptr<model::Multibody> multibody;
+  std::unique_ptr<contact::ContactWorld> contacts;
   std::vector<AxisView> axis_views;
 
   // Per-tick buffers the components see through detail::WorldView.
@@ -176,6 +180,7 @@ struct Simulation::Impl {
 
   void register_kernel_signals() {
     add_signal("time", "s", Source::time, 0);
+    add_signal("contacts/count", "1", Source::contact_count, 0);
     auto add_body = [&](const std::string& p, int body) {
       const std::pair<const char*, Source> fields[] = {
           {"x", Source::body_x},       {"y", Source::body_y},         {"z", Source::body_z},
@@ -190,6 +195,7 @@ struct Simulation::Impl {
                                            : "rad";
         add_signal(p + "/" + name, unit, source, body);
       }
+      add_signal(p + "/contact_force", "N", Source::body_contact_force, body);
     };
     for (std::size_t r = 0; r < scene.robots.size(); ++r) {
       const auto& robot = scene.robots[r];
@@ -200,6 +206,13 @@ struct Simulation::Impl {
     }
     for (int b : scene.things)
       add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
+    // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
+    for (std::int32_t body : contacts->belt_bodies()) {
+      const auto& b = scene.bodies[body - 1];
+      const std::string p = b.robot >= 0 ? robot_prefix(b.robot) + "/solids/" + sim::segment(b.id)
+                                         : "things/" + sim::segment(b.id);
+      contacts->set_belt_speed_input(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
+    }
     for (std::size_t a = 0; a < axis_views.size(); ++a) {
       const AxisView& ax = axis_views[a];
       const std::string p = (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) +
@@ -231,6 +244,7 @@ struct Simulation::Impl {
   void reset() {
     tick = 0;
     multibody->reset();
+    contacts->reset();
     // Copy in place: the WorldView points into these buffers.
     std::copy(inputs_initial.begin(), inputs_initial.end(), inputs.begin());
     std::copy(state_initial.begin(), state_initial.end(), state.begin());
@@ -248,8 +262,10 @@ struct Simulation::Impl {
   void step_once() {
     Wrench* wrenches = multibody->applied_wrenches();
     double* axis_force = multibody->applied_axis_forces();
+    double* axis_friction = multibody->applied_axis_friction();
     std::fill(wrenches, wrenches + poses.size(), Wrench{});
     std::fill(axis_force, axis_force + axis_views.size(), 0.0);
+    std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
     for (const auto& order : stage_order) {
       for (int c : order) {
         const ComponentSlot& slot = components[c];
@@ -265,6 +281,7 @@ struct Simulation::Impl {
     multibody->step();
     ++tick;
     refresh();
+    world.contacts = contacts->contacts();  // the buffer may have grown
   }
 
   double read_signal(std::size_t i) const {
@@ -307,6 +324,17 @@ struct Simulation::Impl {
         return axis_velocity[k];
       case Source::axis_force:
         return axis_force_applied[k];
+      case Source::body_contact_force: {
+        Vec3 sum;
+        const ContactInfo* c = contacts->contacts();
+        for (std::int32_t n = 0; n < *contacts->contact_count(); ++n) {
+          if (c[n].body_a.index == k) sum += c[n].force_N;
+          if (c[n].body_b.index == k) sum -= c[n].force_N;
+        }
+        return norm(sum);
+      }
+      case Source::contact_count:
+        return *contacts->contact_count();
     }
     return 0.0;
   }
@@ -525,6 +553,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.tick_s = m.scene.settings.physics_step_s;
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
+  m.contacts = std::make_unique<contact::ContactWorld>(m.scene, m.multibody->apparent_mass_kg());
+  m.multibody->set_substep_forces(m.contacts.get());
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);
   for (const auto& ax : m.multibody->axes())
@@ -563,11 +593,15 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.axis_position = m.axis_position.data();
   m.world.axis_velocity = m.axis_velocity.data();
   m.world.axis_force = m.multibody->applied_axis_forces();
+  m.world.axis_friction = m.multibody->applied_axis_friction();
   m.world.inputs = m.inputs.data();
   m.world.signals = m.published.data();
   m.world.state = m.state.data();
   m.world.random_state = m.random.data();
   m.world.tick_s = m.tick_s;
+  m.world.contacts = m.contacts->contacts();
+  m.world.contact_count = m.contacts->contact_count();
+  m.contacts->set_inputs(m.inputs.data());
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
 }
@@ -678,6 +712,16 @@ double Simulation::axis_velocity(std::size_t i) const {
   return impl_->axis_velocity.at(i);
 }
 
+std::size_t Simulation::contact_count() const {
+  return static_cast<std::size_t>(*impl_->contacts->contact_count());
+}
+const ContactInfo& Simulation::contact(std::size_t index) const {
+  if (index >= contact_count())
+    throw Error(ErrorKind::usage,
+                "contact " + std::to_string(index) + " of " + std::to_string(contact_count()));
+  return impl_->contacts->contacts()[index];
+}
+
 double Simulation::kinetic_energy_J() const {
   return impl_->multibody->kinetic_energy_J();
 }
@@ -698,6 +742,7 @@ Simulation::Snapshot Simulation::save() const {
   append(m.state);
   append(m.axis_force_applied);
   s.random = m.random;
+  m.contacts->save(s.contacts);
   return s;
 }
 
@@ -720,6 +765,8 @@ void Simulation::restore(const Snapshot& snapshot) {
     k += n;
   }
   m.random = snapshot.random;
+  m.contacts->restore(snapshot.contacts, 0);
+  m.world.contacts = m.contacts->contacts();
   m.tick = static_cast<std::int64_t>(std::llround(m.multibody->time_s() / m.tick_s));
   m.refresh();
 }

@@ -56,6 +56,34 @@ enum class Stage : std::uint8_t {
   actuate = 3,        ///< actuators and special bodies apply forces for the coming tick
 };
 
+/// Material flags of a collision surface (SimTwo's `<metallic/>`, `<ferromagnetic/>`,
+/// `<rfidtag/>`), for proximity sensors.
+enum MaterialFlag : std::uint32_t {
+  material_metallic = 1u << 0,
+  material_ferromagnetic = 1u << 1,
+  material_rfid_tag = 1u << 2,
+};
+
+/// One contact of the last physics step between two bodies.
+struct ContactInfo {
+  BodyHandle body_a;   ///< a moving body (never the world)
+  BodyHandle body_b;   ///< the other body; index 0 for the ground, a wall or an obstacle
+  Vec3 point_m;        ///< world frame, on body_a's surface
+  Vec3 normal;         ///< world unit vector from body_b toward body_a
+  Vec3 force_N;        ///< total force on body_a at point_m (body_b gets the opposite)
+  double depth_m = 0;  ///< penetration along the normal
+};
+
+/// What a ray cast met first.
+struct RayHit {
+  bool hit = false;
+  double distance_m = 0;       ///< from the ray origin along its unit direction
+  Vec3 point_m;                ///< world frame
+  Vec3 normal;                 ///< world unit surface normal, facing the ray
+  BodyHandle body;             ///< index 0 for the ground, a wall or an obstacle
+  std::uint32_t material = 0;  ///< MaterialFlag bits of the surface hit
+};
+
 namespace detail {
 /// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
 /// through `StepContext`. Its layout is part of the plugin ABI.
@@ -73,6 +101,15 @@ struct WorldView {
   double time_s = 0;
   std::int64_t tick = 0;
   double tick_s = 0;  ///< length of one tick (the physics step)
+  /// Per axis, Coulomb friction bound (N·m or N) accumulated for the coming tick; the kernel
+  /// applies it implicitly as a brake (stick-slip, no chatter).
+  double* axis_friction = nullptr;
+  const ContactInfo* contacts = nullptr;  ///< contacts of the last physics step
+  const std::int32_t* contact_count = nullptr;
+  const void* kernel = nullptr;  ///< passed back to the kernel's callbacks below
+  /// Casts a ray against every collision shape except `ignore_body`'s (-1 = none).
+  RayHit (*cast_ray)(const void* kernel, const Vec3& origin_m, const Vec3& direction,
+                     double max_distance_m, std::int32_t ignore_body) = nullptr;
 };
 }  // namespace detail
 
@@ -114,6 +151,24 @@ class StepContext {
   /// Adds a generalised force (N·m, or N) on an axis for the coming tick; positive drives the
   /// axis position up.
   void apply_axis_force(AxisHandle a, double force) { w_->axis_force[a.index] += force; }
+  /// Adds Coulomb friction of at most `max_force` (N·m, or N; >= 0) on an axis for the coming
+  /// tick. The kernel solves it at velocity level after the other forces: an axis whose load
+  /// stays below the bound stands still (true stick, no creep), otherwise it slides against
+  /// the full bound.
+  void apply_axis_friction(AxisHandle a, double max_force) {
+    w_->axis_friction[a.index] += max_force;
+  }
+
+  /// Number of contacts found in the last physics step.
+  int contact_count() const { return *w_->contact_count; }
+  /// A contact of the last physics step, 0 <= i < contact_count().
+  const ContactInfo& contact(int i) const { return w_->contacts[i]; }
+  /// The first collision surface along a ray from `origin_m` in the unit `direction`, within
+  /// `max_distance_m`; the shapes of `ignore` (for example the sensor's own body) are skipped.
+  RayHit cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
+                  BodyHandle ignore = {}) const {
+    return w_->cast_ray(w_->kernel, origin_m, direction, max_distance_m, ignore.index);
+  }
 
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }

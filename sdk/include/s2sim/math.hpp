@@ -82,6 +82,30 @@ struct Quat {
   double w = 1, x = 0, y = 0, z = 0;
 };
 
+/// Inverse of a 3x3 matrix; the zero matrix when it is singular.
+inline Mat3 inverse(const Mat3& a) {
+  const auto& m = a.m;
+  const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+  const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+  const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+  const double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+  Mat3 r;
+  if (!(std::abs(det) > 1e-300)) {
+    r.m[0][0] = r.m[1][1] = r.m[2][2] = 0;
+    return r;
+  }
+  r.m[0][0] = c00 / det;
+  r.m[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) / det;
+  r.m[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) / det;
+  r.m[1][0] = c01 / det;
+  r.m[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) / det;
+  r.m[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) / det;
+  r.m[2][0] = c02 / det;
+  r.m[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) / det;
+  r.m[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) / det;
+  return r;
+}
+
 /// Rotation matrix of a unit quaternion.
 constexpr Mat3 to_matrix(const Quat& q) {
   const double w = q.w, x = q.x, y = q.y, z = q.z;
@@ -96,6 +120,29 @@ constexpr Mat3 to_matrix(const Quat& q) {
   r.m[2][1] = 2 * (y * z + w * x);
   r.m[2][2] = 1 - 2 * (x * x + y * y);
   return r;
+}
+
+/// Unit quaternion of a rotation matrix (Shepperd's method), w >= 0.
+inline Quat to_quat(const Mat3& r) {
+  const auto& m = r.m;
+  const double trace = m[0][0] + m[1][1] + m[2][2];
+  Quat q;
+  if (trace > 0) {
+    const double s = 2 * std::sqrt(1 + trace);
+    q = {0.25 * s, (m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s};
+  } else if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+    const double s = 2 * std::sqrt(1 + m[0][0] - m[1][1] - m[2][2]);
+    q = {(m[2][1] - m[1][2]) / s, 0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s};
+  } else if (m[1][1] > m[2][2]) {
+    const double s = 2 * std::sqrt(1 + m[1][1] - m[0][0] - m[2][2]);
+    q = {(m[0][2] - m[2][0]) / s, (m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s};
+  } else {
+    const double s = 2 * std::sqrt(1 + m[2][2] - m[0][0] - m[1][1]);
+    q = {(m[1][0] - m[0][1]) / s, (m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s};
+  }
+  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  const double sign = q.w < 0 ? -1.0 : 1.0;
+  return {sign * q.w / n, sign * q.x / n, sign * q.y / n, sign * q.z / n};
 }
 
 /// A rigid transform: a point p in the local frame is at `position + rotation * p`.

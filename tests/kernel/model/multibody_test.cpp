@@ -189,6 +189,55 @@ TEST(Multibody, HingeStopHoldsAPendulum) {
   EXPECT_LT(std::abs(r.vel[0]), 0.05);
 }
 
+/// A horizontal arm on a hinge about world Y: gravity loads it with m·g·L.
+scene::Scene horizontal_arm(double mass_kg, double length_m) {
+  scene::Scene s;
+  s.bodies.push_back(test::sphere("bob", mass_kg, 0.01, {length_m, 0, 1}));
+  s.joints.push_back(test::joint("J", JointType::hinge, 0, -1, {0, 0, 1}, {0, 1, 0}));
+  test::add_robot(s, "arm");
+  return s;
+}
+
+TEST(Multibody, CoulombBrakeHoldsALoadBelowItsBoundWithoutCreep) {
+  const double m = 1.0, L = 0.5, load = m * kG * L;
+  Runner r(horizontal_arm(m, L));
+  for (int n = 0; n < 10000; ++n) {  // 10 s
+    r.mb.applied_axis_friction()[0] = 1.01 * load;
+    r.step();
+  }
+  EXPECT_EQ(r.pos[0], 0.0);
+  EXPECT_EQ(r.vel[0], 0.0);
+}
+
+TEST(Multibody, CoulombBrakeAboveItsBoundSlidesAgainstTheFullBound) {
+  // Just after release the arm is near horizontal: theta'' = (m g L - F) / I.
+  const double m = 1.0, L = 0.5, load = m * kG * L, bound = 0.5 * load;
+  const double inertia = m * L * L + 0.4 * m * 0.01 * 0.01;
+  Runner r(horizontal_arm(m, L));
+  for (int n = 0; n < 20; ++n) {
+    r.mb.applied_axis_friction()[0] = bound;
+    r.step();
+  }
+  const double t = 0.02, expected = 0.5 * (load - bound) / inertia * t * t;
+  EXPECT_NEAR(r.pos[0], expected, 0.01 * expected);
+}
+
+TEST(Multibody, ReflectedRotorInertiaAddsNSquaredJToTheAxis) {
+  // A torque on a gravity-free hinge: theta'' = T / (I_body + N^2 J).
+  scene::Scene s = horizontal_arm(1.0, 0.5);
+  s.bodies[0].gravity = false;
+  s.joints[0].drive1.gear.ratio = 48;
+  s.joints[0].drive1.rotor.inertia_kg_m2 = 1e-5;
+  const double inertia = 0.25 + 0.4 * 0.01 * 0.01 + 48.0 * 48.0 * 1e-5;
+  Runner r(s);
+  for (int n = 0; n < 100; ++n) {
+    r.mb.applied_axis_forces()[0] = 0.1;
+    r.step();
+  }
+  const double t = 0.1, expected = 0.5 * 0.1 / inertia * t * t;
+  EXPECT_NEAR(r.pos[0], expected, 1e-6 * expected);
+}
+
 TEST(Multibody, FixedUniversalAndBallJoints) {
   scene::Scene s;
   s.bodies.push_back(test::box("base", 2.0, {0.2, 0.2, 0.2}, {0, 0, 2}));
@@ -277,6 +326,46 @@ TEST(Multibody, SaveAndRestoreContinueBitForBit) {
   r.read();
   EXPECT_EQ(r.mb.time_s(), 0.0);
   EXPECT_EQ(r.pos[0], 0.0);
+}
+
+}  // namespace
+}  // namespace s2sim::model
+
+namespace s2sim::model {
+namespace {
+
+/// A tumbling box under gravity, a constant push and a torque, integrated by LooseBodies and
+/// by a Simbody Free mobilizer: the same law, so the same motion.
+TEST(LooseBodies, MatchSimbodysFreeMobilizer) {
+  for (bool offset_com : {false, true}) {
+    scene::Scene s;
+    s.bodies.push_back(
+        test::box("box", 2.0, {0.3, 0.2, 0.1}, {0, 0, 1}, test::rotation_about({1, 2, 3}, 0.4)));
+    if (offset_com) s.bodies[0].com_m = {0.05, -0.02, 0.01};
+    Runner loose(s);
+    Multibody reference(s, 1e-3, 1, true);
+    std::vector<Pose> poses(2);
+    std::vector<Twist> twists(2);
+    std::vector<double> none;
+    for (int n = 0; n < 1000; ++n) {
+      for (Multibody* mb : {&loose.mb, &reference}) {
+        mb->applied_wrenches()[1] = Wrench{{0.02, -0.01, 0.03}, {1.0, 0.5, 0}};
+        mb->step();
+      }
+    }
+    loose.read();
+    reference.read(poses.data(), twists.data(), none.data(), none.data());
+    const double tolerance = offset_com ? 1e-4 : 1e-9;
+    EXPECT_LT(norm(loose.poses[1].position - poses[1].position), tolerance) << offset_com;
+    EXPECT_LT(norm(loose.twists[1].angular_rad_s - twists[1].angular_rad_s), 100 * tolerance);
+    EXPECT_LT(norm(loose.twists[1].linear_m_s - twists[1].linear_m_s), 100 * tolerance);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LT(norm(loose.poses[1].rotation.column(c) - poses[1].rotation.column(c)), tolerance);
+    // Off the COM, Simbody drifts the body origin and LooseBodies the COM: equal to O(h).
+    const double ke = reference.kinetic_energy_J(), pe = reference.potential_energy_J();
+    EXPECT_NEAR(loose.mb.kinetic_energy_J(), ke, (offset_com ? 1e-5 : 1e-9) * std::abs(ke));
+    EXPECT_NEAR(loose.mb.potential_energy_J(), pe, (offset_com ? 1e-5 : 1e-9) * std::abs(pe));
+  }
 }
 
 }  // namespace

@@ -336,6 +336,9 @@ struct Settings {
   Vec3 wind_m_s;
   double erp = 0.4, cfm = 1e-5;  ///< ODE settings, kept for reference
   bool ir_noise = false;
+  /// SimTwo's four invisible wall planes x, y = ±world_wall_distance_m (§4.3 of the spec).
+  bool world_walls = true;
+  double world_wall_distance_m = 12;
   std::string source;  ///< which file the values came from ("defaults" when none)
 };
 

@@ -3,6 +3,7 @@
 /// The façade: everything the runner, the viewer, the tests and the benchmarks use to load a
 /// scene, step it and read it. No Simbody type appears here.
 
+#include <s2sim/component.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -98,6 +99,10 @@ class Simulation {
   double axis_position(std::size_t index) const;
   double axis_velocity(std::size_t index) const;
 
+  /// Contacts of the last physics substep (points, normals, forces, bodies).
+  std::size_t contact_count() const;
+  const ContactInfo& contact(std::size_t index) const;
+
   /// Kinetic and gravitational potential energy of all bodies, J (validation).
   double kinetic_energy_J() const;
   double potential_energy_J() const;
@@ -106,6 +111,7 @@ class Simulation {
   struct Snapshot {
     std::vector<double> values;
     std::vector<std::uint64_t> random;
+    std::vector<double> contacts;  ///< the contact points' memory (friction, impacts)
   };
   Snapshot save() const;
   void restore(const Snapshot& snapshot);

@@ -1,0 +1,193 @@
+#include "contact/contact_force.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::contact {
+namespace {
+
+double geometric_mean(double a, double b) {
+  return std::sqrt(std::max(0.0, a) * std::max(0.0, b));
+}
+
+/// The first friction direction of an anisotropic wheel (spec §4.3), in the tangent plane.
+Vec3 first_direction(Anisotropy kind, const Vec3& n, const Vec3& axis) {
+  switch (kind) {
+    case Anisotropy::omni:
+      return cross(n, axis);
+    case Anisotropy::mecanum_left:
+      return (axis + cross(n, axis)) * (1 / std::sqrt(2.0));
+    case Anisotropy::mecanum_right:
+      return (axis - cross(n, axis)) * (1 / std::sqrt(2.0));
+    case Anisotropy::none:
+      break;
+  }
+  return {};
+}
+
+/// The linear Hunt–Crossley impact in units of the contact: x = depth·omega/v_in, tau =
+/// omega·t, beta = alpha·v_in, damping capped at critical (beta·x <= 2), never pulling:
+///   x'' = −max(0, x + min(beta·x, 2)·x'),  x(0) = 0, x'(0) = 1.
+/// Returns the restitution −x'(end) (RK4, fine steps).
+double restitution_of(double beta) {
+  double x = 0, v = 1;
+  auto accel = [beta](double x_, double v_) {
+    return -std::max(0.0, x_ + std::min(beta * x_, 2.0) * v_);
+  };
+  const double dt = 2e-3;
+  for (int i = 0; i < 100000; ++i) {
+    const double k1x = v, k1v = accel(x, v);
+    const double k2x = v + 0.5 * dt * k1v, k2v = accel(x + 0.5 * dt * k1x, v + 0.5 * dt * k1v);
+    const double k3x = v + 0.5 * dt * k2v, k3v = accel(x + 0.5 * dt * k2x, v + 0.5 * dt * k2v);
+    const double k4x = v + dt * k3v, k4v = accel(x + dt * k3x, v + dt * k3v);
+    x += dt / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    v += dt / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (x <= 0) break;
+    if (v <= 0 && x < 1e-9) return 0;  // came to rest inside: plastic
+  }
+  return std::max(0.0, -v);
+}
+
+/// beta = alpha·v_in giving restitution e, from a table of restitution_of over log-spaced
+/// beta built once; infinity where even the critical cap cannot absorb enough (plastic).
+double beta_for(double e) {
+  constexpr int kCount = 121;  // beta from 1e-3 to 1e3
+  static const auto table = [] {
+    struct Table {
+      double beta[kCount], e[kCount];
+    } t{};
+    for (int i = 0; i < kCount; ++i) {
+      t.beta[i] = std::pow(10.0, -3.0 + 6.0 * i / (kCount - 1));
+      t.e[i] = restitution_of(t.beta[i]);
+    }
+    return t;
+  }();
+  if (e >= table.e[0]) return table.beta[0] * (1 - e) / (1 - table.e[0] + 1e-300);
+  for (int i = 1; i < kCount; ++i)
+    if (e >= table.e[i]) {
+      const double f = (table.e[i - 1] - e) / (table.e[i - 1] - table.e[i]);
+      return std::exp(std::log(table.beta[i - 1]) +
+                      f * (std::log(table.beta[i]) - std::log(table.beta[i - 1])));
+    }
+  return INFINITY;
+}
+
+}  // namespace
+
+PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu) {
+  // Symmetric rule: a surface without an explicit mu takes no part; two explicit surfaces
+  // combine by geometric mean; none at all gives the project's default friction.
+  const SurfaceParams* sa = a.surface.has_mu ? &a.surface : nullptr;
+  const SurfaceParams* sb = b && b->surface.has_mu ? &b->surface : nullptr;
+  auto second = [](const SurfaceParams& s) { return s.mu2 >= 0 ? s.mu2 : s.mu; };
+  PairMaterial m;
+  if (sa && sb) {
+    m.mu1 = geometric_mean(sa->mu, sb->mu);
+    m.mu2 = geometric_mean(second(*sa), second(*sb));
+  } else if (sa || sb) {
+    const SurfaceParams& s = sa ? *sa : *sb;
+    m.mu1 = s.mu;
+    m.mu2 = second(s);
+  } else {
+    m.mu1 = m.mu2 = default_mu;
+  }
+  if (a.anisotropy != Anisotropy::none) {
+    m.anisotropic = true;
+    m.anisotropy = a.anisotropy;
+    m.anisotropy_on_a = true;
+  } else if (b && b->anisotropy != Anisotropy::none) {
+    m.anisotropic = true;
+    m.anisotropy = b->anisotropy;
+    m.anisotropy_on_a = false;
+  } else {
+    m.mu2 = m.mu1;  // plain solids are isotropic whatever their mu2 (spec §4.3)
+  }
+  m.restitution = std::max(a.surface.restitution, b ? b->surface.restitution : 0.0);
+  m.restitution_threshold_m_s =
+      std::max(a.surface.restitution_threshold_m_s, b ? b->surface.restitution_threshold_m_s : 0.0);
+  m.softness = std::max(a.surface.softness, b ? b->surface.softness : 0.0);
+  return m;
+}
+
+Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
+                   const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
+                   PointState& state) {
+  const Vec3& n = point.normal;
+  const double m = kin.mass_kg;
+  // Stiffness: the surface's own (ODE's CFM read at the reference step), but never stiffer
+  // than the step can integrate: omega_c = frequency_ratio / h.
+  const double omega_max = law.frequency_ratio / kin.step_s;
+  const double k_surface = law.erp / (std::max(material.softness, 1e-12) * law.reference_step_s);
+  const double k = std::min(k_surface, m * omega_max * omega_max);
+  const double critical = 2 * std::sqrt(k * m);
+
+  // Normal: Hunt–Crossley, F = k·d·(1 + alpha·v) with the damping capped at critical, alpha
+  // from the restitution e and the approach speed v_in so that this very law rebounds at e·v_in
+  // (beta_for); e = 0, or an approach slower than the threshold, is plastic. Never pulls.
+  const double approach = -dot(kin.relative_velocity_m_s, n);  // > 0 when closing
+  if (new_point) state.approach_speed_m_s = std::max(approach, 1e-3);
+  double damping = critical;
+  const double e = material.restitution;
+  if (e > 0 && state.approach_speed_m_s >= material.restitution_threshold_m_s) {
+    const double alpha = beta_for(e) / state.approach_speed_m_s;
+    damping = std::min(critical, k * alpha * point.depth_m);
+  }
+  const double normal = std::max(0.0, k * point.depth_m + damping * approach);
+
+  // Tangential: slip velocity in the tangent plane, bristle deflection carried along it.
+  const Vec3 v_t = kin.relative_velocity_m_s - dot(kin.relative_velocity_m_s, n) * n;
+  Vec3 bristle = new_point ? Vec3{} : state.bristle_m - dot(state.bristle_m, n) * n;
+  bristle += v_t * kin.step_s;
+  // The bristle may not ring faster than the normal spring, whatever the tangential mass (a
+  // wheel's rim is light across the normal).
+  const double k_t = law.bristle_ratio * std::min(k, kin.tangent_mass_kg * omega_max * omega_max);
+  // Regularised Coulomb: viscous slope mu·N/v_tr, capped where explicit stepping stays stable.
+  // Friction damping solved implicitly for the point's mass, c/(1 + c·h/m): the Coulomb slope
+  // mu·N/v_tr is steep and many contacts may share a body.
+  const double m_t = kin.tangent_mass_kg;
+  const double c_raw =
+      std::min(material.mu1 * normal / law.transition_speed_m_s, 2 * std::sqrt(k_t * m_t));
+  const double c_t = c_raw / (1 + c_raw * kin.step_s / m_t);
+  Vec3 friction = -(k_t * bristle) - c_t * v_t;
+  // Friction cone (an ellipse for anisotropic wheels).
+  Vec3 d1, d2;
+  double mu1 = material.mu1, mu2 = material.mu2;
+  if (material.anisotropic) {
+    d1 = first_direction(material.anisotropy, n, kin.friction_axis);
+    d1 -= dot(d1, n) * n;
+    const double len = norm(d1);
+    if (len < 1e-9) {
+      mu2 = mu1;  // the axis is along the normal: no preferred direction
+    } else {
+      d1 = d1 / len;
+      d2 = cross(n, d1);
+    }
+  }
+  double excess;
+  if (mu1 == mu2 || norm(d1) == 0) {
+    const double f = norm(friction), limit = mu1 * normal;
+    excess = limit > 0 ? f / limit : (f > 0 ? INFINITY : 0);
+  } else {
+    const double f1 = dot(friction, d1), f2 = dot(friction, d2);
+    const double l1 = mu1 * normal, l2 = mu2 * normal;
+    const double r1 = l1 > 0 ? f1 / l1 : (f1 != 0 ? INFINITY : 0);
+    const double r2 = l2 > 0 ? f2 / l2 : (f2 != 0 ? INFINITY : 0);
+    excess = std::sqrt(r1 * r1 + r2 * r2);
+  }
+  if (excess > 1) {
+    // Sliding: the force sits on the cone and the bristle holds exactly that much.
+    friction = std::isfinite(excess) ? friction * (1 / excess) : Vec3{};
+    if (!std::isfinite(excess) && material.anisotropic && norm(d1) > 0) {
+      // One direction frictionless: keep the component the other allows.
+      const double l1 = mu1 * normal, l2 = mu2 * normal;
+      const double f1 = std::clamp(dot(-(k_t * bristle) - c_t * v_t, d1), -l1, l1);
+      const double f2 = std::clamp(dot(-(k_t * bristle) - c_t * v_t, d2), -l2, l2);
+      friction = f1 * d1 + f2 * d2;
+    }
+    bristle = k_t > 0 ? friction * (-1 / k_t) : Vec3{};
+  }
+  state.bristle_m = bristle;
+  return n * normal + friction;
+}
+
+}  // namespace s2sim::contact

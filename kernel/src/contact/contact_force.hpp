@@ -1,0 +1,56 @@
+#pragma once
+/// \file
+/// The contact force law (docs/models/contact.md): a compliant Hunt–Crossley normal force and
+/// Coulomb friction regularised by a transition velocity, with an elastic bristle that gives
+/// true stiction; anisotropic coefficients for omni and mecanum wheels.
+
+#include "contact/geometry.hpp"
+
+namespace s2sim::contact {
+
+/// Combined parameters of two surfaces (symmetric in a and b).
+struct PairMaterial {
+  double mu1 = 0;  ///< along the first friction direction (every direction when isotropic)
+  double mu2 = 0;  ///< across it
+  bool anisotropic = false;
+  Anisotropy anisotropy = Anisotropy::none;
+  bool anisotropy_on_a = true;  ///< whose local Z axis orients the friction directions
+  double restitution = 0;
+  double restitution_threshold_m_s = 0;
+  double softness = 1e-5;
+};
+
+/// `b` is null for the ground and the walls, which have no surface of their own.
+PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu);
+
+/// Numbers of the force law shared by every contact of the run.
+struct ForceLawSettings {
+  double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
+  double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
+  double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
+  double erp = 0.4;
+  double bristle_ratio = 0.5;  ///< tangential / normal stiffness
+};
+
+/// What persists for one contact point between steps.
+struct PointState {
+  Vec3 bristle_m;                 ///< elastic tangential deflection, world frame
+  double approach_speed_m_s = 0;  ///< normal speed when the point first touched
+  Vec3 local_point_m;             ///< where it touched, in shape a's frame (matching)
+};
+
+/// Inputs of the force law for one point.
+struct PointKinematics {
+  Vec3 relative_velocity_m_s;  ///< of a's material point relative to b's (belt motion included)
+  Vec3 friction_axis;          ///< anisotropic surfaces: the axis orienting d1 (a's or b's Z)
+  double mass_kg = 1;          ///< the pair's effective mass at the point, along the normal
+  double tangent_mass_kg = 1;  ///< the same across the normal (the smaller of two directions)
+  double step_s = 1e-3;        ///< physics substep
+};
+
+/// Force on shape a at the point (world frame). Updates `state`.
+Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
+                   const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
+                   PointState& state);
+
+}  // namespace s2sim::contact

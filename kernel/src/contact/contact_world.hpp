@@ -1,0 +1,85 @@
+#pragma once
+/// \file
+/// The contact layer: every collision shape of the scene (solids, shells, things, obstacles),
+/// the ground plane and SimTwo's walls; broad phase, narrow phase, the force law and the
+/// contact points' memory from step to step. Applied to the multibody model as a substep force.
+
+#include "contact/broad_phase.hpp"
+#include "contact/contact_force.hpp"
+#include "contact/fcl_pairs.hpp"
+#include "contact/geometry.hpp"
+#include "model/substep_forces.hpp"
+
+#include <s2sim/component.hpp>
+#include <s2sim/kernel/scene.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace s2sim::contact {
+
+class ContactWorld final : public model::SubstepForces {
+ public:
+  /// `apparent_mass_kg` per kernel body (0 = world, ignored): the mass a force at the body's
+  /// centre of mass meets, which sets each contact's stiffness.
+  ContactWorld(const scene::Scene& scene, const std::vector<double>& apparent_mass_kg,
+               const ForceLawSettings& law = {});
+
+  /// Where the belt speeds live (the kernel's input array), read at every substep.
+  void set_inputs(const double* inputs) { inputs_ = inputs; }
+  /// The belt solids (kernel body indices) whose speed the caller exposes as an input.
+  std::vector<std::int32_t> belt_bodies() const;
+  void set_belt_speed_input(std::int32_t body, std::int32_t input);
+
+  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override;
+
+  /// Contacts of the last substep.
+  const ContactInfo* contacts() const { return info_.data(); }
+  const std::int32_t* contact_count() const { return &info_count_; }
+  const std::vector<Shape>& shapes() const { return shapes_; }
+  const std::vector<Plane>& planes() const { return planes_; }
+
+  /// Forgets every contact (back to t = 0).
+  void reset();
+  /// The contact memory as numbers, and back (snapshots).
+  void save(std::vector<double>& out) const;
+  /// Reads what save() wrote from `in` at `offset`; returns the offset after it.
+  std::size_t restore(const std::vector<double>& in, std::size_t offset);
+
+ private:
+  struct Memory {
+    std::uint64_t key;
+    PointState state;
+  };
+  void add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
+                 const ContactPoint& p, const Pose* poses, const Twist* twists, double step_s,
+                 Wrench* wrenches);
+  bool excluded(std::int32_t body_a, std::int32_t body_b) const;
+  void add_point_compliance(std::int32_t body, const Vec3& point, const Pose* poses,
+                            Mat3& compliance) const;
+  void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
+                      int count) const;
+
+  std::vector<Shape> shapes_;
+  std::vector<Plane> planes_;
+  std::vector<double> apparent_mass_kg_;
+  std::vector<Vec3> com_m_;                  // per body, body frame
+  std::vector<Mat3> inverse_inertia_;        // per body, about the COM, body axes
+  std::vector<char> fixed_to_world_;         // per body: jointed to the world
+  std::vector<std::uint64_t> joined_pairs_;  // sorted body pairs that never collide
+  double default_mu_ = 0.95;
+  ForceLawSettings law_;
+  const double* inputs_ = nullptr;
+
+  // Per substep (reserved at load).
+  std::vector<Pose> world_pose_;
+  std::vector<Aabb> boxes_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
+  BroadPhase broad_phase_;
+  FclPairs fcl_;
+  std::vector<Memory> memory_, next_memory_;
+  std::vector<ContactInfo> info_;
+  std::int32_t info_count_ = 0;
+};
+
+}  // namespace s2sim::contact

@@ -1,0 +1,29 @@
+#pragma once
+/// \file
+/// Analytic narrow phase: the exact contact points of primitives against a plane, sphere
+/// against sphere and sphere against box. Every function appends at most `capacity` points
+/// to `out` and returns how many it wrote; shape a is the first argument, normals point from
+/// b toward a and points lie on a's surface.
+
+#include "contact/geometry.hpp"
+
+namespace s2sim::contact {
+
+/// Most points one primitive pair can produce (a box on a plane: its 8 corners).
+constexpr int kMaxPointsPerPair = 8;
+
+/// `pose` is the shape's world pose.
+int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out);
+
+int sphere_sphere(double radius_a, const Vec3& center_a, double radius_b, const Vec3& center_b,
+                  ContactPoint* out);
+
+/// A sphere (a) against a box (b) of half extents `half_b` at `pose_b`.
+int sphere_box(double radius_a, const Vec3& center_a, const Vec3& half_b, const Pose& pose_b,
+               ContactPoint* out);
+
+/// Turns points computed for the pair (b, a) into points for (a, b): the normal flips and
+/// each point moves from b's surface to a's, `depth` along the old normal.
+void swap_roles(ContactPoint* points, int count);
+
+}  // namespace s2sim::contact

@@ -1,0 +1,135 @@
+#include "model/loose_bodies.hpp"
+
+#include <cmath>
+
+namespace s2sim::model {
+namespace {
+
+constexpr double kGravity = 9.81;  // m/s², along −Z, as the multibody model's
+
+Quat normalized(const Quat& q) {
+  const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+  return {q.w / n, q.x / n, q.y / n, q.z / n};
+}
+
+}  // namespace
+
+void LooseBodies::add(int kernel_index, const scene::Body& body) {
+  Model m;
+  m.kernel_index = kernel_index;
+  m.mass_kg = body.mass_kg;
+  m.com_body_m = body.com_m;
+  m.inertia_body = body.inertia_kg_m2;
+  m.inverse_inertia_body = inverse(body.inertia_kg_m2);
+  m.gravity = body.gravity;
+  m.com0_m = body.pose * body.com_m;
+  m.q0 = to_quat(body.pose.rotation);
+  model_.push_back(m);
+  state_.push_back({m.com0_m, {}, {}, m.q0});
+}
+
+void LooseBodies::reset() {
+  for (std::size_t i = 0; i < model_.size(); ++i)
+    state_[i] = {model_[i].com0_m, {}, {}, model_[i].q0};
+}
+
+void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_s) {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    const Model& m = model_[i];
+    State& s = state_[i];
+    Wrench w = wrenches[m.kernel_index];
+    if (extra) {
+      w.force_N += extra[m.kernel_index].force_N;
+      w.torque_Nm += extra[m.kernel_index].torque_Nm;
+    }
+    const Mat3 r = to_matrix(s.q);
+    // Wrenches are about the body origin; Newton–Euler wants them about the COM.
+    const Vec3 com_from_origin = r * m.com_body_m;
+    const Vec3 torque_com = w.torque_Nm - cross(com_from_origin, w.force_N);
+    Vec3 accel = w.force_N / m.mass_kg;
+    if (m.gravity) accel.z -= kGravity;
+    // I·dω/dt = τ − ω × (I·ω), in body axes.
+    const Mat3 rt = r.transposed();
+    const Vec3 omega_b = rt * s.angular_velocity_rad_s;
+    const Vec3 tau_b = rt * torque_com;
+    const Vec3 alpha_b =
+        m.inverse_inertia_body * (tau_b - cross(omega_b, m.inertia_body * omega_b));
+    s.com_velocity_m_s += accel * kick_s;
+    s.angular_velocity_rad_s += (r * alpha_b) * kick_s;
+  }
+}
+
+void LooseBodies::drift(double step_s) {
+  for (State& s : state_) {
+    s.com_m += s.com_velocity_m_s * step_s;
+    const Vec3& w = s.angular_velocity_rad_s;
+    const Quat& q = s.q;
+    // dq/dt = ½ (0, ω) ⊗ q, ω in the world frame.
+    const Quat dq{
+        -0.5 * (w.x * q.x + w.y * q.y + w.z * q.z), 0.5 * (w.x * q.w + w.y * q.z - w.z * q.y),
+        0.5 * (-w.x * q.z + w.y * q.w + w.z * q.x), 0.5 * (w.x * q.y - w.y * q.x + w.z * q.w)};
+    s.q = normalized(
+        {q.w + step_s * dq.w, q.x + step_s * dq.x, q.y + step_s * dq.y, q.z + step_s * dq.z});
+  }
+}
+
+void LooseBodies::read(Pose* poses, Twist* twists) const {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    const Model& m = model_[i];
+    const State& s = state_[i];
+    const Mat3 r = to_matrix(s.q);
+    const Vec3 com_from_origin = r * m.com_body_m;
+    poses[m.kernel_index] = {s.com_m - com_from_origin, r};
+    twists[m.kernel_index] = {
+        s.angular_velocity_rad_s,
+        s.com_velocity_m_s - cross(s.angular_velocity_rad_s, com_from_origin)};
+  }
+}
+
+double LooseBodies::kinetic_energy_J() const {
+  double e = 0;
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    const State& s = state_[i];
+    const Vec3 omega_b = to_matrix(s.q).transposed() * s.angular_velocity_rad_s;
+    e += 0.5 * model_[i].mass_kg * dot(s.com_velocity_m_s, s.com_velocity_m_s) +
+         0.5 * dot(omega_b, model_[i].inertia_body * omega_b);
+  }
+  return e;
+}
+
+double LooseBodies::potential_energy_J() const {
+  double e = 0;
+  for (std::size_t i = 0; i < model_.size(); ++i)
+    if (model_[i].gravity) e += model_[i].mass_kg * kGravity * state_[i].com_m.z;
+  return e;
+}
+
+double LooseBodies::checksum() const {
+  double sum = 0;
+  for (const State& s : state_)
+    sum += s.com_m.x + s.com_m.y + s.com_m.z + s.com_velocity_m_s.x + s.com_velocity_m_s.y +
+           s.com_velocity_m_s.z + s.angular_velocity_rad_s.x + s.angular_velocity_rad_s.y +
+           s.angular_velocity_rad_s.z + s.q.w + s.q.x + s.q.y + s.q.z;
+  return sum;
+}
+
+void LooseBodies::save(std::vector<double>& out) const {
+  for (const State& s : state_)
+    out.insert(out.end(),
+               {s.com_m.x, s.com_m.y, s.com_m.z, s.com_velocity_m_s.x, s.com_velocity_m_s.y,
+                s.com_velocity_m_s.z, s.angular_velocity_rad_s.x, s.angular_velocity_rad_s.y,
+                s.angular_velocity_rad_s.z, s.q.w, s.q.x, s.q.y, s.q.z});
+}
+
+std::size_t LooseBodies::restore(const std::vector<double>& in, std::size_t k) {
+  for (State& s : state_) {
+    s.com_m = {in.at(k), in.at(k + 1), in.at(k + 2)};
+    s.com_velocity_m_s = {in.at(k + 3), in.at(k + 4), in.at(k + 5)};
+    s.angular_velocity_rad_s = {in.at(k + 6), in.at(k + 7), in.at(k + 8)};
+    s.q = {in.at(k + 9), in.at(k + 10), in.at(k + 11), in.at(k + 12)};
+    k += 13;
+  }
+  return k;
+}
+
+}  // namespace s2sim::model

@@ -1,0 +1,255 @@
+// The contact layer against analytic answers (docs/models/contact.md), at a 1 ms step.
+#include "contact/contact_world.hpp"
+#include "model/multibody.hpp"
+#include "scene_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace s2sim::contact {
+namespace {
+
+using scene::JointType;
+constexpr double kG = 9.81;
+
+/// A multibody model with the contact layer as its substep force.
+struct Runner {
+  explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
+      : mb(s, dt, substeps),
+        contacts(s, mb.apparent_mass_kg()),
+        poses(mb.body_count()),
+        twists(mb.body_count()),
+        pos(mb.axes().size()),
+        vel(mb.axes().size()) {
+    mb.set_substep_forces(&contacts);
+    read();
+  }
+  void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
+  void step(int n = 1) {
+    for (int i = 0; i < n; ++i)
+      mb.step();
+    read();
+  }
+  model::Multibody mb;
+  ContactWorld contacts;
+  std::vector<Pose> poses;
+  std::vector<Twist> twists;
+  std::vector<double> pos, vel;
+};
+
+void set_mu(scene::Body& b, double mu, double bounce = 0) {
+  for (auto& g : b.geoms) {
+    g.surface.explicit_surface = true;
+    g.surface.mu = mu;
+    g.surface.bounce = bounce;
+  }
+}
+
+/// Height of the slopes' pivot: well clear of the ground.
+const Vec3 kPivot{0, 0, 3};
+
+/// A static slab whose top face passes through kPivot, tilted by `angle` about Y so that
+/// down-slope is +X.
+scene::Geom slope(double angle) {
+  scene::Geom g;
+  g.id = "slope";
+  g.shape.type = scene::ShapeType::box;
+  g.shape.size_m = {4, 2, 0.2};
+  const Mat3 r = test::rotation_about({0, 1, 0}, angle);
+  g.pose = {kPivot + r * Vec3{0, 0, -0.1}, r};
+  return g;
+}
+
+/// Distance travelled down the slope (+X of the slope frame).
+double along(const Mat3& slope_rotation, const Vec3& p) {
+  return dot(slope_rotation.column(0), p);
+}
+
+TEST(Contact, BlockOnAnInclineHoldsBelowTheFrictionAngle) {
+  const double angle = 20 * M_PI / 180, mu = 0.5;  // tan 20° = 0.36 < 0.5
+  const Mat3 r = test::rotation_about({0, 1, 0}, angle);
+  scene::Scene s;
+  s.settings.world_walls = false;
+  s.obstacles.push_back(slope(angle));
+  s.bodies.push_back(test::box("block", 1.0, {0.1, 0.1, 0.1}, kPivot + r * Vec3{0, 0, 0.0501}, r));
+  set_mu(s.bodies[0], mu);
+  Runner run(s);
+  run.step(500);  // settle
+  const double start = along(r, run.poses[1].position);
+  run.step(10000);
+  const double drift = along(r, run.poses[1].position) - start;
+  RecordProperty("drift_m", std::to_string(drift));
+  EXPECT_LT(std::abs(drift), 1e-3) << "the block crept " << drift << " m in 10 s";
+}
+
+TEST(Contact, BlockOnASteepInclineSlidesAtGTimesSinMinusMuCos) {
+  const double angle = 30 * M_PI / 180, mu = 0.3;
+  const Mat3 r = test::rotation_about({0, 1, 0}, angle);
+  scene::Scene s;
+  s.settings.world_walls = false;
+  s.obstacles.push_back(slope(angle));
+  s.bodies.push_back(
+      test::box("block", 1.0, {0.1, 0.1, 0.1}, kPivot + r * Vec3{-1.5, 0, 0.0501}, r));
+  set_mu(s.bodies[0], mu);
+  Runner run(s);
+  run.step(200);
+  const double x0 = along(r, run.poses[1].position);
+  run.step(500);
+  const double x1 = along(r, run.poses[1].position);
+  run.step(500);
+  const double x2 = along(r, run.poses[1].position);
+  const double measured = (x2 - 2 * x1 + x0) / (0.5 * 0.5);
+  const double expected = kG * (std::sin(angle) - mu * std::cos(angle));
+  RecordProperty("acceleration", std::to_string(measured));
+  EXPECT_NEAR(measured, expected, 0.02 * expected);
+}
+
+TEST(Contact, SphereRollsDownAnInclineAtFiveSeventhsGSin) {
+  const double angle = 15 * M_PI / 180, radius = 0.05;
+  const Mat3 r = test::rotation_about({0, 1, 0}, angle);
+  scene::Scene s;
+  s.settings.world_walls = false;
+  s.obstacles.push_back(slope(angle));
+  s.bodies.push_back(test::sphere("ball", 0.5, radius, kPivot + r * Vec3{-1.5, 0, radius}));
+  set_mu(s.bodies[0], 0.8);
+  Runner run(s);
+  run.step(200);
+  const double x0 = along(r, run.poses[1].position);
+  run.step(500);
+  const double x1 = along(r, run.poses[1].position);
+  run.step(500);
+  const double x2 = along(r, run.poses[1].position);
+  const double measured = (x2 - 2 * x1 + x0) / (0.5 * 0.5);
+  const double expected = 5.0 / 7.0 * kG * std::sin(angle);
+  RecordProperty("acceleration", std::to_string(measured));
+  EXPECT_NEAR(measured, expected, 0.02 * expected);
+}
+
+TEST(Contact, BallReboundsToRestitutionSquaredTimesTheDropHeight) {
+  for (double e : {0.5, 0.8}) {
+    const double radius = 0.05, drop = 1.0;
+    scene::Scene s;
+    s.bodies.push_back(test::sphere("ball", 0.2, radius, {0, 0, radius + drop}));
+    set_mu(s.bodies[0], 0.5, e);
+    Runner run(s);
+    bool bounced = false;
+    double apex = 0;
+    for (int n = 0; n < 2000; ++n) {
+      run.step();
+      const double vz = run.twists[1].linear_m_s.z;
+      if (!bounced && vz > 0) bounced = true;
+      if (bounced) apex = std::max(apex, run.poses[1].position.z - radius);
+      if (bounced && vz < 0) break;
+    }
+    const double expected = e * e * drop;
+    EXPECT_NEAR(apex, expected, 0.1 * expected) << "restitution " << e;
+    RecordProperty("rebound_e" + std::to_string(e), std::to_string(apex));
+  }
+}
+
+TEST(Contact, BoxRestingOnTheGroundSinksAndDriftsLessThanAMillimetre) {
+  scene::Scene s;
+  s.bodies.push_back(test::box("box", 2.0, {0.2, 0.3, 0.1}, {0.5, 0.5, 0.05}));
+  Runner run(s);
+  run.step(10000);
+  const Vec3 p = run.poses[1].position;
+  RecordProperty("sink_mm", std::to_string((0.05 - p.z) * 1e3));
+  RecordProperty("drift_mm", std::to_string(std::hypot(p.x - 0.5, p.y - 0.5) * 1e3));
+  EXPECT_LT(0.05 - p.z, 1e-3);
+  EXPECT_GT(0.05 - p.z, 0.0);
+  EXPECT_LT(std::hypot(p.x - 0.5, p.y - 0.5), 1e-3);
+}
+
+TEST(Contact, StackOfFiveBoxesStandsTenSeconds) {
+  scene::Scene s;
+  const double size = 0.1;
+  for (int i = 0; i < 5; ++i)
+    s.bodies.push_back(
+        test::box("b" + std::to_string(i), 0.5, {size, size, size}, {0, 0, size / 2 + i * size}));
+  Runner run(s);
+  run.step(10000);
+  for (int i = 0; i < 5; ++i) {
+    const Vec3 p = run.poses[i + 1].position;
+    EXPECT_LT(std::hypot(p.x, p.y), 1e-3) << "box " << i;
+    EXPECT_NEAR(p.z, size / 2 + i * size, 3e-3) << "box " << i;
+  }
+}
+
+TEST(Contact, DrivenWheelRollsAtRadiusTimesSpinWithinHalfAPercent) {
+  // A carriage on a frictionless rail along X carries a wheel on an axle along Y; a speed
+  // loop on the axle torque spins the wheel, the ground drives the carriage.
+  // The axle runs 0.5 mm lower than the radius: the tread is pressed into the ground.
+  const double radius = 0.04, axle = radius - 5e-4;
+  scene::Scene s;
+  s.bodies.push_back(test::box("carriage", 1.0, {0.1, 0.1, 0.02}, {0, 0, axle}));
+  scene::Body wheel = test::sphere("wheel", 0.1, radius, {0, 0, axle});
+  wheel.geoms[0].shape.type = scene::ShapeType::cylinder;
+  wheel.geoms[0].shape.length_m = 0.02;
+  wheel.geoms[0].pose.rotation = test::rotation_about({1, 0, 0}, M_PI / 2);
+  set_mu(wheel, 1.0);
+  s.bodies.push_back(wheel);
+  s.joints.push_back(test::joint("rail", JointType::slider, 0, -1, {0, 0, axle}, {1, 0, 0}));
+  s.joints.push_back(test::joint("axle", JointType::hinge, 1, 0, {0, 0, axle}, {0, 1, 0}));
+  test::add_robot(s, "cart");
+  Runner run(s);
+  const double target = 10;  // rad/s
+  for (int n = 0; n < 3000; ++n) {
+    run.mb.applied_axis_forces()[1] = 0.05 * (target - run.vel[1]);
+    run.step();
+  }
+  const double speed = run.vel[0], spin = run.vel[1];
+  ASSERT_GT(spin, 5);
+  EXPECT_NEAR(speed, radius * spin, 0.005 * radius * spin);
+  RecordProperty("slip", std::to_string(speed / (radius * spin) - 1));
+}
+
+}  // namespace
+}  // namespace s2sim::contact
+
+namespace s2sim::contact {
+namespace {
+
+/// A carriage on a rail along X carries a wheel whose axle is along X too, pressed into the
+/// ground; a force pushes the carriage along the rail, i.e. along the axle. Returns the
+/// carriage's travel after 1 s.
+double push_along_the_axle(scene::FrictionKind kind, double force_N) {
+  const double radius = 0.03, axle = radius - 5e-4;
+  scene::Scene s;
+  s.bodies.push_back(test::box("carriage", 1.0, {0.1, 0.1, 0.02}, {0, 0, axle}));
+  scene::Body wheel = test::sphere("wheel", 0.1, radius, {0, 0, axle});
+  wheel.geoms[0].shape.type = scene::ShapeType::cylinder;
+  wheel.geoms[0].shape.length_m = 0.02;
+  wheel.geoms[0].pose.rotation = test::rotation_about({0, 1, 0}, M_PI / 2);  // Z along X
+  wheel.geoms[0].friction = kind;
+  wheel.geoms[0].surface.explicit_surface = true;
+  wheel.geoms[0].surface.mu = 1.0;
+  wheel.geoms[0].surface.mu2 = 0.001;
+  s.bodies.push_back(wheel);
+  s.joints.push_back(test::joint("rail", JointType::slider, 0, -1, {0, 0, axle}, {1, 0, 0}));
+  s.joints.push_back(test::joint("axle", JointType::hinge, 1, 0, {0, 0, axle}, {1, 0, 0}));
+  test::add_robot(s, "cart");
+  Runner run(s);
+  for (int n = 0; n < 1000; ++n) {
+    run.mb.applied_axis_forces()[0] = force_N;
+    run.step();
+  }
+  return run.pos[0];
+}
+
+TEST(Contact, OmniWheelSlidesAlongItsAxleWhereAPlainWheelGrips) {
+  // The wheel presses with about 9 N (0.5 mm at the contact stiffness); 2 N along the axle.
+  const double plain = push_along_the_axle(scene::FrictionKind::isotropic, 2.0);
+  const double omni = push_along_the_axle(scene::FrictionKind::omni, 2.0);
+  EXPECT_LT(std::abs(plain), 1e-3) << "a plain wheel holds sideways";
+  // Omni: mu2 = 0.001 along the axle, so nearly free: x = F/(2m)·t² for 1.1 kg.
+  EXPECT_NEAR(omni, 0.5 * 2.0 / 1.1, 0.02) << "an omni wheel rolls on its rollers";
+  // Mecanum rollers at 45°: the axle direction is half gripped, half free: in between.
+  const double mecanum = push_along_the_axle(scene::FrictionKind::mecanum_left, 2.0);
+  EXPECT_GT(mecanum, 0.01);
+  EXPECT_LT(mecanum, omni);
+}
+
+}  // namespace
+}  // namespace s2sim::contact

@@ -1,0 +1,115 @@
+// SimTwo's reference scenes with contact: things settle, the belt carries, a robot stops at an
+// obstacle. Skipped when ../shared is absent.
+#include <s2sim/kernel/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace s2sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path shared(const std::string& name) {
+  return fs::path(S2SIM_SHARED_SCENES) / name;
+}
+
+#define REQUIRE_SHARED(name)                   \
+  if (!fs::exists(shared(name) / "scene.xml")) \
+  GTEST_SKIP() << "SimTwo's reference scenes are not at " << S2SIM_SHARED_SCENES
+
+/// A copy of a shared scene with `from` replaced by `to` in `file`.
+fs::path edited_copy(const std::string& scene, const std::string& file, const std::string& from,
+                     const std::string& to) {
+  const fs::path dir = fs::path(testing::TempDir()) /
+                       ("s2sim_contact_" + scene + "_" +
+                        testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::remove_all(dir);
+  fs::copy(shared(scene), dir, fs::copy_options::recursive);
+  std::ifstream in(dir / file);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string s = text.str();
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << from << " not in " << file;
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  std::ofstream(dir / file) << s;
+  return dir;
+}
+
+void expect_things_at_rest(const char* scene) {
+  auto sim = Simulation::load(shared(scene));
+  ASSERT_FALSE(sim->scene().things.empty());
+  sim->run_until(5.0);
+  for (int b : sim->scene().things) {
+    const Twist& t = sim->body_twist(b + 1);
+    const Pose& p = sim->body_pose(b + 1);
+    const std::string id = sim->scene().bodies[b].id;
+    EXPECT_LT(norm(t.linear_m_s), 0.01) << scene << ": thing " << id << " still moves";
+    EXPECT_LT(norm(t.angular_rad_s), 0.05) << scene << ": thing " << id << " still turns";
+    EXPECT_GT(p.position.z, 0.0) << scene << ": thing " << id << " went through the ground";
+    EXPECT_LT(std::abs(p.position.x), 12) << scene << ": thing " << id << " flew away";
+    EXPECT_LT(std::abs(p.position.y), 12) << scene << ": thing " << id << " flew away";
+  }
+}
+
+TEST(SharedScenesContact, ThingsOfBaseLandAndComeToRest) {
+  REQUIRE_SHARED("base");
+  expect_things_at_rest("base");
+}
+
+TEST(SharedScenesContact, ThingsOfDefaultLandAndComeToRest) {
+  REQUIRE_SHARED("default");
+  expect_things_at_rest("default");
+}
+
+TEST(SharedScenesContact, BaseBeltCarriesABoxAndABallAtTheBeltSpeed) {
+  REQUIRE_SHARED("base");
+  // The belt of `base` spans x 0.25..1.75 at y = -1, its top at z = 0.125.
+  const fs::path dir = edited_copy("base", "things.xml", "</things>", R"(
+  <cuboid><ID value='OnBelt'/><mass value='0.2'/><size x='0.1' y='0.1' z='0.1'/>
+    <pos x='0.4' y='-1.05' z='0.176'/></cuboid>
+  <sphere><ID value='BallOnBelt'/><mass value='0.1'/><radius value='0.04'/>
+    <pos x='0.4' y='-0.9' z='0.166'/></sphere>
+</things>)");
+  for (double speed : {0.5, 0.3}) {
+    // A box rides the belt at its speed. A ball rolls on it: with nothing else acting, the
+    // angular momentum about the contact line stays zero and the ball's centre settles at
+    // 2/7 of the belt speed (v − ωr = v_belt, m·v·r = I·ω with I = 2/5·m·r²).
+    for (const auto& [thing, expected] :
+         {std::pair<const char*, double>{"OnBelt", speed}, {"BallOnBelt", 2.0 / 7.0 * speed}}) {
+      auto sim = Simulation::load(dir);
+      sim->set_input("robots/Conveyor Belt/solids/1/belt_speed", speed);
+      const std::string x = std::string("things/") + thing + "/x";
+      sim->run_until(0.5);
+      const double x0 = sim->signal(x), t0 = sim->time_s();
+      sim->run_until(1.5);
+      const double v = (sim->signal(x) - x0) / (sim->time_s() - t0);
+      EXPECT_NEAR(v, expected, 0.05 * expected) << thing << " at belt speed " << speed;
+    }
+  }
+}
+
+TEST(SharedScenesContact, BaseRobotDrivenIntoAnObstacleStopsAtIt) {
+  REQUIRE_SHARED("base");
+  // Turn the differential robot toward the red block (x -0.25..0.25, y 1.5..2.5) and push.
+  const fs::path dir =
+      edited_copy("base", "scene.xml", "<pos x='0' y='-1' z='0'/>\n    <rot_deg z='0'/>",
+                  "<pos x='0' y='0.9' z='0'/>\n    <rot_deg z='90'/>");
+  auto sim = Simulation::load(dir);
+  sim->set_input("robots/Classic/axes/W1/ref_torque", 0.05);
+  sim->set_input("robots/Classic/axes/W2/ref_torque", -0.05);
+  sim->run_until(4.0);
+  const double y = sim->signal("robots/Classic/y");
+  // The bumper shell's front is 0.105 m ahead of the robot's centre.
+  EXPECT_LT(y + 0.105, 1.5 + 2e-3) << "the robot went into the block";
+  EXPECT_GT(y + 0.105, 1.5 - 0.02) << "the robot did not reach the block";
+  EXPECT_LT(std::abs(sim->signal("robots/Classic/vy")), 0.01);
+}
+
+}  // namespace
+}  // namespace s2sim
