@@ -41,7 +41,6 @@ if [ -d "$plugins" ]; then
 fi
 
 if [ -d "$shared/base" ]; then
-  # Early: with no ground contact yet (issue 3) the robot falls through the floor.
   shot viewer-simtwo-base "$shared/base" --show-window log --do "follow Classic" \
-    --do "camera -120 35 2.2" --do "run-until 0.03"
+    --do "camera -120 35 2.2" --do "run-until 1"
 fi
