@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev
   xvfb xauth
+  gnuplot-nox
 )
 
 missing=()

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace s2sim::contact {
 namespace {
@@ -141,50 +142,43 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   // The bristle may not ring faster than the normal spring, whatever the tangential mass (a
   // wheel's rim is light across the normal).
   const double k_t = law.bristle_ratio * std::min(k, kin.tangent_mass_kg * omega_max * omega_max);
-  // Regularised Coulomb: viscous slope mu·N/v_tr, capped where explicit stepping stays stable.
-  // Friction damping solved implicitly for the point's mass, c/(1 + c·h/m): the Coulomb slope
-  // mu·N/v_tr is steep and many contacts may share a body.
+  // Regularised Coulomb: viscous slope mu·N/v_tr, capped where explicit stepping stays stable
+  // and solved implicitly for the point's mass, c/(1 + c·h/m): the slope is steep and many
+  // contacts may share a body.
   const double m_t = kin.tangent_mass_kg;
-  const double c_raw =
-      std::min(material.mu1 * normal / law.transition_speed_m_s, 2 * std::sqrt(k_t * m_t));
-  const double c_t = c_raw / (1 + c_raw * kin.step_s / m_t);
-  Vec3 friction = -(k_t * bristle) - c_t * v_t;
-  // Friction cone (an ellipse for anisotropic wheels).
-  Vec3 d1, d2;
-  double mu1 = material.mu1, mu2 = material.mu2;
-  if (material.anisotropic) {
-    d1 = first_direction(material.anisotropy, n, kin.friction_axis);
-    d1 -= dot(d1, n) * n;
-    const double len = norm(d1);
-    if (len < 1e-9) {
-      mu2 = mu1;  // the axis is along the normal: no preferred direction
-    } else {
-      d1 = d1 / len;
-      d2 = cross(n, d1);
-    }
-  }
-  double excess;
-  if (mu1 == mu2 || norm(d1) == 0) {
-    const double f = norm(friction), limit = mu1 * normal;
-    excess = limit > 0 ? f / limit : (f > 0 ? INFINITY : 0);
+  auto slope = [&](double mu) {
+    const double c = std::min(mu * normal / law.transition_speed_m_s, 2 * std::sqrt(k_t * m_t));
+    return c / (1 + c * kin.step_s / m_t);
+  };
+  // One direction of friction: the bristle and the slope, within ±mu·N; a direction that
+  // slides keeps its bristle at exactly the force it carries.
+  auto along = [&](const Vec3& d, double mu) {
+    const double s_d = dot(bristle, d), v_d = dot(v_t, d), limit = mu * normal;
+    const double f = std::clamp(-k_t * s_d - slope(mu) * v_d, -limit, limit);
+    const double s_new = k_t > 0 && std::abs(f) >= limit ? -f / k_t : s_d;
+    return std::pair<double, double>{f, s_new};
+  };
+  Vec3 friction;
+  Vec3 d1 =
+      material.anisotropic ? first_direction(material.anisotropy, n, kin.friction_axis) : Vec3{};
+  d1 -= dot(d1, n) * n;
+  if (material.anisotropic && norm(d1) > 1e-9) {
+    // Anisotropic wheels: ODE's friction pyramid, mu along d1 and mu2 along d2, each on its
+    // own (a circle or an ellipse would let the free roller direction steal the grip).
+    d1 = d1 / norm(d1);
+    const Vec3 d2 = cross(n, d1);
+    const auto [f1, s1] = along(d1, material.mu1);
+    const auto [f2, s2] = along(d2, material.mu2);
+    friction = f1 * d1 + f2 * d2;
+    bristle = s1 * d1 + s2 * d2;
   } else {
-    const double f1 = dot(friction, d1), f2 = dot(friction, d2);
-    const double l1 = mu1 * normal, l2 = mu2 * normal;
-    const double r1 = l1 > 0 ? f1 / l1 : (f1 != 0 ? INFINITY : 0);
-    const double r2 = l2 > 0 ? f2 / l2 : (f2 != 0 ? INFINITY : 0);
-    excess = std::sqrt(r1 * r1 + r2 * r2);
-  }
-  if (excess > 1) {
-    // Sliding: the force sits on the cone and the bristle holds exactly that much.
-    friction = std::isfinite(excess) ? friction * (1 / excess) : Vec3{};
-    if (!std::isfinite(excess) && material.anisotropic && norm(d1) > 0) {
-      // One direction frictionless: keep the component the other allows.
-      const double l1 = mu1 * normal, l2 = mu2 * normal;
-      const double f1 = std::clamp(dot(-(k_t * bristle) - c_t * v_t, d1), -l1, l1);
-      const double f2 = std::clamp(dot(-(k_t * bristle) - c_t * v_t, d2), -l2, l2);
-      friction = f1 * d1 + f2 * d2;
+    // Isotropic: the Coulomb circle, the force scaled onto it when it slides.
+    friction = -(k_t * bristle) - slope(material.mu1) * v_t;
+    const double f = norm(friction), limit = material.mu1 * normal;
+    if (f > limit) {
+      friction = f > 0 ? friction * (limit / f) : Vec3{};
+      bristle = k_t > 0 ? friction * (-1 / k_t) : Vec3{};
     }
-    bristle = k_t > 0 ? friction * (-1 / k_t) : Vec3{};
   }
   state.bristle_m = bristle;
   return n * normal + friction;

@@ -24,7 +24,7 @@ int box_plane(const Vec3& half, const Pose& pose, const Plane& plane, ContactPoi
 /// Per cap, the deepest rim point and the two rim points 120 degrees either side of it: one
 /// point for a rolling wheel's edge, a stable tripod for a cylinder standing on a cap.
 int cylinder_plane(double radius, double half_length, const Pose& pose, const Plane& plane,
-                   ContactPoint* out) {
+                   bool mid_plane, ContactPoint* out) {
   const Vec3 axis = pose.rotation.column(2);
   const Vec3 tangential = plane.normal - dot(plane.normal, axis) * axis;
   const double t = norm(tangential);
@@ -33,6 +33,12 @@ int cylinder_plane(double radius, double half_length, const Pose& pose, const Pl
   const double c = -0.5, s = std::sqrt(3.0) / 2;
   const Vec3 rim[3] = {down, c * down + s * side, c * down - s * side};
   int n = 0;
+  if (mid_plane && t > kFlatCap) {
+    const Vec3 p = pose.position + down * radius;
+    const double depth = plane.offset_m - dot(plane.normal, p);
+    if (depth > 0) out[n++] = {p, plane.normal, depth, 6};
+    return n;
+  }
   for (int cap = 0; cap < 2; ++cap) {
     const Vec3 center = pose.position + axis * (cap == 0 ? -half_length : half_length);
     for (int k = 0; k < 3; ++k) {
@@ -51,7 +57,10 @@ int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, Con
     case ShapeKind::box:
       return box_plane(shape.half_extents_m, pose, plane, out);
     case ShapeKind::cylinder:
-      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane, out);
+      // Omni and mecanum wheels touch on their rollers' crowns, in the wheel's mid-plane: one
+      // point (two tread edges would scrub against each other when the robot turns).
+      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane,
+                            shape.anisotropy != Anisotropy::none, out);
     case ShapeKind::sphere: {
       const double depth = shape.radius_m - (dot(plane.normal, pose.position) - plane.offset_m);
       if (depth <= 0) return 0;

@@ -12,7 +12,8 @@ namespace s2sim::contact {
 /// Most points one primitive pair can produce (a box on a plane: its 8 corners).
 constexpr int kMaxPointsPerPair = 8;
 
-/// `pose` is the shape's world pose.
+/// `pose` is the shape's world pose. A cylinder on its side touches at its tread's two edges,
+/// exactly at its radius from the axle; an omni or mecanum wheel at its mid-plane only.
 int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out);
 
 int sphere_sphere(double radius_a, const Vec3& center_a, double radius_b, const Vec3& center_b,

@@ -90,6 +90,10 @@ struct Multibody::Impl {
   std::vector<int> braked;                 // axes with a bound this substep
   std::vector<SimTK::Vector> minv_column;  // per braked axis: M^-1 * e_axis
   std::vector<double> delassus, impulse;   // braked x braked, braked
+  std::vector<int> axis_u;                 // per tree axis, its index in u (-1: loop axis)
+  std::vector<double> axis_mobility;       // per axis, (M^-1)_aa at its last solve (0: none)
+  std::vector<char> sliding;               // per axis: Coulomb friction as a plain force
+  bool bodies_fresh = false;               // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   SubstepForces* substep_forces = nullptr;
   std::vector<Pose> substep_poses;
@@ -181,7 +185,11 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
       if (mb.axis_forces[a] != 0.0)
         apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
-      if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
+      if (mb.sliding[a]) {  // clearly sliding: Coulomb's law as it is, no impulse needed
+        const double v = axis_rate(mb, state, a);
+        apply_axis_force(state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a], body_forces,
+                         mobility_forces);
+      } else if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
         // No velocity-level brake on a constraint-realised axis: a steep regularisation.
         const double v = axis_rate(mb, state, a);
         const double f = -mb.axis_friction[a] * std::clamp(v / kLoopFrictionSpeed, -1.0, 1.0);
@@ -588,11 +596,22 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
   }
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.udot.resize(m.initial_state.getNU());
+  m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
+  m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
+  m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
   m.unit_force.resize(m.initial_state.getNU());
   m.braked.reserve(m.axes.size());
   m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
   m.delassus.assign(m.axes.size() * m.axes.size(), 0.0);
   m.impulse.assign(m.axes.size(), 0.0);
+  m.axis_mobility.assign(m.axes.size(), 0.0);
+  m.sliding.assign(m.axes.size(), 0);
+  m.axis_u.assign(m.axes.size(), -1);
+  for (std::size_t a = 0; a < m.axes.size(); ++a)
+    if (!m.axes[a].loop)
+      m.axis_u[a] =
+          m.matter.getMobilizedBody(m.axis_impl[a].mobod).getFirstUIndex(m.initial_state) +
+          m.axis_impl[a].coordinate;
   m.qdot.resize(m.initial_state.getNQ());
   reset();
 }
@@ -620,9 +639,6 @@ double* Multibody::applied_axis_friction() {
 void Multibody::set_substep_forces(SubstepForces* forces) {
   Impl& m = *impl_;
   m.substep_forces = forces;
-  m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
-  m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
-  m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
 }
 
 std::vector<double> Multibody::apparent_mass_kg() const {
@@ -666,6 +682,7 @@ void Multibody::reset() {
   impl_->ticks = 0;
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
+  impl_->bodies_fresh = false;
   impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
 }
@@ -686,6 +703,34 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
   m.loose.read(poses, twists);
 }
 
+/// v += a·x, through raw storage where it is contiguous (element access goes through a
+/// non-inline helper, and Vector expressions allocate).
+void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
+  const int n = v.size();
+  if (v.hasContiguousData() && x.hasContiguousData()) {
+    double* pv = v.updContiguousScalarData();
+    const double* px = x.getContiguousScalarData();
+    for (int i = 0; i < n; ++i)
+      pv[i] += a * px[i];
+  } else {
+    for (int i = 0; i < n; ++i)
+      v[i] += a * x[i];
+  }
+}
+
+/// Which braked axes slide so fast that friction cannot stop them within a step (ten times
+/// the speed change the bound can make): they get Coulomb's law as a plain force and skip the
+/// impulse solve (and its M^-1 products). (M^-1)_aa is remembered from the last solve.
+void classify_sliding(Multibody::Impl& m, const SimTK::State& s, double h) {
+  const SimTK::Vector& u = s.getU();
+  for (std::size_t a = 0; a < m.axis_friction.size(); ++a) {
+    m.sliding[a] = 0;
+    if (!(m.axis_friction[a] > 0.0) || m.axes[a].loop || !(m.axis_mobility[a] > 0)) continue;
+    const double threshold = 10 * m.axis_friction[a] * h * m.axis_mobility[a];
+    m.sliding[a] = std::abs(u[m.axis_u[a]]) > threshold;
+  }
+}
+
 /// Coulomb friction on tree axes as a velocity-level brake (ODE's joint motor with zero target
 /// speed): after the kick, find impulses p_k, |p_k| <= F_k·kick, that stop the braked axes where
 /// the bounds allow, coupled through M^-1 (projected Gauss-Seidel on the small Delassus
@@ -693,21 +738,21 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
 void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   m.braked.clear();
   for (std::size_t a = 0; a < m.axis_friction.size(); ++a)
-    if (m.axis_friction[a] > 0.0 && !m.axes[a].loop) m.braked.push_back(static_cast<int>(a));
+    if (m.axis_friction[a] > 0.0 && !m.axes[a].loop && !m.sliding[a])
+      m.braked.push_back(static_cast<int>(a));
   if (m.braked.empty()) return;
   const std::size_t n = m.braked.size();
-  auto u_index = [&](int a) {
-    const AxisImpl& ax = m.axis_impl[a];
-    return m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(s) + ax.coordinate;
-  };
+  auto u_index = [&](int a) { return m.axis_u[a]; };
   for (std::size_t k = 0; k < n; ++k) {
     m.unit_force = 0.0;
     m.unit_force[u_index(m.braked[k])] = 1.0;
     m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[k]);
   }
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t k = 0; k < n; ++k)
       m.delassus[i * n + k] = m.minv_column[k][u_index(m.braked[i])];
+    m.axis_mobility[m.braked[i]] = m.delassus[i * n + i];
+  }
   SimTK::Vector& u = s.updU();
   for (std::size_t k = 0; k < n; ++k)
     m.impulse[k] = 0.0;
@@ -723,9 +768,7 @@ void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       const double dp = p_new - m.impulse[i];
       if (dp == 0.0) continue;
       m.impulse[i] = p_new;
-      const SimTK::Vector& column = m.minv_column[i];
-      for (int j = 0; j < u.size(); ++j)  // by hand: Vector expressions allocate
-        u[j] += dp * column[j];
+      add_scaled(u, dp, m.minv_column[i]);
     }
   }
 }
@@ -756,6 +799,9 @@ void Multibody::step() {
   }
   ++m.ticks;
   m.system.realize(s, SimTK::Stage::Velocity);
+  // Read the bodies once here: for read() and for the next substep's contact.
+  read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+  m.bodies_fresh = true;
   // A NaN anywhere poisons the sums: one cheap check per tick.
   double sum = m.loose.checksum();
   const SimTK::Vector& q = s.getQ();
@@ -775,29 +821,29 @@ namespace {
 void advance(Multibody::Impl& m, SimTK::State& s, double h) {
   for (int k = 0; k < m.substeps; ++k) {
     if (m.substep_forces) {
-      m.system.realize(s, SimTK::Stage::Velocity);
-      read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+      if (!m.bodies_fresh) {
+        m.system.realize(s, SimTK::Stage::Velocity);
+        read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+      }
       m.substep_forces->compute(m.substep_poses.data(), m.substep_twists.data(), h,
                                 m.substep_wrenches.data());
     }
+    m.bodies_fresh = false;
+    if (!m.axis_friction.empty()) classify_sliding(m, s, h);
     // The applied loads changed outside Simbody's knowledge: drop any cached forces.
     s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
     m.system.realize(s, SimTK::Stage::Acceleration);
-    const SimTK::Vector& udot = s.getUDot();
-    for (int i = 0; i < udot.size(); ++i)
-      m.udot[i] = udot[i];
+    m.udot = 0.0;
+    add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
     const double kick = m.half_kick_pending ? 0.5 * h : h;
     m.half_kick_pending = false;
-    SimTK::Vector& u = s.updU();
-    for (int i = 0; i < u.size(); ++i)
-      u[i] += kick * m.udot[i];
+    add_scaled(s.updU(), kick, m.udot);
     brake_axes(m, s, kick);
     m.loose.kick(m.wrenches.data(), m.substep_forces ? m.substep_wrenches.data() : nullptr, kick);
     m.loose.drift(h);
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);
     SimTK::Vector& q = s.updQ();
-    for (int i = 0; i < q.size(); ++i)
-      q[i] += h * m.qdot[i];
+    add_scaled(q, h, m.qdot);
     for (int first : m.quaternion_q) {
       double n2 = 0;
       for (int c = 0; c < 4; ++c)
@@ -820,7 +866,12 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
   const Impl& m = *impl_;
   const SimTK::State& s = m.state();
   m.system.realize(s, SimTK::Stage::Velocity);
-  read_bodies(m, s, poses, twists);
+  if (m.bodies_fresh) {
+    std::copy(m.substep_poses.begin(), m.substep_poses.end(), poses);
+    std::copy(m.substep_twists.begin(), m.substep_twists.end(), twists);
+  } else {
+    read_bodies(m, s, poses, twists);
+  }
   for (std::size_t a = 0; a < m.axis_impl.size(); ++a) {
     axis_position[a] = axis_value(m, s, a);
     axis_velocity[a] = axis_rate(m, s, a);
@@ -861,6 +912,7 @@ void Multibody::restore(const std::vector<double>& saved) {
     for (int i = 0; i < v->size(); ++i)
       (*v)[i] = saved.at(k++);
   m.loose.restore(saved, k);
+  m.bodies_fresh = false;
   s.setTime(time_s());
   m.current = s;
   m.system.realize(m.current, SimTK::Stage::Velocity);

@@ -33,6 +33,15 @@ bool read_drive_child(LoadContext& ctx, const Reader& r, const Element& c, std::
     m.current_max_A = r.number(c, "imax", m.current_max_A);
     m.active = r.boolean(c, "active", m.active);
     m.simple = r.boolean(c, "simple", m.simple);
+    if (const std::string* b = c.attribute("backemf")) {  // S2Sim extension
+      const std::string v = lower(*b);
+      if (v == "physical")
+        m.back_emf_simtwo = false;
+      else if (v == "simtwo")
+        m.back_emf_simtwo = true;
+      else
+        r.fail(c, "backemf", "must be 'physical' or 'simtwo', got '" + *b + "'");
+    }
     return true;
   }
   if (named(c, "gear", suffix)) {
@@ -57,6 +66,10 @@ bool read_drive_child(LoadContext& ctx, const Reader& r, const Element& c, std::
     if (auto ppr = r.optional_number(c, "ppr")) e.ppr = std::llround(*ppr);
     e.mean = r.number(c, "mean", e.mean);
     e.stdev = r.number(c, "stdev", e.stdev);
+    if (auto period_ms = r.optional_number(c, "period")) {  // S2Sim extension
+      if (!(*period_ms > 0)) r.fail(c, "period", "must be > 0, got " + format_number(*period_ms));
+      e.period_s = *period_ms / 1000.0;
+    }
     return true;
   }
   if (named(c, "controller", suffix)) {
@@ -70,8 +83,10 @@ bool read_drive_child(LoadContext& ctx, const Reader& r, const Element& c, std::
       } else if (m == "state" || m == "statefeedback") {
         k.mode = ControllerMode::state;
       } else {
-        // SimTwo keeps the previous mode for an unknown string; say so.
-        ctx.warn(r.at(c, "mode"), "unknown controller mode '" + *mode + "' ignored");
+        // SimTwo silently keeps the previous mode for an unknown string; a typo would leave
+        // the axis under another law, so S2Sim refuses it.
+        r.fail(c, "mode",
+               "unknown controller mode '" + *mode + "' (expected pidspeed, pidposition or state)");
       }
     } else {
       k.mode = ControllerMode::pid_speed;  // quirk 7b: an absent mode resets to pidspeed
@@ -85,6 +100,15 @@ bool read_drive_child(LoadContext& ctx, const Reader& r, const Element& c, std::
       k.period_s = *period_ms / 1000.0;
     }
     k.active = r.boolean(c, "active", k.active);
+    if (const std::string* law = c.attribute("law")) {  // S2Sim extension
+      const std::string v = lower(*law);
+      if (v == "textbook")
+        k.simtwo_law = false;
+      else if (v == "simtwo")
+        k.simtwo_law = true;
+      else
+        r.fail(c, "law", "must be 'textbook' or 'simtwo', got '" + *law + "'");
+    }
     return true;
   }
   if (named(c, "friction", suffix)) {

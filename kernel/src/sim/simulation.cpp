@@ -4,6 +4,7 @@
 #include "model/multibody.hpp"
 #include "plugin/plugin_loader.hpp"
 #include "scene/element_params.hpp"
+#include "sim/drive_train_components.hpp"
 #include "sim/names.hpp"
 
 #include <algorithm>
@@ -566,8 +567,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.axis_force_applied.assign(m.axis_views.size(), 0.0);
   m.register_kernel_signals();
 
-  // Components: scene sensors with a plugin for their kind, then <plugin> instances.
-  const bool needs_plugins = !m.scene.sensors.empty() || !m.scene.plugins.empty();
+  // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
+  // drive train of every axis (sim/drive_train_components.hpp).
+  const bool needs_plugins =
+      !m.scene.sensors.empty() || !m.scene.plugins.empty() || !m.axis_views.empty();
   std::optional<plugin::PluginRegistry> registry;
   if (needs_plugins)
     registry.emplace(options.plugin_path.empty() ? plugin::PluginRegistry::default_search_path()
@@ -583,6 +586,29 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   }
   for (const auto& p : m.scene.plugins)
     m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+  std::vector<sim::DriveAxis> drive_axes;
+  for (const auto& ax : m.multibody->axes())
+    drive_axes.push_back({ax.name,
+                          (ax.robot >= 0 ? m.robot_prefix(ax.robot) : std::string("world")) +
+                              "/axes/" + sim::segment(ax.name),
+                          ax.robot, ax.joint, ax.which, ax.linear});
+  for (auto& c : sim::drive_train_components(m.scene, drive_axes)) {
+    if (!registry->has(c.kind)) {
+      // Refuse rather than run unpowered and frictionless axes (docs/models/dc-motor.md).
+      std::string why;
+      try {
+        (void)registry->find(c.kind);
+      } catch (const Error& e) {
+        why = e.message();
+      }
+      throw Error(ErrorKind::plugin, c.where,
+                  "axis '" + c.prefix.substr(0, c.prefix.rfind('/')) +
+                      "' needs the drive-train kind '" + c.kind +
+                      "' (plugin drive_train, libdrive_train.so): " + why);
+    }
+    m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
+    m.components.back().prefix = c.prefix;
+  }
   m.configure_components();
 
   m.state = m.state_initial;

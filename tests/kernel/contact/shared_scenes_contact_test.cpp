@@ -94,6 +94,27 @@ TEST(SharedScenesContact, BaseBeltCarriesABoxAndABallAtTheBeltSpeed) {
   }
 }
 
+TEST(SharedScenesContact, BaseDifferentialRobotDrivesForwardUnderItsController) {
+  REQUIRE_SHARED("base");
+  auto sim = Simulation::load(shared("base"));
+  // Its own speed controllers: the right wheel (W1, -90°) positive and the left negative drive
+  // it toward +X, where the conveyor's frame stands 0.1 m ahead of the bumper. They are P
+  // only and tuned for SimTwo's weak back-EMF, and the robot's centre of mass sits right above
+  // its axle, so it rocks between its caster and its bumper and creeps forward well short of
+  // the reference (r·w = 0.12 m/s): physics, not a fault of the contact.
+  sim->set_input("robots/Classic/axes/W1/ref_speed", 3);
+  sim->set_input("robots/Classic/axes/W2/ref_speed", -3);
+  sim->run_until(0.5);
+  const double x0 = sim->signal("robots/Classic/x"), t0 = sim->time_s();
+  sim->run_until(1.5);
+  const double v = (sim->signal("robots/Classic/x") - x0) / (sim->time_s() - t0);
+  EXPECT_GT(v, 0.01) << "it does not drive forward";
+  EXPECT_LT(v, 0.12);
+  EXPECT_NEAR(sim->signal("robots/Classic/y"), -1.0, 1e-3) << "it veered";
+  EXPECT_NEAR(sim->signal("robots/Classic/yaw"), 0.0, 0.01) << "it turned";
+  RecordProperty("speed_m_s", std::to_string(v));
+}
+
 TEST(SharedScenesContact, BaseRobotDrivenIntoAnObstacleStopsAtIt) {
   REQUIRE_SHARED("base");
   // Turn the differential robot toward the red block (x -0.25..0.25, y 1.5..2.5) and push.
@@ -101,9 +122,13 @@ TEST(SharedScenesContact, BaseRobotDrivenIntoAnObstacleStopsAtIt) {
       edited_copy("base", "scene.xml", "<pos x='0' y='-1' z='0'/>\n    <rot_deg z='0'/>",
                   "<pos x='0' y='0.9' z='0'/>\n    <rot_deg z='90'/>");
   auto sim = Simulation::load(dir);
-  sim->set_input("robots/Classic/axes/W1/ref_torque", 0.05);
-  sim->set_input("robots/Classic/axes/W2/ref_torque", -0.05);
-  sim->run_until(4.0);
+  // 3 V on both motors, controllers off: the right wheel (W1, -90°) positive and the left
+  // negative drive it forward (docs/format.md, wheels) at about 0.7 m/s, 0.5 m from the block.
+  for (const char* wheel : {"W1", "W2"})
+    sim->set_input(std::string("robots/Classic/axes/") + wheel + "/controller_active", 0);
+  sim->set_input("robots/Classic/axes/W1/ref_voltage", 3);
+  sim->set_input("robots/Classic/axes/W2/ref_voltage", -3);
+  sim->run_until(3.0);
   const double y = sim->signal("robots/Classic/y");
   // The bumper shell's front is 0.105 m ahead of the robot's centre.
   EXPECT_LT(y + 0.105, 1.5 + 2e-3) << "the robot went into the block";

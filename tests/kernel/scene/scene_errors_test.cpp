@@ -197,15 +197,24 @@ TEST(SceneErrors, FailingDefine) {
   EXPECT_EQ(e.where().attribute, "value");
 }
 
-TEST(SceneWarnings, UnknownControllerModeAndRobotTilt) {
-  const auto dir =
-      temp_scene("warn", std::string(kTwoSolids) +
+TEST(SceneErrors, UnknownControllerModeIsAnError) {
+  const Error e = load_error(
+      temp_scene("mode", std::string(kTwoSolids) +
                              "<articulations><joint><type value='Hinge'/><connect B1='A' B2='B'/>"
-                             "<controller mode='fuzzy'/></joint></articulations>");
+                             "<controller mode='fuzzy'/></joint></articulations>"));
+  EXPECT_EQ(e.where().file, "bot.xml");
+  EXPECT_EQ(e.where().element, "robot/articulations/joint/controller");
+  EXPECT_EQ(e.where().attribute, "mode");
+  EXPECT_NE(std::string(e.what()).find("unknown controller mode 'fuzzy'"), std::string::npos);
+}
+
+TEST(SceneWarnings, RobotTilt) {
+  const auto dir = temp_scene("warn", std::string(kTwoSolids) +
+                                          "<articulations><joint><type value='Hinge'/>"
+                                          "<connect B1='A' B2='B'/></joint></articulations>");
   std::ofstream(dir / "scene.xml")
       << "<scene><robot><rot_deg x='10' z='90'/><body file='bot.xml'/></robot></scene>";
   const Scene s = load_scene(dir);
-  EXPECT_TRUE(has_warning(s, "unknown controller mode 'fuzzy'"));
   EXPECT_TRUE(has_warning(s, "rot_deg x and y are ignored"));
   EXPECT_NEAR(s.robots.at(0).yaw_rad, 3.141592653589793 / 2, 1e-15);
 }

@@ -20,7 +20,8 @@ const fs::path kFixture = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixture
 SimulationOptions test_options(std::uint64_t seed = 1) {
   SimulationOptions o;
   o.seed = seed;
-  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene"};
+  // The test plugins, and the first-party drive train that every axis needs.
+  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene", fs::path(S2SIM_PLUGIN_DIR)};
   return o;
 }
 

@@ -182,6 +182,9 @@ struct Motor {
   double current_max_A = 4;
   bool active = true;
   bool simple = false;
+  /// S2Sim switch `backemf`: `physical` (default, e = K·N·ω) or `simtwo` (SimTwo HEAD's
+  /// e = K·ω/N, simtwo-format.md §11.4).
+  bool back_emf_simtwo = false;
 };
 struct Gear {
   double ratio = 10;
@@ -196,6 +199,9 @@ struct Encoder {
   std::int64_t ppr = 1000;
   double mean = 0;
   double stdev = -1;
+  /// S2Sim attribute `period` (ms in the file): sampling period; 0 = the scene's control
+  /// period (SimTwo samples encoders on the script tick).
+  double period_s = 0;
 };
 enum class ControllerMode { pid_speed, pid_position, state };
 struct MotorController {
@@ -203,6 +209,9 @@ struct MotorController {
   double kp = 1, ki = 0, kd = 0, kf = 0;
   double period_s = 10;  ///< SimTwo's articulation default is 10 s; the loader uses 10 ms
   bool active = false;
+  /// S2Sim switch `law`: `textbook` (default, a discrete PID at the controller period) or
+  /// `simtwo` (SimTwo's law with the physics step, simtwo-format.md §11.2).
+  bool simtwo_law = false;
 };
 struct JointFriction {
   double viscous = 1e-5;  ///< N·m·s/rad or N·s/m

@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// The three components of an axis's drive train (docs/models/dc-motor.md). The kernel creates
+/// one of each on every hinge, slider and universal axis with a synthesised element (see
+/// kernel/src/sim/drive_train_components.hpp for its attributes).
+
+#include <s2sim/sdk.hpp>
+
+namespace s2sim::drive_train {
+
+/// DC motor, gearbox, joint friction and spring; applies the axis torque every tick.
+class DcMotor final : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  AxisHandle axis_;
+  bool active_ = true, simple_ = false, simtwo_back_emf_ = false;
+  double R_ = 1, L_ = 0, K_ = 0, vmax_ = 24, imax_ = 4, N_ = 1;
+  double bv_ = 0, fc_ = 0, spring_k_ = 0, zero_pos_ = 0;
+  InputHandle ref_voltage_;
+  SignalHandle voltage_, current_, back_emf_, motor_torque_, power_, energy_sig_;
+  StateHandle current_state_, energy_;
+};
+
+/// Encoder: counts `ppr` ticks per joint revolution with carried residue, optional noise.
+class Encoder final : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  AxisHandle axis_;
+  bool linear_ = false;
+  double ppr_ = 1000, mean_ = 0, stdev_ = -1;
+  SignalHandle count_, odo_;
+  StateHandle state_;  // last position, unwrapped travel, accumulated noise, count
+};
+
+/// Motor controller: pidspeed, pidposition or state feedback at its own period; writes the
+/// axis's `ref_voltage` input while active.
+class MotorController final : public Component {
+ public:
+  enum class Mode { pid_speed, pid_position, state };
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  AxisHandle axis_;
+  Mode mode_ = Mode::pid_speed;
+  bool motor_active_ = true, simtwo_law_ = false, wrap_ = false;
+  double kp_ = 1, ki_ = 0, kd_ = 0, kf_ = 0, vmax_ = 24;
+  InputHandle ref_voltage_, ref_speed_, ref_pos_, active_;
+  SignalHandle error_;
+  StateHandle state_;  // integral, previous error, primed, was active
+};
+
+}  // namespace s2sim::drive_train

@@ -1,0 +1,82 @@
+/// \file
+/// dc_motor: Ua = e + Ra ia + La dia/dt, Td = Ks ia, e = Ks N w (docs/models/dc-motor.md).
+
+#include "components.hpp"
+#include "drive_train_math.hpp"
+
+#include <string>
+
+namespace s2sim::drive_train {
+
+void DcMotor::configure(ConfigureContext& ctx) {
+  const Params& p = ctx.params();
+  axis_ = ctx.axis(p.text("axis"));
+  const bool linear = ctx.axis_is_linear(axis_);
+  active_ = p.boolean("motor.active", true);
+  simple_ = p.boolean("motor.simple", false);
+  R_ = p.number("motor.ri", 1.0, Range::non_negative());
+  L_ = p.number("motor.li", 0.0, Range::non_negative());
+  K_ = p.number("motor.ki", 1.4e-2, Range::non_negative());
+  vmax_ = p.number("motor.vmax", 24.0, Range::non_negative());
+  imax_ = p.number("motor.imax", 4.0, Range::non_negative());
+  N_ = p.number("gear.ratio", 10.0, Range::positive());
+  const std::string back_emf = p.text("motor.backemf", "physical");
+  if (back_emf != "physical" && back_emf != "simtwo")
+    throw Error(ErrorKind::scene, p.location() + "/motor@backemf: must be 'physical' or " +
+                                      "'simtwo', got '" + back_emf + "'");
+  simtwo_back_emf_ = back_emf == "simtwo";
+  if (simple_ && active_) R_ = p.number("motor.ri", Range::positive());  // i = V/R
+  bv_ = p.number("friction.bv", 1e-5, Range::non_negative());
+  fc_ = p.number("friction.fc", 1e-3, Range::non_negative());
+  spring_k_ = p.number("spring.k", 0.0, Range::non_negative());
+  zero_pos_ = p.number("spring.zeropos", 0.0);
+
+  const std::string at = ctx.axis_prefix(axis_) + "/";
+  const char* torque_unit = linear ? "N" : "N*m";
+  ref_voltage_ = ctx.declare_input_at(at + "ref_voltage", "V", 0.0);
+  voltage_ = ctx.declare_signal_at(at + "voltage", "V");
+  current_ = ctx.declare_signal_at(at + "current", "A");
+  back_emf_ = ctx.declare_signal_at(at + "back_emf", "V");
+  motor_torque_ = ctx.declare_signal_at(at + "motor_torque", torque_unit);
+  power_ = ctx.declare_signal_at(at + "power", "W");
+  energy_sig_ = ctx.declare_signal_at(at + "energy", "J");
+  current_state_ = ctx.declare_state("current", 1, 0.0);
+  energy_ = ctx.declare_state("energy", 1, 0.0);
+}
+
+void DcMotor::initialize(StepContext& ctx) {
+  *ctx.state(current_state_) = 0.0;
+  *ctx.state(energy_) = 0.0;
+}
+
+void DcMotor::update(StepContext& ctx) {
+  const double w = ctx.axis_velocity(axis_);  // mid-step speed of the last step
+  const double q = ctx.axis_position(axis_);
+  const double dt = ctx.tick_s();
+  double& i = *ctx.state(current_state_);
+  double& energy = *ctx.state(energy_);
+
+  double v = 0, e = 0;
+  CurrentStep step;
+  if (active_) {
+    v = std::clamp(ctx.input(ref_voltage_), -vmax_, vmax_);
+    e = simtwo_back_emf_ ? K_ * w / N_ : K_ * N_ * w;
+    step = advance_current(i, v, e, R_, L_, imax_, simple_, dt);
+  }
+  i = step.end;
+  const double motor_torque = N_ * K_ * step.mean;
+  const double power = v * step.mean;
+  energy += power * dt;
+
+  ctx.apply_axis_force(axis_, motor_torque - bv_ * w - spring_k_ * (q - zero_pos_));
+  if (fc_ > 0) ctx.apply_axis_friction(axis_, fc_);
+
+  ctx.publish(voltage_, v);
+  ctx.publish(current_, i);
+  ctx.publish(back_emf_, e);
+  ctx.publish(motor_torque_, motor_torque);
+  ctx.publish(power_, power);
+  ctx.publish(energy_sig_, energy);
+}
+
+}  // namespace s2sim::drive_train

@@ -1,0 +1,105 @@
+/// \file
+/// motor_controller: pidspeed, pidposition (shortest way when wrap), state feedback, at the
+/// controller's own period; textbook discrete law by default, SimTwo's as an option
+/// (docs/models/dc-motor.md).
+
+#include "components.hpp"
+#include "drive_train_math.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace s2sim::drive_train {
+
+namespace {
+enum : int { kIntegral = 0, kPrevious = 1, kPrimed = 2, kWasActive = 3, kSize = 4 };
+}
+
+void MotorController::configure(ConfigureContext& ctx) {
+  const Params& p = ctx.params();
+  axis_ = ctx.axis(p.text("axis"));
+  const bool linear = ctx.axis_is_linear(axis_);
+  const std::string mode = p.text("controller.mode", "pidspeed");
+  if (mode == "pidspeed")
+    mode_ = Mode::pid_speed;
+  else if (mode == "pidposition")
+    mode_ = Mode::pid_position;
+  else if (mode == "state" || mode == "statefeedback")
+    mode_ = Mode::state;
+  else
+    throw Error(ErrorKind::scene, p.location() + "/controller@mode: must be 'pidspeed', " +
+                                      "'pidposition' or 'state', got '" + mode + "'");
+  const std::string law = p.text("controller.law", "textbook");
+  if (law != "textbook" && law != "simtwo")
+    throw Error(ErrorKind::scene, p.location() + "/controller@law: must be 'textbook' or " +
+                                      "'simtwo', got '" + law + "'");
+  simtwo_law_ = law == "simtwo";
+  kp_ = p.number("controller.kp", 1.0);
+  ki_ = p.number("controller.ki", 0.0);
+  kd_ = p.number("controller.kd", 0.0);
+  kf_ = p.number("controller.kf", 0.0);
+  const double period_ms = p.number("controller.period", 10.0, Range::positive());
+  const bool active = p.boolean("controller.active", false);
+  motor_active_ = p.boolean("motor.active", true);
+  vmax_ = p.number("motor.vmax", 24.0, Range::non_negative());
+  wrap_ = p.boolean("wrap", !linear) && !linear;
+  ctx.set_schedule(Stage::motor_control, period_on_grid(period_ms / 1000.0, ctx.tick_s()));
+
+  const std::string at = ctx.axis_prefix(axis_) + "/";
+  ref_voltage_ = ctx.declare_input_at(at + "ref_voltage", "V", 0.0);
+  ref_speed_ = ctx.declare_input_at(at + "ref_speed", linear ? "m/s" : "rad/s", 0.0);
+  ref_pos_ = ctx.declare_input_at(at + "ref_pos", linear ? "m" : "rad", 0.0);
+  active_ = ctx.declare_input_at(at + "controller_active", "1", active ? 1.0 : 0.0);
+  const char* error_unit =
+      mode_ == Mode::pid_speed ? (linear ? "m/s" : "rad/s") : (linear ? "m" : "rad");
+  error_ = ctx.declare_signal_at(at + "control_error", error_unit);
+  state_ = ctx.declare_state("pid", kSize, 0.0);
+}
+
+void MotorController::initialize(StepContext& ctx) {
+  double* s = ctx.state(state_);
+  for (int k = 0; k < kSize; ++k)
+    s[k] = 0.0;
+}
+
+void MotorController::update(StepContext& ctx) {
+  double* s = ctx.state(state_);
+  if (!motor_active_ || ctx.input(active_) == 0.0) {
+    if (s[kWasActive] != 0.0) ctx.set_input(ref_voltage_, 0.0);  // release the motor once
+    s[kWasActive] = 0.0;
+    return;
+  }
+  if (s[kWasActive] == 0.0) {  // (re)activated: start from a clean integral
+    s[kIntegral] = s[kPrevious] = s[kPrimed] = 0.0;
+    s[kWasActive] = 1.0;
+  }
+  PidState pid{s[kIntegral], s[kPrevious], s[kPrimed] != 0.0};
+  const PidGains gains{kp_, ki_, kd_, kf_, vmax_};
+  const double q = ctx.axis_position(axis_), w = ctx.axis_velocity(axis_);
+  double u = 0, e = 0;
+  if (mode_ == Mode::pid_speed) {
+    const double ref = ctx.input(ref_speed_);
+    e = ref - w;
+    u = simtwo_law_ ? pid_simtwo(pid, gains, e, ref, ctx.tick_s())
+                    : pid_textbook(pid, gains, e, ref, ctx.period_s());
+  } else {
+    const double ref = ctx.input(ref_pos_);
+    e = ref - q;
+    if (wrap_) e = wrap_pi(e);  // the shortest way round
+    if (mode_ == Mode::pid_position) {
+      u = simtwo_law_ ? pid_simtwo(pid, gains, e, ref, ctx.tick_s())
+                      : pid_textbook(pid, gains, e, ref, ctx.period_s());
+    } else {
+      const double speed_error = ctx.input(ref_speed_) - w;
+      u = simtwo_law_ ? state_simtwo(pid, gains, e, speed_error, ref)
+                      : pid_textbook(pid, gains, e, ref, ctx.period_s(), speed_error);
+    }
+  }
+  s[kIntegral] = pid.integral;
+  s[kPrevious] = pid.previous_error;
+  s[kPrimed] = pid.primed ? 1.0 : 0.0;
+  ctx.publish(error_, e);
+  ctx.set_input(ref_voltage_, u);
+}
+
+}  // namespace s2sim::drive_train

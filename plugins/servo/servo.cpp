@@ -1,0 +1,96 @@
+/// \file
+/// servo: a position servo of the hobby / Dynamixel AX-12 kind, as a whole (motor, gearbox
+/// and the servo's own controller in one): state-space position and speed feedback toward a
+/// setpoint that moves to the goal at no more than the speed limit, the torque bounded by the
+/// torque-speed line of the servo's motor at full voltage (stall torque `torque_max` at rest,
+/// zero at the no-load speed `speed_max`) (docs/models/dc-motor.md, "Servo").
+///
+///     <plugin kind='servo' id='hip' axis='hip' kp='8' kd='0.08' torque_max='1.5'
+///             speed_max='11.9' period='1' min_deg='-150' max_deg='150'/>
+///
+/// Inputs (shared with the drive train's): `<axis>/ref_pos` (rad), the goal; `<axis>/ref_speed`
+/// (rad/s), the moving speed (0 or absent = speed_max). Signals: `<axis>/servo_torque`,
+/// `<axis>/servo_setpoint`. Put `<motor active='0'/>` on the joint: the servo is the motor.
+
+#include <s2sim/plugin.hpp>
+#include <s2sim/sdk.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+class Servo final : public s2sim::Component {
+ public:
+  void configure(s2sim::ConfigureContext& ctx) override {
+    const s2sim::Params& p = ctx.params();
+    axis_ = ctx.axis(p.text("axis"));
+    if (ctx.axis_is_linear(axis_))
+      throw s2sim::Error(s2sim::ErrorKind::scene, p.location() +
+                                                      "@axis: a servo needs a rotational axis, '" +
+                                                      p.text("axis") + "' is a slider");
+    // Defaults: a Dynamixel AX-12 at 12 V (1.5 N·m stall torque, 114 rpm no-load speed,
+    // 300° range).
+    kp_ = p.number("kp", 8.0, s2sim::Range::non_negative());
+    kd_ = p.number("kd", 0.08, s2sim::Range::non_negative());
+    torque_max_ = p.number("torque_max", 1.5, s2sim::Range::positive());
+    speed_max_ = p.number("speed_max", 114.0 * 2 * kPi / 60, s2sim::Range::positive());
+    min_ = p.number("min_deg", -150.0) * kPi / 180;
+    max_ = p.number("max_deg", 150.0) * kPi / 180;
+    if (!(min_ <= max_))
+      throw s2sim::Error(s2sim::ErrorKind::scene, p.location() +
+                                                      "@max_deg: must be >= min_deg, got " +
+                                                      std::to_string(max_ * 180 / kPi) + " < " +
+                                                      std::to_string(min_ * 180 / kPi));
+    const double period_ms = p.number("period", ctx.tick_s() * 1000.0, s2sim::Range::positive());
+    period_ticks_ = std::max<long long>(1, std::llround(period_ms / 1000.0 / ctx.tick_s()));
+    const std::string at = ctx.axis_prefix(axis_) + "/";
+    ref_pos_ = ctx.declare_input_at(at + "ref_pos", "rad", 0.0);
+    ref_speed_ = ctx.declare_input_at(at + "ref_speed", "rad/s", 0.0);
+    torque_ = ctx.declare_signal_at(at + "servo_torque", "N*m");
+    setpoint_ = ctx.declare_signal_at(at + "servo_setpoint", "rad");
+    state_ = ctx.declare_state("servo", 3, 0.0);  // setpoint, setpoint speed, torque
+  }
+
+  void initialize(s2sim::StepContext& ctx) override {
+    double* s = ctx.state(state_);
+    s[0] = ctx.axis_position(axis_);
+    s[1] = s[2] = 0.0;
+  }
+
+  void update(s2sim::StepContext& ctx) override {
+    double* s = ctx.state(state_);
+    if (ctx.tick() % period_ticks_ == 0) {
+      const double T = static_cast<double>(period_ticks_) * ctx.tick_s();
+      const double goal = std::clamp(ctx.input(ref_pos_), min_, max_);
+      const double asked = std::abs(ctx.input(ref_speed_));
+      const double speed = asked > 0 ? std::min(asked, speed_max_) : speed_max_;
+      const double move = std::clamp(goal - s[0], -speed * T, speed * T);
+      s[0] += move;
+      s[1] = move / T;
+      const double q = ctx.axis_position(axis_), w = ctx.axis_velocity(axis_);
+      // The servo's DC motor at full voltage bounds the torque by its torque-speed line:
+      // τ ∈ τ_max·[−1 − w/w0, 1 − w/w0], w0 = speed_max (the no-load speed).
+      const double u = kp_ * (s[0] - q) + kd_ * (s[1] - w);
+      s[2] = std::clamp(u, -torque_max_ * (1 + w / speed_max_), torque_max_ * (1 - w / speed_max_));
+    }
+    ctx.apply_axis_force(axis_, s[2]);
+    ctx.publish(torque_, s[2]);
+    ctx.publish(setpoint_, s[0]);
+  }
+
+ private:
+  s2sim::AxisHandle axis_;
+  double kp_ = 0, kd_ = 0, torque_max_ = 0, speed_max_ = 0, min_ = 0, max_ = 0;
+  long long period_ticks_ = 1;
+  s2sim::InputHandle ref_pos_, ref_speed_;
+  s2sim::SignalHandle torque_, setpoint_;
+  s2sim::StateHandle state_;
+};
+
+}  // namespace
+
+S2SIM_PLUGIN("servo", S2SIM_KIND("servo", s2sim::Category::actuator, Servo));
