@@ -22,8 +22,15 @@ default="$repo/scenes/default"
 
 shot viewer-world "$default" --do "wait 75"
 shot viewer-configuration "$default" --show-window configuration --do "run-until 0.8"
-shot viewer-chart "$default" --chart 'robots/pendulum/axes/swing/*' 'robots/cart_pole/axes/hinge/pos' \
-  --do "hide run" --do "run-until 6"
+# The NXT driving at 6 V: its motor speeds and currents (the chart the runner's CSV equals).
+nxt="$repo/scenes/nxt"
+shot viewer-nxt "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=-6 --do "follow nxt" --do "camera -150 30 0.8" \
+  --do "run-until 1.5"
+shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=-6 \
+  --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
+  --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
 shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
 
 # The scene editor after a typing mistake: the error and its line, the scene still running.
@@ -36,7 +43,7 @@ plugins="$build/test-plugins/scene"
 if [ -d "$plugins" ]; then
   cp -r "$repo/tests/kernel/sim/fixtures/components" "$tmp/sheet"
   sed -i "s#</scene>#  <plugin kind='test_reference_controller' id='writer' input='sheet/A1' value='0.5' period_ms='40'/>\n  <plugin kind='test_echo_sensor' id='gain' input='sheet/B2'/>\n  <plugin kind='test_echo_sensor' id='offset' input='sheet/B3'/>\n  <plugin kind='test_echo_sensor' id='start' input='sheet/C1' unit='button'/>\n</scene>#" "$tmp/sheet/scene.xml"
-  shot viewer-sheet "$tmp/sheet" --plugin-path "$plugins" --show-window sheet \
+  shot viewer-sheet "$tmp/sheet" --plugin-path "$plugins" --plugin-path "$build/plugins" --show-window sheet \
     --do "sheet-set B2 1.25" --do "sheet-set B3 -0.1" --do "run-until 1"
 fi
 

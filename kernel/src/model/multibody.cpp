@@ -921,6 +921,7 @@ void Multibody::restore(const std::vector<double>& saved) {
 bool Multibody::place_free_body(int body, const Pose& pose) {
   Impl& m = *impl_;
   if (body <= 0 || body >= static_cast<int>(m.mobod_of_body.size())) return false;
+  m.bodies_fresh = false;  // the cached body poses no longer hold the state
   if (!m.mobod_of_body[body].isValid()) return m.loose.place(body, pose);  // a loose body
   SimTK::MobilizedBody& b = m.upd_mobod(body);
   if (!SimTK::MobilizedBody::Free::isInstanceOf(b) || !b.getParentMobilizedBody().isGround())

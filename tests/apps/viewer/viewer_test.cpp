@@ -262,14 +262,25 @@ TEST_F(Viewer, PauseStepAndResetButtonsDriveTheSimulatedTime) {
 }
 
 TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
-  // Any signal list works the same way; motor speed and current join when the drive train
-  // publishes them.
-  const std::vector<std::string> signals = {"robots/*/axes/*/pos", "robots/*/axes/*/speed"};
+  // The NXT's motor speeds and currents while it drives at 6 V; on a scene without motors any
+  // other signals work the same way (the code is shared, apps/common/signal_csv.hpp).
   const fs::path scene = robot_scene();
+  const bool nxt = scene.filename() == "nxt";
+  const std::vector<std::string> signals =
+      nxt ? std::vector<std::string>{"robots/nxt/axes/*/speed", "robots/nxt/axes/*/current"}
+          : std::vector<std::string>{"robots/*/axes/*/pos", "robots/*/axes/*/speed"};
+  const std::vector<std::string> inputs =
+      nxt ? std::vector<std::string>{"robots/nxt/axes/right/ref_voltage=6",
+                                     "robots/nxt/axes/left/ref_voltage=-6"}
+          : std::vector<std::string>{};
   const fs::path runner_csv = dir_ / "runner.csv", chart_csv = dir_ / "chart.csv";
   std::string command = quote(kRunner.string()) + " " + quote(scene.string()) +
-                        " --duration 1 --seed 7 --quiet --log " + quote(runner_csv.string()) +
-                        " --signals";
+                        " --duration 1 --seed 7 --quiet --log " + quote(runner_csv.string());
+  for (const auto& i : inputs) {
+    command += " --set ";
+    command += quote(i);
+  }
+  command += " --signals";
   for (const auto& s : signals) {
     command += ' ';
     command += quote(s);
@@ -277,7 +288,10 @@ TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
   const Result runner = run(command, dir_);
   ASSERT_EQ(runner.status, 0) << runner.err;
 
-  std::vector<std::string> args = {"--seed", "7", "--hide-ui", "--chart"};
+  std::vector<std::string> args = {"--seed", "7", "--hide-ui"};
+  for (const auto& i : inputs)
+    args.insert(args.end(), {"--set", i});
+  args.push_back("--chart");
   args.insert(args.end(), signals.begin(), signals.end());
   for (const char* c : {"speed 0", "run-until 1", "show chart"})
     args.insert(args.end(), {"--do", c});
@@ -289,6 +303,9 @@ TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
   const std::string expected = read_file(runner_csv), got = read_file(chart_csv);
   ASSERT_FALSE(got.empty()) << "the chart wrote no CSV";
   EXPECT_GT(std::count(expected.begin(), expected.end(), '\n'), 1000);
+  if (nxt) {
+    EXPECT_NE(expected.find("/current [A]"), std::string::npos) << expected.substr(0, 300);
+  }
   EXPECT_TRUE(expected == got) << "the chart's CSV differs from s2sim-run's (first 300 bytes)\n"
                                << expected.substr(0, 300) << "\n---\n"
                                << got.substr(0, 300);
@@ -374,13 +391,16 @@ fs::path fixture_with_plugins(const fs::path& dir, const std::string& plugins) {
   return scene;
 }
 
+// The test plugins, then the first-party ones (the fixture's axes need the drive train).
 const std::string kTestPlugins = (fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene").string();
+const std::string kFirstPartyPlugins = S2SIM_PLUGIN_DIR;
 
 TEST_F(Viewer, MovingAThingPlacesItAtRestWhereItIsDropped) {
   const fs::path scene = fixture_with_plugins(dir_, "");
-  const Result r = view(scene.string(), {"--plugin-path", kTestPlugins, "--do", "wait 3", "--do",
-                                         "move box -1 0.5 2", "--do", "print body box", "--do",
-                                         "move bob 0 0 1", "--do", "print body box"});
+  const Result r =
+      view(scene.string(), {"--plugin-path", kTestPlugins, "--plugin-path", kFirstPartyPlugins,
+                            "--do", "wait 3", "--do", "move box -1 0.5 2", "--do", "print body box",
+                            "--do", "move bob 0 0 1", "--do", "print body box"});
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("body box -1.000000000 0.500000000 2.000000000"), std::string::npos)
       << r.out;
@@ -397,11 +417,16 @@ TEST_F(Viewer, SheetCellsAreInputsThatControllersReadAndWrite) {
       "period_ms='40'/>\n"
       "  <plugin kind='test_echo_sensor' id='number' input='sheet/B2'/>\n"
       "  <plugin kind='test_echo_sensor' id='button' input='sheet/C1' unit='button'/>\n");
-  const Result r = view(
-      scene.string(),
-      {"--plugin-path", kTestPlugins, "--show-window", "sheet", "--do", "wait 3", "--do",
-       "sheet-set B2 4", "--do", "click C1", "--do", "wait 2", "--do", "print signal sheet/A1",
-       "--do", "print signal sensors/number/seen", "--do", "print signal sensors/button/seen"});
+  const Result r = view(scene.string(), {"--plugin-path", kTestPlugins,
+                                         "--plugin-path", kFirstPartyPlugins,
+                                         "--show-window", "sheet",
+                                         "--do",          "wait 3",
+                                         "--do",          "sheet-set B2 4",
+                                         "--do",          "click C1",
+                                         "--do",          "wait 2",
+                                         "--do",          "print signal sheet/A1",
+                                         "--do",          "print signal sensors/number/seen",
+                                         "--do",          "print signal sensors/button/seen"});
   ASSERT_EQ(r.status, 0) << r.err;
   // The controller writes value x its update count: 2.5 at its first update, then 5, 7.5...
   const auto a1 = r.out.find("signal sheet/A1 ");

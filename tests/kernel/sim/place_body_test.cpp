@@ -14,7 +14,7 @@ const fs::path kFixture = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixture
 
 std::unique_ptr<Simulation> load_fixture() {
   SimulationOptions o;
-  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene"};
+  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene", fs::path(S2SIM_PLUGIN_DIR)};
   return Simulation::load(kFixture, o);
 }
 
