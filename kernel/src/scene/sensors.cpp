@@ -14,9 +14,10 @@ namespace s2sim::scene::detail {
 namespace {
 
 bool is_sensor_element(std::string_view name) {
-  static constexpr std::array<std::string_view, 12> kinds = {
-      "IR",  "IRSharp", "capacitive", "inductive", "floorline", "ranger2d",
-      "imu", "RFID",    "beacon",     "pentip",    "solenoid",  "spraygun"};
+  // SimTwo's twelve, then S2Sim's own kinds (SimTwo ignores them as unknown names).
+  static constexpr std::array<std::string_view, 15> kinds = {
+      "IR",     "IRSharp", "capacitive", "inductive", "floorline", "ranger2d", "imu",  "RFID",
+      "beacon", "pentip",  "solenoid",   "spraygun",  "sonar",     "pose",     "touch"};
   for (auto k : kinds)
     if (k == name) return true;
   return false;
@@ -64,6 +65,12 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
         if (auto deg = r.optional_number(c, "angle")) b.angle_rad = deg_to_rad(*deg);
         b.rays = static_cast<int>(r.integer(c, "rays", b.rays));
         if (b.rays < 1) r.fail(c, "rays", "must be >= 1, got " + std::to_string(b.rays));
+        if (!(b.length_m > 0))
+          r.fail(c, "length", "must be > 0 m, got " + format_number(b.length_m));
+        if (!(b.initial_width_m >= 0))
+          r.fail(c, "initial_width", "must be >= 0 m, got " + format_number(b.initial_width_m));
+        if (!(b.final_width_m >= 0))
+          r.fail(c, "final_width", "must be >= 0 m, got " + format_number(b.final_width_m));
       } else if (n == "noise") {
         Noise& z = s.noise;
         z.present = true;

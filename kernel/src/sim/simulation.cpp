@@ -3,6 +3,7 @@
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
 #include "plugin/plugin_loader.hpp"
+#include "raycast/ray_caster.hpp"
 #include "scene/element_params.hpp"
 #include "sim/drive_train_components.hpp"
 #include "sim/names.hpp"
@@ -72,6 +73,7 @@ struct ComponentSlot {
   std::int64_t phase_ticks = 0;
   std::unique_ptr<scene::ElementParams> params;
   Location where;
+  int sensor = -1;  // index into scene.sensors when made for a scene sensor element
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
 };
 
@@ -142,6 +144,9 @@ struct Simulation::Impl {
 
   std::vector<ComponentSlot> components;
   std::array<std::vector<int>, 4> stage_order;
+
+  // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
+  std::unique_ptr<raycast::RayCaster> ray_caster;
 
   // --- registration -----------------------------------------------------------------------
 
@@ -240,6 +245,7 @@ struct Simulation::Impl {
     multibody->read(poses.data(), twists.data(), axis_position.data(), axis_velocity.data());
     world.time_s = static_cast<double>(tick) * tick_s;
     world.tick = tick;
+    if (ray_caster) ray_caster->invalidate();
   }
 
   void reset() {
@@ -438,6 +444,57 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.state_initial.insert(sim_.state_initial.end(), static_cast<std::size_t>(count), initial);
     return StateHandle{offset, count};
   }
+  const SensorSpec* sensor_spec() const override {
+    if (slot().sensor < 0) return nullptr;
+    const scene::Sensor& s = sim_.scene.sensors[static_cast<std::size_t>(slot().sensor)];
+    SensorSpec& o = spec_;
+    o.kind = s.kind;
+    o.body = BodyHandle{s.body + 1};  // scene body i is body i + 1; -1 (world) is 0
+    o.pose = s.pose;
+    o.absolute_coords = s.absolute_coords;
+    o.is_tool = s.is_tool;
+    o.beam = {s.beam.length_m, s.beam.initial_width_m, s.beam.final_width_m, s.beam.angle_rad,
+              s.beam.rays};
+    o.noise = {s.noise.present, s.noise.stdev, s.noise.stdev_p, s.noise.offset,
+               s.noise.gain,    s.noise.var_k, s.noise.var_d};
+    o.tags = s.tags;
+    o.period_s = s.period_s;
+    o.force_fmax_N = s.force.fmax_N;
+    o.force_k1 = s.force.k1;
+    o.force_k2 = s.force.k2;
+    return &o;
+  }
+  std::vector<FloorPolygon> floor_polygons() const override {
+    std::vector<FloorPolygon> out;
+    for (const auto& t : sim_.scene.tracks) {
+      FloorPolygon p;
+      p.tag = t.tag;
+      p.z_m = t.z_m;
+      for (const auto& [x, y] : t.vertices) {
+        p.x_m.push_back(x);
+        p.y_m.push_back(y);
+      }
+      out.push_back(std::move(p));
+    }
+    return out;
+  }
+  int body_count() const override { return static_cast<int>(sim_.poses.size()); }
+  SignalHandle published_signal(std::string_view full_name) const override {
+    auto it = sim_.signal_by_name.find(std::string(full_name));
+    if (it != sim_.signal_by_name.end() &&
+        sim_.signal_entries[it->second].source == Source::published)
+      return SignalHandle{sim_.signal_entries[it->second].index};
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < sim_.signal_infos.size(); ++i)
+      if (sim_.signal_entries[i].source == Source::published)
+        names.push_back(sim_.signal_infos[i].name);
+    throw fail(unknown("published signal", std::string(full_name), names));
+  }
+  std::string body_id(BodyHandle b) const override {
+    if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
+    return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;
+  }
+
   void set_schedule(Stage stage, double period_s, double phase_s) override {
     auto to_ticks = [&](double t, const char* what) {
       const double ticks = t / sim_.tick_s;
@@ -476,6 +533,7 @@ class ConfigureContextImpl final : public ConfigureContext {
 
   Simulation::Impl& sim_;
   int index_;
+  mutable SensorSpec spec_;
 };
 
 }  // namespace
@@ -583,6 +641,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     }
     m.add_component(*registry, sensor.kind, sensor.id, sensor.robot, sensor.params, sensor.where,
                     Category::sensor);
+    m.components.back().sensor = static_cast<int>(&sensor - m.scene.sensors.data());
   }
   for (const auto& p : m.scene.plugins)
     m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
@@ -628,6 +687,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.contacts = m.contacts->contacts();
   m.world.contact_count = m.contacts->contact_count();
   m.contacts->set_inputs(m.inputs.data());
+  m.ray_caster = std::make_unique<raycast::RayCaster>(m.scene, m.poses.data());
+  m.world.kernel = m.ray_caster.get();
+  m.world.cast_ray = &raycast::RayCaster::callback;
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
 }
@@ -723,6 +785,10 @@ const Pose& Simulation::body_pose(int body) const {
 }
 const Twist& Simulation::body_twist(int body) const {
   return impl_->twists.at(body);
+}
+RayHit Simulation::cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
+                            int ignore_body) const {
+  return impl_->ray_caster->cast(origin_m, direction, max_distance_m, ignore_body);
 }
 
 std::size_t Simulation::axis_count() const {

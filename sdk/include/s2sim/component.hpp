@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace s2sim {
 
@@ -62,6 +63,7 @@ enum MaterialFlag : std::uint32_t {
   material_metallic = 1u << 0,
   material_ferromagnetic = 1u << 1,
   material_rfid_tag = 1u << 2,
+  material_canvas = 1u << 3,  ///< a paintable `<canvas>` face (for `pentip`)
 };
 
 /// One contact of the last physics step between two bodies.
@@ -82,6 +84,44 @@ struct RayHit {
   Vec3 normal;                 ///< world unit surface normal, facing the ray
   BodyHandle body;             ///< index 0 for the ground, a wall or an obstacle
   std::uint32_t material = 0;  ///< MaterialFlag bits of the surface hit
+};
+
+/// A sensor's beam as the scene gives it (SimTwo's `<beam>`, several merged).
+struct SensorBeam {
+  double length_m = 0.8;
+  double initial_width_m = 0.01;
+  double final_width_m = 0.015;
+  double angle_rad = 0.5235987755982988;  ///< 30 degrees
+  int rays = 9;
+};
+
+/// A sensor's `<noise>` (simtwo-format.md §12.3); `present` is whether the element is there.
+struct SensorNoise {
+  bool present = false;
+  double stdev = 0, stdev_p = 0, offset = 0, gain = 1, var_k = 0, var_d = 0;
+};
+
+/// What the scene loader resolved for a scene sensor element (`<IRSharp>`, `<ranger2d>`...,
+/// robot or world-fixed): see `ConfigureContext::sensor_spec()`.
+struct SensorSpec {
+  std::string kind;  ///< element name
+  BodyHandle body;   ///< the body it is attached to; index 0 for a world-fixed sensor
+  Pose pose;         ///< sensor frame in the body frame (world frame for a world-fixed sensor);
+                     ///< the beam points along the frame's +X
+  bool absolute_coords = false;
+  bool is_tool = false;
+  SensorBeam beam;
+  SensorNoise noise;
+  std::vector<std::string> tags;                        ///< `<tag value>`s in order
+  double period_s = 0.01;                               ///< measurement period
+  double force_fmax_N = 1, force_k1 = 0, force_k2 = 1;  ///< solenoid `<force>`
+};
+
+/// A flat floor polygon of the scene's tracks (simtwo-format.md §7), x/y vertices in order.
+struct FloorPolygon {
+  std::string tag;
+  double z_m = 0;
+  std::vector<double> x_m, y_m;
 };
 
 namespace detail {
@@ -176,6 +216,10 @@ class StepContext {
   void set_input(InputHandle i, double v) { w_->inputs[i.index] = v; }
   /// Publishes a signal value; it holds until published again.
   void publish(SignalHandle s, double v) { w_->signals[s.index] = v; }
+  /// The current value of a signal a component publishes (found with
+  /// `ConfigureContext::published_signal`): how a controller reads a sensor. Sensors run
+  /// first in a tick, so a controller sees the readings of the same tick.
+  double signal(SignalHandle s) const { return w_->signals[s.index]; }
   /// The component's state block.
   double* state(StateHandle h) { return w_->state + h.offset; }
   /// The component's own random stream.
@@ -234,6 +278,23 @@ class ConfigureContext {
   /// Runs `update()` in `stage` every `period_s` from `phase_s`; both must be whole multiples
   /// of the tick. Without a call the component runs every tick in its kind's default stage.
   virtual void set_schedule(Stage stage, double period_s, double phase_s = 0.0) = 0;
+
+  // --- sensors (SDK 0.2 additions, appended so the earlier vtable slots keep their place) ---
+
+  /// For a component made for a scene sensor element (`<IRSharp>`...): what the loader
+  /// resolved (body, pose in the body frame, merged beam, noise, tags, period). nullptr for a
+  /// component placed with `<plugin>`. Valid until configure() returns: copy what you need.
+  virtual const SensorSpec* sensor_spec() const = 0;
+  /// A copy of every floor polygon of the scene's tracks, in scene order.
+  virtual std::vector<FloorPolygon> floor_polygons() const = 0;
+  /// Number of bodies, the world (index 0) included.
+  virtual int body_count() const = 0;
+  /// The scene ID of a body as written (a solid, tyre or thing ID); empty for the world.
+  virtual std::string body_id(BodyHandle b) const = 0;
+  /// A signal published by a component configured before this one, by its full name (e.g.
+  /// `robots/r/sensors/ir0/value`), to read with `StepContext::signal()`. Scene sensors are
+  /// configured before `<plugin>` components, in scene order. Throws when there is none.
+  virtual SignalHandle published_signal(std::string_view full_name) const = 0;
 };
 
 /// Base of every plugin component.

@@ -86,6 +86,11 @@ class Simulation {
   int body_count() const;
   const Pose& body_pose(int body) const;
   const Twist& body_twist(int body) const;
+  /// The first collision surface along a ray from `origin_m` in `direction` (world frame)
+  /// within `max_distance_m`, skipping the geoms of body `ignore_body` (> 0): what sensors
+  /// see (ground, walls, obstacles, every body), for picking and tests.
+  RayHit cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
+                  int ignore_body = -1) const;
 
   // Axes (joint degrees of freedom), in scene joint order.
   struct AxisView {

@@ -1,0 +1,65 @@
+// Sensors in the step loop allocate nothing: every operator new of this binary is counted and
+// a simulation with sensors must allocate exactly what the bare Simbody model does.
+#include <s2sim/kernel/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <filesystem>
+#include <new>
+#include <string>
+
+namespace {
+std::atomic<long> allocations{0};
+}
+
+void* operator new(std::size_t n) {
+  ++allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept {
+  std::free(p);
+}
+void operator delete(void* p, std::size_t) noexcept {
+  std::free(p);
+}
+
+namespace s2sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Allocations of 1000 ticks of `scene` loaded with `o`.
+long allocations_per_1000_ticks(const fs::path& scene, const SimulationOptions& o) {
+  auto sim = Simulation::load(scene, o);
+  if (sim->find_signal("sensors/magnet/vin")) sim->set_input("sensors/magnet/vin", 1.0);
+  sim->step(10);  // first steps may size caches
+  const long before = allocations.load();
+  sim->step(1000);
+  return allocations.load() - before;
+}
+
+TEST(SensorAllocation, SensorsAddNoAllocationToTheStep) {
+  // Each fixture with its sensors, against the same scene with them inert (every plugin of
+  // the build but the sensors one): whatever the rest of the step allocates (Simbody's
+  // temporaries, other plugins), sensors add nothing.
+  SimulationOptions with, without;
+  with.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
+  const fs::path others = fs::path(testing::TempDir()) / "s2sim_plugins_but_sensors";
+  fs::remove_all(others);
+  fs::create_directories(others);
+  for (const auto& entry : fs::directory_iterator(S2SIM_PLUGIN_DIR))
+    if (entry.path().extension() == ".so" && entry.path().filename() != "libsensors.so")
+      fs::create_symlink(entry.path(), others / entry.path().filename());
+  without.plugin_path = {others};
+  for (const char* fixture : {"ir_wall", "ranger", "floorline", "imu", "proximity"}) {
+    const fs::path scene = fs::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures" / fixture;
+    EXPECT_EQ(allocations_per_1000_ticks(scene, with), allocations_per_1000_ticks(scene, without))
+        << fixture;
+  }
+}
+
+}  // namespace
+}  // namespace s2sim
