@@ -1,6 +1,7 @@
 #include "outputs.hpp"
 
 #include <s2sim/error.hpp>
+#include <signal_csv.hpp>
 
 #include <cinttypes>
 #include <cmath>
@@ -76,38 +77,10 @@ std::string robot_name(const Simulation& sim, int robot) {
 
 CsvLog::CsvLog(const std::string& file, const Simulation& sim,
                const std::vector<std::string>& patterns)
-    : path_(file) {
-  // The kernel publishes `time` as a signal too; the log writes it first, so leaving it out
-  // and skipping repeats (overlapping patterns) keeps column names unique.
-  std::vector<bool> taken(sim.signal_count(), false);
-  if (const auto time = sim.find_signal("time")) taken[*time] = true;
-  auto take = [&](std::size_t i) {
-    if (!taken[i]) signals_.push_back(i);
-    taken[i] = true;
-  };
-  if (patterns.empty()) {
-    for (std::size_t i = 0; i < sim.signal_count(); ++i)
-      take(i);
-  } else {
-    for (const auto& p : patterns) {
-      const auto matched = sim.match_signals(p);
-      if (matched.empty()) {
-        // A plain name gets the "did you mean" of signal_index().
-        if (p.find_first_of("*?") == std::string::npos) (void)sim.signal_index(p);
-        throw Error(ErrorKind::usage, "--signals: pattern '" + p + "' matches no signal");
-      }
-      for (std::size_t i : matched)
-        take(i);
-    }
-  }
+    : path_(file), signals_(apps::select_signals(sim, patterns)), row_(signals_.size()) {
   out_ = std::fopen(file.c_str(), "w");
   if (out_ == nullptr) throw Error(ErrorKind::usage, "--log: cannot write '" + file + "'");
-  std::fputs("time [s]", out_);
-  for (std::size_t i : signals_) {
-    const SignalInfo& info = sim.signal_info(i);
-    std::fprintf(out_, ",%s [%s]", info.name.c_str(), info.unit.c_str());
-  }
-  std::fputc('\n', out_);
+  apps::write_csv_header(out_, sim, signals_);
 }
 
 CsvLog::~CsvLog() {
@@ -124,10 +97,9 @@ void CsvLog::close() {
 }
 
 void CsvLog::write_row(const Simulation& sim) {
-  std::fprintf(out_, "%.6f", sim.time_s());
-  for (std::size_t i : signals_)
-    std::fprintf(out_, ",%.10g", sim.signal(i));
-  std::fputc('\n', out_);
+  for (std::size_t k = 0; k < signals_.size(); ++k)
+    row_[k] = sim.signal(signals_[k]);
+  apps::write_csv_row(out_, sim.time_s(), row_);
   if (std::ferror(out_)) throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
 }
 

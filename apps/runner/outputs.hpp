@@ -10,9 +10,9 @@
 
 namespace s2sim::runner {
 
-/// A CSV file with a header `name [unit]` and one row per logged tick. Rows are formatted
-/// into a reused buffer: no allocation per row. The first column is always `time [s]`; every
-/// other signal appears at most once.
+/// A CSV file with a header `name [unit]` and one row per logged tick, in the format of
+/// apps/common/signal_csv.hpp. Rows go through a reused buffer: no allocation per row. The first
+/// column is always `time [s]`; every other signal appears at most once.
 class CsvLog {
  public:
   /// Throws s2sim::Error (usage) when the file cannot be written or a pattern matches nothing.
@@ -29,6 +29,7 @@ class CsvLog {
   std::FILE* out_ = nullptr;
   std::string path_;
   std::vector<std::size_t> signals_;
+  std::vector<double> row_;  ///< reused for every row
 };
 
 struct RunTiming {

@@ -132,4 +132,13 @@ std::size_t LooseBodies::restore(const std::vector<double>& in, std::size_t k) {
   return k;
 }
 
+bool LooseBodies::place(int kernel_index, const Pose& pose) {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    if (model_[i].kernel_index != kernel_index) continue;
+    state_[i] = {pose * model_[i].com_body_m, {}, {}, normalized(to_quat(pose.rotation))};
+    return true;
+  }
+  return false;
+}
+
 }  // namespace s2sim::model

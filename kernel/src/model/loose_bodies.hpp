@@ -36,6 +36,10 @@ class LooseBodies {
   /// Sum of every state number (a NaN check).
   double checksum() const;
 
+  /// Puts kernel body `kernel_index` at `pose` (body origin, world frame), at rest. Returns
+  /// false when that body is not one of these.
+  bool place(int kernel_index, const Pose& pose);
+
   void save(std::vector<double>& out) const;
   std::size_t restore(const std::vector<double>& in, std::size_t offset);
 

@@ -75,6 +75,12 @@ class Multibody {
   std::vector<double> save() const;
   void restore(const std::vector<double>& saved);
 
+  /// Moves a body that hangs freely from the world (a loose body, or a Free mobilizer on the
+  /// world: the root body of a robot with everything jointed to it) to `pose`, at rest.
+  /// Returns false, changing nothing, for any other body. The other bodies' leapfrog goes on
+  /// undisturbed; the placed body's zero speed is its mid-step speed.
+  bool place_free_body(int body, const Pose& pose);
+
   struct Impl;  // Simbody's objects, defined in multibody.cpp
 
  private:

@@ -863,4 +863,18 @@ void Simulation::restore(const Snapshot& snapshot) {
   m.refresh();
 }
 
+void Simulation::place_body(int body, const Pose& pose) {
+  Impl& m = *impl_;
+  const auto& bodies = m.scene.bodies;
+  const std::string name = body > 0 && body <= static_cast<int>(bodies.size())
+                               ? "'" + bodies[body - 1].id + "'"
+                               : "index " + std::to_string(body);
+  if (!m.multibody->place_free_body(body, pose))
+    throw Error(ErrorKind::usage,
+                "body " + name +
+                    " cannot be placed: only a thing or a robot's root body (free "
+                    "on the world) can be moved");
+  m.refresh();
+}
+
 }  // namespace s2sim

@@ -121,6 +121,12 @@ class Simulation {
   Snapshot save() const;
   void restore(const Snapshot& snapshot);
 
+  /// Moves a body that hangs freely from the world (a thing, or a robot's root body, which
+  /// carries the whole robot) to `pose` in the world frame, at rest: the viewer's drag, or
+  /// SimTwo's SetRobotPos. Time does not change. Throws s2sim::Error (usage) naming the body
+  /// for a body jointed to something else, or for the world.
+  void place_body(int body, const Pose& pose);
+
   struct Impl;
 
  private:

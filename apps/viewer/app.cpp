@@ -1,0 +1,301 @@
+#include "app.hpp"
+
+#include "gl.hpp"
+#include "renderer.hpp"
+#include "scene_drawables.hpp"
+#include "screenshot.hpp"
+#include "ui_script.hpp"
+#include "viewer_state.hpp"
+#include "windows/windows.hpp"
+#include "world_input.hpp"
+
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <s2sim/error.hpp>
+#include <signal_csv.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <thread>
+
+namespace s2sim::viewer {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// GLFW and its window, released in the right order whatever happens.
+struct Window {
+  GLFWwindow* handle = nullptr;
+  Window(int width, int height, bool visible) {
+    glfwSetErrorCallback([](int code, const char* text) {
+      std::fprintf(stderr, "s2sim-view: GLFW error %d: %s\n", code, text);
+    });
+    if (!glfwInit())
+      throw Error(ErrorKind::runtime,
+                  "cannot open a display (no desktop? run under xvfb-run, see docs/viewer.md)");
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, visible ? GLFW_TRUE : GLFW_FALSE);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    handle = glfwCreateWindow(width, height, "S2Sim", nullptr, nullptr);
+    if (handle == nullptr) {
+      glfwTerminate();
+      throw Error(ErrorKind::runtime, "cannot create an OpenGL 3.3 core window");
+    }
+    glfwMakeContextCurrent(handle);
+  }
+  ~Window() {
+    glfwDestroyWindow(handle);
+    glfwTerminate();
+  }
+};
+
+struct ImGuiContextGuard {
+  explicit ImGuiContextGuard(GLFWwindow* window, bool save_layout) {
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    // Scripted runs must not depend on (or leave) a saved window layout.
+    ImGui::GetIO().IniFilename = save_layout ? "s2sim-view.ini" : nullptr;
+    ImGui::StyleColorsDark();
+    ImGui::GetStyle().Alpha = 0.95f;
+    ImGui_ImplGlfw_InitForOpenGL(window, true);
+    ImGui_ImplOpenGL3_Init("#version 330 core");
+  }
+  ~ImGuiContextGuard() {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+  }
+};
+
+class App {
+ public:
+  App(const Options& options, GLFWwindow* window) : window_(window), script_(options.script) {
+    state_.options = options;
+    state_.run.playing = !options.paused;
+    state_.run.speed = options.speed > 0 ? options.speed : 1.0;
+    state_.run.as_fast_as_possible = options.speed == 0;
+    for (const auto& name : options.show_windows)
+      if (!set_window(state_.windows, name, true))
+        throw Error(ErrorKind::usage, "--show-window: unknown window '" + name +
+                                          "' (run, configuration, chart, sheet, editor, log, "
+                                          "body)");
+    if (options.hide_ui) state_.windows = WindowFlags{false};
+    state_.render.shadows = options.shadows;
+    renderer_.init();
+    install(load_simulation(options));
+    // The runner's selection, so an exported chart has s2sim-run's columns in its order.
+    if (!options.chart_signals.empty()) {
+      for (std::size_t i : apps::select_signals(*state_.sim, options.chart_signals, "--chart"))
+        state_.chart.add_signal(i);
+      state_.chart.clear_samples();  // the t = 0 sample again, now with these signals
+      state_.chart.record(*state_.sim);
+      state_.windows.chart = state_.windows.chart || !options.hide_ui;
+    }
+    frame_camera_on_scene();
+  }
+
+  int run() {
+    const Options& o = state_.options;
+    // Scripted and screenshot runs advance a fixed 1/60 s of wall time per frame, so that
+    // what they show does not depend on the machine.
+    const bool scripted = o.frames > 0 || !script_.empty();
+    const double fixed_frame_s = 1.0 / 60;
+    int frames = 0;
+    auto last = Clock::now();
+    std::vector<double> frame_times_s;  // for --report-fps
+    if (o.report_fps) frame_times_s.reserve(o.frames > 0 ? o.frames : 100000);
+    while (!glfwWindowShouldClose(window_) && !state_.quit) {
+      glfwPollEvents();
+      const auto now = Clock::now();
+      const double wall_dt_s = std::chrono::duration<double>(now - last).count();
+      last = now;
+      if (o.report_fps && frames > 0) frame_times_s.push_back(wall_dt_s);
+      state_.frame_time_s = state_.frame_time_s * 0.9 + wall_dt_s * 0.1;
+
+      if (state_.pending_simulation) install(std::move(state_.pending_simulation));
+      std::string screenshot_file;
+      script_.frame(state_, screenshot_file);
+
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      input_.update(state_, drawables_);
+      state_.run.advance(*state_.sim, scripted ? fixed_frame_s : wall_dt_s, state_.chart, scripted);
+      follow_robot();
+
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window_, &width, &height);
+      drawables_.update(*state_.sim);
+      renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints, state_.selected_body),
+                     state_.camera, width, height, state_.render);
+      draw_windows();
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+      ++frames;
+      const bool last_frame = (o.frames > 0 && frames >= o.frames) ||
+                              (!script_.empty() && script_.finished() && o.frames < 0);
+      if (last_frame && !o.screenshot_file.empty()) screenshot_file = o.screenshot_file;
+      if (!screenshot_file.empty()) {
+        const std::string error = save_screenshot(screenshot_file, width, height);
+        if (!error.empty()) throw Error(ErrorKind::usage, "--screenshot: " + error);
+      }
+      if (last_frame && o.print_projections) print_projections(width, height);
+      glfwSwapBuffers(window_);
+      if (last_frame) break;
+      if (!o.no_frame_cap && !scripted) cap_frame_rate(now);
+    }
+    if (o.report_fps) report_frame_rate(frame_times_s);
+    return 0;
+  }
+
+ private:
+  void install(std::unique_ptr<Simulation> sim) {
+    // Keep the chart's signals by name across a reload (their indices may change).
+    std::vector<std::string> charted;
+    if (state_.sim)
+      for (std::size_t i : state_.chart.signals())
+        charted.push_back(state_.sim->signal_info(i).name);
+    state_.sim = std::move(sim);
+    state_.chart.clear();
+    for (const auto& name : charted)
+      if (const auto i = state_.sim->find_signal(name)) state_.chart.add_signal(*i);
+    state_.chart.record(*state_.sim);
+    std::vector<std::string> warnings = state_.sim->warnings();
+    drawables_.build(state_.sim->scene(), renderer_, warnings);
+    for (const auto& w : warnings)
+      state_.log_message("warning: " + w);
+    state_.log_message("loaded " + state_.sim->scene().file.string());
+    state_.selected_body = -1;
+    if (state_.camera.follow_robot >= static_cast<int>(state_.sim->scene().robots.size()))
+      state_.camera.follow_robot = -1;
+    load_editor_files(state_);
+  }
+
+  /// Looks at the middle of the scene's bodies from a distance that shows them all.
+  void frame_camera_on_scene() {
+    const auto& scene = state_.sim->scene();
+    Vec3 lo{1e30, 1e30, 1e30}, hi{-1e30, -1e30, -1e30};
+    auto extend = [&](const Vec3& p) {
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    };
+    for (const auto& b : scene.bodies)
+      extend(b.pose.position);
+    for (const auto& g : scene.obstacles)
+      extend(g.pose.position);
+    if (lo.x > hi.x) return;
+    const Vec3 centre = (lo + hi) * 0.5;
+    state_.camera.target_m = to_f(centre);
+    const double extent = std::max(0.5, norm(hi - lo));
+    state_.camera.distance_m = static_cast<float>(
+        std::clamp(extent * 0.35 / std::tan(state_.camera.fov_y_rad / 2), 1.0, 200.0));
+  }
+
+  void follow_robot() {
+    const int r = state_.camera.follow_robot;
+    if (r < 0) return;
+    const int body = state_.sim->scene().robots[r].main_body;
+    if (body >= 0) state_.camera.target_m = to_f(state_.sim->body_pose(body + 1).position);
+  }
+
+  void draw_windows() {
+    draw_run_window(state_);
+    draw_configuration_window(state_);
+    draw_chart_window(state_);
+    draw_sheet_window(state_);
+    draw_scene_editor_window(state_);
+    draw_log_window(state_);
+    draw_body_window(state_);
+    // A scripted click on a button that was not drawn this frame is an error in the script.
+    if (!state_.scripted_clicks.empty()) {
+      const std::string label = state_.scripted_clicks.front();
+      state_.scripted_clicks.clear();
+      throw Error(ErrorKind::usage, "script: no button '" + label + "' on screen");
+    }
+  }
+
+  /// Prints where each robot's main body and its shadow land on screen, with its colour
+  /// (tests check the screenshot's pixels there).
+  void print_projections(int width, int height) {
+    const auto& scene = state_.sim->scene();
+    const Mat4 vp = state_.camera.projection(static_cast<float>(width) / std::max(1, height)) *
+                    state_.camera.view();
+    const Vec3f light = renderer_.light_direction();
+    auto project = [&](const Vec3f& p, const char* what, const std::string& id,
+                       const scene::Color* c) {
+      const Vec4f h = vp * Vec4f{p.x, p.y, p.z, 1};
+      const double px = (h.x / h.w * 0.5 + 0.5) * width;
+      const double py = (0.5 - h.y / h.w * 0.5) * height;
+      if (c)
+        std::printf("%s %s %.1f %.1f %.3f %.3f %.3f\n", what, id.c_str(), px, py, c->r, c->g, c->b);
+      else
+        std::printf("%s %s %.1f %.1f\n", what, id.c_str(), px, py);
+    };
+    for (const auto& r : scene.robots) {
+      if (r.main_body < 0) continue;
+      const Pose& pose = state_.sim->body_pose(r.main_body + 1);
+      const scene::Body& body = scene.bodies[r.main_body];
+      const Vec3f centre = to_f(pose * body.geoms.front().pose.position);
+      project(centre, "robot", r.id, &body.geoms.front().visual.color);
+      // Along the light onto the floor: where the centre's shadow falls.
+      project(centre - light * (centre.z / light.z), "shadow", r.id, nullptr);
+    }
+    std::fflush(stdout);
+  }
+
+  /// Frames per second in the steady state: the first 10 frames (shader compilation, first
+  /// uploads) are left out; the median and 95th percentile show the spread.
+  static void report_frame_rate(std::vector<double> times_s) {
+    const std::size_t skip = std::min<std::size_t>(10, times_s.size() / 2);
+    times_s.erase(times_s.begin(), times_s.begin() + static_cast<long>(skip));
+    if (times_s.empty()) {
+      std::printf("frames: too few to measure\n");
+      return;
+    }
+    double total_s = 0;
+    for (double t : times_s)
+      total_s += t;
+    std::sort(times_s.begin(), times_s.end());
+    std::printf(
+        "frames %zu in %.3f s: %.1f frames per second (median frame %.2f ms, 95th "
+        "percentile %.2f ms)\n",
+        times_s.size(), total_s, times_s.size() / total_s, times_s[times_s.size() / 2] * 1e3,
+        times_s[times_s.size() * 95 / 100] * 1e3);
+  }
+
+  /// Without vsync (Xvfb), sleep so the loop does not spin faster than 60 frames a second.
+  static void cap_frame_rate(Clock::time_point frame_start) {
+    const auto target = frame_start + std::chrono::microseconds(16'666);
+    if (Clock::now() < target) std::this_thread::sleep_until(target);
+  }
+
+  GLFWwindow* window_;
+  ViewerState state_;
+  Renderer renderer_;
+  SceneDrawables drawables_;
+  UiScript script_;
+  WorldInput input_;
+};
+
+}  // namespace
+
+int run_viewer(const Options& options) {
+  const bool headless = !options.screenshot_file.empty() || options.frames > 0;
+  Window window(options.width_px, options.height_px, !headless);
+  glfwSwapInterval(options.no_frame_cap || headless ? 0 : 1);
+  ImGuiContextGuard imgui(window.handle, !headless && options.script.empty());
+  App app(options, window.handle);
+  return app.run();
+}
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,38 @@
+#pragma once
+/// \file
+/// Triangle meshes on the CPU: unit primitives (box, cylinder, sphere, disc), flat polygons
+/// and files read through assimp (STL, 3DS, OBJ, PLY...).
+
+#include "gl_math.hpp"
+
+#include <filesystem>
+#include <utility>
+#include <vector>
+
+namespace s2sim::viewer {
+
+struct Vertex {
+  float position[3];
+  float normal[3];
+  float uv[2];
+};
+
+struct MeshData {
+  std::vector<Vertex> vertices;
+  std::vector<unsigned> indices;  ///< triangles
+};
+
+/// A 1 x 1 x 1 box centred on the origin.
+MeshData unit_box();
+/// Radius 1, length 1 along Z, centred on the origin.
+MeshData unit_cylinder(int segments = 32);
+/// Radius 1.
+MeshData unit_sphere(int rings = 16, int segments = 32);
+/// A flat polygon in the XY plane (ear clipping; either winding), normal +Z.
+MeshData flat_polygon(const std::vector<std::pair<double, double>>& vertices_m);
+
+/// Reads a mesh file through assimp, applying `scale` to its vertices. Throws s2sim::Error
+/// (kind scene) naming the file when assimp cannot read it.
+MeshData load_mesh_file(const std::filesystem::path& file, double scale);
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,139 @@
+#include "options.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+namespace s2sim::viewer {
+namespace {
+
+double parse_double(const std::string& option, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw Error(ErrorKind::usage, option + ": '" + text + "' is not a number");
+  return v;
+}
+
+int parse_int(const std::string& option, const std::string& text, int min) {
+  const double v = parse_double(option, text);
+  if (v != static_cast<int>(v) || v < min)
+    throw Error(ErrorKind::usage,
+                option + ": '" + text + "' is not a whole number >= " + std::to_string(min));
+  return static_cast<int>(v);
+}
+
+std::pair<std::string, double> parse_assignment(const std::string& option,
+                                                const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw Error(ErrorKind::usage, option + ": '" + text + "' is not NAME=VALUE");
+  return {text.substr(0, eq), parse_double(option, text.substr(eq + 1))};
+}
+
+}  // namespace
+
+const char* usage_text() {
+  return R"(usage: s2sim-view SCENE [options]
+  SCENE                    a scene folder or its scene.xml
+  --seed N                 seed of every random stream (1)
+  --physics-step S         physics step, seconds    --substeps N
+  --define NAME=VALUE      constant set before scene.xml is read
+  --set INPUT=VALUE        hold an input at a value
+  --plugin-path DIR        plugin folder (repeatable)
+  --size WxH               window size in pixels (1280x720)
+  --speed X                times real time, 0.1 to 1000; 0 = as fast as possible (1)
+  --paused                 start paused
+  --chart SIGNAL...        signals to chart (patterns, as s2sim-run --signals)
+  --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
+  --hide-ui                world view only
+  --no-shadows             no shadows (faster on a machine without a GPU)
+  --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
+  --frames N               quit after N frames
+  --do "COMMAND"           a UI script command (repeatable, see docs/viewer.md)
+  --script FILE            UI script commands, one a line
+  --no-frame-cap           draw as fast as possible (benchmark)
+  --report-fps             print the frame rate at exit
+  --print-projections      print where each robot and its shadow are on screen
+)";
+}
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  auto value = [&](int& i, const std::string& option) -> std::string {
+    if (i + 1 >= argc) throw Error(ErrorKind::usage, option + ": missing value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--help" || a == "-h") {
+      o.help = true;
+    } else if (a == "--seed") {
+      o.seed = static_cast<std::uint64_t>(parse_int(a, value(i, a), 0));
+    } else if (a == "--physics-step") {
+      o.physics_step_s = parse_double(a, value(i, a));
+      if (*o.physics_step_s <= 0) throw Error(ErrorKind::usage, a + ": must be positive");
+    } else if (a == "--substeps") {
+      o.substeps = parse_int(a, value(i, a), 1);
+    } else if (a == "--define") {
+      o.constants.push_back(parse_assignment(a, value(i, a)));
+    } else if (a == "--set") {
+      o.inputs.push_back(parse_assignment(a, value(i, a)));
+    } else if (a == "--plugin-path") {
+      o.plugin_path.push_back(value(i, a));
+    } else if (a == "--size") {
+      const std::string v = value(i, a);
+      const auto x = v.find('x');
+      if (x == std::string::npos) throw Error(ErrorKind::usage, a + ": '" + v + "' is not WxH");
+      o.width_px = parse_int(a, v.substr(0, x), 64);
+      o.height_px = parse_int(a, v.substr(x + 1), 64);
+    } else if (a == "--speed") {
+      o.speed = parse_double(a, value(i, a));
+      if (o.speed != 0 && (o.speed < 0.1 || o.speed > 1000))
+        throw Error(ErrorKind::usage, a + ": must be 0 (as fast as possible) or 0.1 to 1000");
+    } else if (a == "--paused") {
+      o.paused = true;
+    } else if (a == "--chart") {
+      while (i + 1 < argc && argv[i + 1][0] != '-')
+        o.chart_signals.emplace_back(argv[++i]);
+      if (o.chart_signals.empty()) throw Error(ErrorKind::usage, a + ": missing signal");
+    } else if (a == "--show-window") {
+      o.show_windows.push_back(value(i, a));
+    } else if (a == "--no-shadows") {
+      o.shadows = false;
+    } else if (a == "--hide-ui") {
+      o.hide_ui = true;
+    } else if (a == "--screenshot") {
+      o.screenshot_file = value(i, a);
+    } else if (a == "--frames") {
+      o.frames = parse_int(a, value(i, a), 1);
+    } else if (a == "--do") {
+      o.script.push_back(value(i, a));
+    } else if (a == "--script") {
+      const std::string file = value(i, a);
+      std::ifstream in(file);
+      if (!in) throw Error(ErrorKind::usage, a + ": cannot read '" + file + "'");
+      for (std::string line; std::getline(in, line);)
+        if (!line.empty() && line[0] != '#') o.script.push_back(line);
+    } else if (a == "--no-frame-cap") {
+      o.no_frame_cap = true;
+    } else if (a == "--report-fps") {
+      o.report_fps = true;
+    } else if (a == "--print-projections") {
+      o.print_projections = true;
+    } else if (!a.empty() && a[0] == '-') {
+      throw Error(ErrorKind::usage, "unknown option '" + a + "' (see --help)");
+    } else if (o.scene.empty()) {
+      o.scene = a;
+    } else {
+      throw Error(ErrorKind::usage, "more than one scene: '" + o.scene + "' and '" + a + "'");
+    }
+  }
+  if (!o.help && o.scene.empty()) throw Error(ErrorKind::usage, "no scene given (see --help)");
+  if (!o.screenshot_file.empty() && o.frames < 0) o.frames = 3;
+  return o;
+}
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,42 @@
+#pragma once
+/// \file
+/// Command line of s2sim-view.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace s2sim::viewer {
+
+struct Options {
+  std::string scene;
+  std::uint64_t seed = 1;
+  std::optional<double> physics_step_s;
+  std::optional<int> substeps;
+  std::vector<std::pair<std::string, double>> constants;  ///< --define
+  std::vector<std::pair<std::string, double>> inputs;     ///< --set
+  std::vector<std::string> plugin_path;
+  int width_px = 1280;
+  int height_px = 720;
+  std::string screenshot_file;  ///< write the last frame as PNG, then quit
+  int frames = -1;              ///< stop after this many frames (-1 = until closed)
+  std::vector<std::string> show_windows;
+  std::vector<std::string> chart_signals;  ///< patterns, as s2sim-run --signals
+  std::vector<std::string> script;         ///< UI commands, see ui_script.hpp
+  double speed = 1.0;                      ///< times real time; 0 = as fast as possible
+  bool paused = false;
+  bool shadows = true;             ///< --no-shadows turns them off
+  bool hide_ui = false;            ///< world view only
+  bool no_frame_cap = false;       ///< draw as fast as possible (benchmark)
+  bool report_fps = false;         ///< print frames per second at exit
+  bool print_projections = false;  ///< print where each robot projects on screen (tests)
+  bool help = false;
+};
+
+/// Parses argv. Throws s2sim::Error (kind usage) naming the bad argument.
+Options parse_options(int argc, char** argv);
+const char* usage_text();
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,75 @@
+#pragma once
+/// \file
+/// Draws the world view with OpenGL 3.3 core: lit meshes (colour, transparency, texture), a
+/// floor with a grid, and the shadows a directional light casts on the floor.
+
+#include "camera.hpp"
+#include "gl_math.hpp"
+#include "mesh_data.hpp"
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace s2sim::viewer {
+
+/// One thing to draw this frame.
+struct DrawItem {
+  int mesh = 0;  ///< from Renderer::upload
+  Mat4 model;    ///< mesh to world, scale included
+  float color[4] = {0.5f, 0.5f, 0.5f, 1};
+  unsigned texture = 0;  ///< from Renderer::texture, 0 = none
+  float texture_scale = 1;
+  bool casts_shadow = true;
+  bool lit = true;           ///< false for markers such as sensor beams
+  bool two_sided = false;    ///< mesh files and flat polygons: no back-face culling
+  bool highlighted = false;  ///< the selected body: tinted
+};
+
+struct RenderSettings {
+  bool shadows = true;
+  bool grid = true;
+  float floor_half_size_m = 20;
+  float clear_color[3] = {0.62f, 0.72f, 0.85f};
+};
+
+class Renderer {
+ public:
+  Renderer() = default;
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  /// Compiles the shaders. Needs a current OpenGL 3.3 context (with a stencil buffer).
+  /// Throws std::runtime_error with the compiler log if a shader fails.
+  void init();
+  /// Uploads a mesh and returns its id for DrawItem::mesh.
+  int upload(const MeshData& mesh);
+  /// Loads an image file once (stb_image) and returns its texture, or 0 with `error` set.
+  unsigned texture(const std::filesystem::path& file, std::string& error);
+
+  /// Draws the floor and the items into the current framebuffer (viewport width x height).
+  void draw(const std::vector<DrawItem>& items, const Camera& camera, int width_px, int height_px,
+            const RenderSettings& settings);
+
+  /// Direction towards the light (unit).
+  Vec3f light_direction() const { return light_direction_; }
+
+ private:
+  struct GpuMesh {
+    unsigned vao = 0, vbo = 0, ebo = 0;
+    int index_count = 0;
+  };
+  void draw_mesh(const GpuMesh& mesh) const;
+  Mat4 floor_shadow_projection() const;
+
+  std::vector<GpuMesh> meshes_;
+  std::map<std::filesystem::path, unsigned> textures_;
+  unsigned lit_program_ = 0, floor_program_ = 0;
+  int floor_mesh_ = -1;
+  Vec3f light_direction_ = normalized({0.35f, 0.25f, 1.0f});
+  std::vector<const DrawItem*> transparent_;  ///< reused every frame
+};
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,50 @@
+#pragma once
+/// \file
+/// Play, pause, single step, reset and speed: how many ticks each frame advances, with
+/// real-time pacing and the measured real-time factor.
+
+#include "chart_data.hpp"
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include <cstdint>
+
+namespace s2sim::viewer {
+
+class RunControl {
+ public:
+  bool playing = true;
+  /// Times real time (0.1 ... 1000); `as_fast_as_possible` overrides it.
+  double speed = 1.0;
+  bool as_fast_as_possible = false;
+  /// Pause when the simulated time reaches this (scripts, "run until"); negative = never.
+  double pause_at_s = -1;
+  /// Wall time a frame may spend stepping, so the window stays responsive.
+  double frame_budget_s = 0.025;
+
+  void request_step(std::int64_t ticks = 1) { pending_steps_ += ticks; }
+  void request_reset() { pending_reset_ = true; }
+
+  /// Advances the simulation for a frame that lasted `wall_dt_s`, recording the chart after
+  /// every tick. `ignore_budget` (scripted runs) steps all the ticks the frame asks for, so
+  /// results do not depend on the machine's speed. Returns the number of ticks done.
+  std::int64_t advance(Simulation& sim, double wall_dt_s, ChartData& chart,
+                       bool ignore_budget = false);
+
+  /// Simulated seconds per wall second over the last half second of playing.
+  double measured_rtf() const { return measured_rtf_; }
+  /// True when the simulation cannot keep up with the requested speed.
+  bool falling_behind() const { return falling_behind_; }
+
+ private:
+  void step_one(Simulation& sim, ChartData& chart);
+
+  std::int64_t pending_steps_ = 0;
+  bool pending_reset_ = false;
+  double owed_sim_s_ = 0;  ///< simulated time the pacing still owes
+  double rtf_window_wall_s_ = 0, rtf_window_sim_s_ = 0;
+  double measured_rtf_ = 0;
+  bool falling_behind_ = false;
+};
+
+}  // namespace s2sim::viewer

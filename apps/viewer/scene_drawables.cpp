@@ -1,0 +1,254 @@
+#include "scene_drawables.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+namespace s2sim::viewer {
+namespace {
+
+void set_color(DrawItem& item, const scene::Color& c) {
+  item.color[0] = static_cast<float>(c.r);
+  item.color[1] = static_cast<float>(c.g);
+  item.color[2] = static_cast<float>(c.b);
+  item.color[3] = static_cast<float>(c.a);
+}
+
+/// A frame whose local X is `axis` (unit), at `origin`.
+Pose frame_along(const Vec3& origin, const Vec3& axis) {
+  const Vec3 helper = std::abs(axis.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0};
+  const Vec3 y = cross(helper, axis) / norm(cross(helper, axis));
+  const Vec3 z = cross(axis, y);
+  Pose p;
+  p.position = origin;
+  for (int i = 0; i < 3; ++i) {
+    const double col[3][3] = {{axis.x, axis.y, axis.z}, {y.x, y.y, y.z}, {z.x, z.y, z.z}};
+    p.rotation.m[0][i] = col[i][0];
+    p.rotation.m[1][i] = col[i][1];
+    p.rotation.m[2][i] = col[i][2];
+  }
+  return p;
+}
+
+/// Z of a cylinder mesh turned onto local X (beams and joint markers use X as their axis).
+Mat4 z_to_x() {
+  Mat4 r;
+  r.at(0, 0) = 0;
+  r.at(0, 2) = 1;
+  r.at(2, 0) = -1;
+  r.at(2, 2) = 0;
+  return r;
+}
+
+}  // namespace
+
+void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
+                           std::vector<std::string>& warnings) {
+  drawables_.clear();
+  if (box_ < 0) {
+    box_ = renderer.upload(unit_box());
+    cylinder_ = renderer.upload(unit_cylinder());
+    sphere_ = renderer.upload(unit_sphere());
+  }
+  std::map<std::pair<std::filesystem::path, double>, std::pair<int, std::pair<Vec3f, Vec3f>>>
+      loaded_meshes;
+
+  auto primitive = [&](Drawable& d, const scene::Shape& s) {
+    switch (s.type) {
+      case scene::ShapeType::box:
+        d.item.mesh = box_;
+        d.local = d.local * scale_matrix(to_f(s.size_m));
+        break;
+      case scene::ShapeType::cylinder: {
+        d.item.mesh = cylinder_;
+        const auto r = static_cast<float>(s.radius_m);
+        d.local = d.local * scale_matrix({r, r, static_cast<float>(s.length_m)});
+        d.box_min = {-1, -1, -0.5f};
+        d.box_max = {1, 1, 0.5f};
+        break;
+      }
+      case scene::ShapeType::sphere: {
+        d.item.mesh = sphere_;
+        const auto r = static_cast<float>(s.radius_m);
+        d.local = d.local * scale_matrix({r, r, r});
+        d.box_min = {-1, -1, -1};
+        d.box_max = {1, 1, 1};
+        break;
+      }
+    }
+  };
+  auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind) {
+    Drawable d;
+    d.kind = kind;
+    d.body = body;
+    set_color(d.item, g.visual.color);
+    if (!g.visual.texture.empty()) {
+      std::string error;
+      d.item.texture = renderer.texture(g.visual.texture, error);
+      d.item.texture_scale = static_cast<float>(g.visual.texture_scale);
+      if (!error.empty()) warnings.push_back(error);
+    }
+    const scene::Mesh& mesh = g.visual.mesh;
+    if (!mesh.file.empty()) {
+      const auto key = std::make_pair(mesh.file, mesh.scale);
+      auto it = loaded_meshes.find(key);
+      if (it == loaded_meshes.end()) {
+        try {
+          const MeshData data = load_mesh_file(mesh.file, mesh.scale);
+          Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+          for (const auto& v : data.vertices) {
+            lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
+                  std::min(lo.z, v.position[2])};
+            hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
+                  std::max(hi.z, v.position[2])};
+          }
+          it = loaded_meshes
+                   .emplace(key, std::make_pair(renderer.upload(data), std::make_pair(lo, hi)))
+                   .first;
+        } catch (const Error& e) {
+          warnings.push_back(e.what());
+          it = loaded_meshes.emplace(key, std::make_pair(-1, std::make_pair(Vec3f{}, Vec3f{})))
+                   .first;
+        }
+      }
+      if (it->second.first >= 0) {
+        // The mesh replaces the primitive on screen; its offset is in the body frame.
+        Pose rotation_only = g.pose;
+        rotation_only.position = {};
+        d.local = translation(to_f(g.pose.position + mesh.offset_m)) * to_mat4(rotation_only);
+        d.item.mesh = it->second.first;
+        d.box_min = it->second.second.first;
+        d.box_max = it->second.second.second;
+        d.item.two_sided = true;
+        d.item.casts_shadow = mesh.shadow;
+        drawables_.push_back(d);
+        return;
+      }
+    }
+    d.local = to_mat4(g.pose);
+    primitive(d, g.shape);
+    drawables_.push_back(d);
+  };
+
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
+    for (std::size_t k = 0; k < scene.bodies[b].geoms.size(); ++k)
+      add_geom(scene.bodies[b].geoms[k], static_cast<int>(b) + 1,
+               k == 0 ? Drawable::Kind::solid : Drawable::Kind::shell);
+  for (const auto& g : scene.obstacles)
+    add_geom(g, 0, Drawable::Kind::obstacle);
+
+  for (const auto& t : scene.tracks) {
+    Drawable d;
+    d.kind = Drawable::Kind::track;
+    d.body = 0;
+    // A millimetre above the floor so the polygon wins the depth test against it.
+    d.local = translation({0, 0, static_cast<float>(t.z_m) + 0.001f});
+    d.item.mesh = renderer.upload(flat_polygon(t.vertices));
+    d.item.two_sided = true;
+    d.item.casts_shadow = false;
+    set_color(d.item, t.color);
+    float lo_x = 1e30f, lo_y = 1e30f, hi_x = -1e30f, hi_y = -1e30f;
+    for (const auto& [x, y] : t.vertices) {
+      lo_x = std::min(lo_x, static_cast<float>(x));
+      lo_y = std::min(lo_y, static_cast<float>(y));
+      hi_x = std::max(hi_x, static_cast<float>(x));
+      hi_y = std::max(hi_y, static_cast<float>(y));
+    }
+    d.box_min = {lo_x, lo_y, -0.001f};
+    d.box_max = {hi_x, hi_y, 0.001f};
+    drawables_.push_back(d);
+  }
+
+  for (const auto& s : scene.sensors) {
+    if (s.beam.length_m <= 0) continue;
+    Drawable d;
+    d.kind = Drawable::Kind::beam;
+    d.body = s.body >= 0 ? s.body + 1 : 0;
+    // A thin translucent slab along the sensor's +X, as wide as the beam at its far end.
+    const auto length = static_cast<float>(s.beam.length_m);
+    const auto width = static_cast<float>(std::max(s.beam.final_width_m, 0.002));
+    d.local =
+        to_mat4(s.pose) * translation({length / 2, 0, 0}) * scale_matrix({length, width, 0.002f});
+    d.item.mesh = box_;
+    set_color(d.item, s.color);
+    d.item.color[3] = 0.45f;
+    d.item.lit = false;
+    d.item.casts_shadow = false;
+    drawables_.push_back(d);
+  }
+
+  for (const auto& j : scene.joints) {
+    if (j.draw.radius_m <= 0) continue;
+    Drawable d;
+    d.kind = Drawable::Kind::joint;
+    d.body = j.body1 >= 0 ? j.body1 + 1 : 0;
+    // The marker rides on body1: its load-time world frame expressed in body1's frame.
+    const Pose world = frame_along(j.anchor_m, j.axis1);
+    const Pose body_at_load = j.body1 >= 0 ? scene.bodies[j.body1].pose : Pose{};
+    const auto r = static_cast<float>(j.draw.radius_m);
+    d.local = to_mat4(body_at_load.inverse() * world) * z_to_x() *
+              scale_matrix({r, r, static_cast<float>(j.draw.height_m)});
+    d.item.mesh = cylinder_;
+    d.box_min = {-1, -1, -0.5f};
+    d.box_max = {1, 1, 0.5f};
+    set_color(d.item, j.draw.color);
+    drawables_.push_back(d);
+  }
+}
+
+void SceneDrawables::update(const Simulation& sim) {
+  for (auto& d : drawables_)
+    d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
+}
+
+const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int selected_body) {
+  items_.clear();
+  for (const auto& d : drawables_) {
+    if (d.kind == Drawable::Kind::beam && !beams) continue;
+    if (d.kind == Drawable::Kind::joint && !joints) continue;
+    items_.push_back(d.item);
+    items_.back().highlighted =
+        selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
+  }
+  return items_;
+}
+
+int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const {
+  int best = -1;
+  float best_t = std::numeric_limits<float>::max();
+  for (const auto& d : drawables_) {
+    if (d.kind == Drawable::Kind::beam || d.kind == Drawable::Kind::track) continue;
+    // Slab test in mesh space, where the bounds are an axis-aligned box.
+    const Mat4 inv = inverse(d.item.model);
+    const Vec3f o = inv.transform_point(origin);
+    const Vec3f e = inv.transform_point(origin + direction) - o;
+    float t0 = 0, t1 = std::numeric_limits<float>::max();
+    const float os[3] = {o.x, o.y, o.z}, es[3] = {e.x, e.y, e.z};
+    const float lo[3] = {d.box_min.x, d.box_min.y, d.box_min.z};
+    const float hi[3] = {d.box_max.x, d.box_max.y, d.box_max.z};
+    bool hit = true;
+    for (int a = 0; a < 3 && hit; ++a) {
+      if (std::abs(es[a]) < 1e-12f) {
+        hit = os[a] >= lo[a] && os[a] <= hi[a];
+        continue;
+      }
+      float ta = (lo[a] - os[a]) / es[a], tb = (hi[a] - os[a]) / es[a];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta);
+      t1 = std::min(t1, tb);
+      hit = t0 <= t1;
+    }
+    // `direction` is unit in the world, so t is a world distance (the model is rigid+scale
+    // and t is measured along the same parametrised line).
+    if (hit && t0 < best_t) {
+      best_t = t0;
+      best = d.body;
+    }
+  }
+  distance_m = best_t;
+  return best;
+}
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// The scene turned into things to draw: each solid and shell primitive (or its mesh), each
+/// obstacle, track polygon, sensor beam and joint marker, attached to the body that moves it.
+/// Built once per loaded scene; every frame only the body poses change.
+
+#include "renderer.hpp"
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include <string>
+#include <vector>
+
+namespace s2sim::viewer {
+
+struct Drawable {
+  enum class Kind { solid, shell, obstacle, track, beam, joint };
+  Kind kind = Kind::solid;
+  int body = 0;                        ///< simulation body index (0 = world, scene body i = i + 1)
+  Mat4 local;                          ///< mesh to body frame (scale included)
+  Vec3f box_min{-0.5f, -0.5f, -0.5f};  ///< mesh-space bounds, for picking
+  Vec3f box_max{0.5f, 0.5f, 0.5f};
+  DrawItem item;  ///< model is rewritten every frame
+};
+
+class SceneDrawables {
+ public:
+  /// Builds the drawables of `scene`, uploading meshes and textures into `renderer`. Missing
+  /// or unreadable mesh and texture files are reported in `warnings` and drawn as the
+  /// primitive (or untextured).
+  void build(const scene::Scene& scene, Renderer& renderer, std::vector<std::string>& warnings);
+
+  /// Updates every item's model matrix from the simulation's body poses. No allocation.
+  void update(const Simulation& sim);
+
+  /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags),
+  /// those of `selected_body` highlighted.
+  const std::vector<DrawItem>& items(bool beams, bool joints, int selected_body);
+
+  /// The body hit first by the ray (world frame), or -1; `distance_m` is set on a hit.
+  int pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const;
+
+  const std::vector<Drawable>& drawables() const { return drawables_; }
+
+ private:
+  std::vector<Drawable> drawables_;
+  std::vector<DrawItem> items_;  ///< reused every frame
+  int box_ = -1, cylinder_ = -1, sphere_ = -1;
+};
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,182 @@
+#include "ui_script.hpp"
+
+#include "windows/windows.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <cstdio>
+#include <sstream>
+
+namespace s2sim::viewer {
+
+bool set_window(WindowFlags& w, const std::string& name, bool open) {
+  bool* flag = name == "run"             ? &w.run
+               : name == "configuration" ? &w.configuration
+               : name == "chart"         ? &w.chart
+               : name == "sheet"         ? &w.sheet
+               : name == "editor"        ? &w.editor
+               : name == "log"           ? &w.log
+               : name == "body"          ? &w.body
+                                         : nullptr;
+  if (flag == nullptr) return false;
+  *flag = open;
+  return true;
+}
+
+namespace {
+/// Simulation index of the body with this ID (robot bodies and things), -1 if none.
+int find_body(const ViewerState& state, const std::string& id) {
+  const auto& bodies = state.sim->scene().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].id == id) return static_cast<int>(b) + 1;
+  return -1;
+}
+}  // namespace
+
+void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
+  if (running_) {
+    if (state.run.playing) return;
+    running_ = false;
+  }
+  if (wait_frames_ > 0) {
+    --wait_frames_;
+    return;
+  }
+  while (next_ < commands_.size()) {
+    const std::string line = commands_[next_++];
+    std::istringstream in(line);
+    std::string command;
+    in >> command;
+    std::string rest;
+    std::getline(in >> std::ws, rest);
+    auto bad = [&](const std::string& why) {
+      return Error(ErrorKind::usage, "script command '" + line + "': " + why);
+    };
+    if (command.empty() || command[0] == '#') continue;
+    if (command == "wait") {
+      wait_frames_ = std::stoi(rest.empty() ? "1" : rest) - 1;
+      return;
+    } else if (command == "click") {
+      // The click happens while this frame's UI is drawn and takes effect in the next frame's
+      // stepping: wait for that, so a following `print` sees its result.
+      state.scripted_clicks.push_back(rest);
+      wait_frames_ = 1;
+      return;
+    } else if (command == "run-until") {
+      state.run.pause_at_s = std::stod(rest);
+      state.run.playing = true;
+      running_ = true;
+      return;
+    } else if (command == "speed") {
+      const double x = std::stod(rest);
+      state.run.as_fast_as_possible = x == 0;
+      if (x > 0) state.run.speed = x;
+    } else if (command == "print") {
+      if (rest == "time")
+        std::printf("time %.9f\n", state.sim->time_s());
+      else if (rest == "tick")
+        std::printf("tick %lld\n", static_cast<long long>(state.sim->tick()));
+      else if (rest.rfind("body ", 0) == 0) {
+        const int b = find_body(state, rest.substr(5));
+        if (b < 0) throw bad("no body with that ID");
+        const Vec3& p = state.sim->body_pose(b).position;
+        std::printf("body %s %.9f %.9f %.9f\n", rest.substr(5).c_str(), p.x, p.y, p.z);
+      } else if (rest.rfind("signal ", 0) == 0)
+        std::printf("signal %s %.10g\n", rest.substr(7).c_str(), state.sim->signal(rest.substr(7)));
+      else if (rest == "camera")
+        std::printf("camera %.4f %.4f %.4f %.4f %.4f %.4f\n", state.camera.yaw_rad,
+                    state.camera.pitch_rad, state.camera.distance_m, state.camera.target_m.x,
+                    state.camera.target_m.y, state.camera.target_m.z);
+      else if (rest == "editor-error")
+        std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
+      else
+        throw bad("print time, tick, camera, body ID, signal NAME or editor-error");
+      std::fflush(stdout);
+    } else if (command == "chart-add") {
+      for (std::size_t i : state.sim->match_signals(rest))
+        if (state.sim->signal_info(i).name != "time") state.chart.add_signal(i);
+    } else if (command == "chart-csv") {
+      state.chart_view.csv_file = rest;
+    } else if (command == "show" || command == "hide") {
+      if (!set_window(state.windows, rest, command == "show")) throw bad("unknown window");
+    } else if (command == "select") {
+      state.selected_body = find_body(state, rest);
+      if (state.selected_body < 0) throw bad("no body with that ID");
+      state.windows.body = true;
+    } else if (command == "move") {
+      std::istringstream args(rest);
+      std::string id;
+      Vec3 p;
+      if (!(args >> id >> p.x >> p.y >> p.z)) throw bad("move BODY X Y Z");
+      const int b = find_body(state, id);
+      if (b < 0) throw bad("no body with that ID");
+      move_body(state, b, p);
+    } else if (command == "sheet-set") {
+      std::istringstream args(rest);
+      std::string cell;
+      double value = 0;
+      if (!(args >> cell >> value)) throw bad("sheet-set CELL VALUE");
+      state.sim->set_input("sheet/" + cell, value);
+    } else if (command == "editor-open") {
+      if (state.editor.files.empty()) load_editor_files(state);
+      bool found = false;
+      for (std::size_t i = 0; i < state.editor.files.size(); ++i)
+        if (state.editor.files[i].path.filename() == rest) {
+          state.editor.current = static_cast<int>(i);
+          found = true;
+        }
+      if (!found) throw bad("no such file in the scene editor");
+      state.windows.editor = true;
+    } else if (command == "editor-insert") {
+      std::istringstream args(rest);
+      int line_number = 0;
+      args >> line_number;
+      std::string text;
+      std::getline(args >> std::ws, text);
+      if (state.editor.files.empty()) load_editor_files(state);
+      std::string& buffer = state.editor.files[state.editor.current].text;
+      std::size_t pos = 0;
+      for (int l = 1; l < line_number && pos != std::string::npos; ++l) {
+        pos = buffer.find('\n', pos);
+        if (pos != std::string::npos) ++pos;
+      }
+      if (line_number < 1 || pos == std::string::npos) throw bad("no such line");
+      buffer.insert(pos, text + "\n");
+    } else if (command == "camera") {
+      std::istringstream args(rest);
+      float yaw_deg = 0, pitch_deg = 0, distance_m = 0;
+      if (!(args >> yaw_deg >> pitch_deg >> distance_m)) throw bad("camera YAW PITCH DISTANCE");
+      state.camera.yaw_rad = yaw_deg * 3.14159265f / 180;
+      state.camera.pitch_rad = pitch_deg * 3.14159265f / 180;
+      state.camera.distance_m = distance_m;
+    } else if (command == "follow") {
+      const auto& robots = state.sim->scene().robots;
+      state.camera.follow_robot = -1;
+      for (std::size_t r = 0; r < robots.size(); ++r)
+        if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
+      if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
+    } else if (command == "screenshot") {
+      screenshot_file = rest;
+      return;
+    } else if (command == "quit") {
+      state.quit = true;
+      return;
+    } else {
+      throw bad("unknown command (see docs/viewer.md)");
+    }
+  }
+}
+
+void UiScript::frame(ViewerState& state, std::string& screenshot_file) {
+  try {
+    run_commands(state, screenshot_file);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception&) {
+    // std::stoi / std::stod on a word that is not a number.
+    throw Error(ErrorKind::usage,
+                "script command '" + commands_[next_ - 1] + "': expected a number");
+  }
+}
+
+}  // namespace s2sim::viewer

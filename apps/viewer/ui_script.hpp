@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// Scripted UI input for tests and documentation: a list of commands run one after the other
+/// between frames, pressing the same buttons a user would (docs/viewer.md lists them).
+///
+///   wait N               let N frames pass
+///   click LABEL          press the button LABEL (e.g. Pause, Step, Reset, Apply, Export CSV)
+///                        and let the next frame act on it
+///   run-until T          play until the simulated time reaches T seconds, then pause
+///   speed X              times real time; 0 = as fast as possible
+///   print time           print "time <t>" on stdout
+///   print editor-error   print "editor-error <line> <message>" (line -1 when unknown)
+///   print tick           print "tick <n>"
+///   print body ID        print "body <ID> <x> <y> <z>" (its position, m)
+///   print camera         print "camera <yaw> <pitch> <distance> <target x y z>"
+///   print signal NAME    print "signal <NAME> <value>"
+///   move BODY X Y Z      move a thing (or robot root body) there at rest, as a ctrl-drag does
+///   sheet-set CELL VALUE set the sheet cell (input sheet/CELL), as typing in the Sheet does
+///   chart-add PATTERN    chart the signals matching PATTERN
+///   chart-csv FILE       set the chart's CSV file name (then `click Export CSV`)
+///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet,
+///                        editor, log, body)
+///   select BODY          pick a body by ID (as a click in the world view does)
+///   editor-open FILE     show the scene editor's file whose name is FILE
+///   editor-insert LINE TEXT   insert TEXT and a line break before line LINE (1-based)
+///   camera YAW PITCH DISTANCE  degrees, degrees, metres
+///   follow ROBOT         the camera follows the robot
+///   screenshot FILE      save this frame as PNG
+///   quit
+
+#include "viewer_state.hpp"
+
+#include <string>
+#include <vector>
+
+namespace s2sim::viewer {
+
+class UiScript {
+ public:
+  explicit UiScript(std::vector<std::string> commands) : commands_(std::move(commands)) {}
+
+  /// Runs commands until one needs frames to pass. Called once a frame, before the UI is
+  /// drawn. Sets `screenshot_file` when the frame must be saved. Throws s2sim::Error (usage)
+  /// for an unknown command or a bad argument.
+  void frame(ViewerState& state, std::string& screenshot_file);
+  bool finished() const { return next_ >= commands_.size() && wait_frames_ == 0 && !running_; }
+  bool empty() const { return commands_.empty(); }
+
+ private:
+  void run_commands(ViewerState& state, std::string& screenshot_file);
+
+  std::vector<std::string> commands_;
+  std::size_t next_ = 0;
+  int wait_frames_ = 0;
+  bool running_ = false;  ///< inside run-until
+};
+
+/// Opens or closes a window by name; false for an unknown name.
+bool set_window(WindowFlags& windows, const std::string& name, bool open);
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,44 @@
+#include "viewer_state.hpp"
+
+#include <imgui.h>
+
+#include <algorithm>
+
+namespace s2sim::viewer {
+
+bool button(ViewerState& state, const char* label) {
+  const bool clicked = ImGui::Button(label);
+  auto& pending = state.scripted_clicks;
+  const auto it = std::find(pending.begin(), pending.end(), label);
+  if (it == pending.end()) return clicked;
+  pending.erase(it);
+  return true;
+}
+
+bool move_body(ViewerState& state, int body, const Vec3& position_m) {
+  Pose pose = state.sim->body_pose(body);
+  pose.position = position_m;
+  try {
+    state.sim->place_body(body, pose);
+    return true;
+  } catch (const std::exception& e) {
+    state.log_message(e.what(), true);
+    return false;
+  }
+}
+
+std::unique_ptr<Simulation> load_simulation(const Options& o) {
+  SimulationOptions so;
+  so.seed = o.seed;
+  so.physics_step_s = o.physics_step_s;
+  so.substeps = o.substeps;
+  so.constants = o.constants;
+  for (const auto& p : o.plugin_path)
+    so.plugin_path.emplace_back(p);
+  auto sim = Simulation::load(o.scene, so);
+  for (const auto& [name, value] : o.inputs)
+    sim->set_input(name, value);
+  return sim;
+}
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,106 @@
+#pragma once
+/// \file
+/// Everything the viewer's windows share: the simulation, the camera, run control, the chart
+/// data, the log and which windows are open. The windows are free functions over this state
+/// (windows/*.hpp), so each stays one small file.
+
+#include "camera.hpp"
+#include "chart_data.hpp"
+#include "options.hpp"
+#include "renderer.hpp"
+#include "run_control.hpp"
+#include "scene_drawables.hpp"
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace s2sim::viewer {
+
+struct LogLine {
+  double time_s;
+  std::string text;
+  bool error = false;
+};
+
+/// The scene editor's buffers: one per XML file of the scene.
+struct EditorFile {
+  std::filesystem::path path;
+  std::string text;     ///< what the editor shows (maybe edited)
+  std::string on_disk;  ///< what the running scene was loaded from
+};
+struct EditorState {
+  std::vector<EditorFile> files;
+  int current = 0;
+  std::string error;          ///< the last apply's error (full message), empty when it succeeded
+  std::string error_message;  ///< the same without its location
+  int error_line = -1;        ///< 1-based line in `error_file`, -1 when unknown
+  std::string error_file;
+  std::string status;
+};
+
+/// What the chart window shows (the samples are in ChartData).
+struct ChartView {
+  double window_s = 10;  ///< visible time span
+  bool frozen = false;   ///< "pause": the view stops following new samples
+  double frozen_end_s = 0;
+  std::string filter;
+  std::string csv_file = "chart.csv";
+  std::string status;
+};
+
+struct WindowFlags {
+  bool run = true;
+  bool configuration = false;
+  bool chart = false;
+  bool sheet = false;
+  bool editor = false;
+  bool log = false;
+  bool body = false;
+};
+
+struct ViewerState {
+  Options options;
+  std::unique_ptr<Simulation> sim;
+  Camera camera;
+  RunControl run;
+  ChartData chart;
+  ChartView chart_view;
+  std::vector<LogLine> log;
+  EditorState editor;
+  WindowFlags windows;
+  RenderSettings render;
+  bool show_beams = true;
+  bool show_joints = true;
+  int selected_body = -1;          ///< simulation body index, -1 = none
+  float physics_step_ms_edit = 0;  ///< the configuration window's field, 0 = not edited yet
+  double frame_time_s = 0;         ///< smoothed wall time per frame
+  bool quit = false;
+  /// A freshly loaded simulation (scene editor, configuration) that the app swaps in at the
+  /// start of the next frame, keeping the camera, the chart's signals and the windows.
+  std::unique_ptr<Simulation> pending_simulation;
+
+  /// Buttons pressed by a UI script this frame, consumed by `button()`.
+  std::vector<std::string> scripted_clicks;
+
+  void log_message(const std::string& text, bool error = false) {
+    log.push_back({sim ? sim->time_s() : 0.0, text, error});
+  }
+};
+
+/// ImGui::Button that a UI script can also press (same label): the tests drive the same code
+/// path a mouse click does.
+bool button(ViewerState& state, const char* label);
+
+/// Moves a body (a thing or a robot's root body) to `position_m` at rest, keeping its
+/// orientation (Simulation::place_body). A body that cannot move is reported in the log;
+/// returns false then.
+bool move_body(ViewerState& state, int body, const Vec3& position_m);
+
+/// Loads options.scene with the options' seed, step and constants; throws s2sim::Error.
+std::unique_ptr<Simulation> load_simulation(const Options& options);
+
+}  // namespace s2sim::viewer

@@ -1,0 +1,28 @@
+#include "windows.hpp"
+
+#include <imgui.h>
+
+namespace s2sim::viewer {
+
+void draw_log_window(ViewerState& state) {
+  if (!state.windows.log) return;
+  ImGui::SetNextWindowPos(ImVec2(10, 480), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(620, 220), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Log", &state.windows.log)) {
+    ImGui::End();
+    return;
+  }
+  if (button(state, "Clear log")) state.log.clear();
+  ImGui::Separator();
+  ImGui::BeginChild("lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
+  for (const auto& line : state.log) {
+    const ImVec4 colour = line.error ? ImVec4(1.0f, 0.45f, 0.4f, 1) : ImVec4(0.9f, 0.9f, 0.9f, 1);
+    ImGui::TextColored(colour, "[%8.3f s] %s", line.time_s, line.text.c_str());
+  }
+  // Follow new lines unless the user scrolled up to read older ones.
+  if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
+  ImGui::EndChild();
+  ImGui::End();
+}
+
+}  // namespace s2sim::viewer

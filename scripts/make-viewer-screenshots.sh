@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Makes the viewer screenshots of docs/images/ with s2sim-view's own --screenshot, under Xvfb
+# (Mesa llvmpipe). Run from the repository after building: scripts/make-viewer-screenshots.sh
+# [BUILD_DIR]. The SimTwo base scene comes from ../shared/simtwo-scenes when present.
+set -euo pipefail
+repo="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$repo/build}"
+view="$build/bin/s2sim-view"
+out="$repo/docs/images"
+shared="$repo/../shared/simtwo-scenes"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$out"
+shot() {  # shot NAME SCENE ARGS...
+  local name="$1" scene="$2"
+  shift 2
+  xvfb-run -a -s "-screen 0 1280x720x24" "$view" "$scene" --size 1280x720 "$@" \
+    --do "screenshot $out/$name.png" --do quit >/dev/null
+  echo "wrote docs/images/$name.png"
+}
+default="$repo/scenes/default"
+
+shot viewer-world "$default" --do "wait 75"
+shot viewer-configuration "$default" --show-window configuration --do "run-until 0.8"
+# The NXT driving at 6 V: its motor speeds and currents (the chart the runner's CSV equals).
+nxt="$repo/scenes/nxt"
+shot viewer-nxt "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=-6 --do "follow nxt" --do "camera -150 30 0.8" \
+  --do "run-until 1.5"
+shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=-6 \
+  --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
+  --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
+shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
+
+# The scene editor after a typing mistake: the error and its line, the scene still running.
+cp -r "$default" "$tmp/editor"
+shot viewer-editor "$tmp/editor" --do "wait 2" --do "editor-open scene.xml" \
+  --do "editor-insert 12 <robot oops=>" --do "click Apply" --do "wait 30"
+
+# Sheet cells come from controllers; the kernel tests' fixture has plugins that declare some.
+plugins="$build/test-plugins/scene"
+if [ -d "$plugins" ]; then
+  cp -r "$repo/tests/kernel/sim/fixtures/components" "$tmp/sheet"
+  sed -i "s#</scene>#  <plugin kind='test_reference_controller' id='writer' input='sheet/A1' value='0.5' period_ms='40'/>\n  <plugin kind='test_echo_sensor' id='gain' input='sheet/B2'/>\n  <plugin kind='test_echo_sensor' id='offset' input='sheet/B3'/>\n  <plugin kind='test_echo_sensor' id='start' input='sheet/C1' unit='button'/>\n</scene>#" "$tmp/sheet/scene.xml"
+  shot viewer-sheet "$tmp/sheet" --plugin-path "$plugins" --plugin-path "$build/plugins" --show-window sheet \
+    --do "sheet-set B2 1.25" --do "sheet-set B3 -0.1" --do "run-until 1"
+fi
+
+if [ -d "$shared/base" ]; then
+  shot viewer-simtwo-base "$shared/base" --show-window log --do "follow Classic" \
+    --do "camera -120 35 2.2" --do "run-until 1"
+fi

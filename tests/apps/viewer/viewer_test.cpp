@@ -1,0 +1,457 @@
+// s2sim-view as a user (or the docs) drive it: the real binary under xvfb-run renders
+// screenshots, runs scripted UI commands (the same buttons a mouse presses) and exports its
+// chart; the tests check the pixels, the simulated time, the CSV against s2sim-run's and the
+// scene editor's error handling. Each run is a few seconds of Mesa llvmpipe.
+
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kViewer = fs::path(S2SIM_BIN_DIR) / "s2sim-view";
+const fs::path kRunner = fs::path(S2SIM_BIN_DIR) / "s2sim-run";
+const fs::path kSource = S2SIM_SOURCE_DIR;
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+struct Result {
+  int status = -1;
+  std::string out;
+  std::string err;
+};
+
+Result run(const std::string& command, const fs::path& dir) {
+  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string full = command + " >" + quote(out.string()) + " 2>" + quote(err.string());
+  const int raw = std::system(full.c_str());
+  Result r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = read_file(out);
+  r.err = read_file(err);
+  return r;
+}
+
+bool have_xvfb() {
+  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
+}
+
+/// The scene the issue names: scenes/nxt once it exists, the default scene until then.
+fs::path robot_scene() {
+  return fs::exists(kSource / "scenes/nxt/scene.xml") ? kSource / "scenes/nxt"
+                                                      : kSource / "scenes/default";
+}
+
+class Viewer : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is missing: install xvfb to run the viewer tests";
+    ASSERT_TRUE(fs::exists(kViewer)) << kViewer << " not built";
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info->name();
+    for (char& c : name)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    dir_ = fs::path(::testing::TempDir()) /
+           ("s2sim_viewer_" + std::to_string(::getpid()) + "_" + name);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
+  }
+
+  /// s2sim-view under a virtual display of 1280x720. The viewer's exit status goes through a
+  /// file: xvfb-run replaces it with its own when its clean-up races with another xvfb-run.
+  Result view(const std::string& scene, const std::vector<std::string>& args) {
+    const fs::path status = dir_ / "status.txt";
+    fs::remove(status);
+    std::string command = "xvfb-run -a -s '-screen 0 1280x720x24' sh -c '\"$0\" \"$@\"; echo $? >" +
+                          status.string() + "' " + quote(kViewer.string()) + " " + quote(scene);
+    for (const auto& a : args) {
+      command += ' ';  // two appends: GCC 12 warns (-Wrestrict) on " " + std::string
+      command += quote(a);
+    }
+    Result r = run(command, dir_);
+    const std::string code = read_file(status);
+    r.status = code.empty() ? -1 : std::stoi(code);
+    return r;
+  }
+
+  fs::path dir_;
+};
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgb;
+  const unsigned char* at(int x, int y) const {
+    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+  }
+};
+
+Image read_png(const fs::path& file) {
+  Image image;
+  int channels = 0;
+  unsigned char* data = stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
+  if (data == nullptr) return image;
+  image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
+  stbi_image_free(data);
+  return image;
+}
+
+double luminance(const unsigned char* p) {
+  return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+}
+
+/// Whether some pixel within `radius` of (x, y) shows `colour` lit: the shading scales a
+/// colour by 0.35 (ambient) to 1 and adds at most 0.2 of specular, so the pixel must have the
+/// colour's chromaticity (each channel over their sum) and each channel in that range. A grey
+/// body is then told from the light grey floor by its brightness.
+bool colour_near(const Image& image, double x, double y, const double colour[3], int radius) {
+  const double sum = colour[0] + colour[1] + colour[2];
+  for (int dy = -radius; dy <= radius; ++dy)
+    for (int dx = -radius; dx <= radius; ++dx) {
+      const int px = static_cast<int>(std::lround(x)) + dx;
+      const int py = static_cast<int>(std::lround(y)) + dy;
+      if (px < 0 || py < 0 || px >= image.width || py >= image.height) continue;
+      const unsigned char* p = image.at(px, py);
+      const double s = p[0] + p[1] + p[2] + 1e-9;
+      bool close = true;
+      for (int c = 0; c < 3; ++c)
+        close = close && std::abs(p[c] / s - colour[c] / sum) < 0.06 &&
+                p[c] >= 0.3 * colour[c] * 255 - 2 && p[c] <= (colour[c] + 0.25) * 255 + 2;
+      if (close && s > 30) return true;
+    }
+  return false;
+}
+
+struct Projection {
+  double x = 0, y = 0;
+  double colour[3] = {0, 0, 0};
+};
+
+TEST_F(Viewer, ScreenshotShowsTheFloorTheRobotsInTheirColoursAndTheirShadows) {
+  const fs::path png = dir_ / "world.png";
+  const Result r = view(robot_scene().string(), {"--screenshot", png.string(), "--frames", "3",
+                                                 "--hide-ui", "--print-projections"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const Image image = read_png(png);
+  ASSERT_EQ(image.width, 1280) << "no PNG written";
+  ASSERT_EQ(image.height, 720);
+
+  // Not uniform: the luminance varies widely over the image.
+  double lo = 255, hi = 0;
+  for (int y = 0; y < image.height; y += 4)
+    for (int x = 0; x < image.width; x += 4) {
+      lo = std::min(lo, luminance(image.at(x, y)));
+      hi = std::max(hi, luminance(image.at(x, y)));
+    }
+  EXPECT_GT(hi - lo, 100);
+
+  // The floor: the lower middle of the view is light grey (with darker grid lines).
+  int grey = 0;
+  for (int x = 0; x < image.width; x += 8) {
+    const unsigned char* p = image.at(x, image.height - 40);
+    if (std::abs(p[0] - p[1]) < 12 && std::abs(p[1] - p[2]) < 12 && p[0] > 120) ++grey;
+  }
+  EXPECT_GT(grey, image.width / 8 / 2) << "the floor is not visible at the bottom of the view";
+
+  // Each robot's main body carries its colour where it projects; its shadow darkens the floor.
+  std::map<std::string, Projection> robots, shadows;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream in(line);
+    std::string what, id;
+    Projection p;
+    in >> what >> id >> p.x >> p.y;
+    if (what == "robot") {
+      in >> p.colour[0] >> p.colour[1] >> p.colour[2];
+      robots[id] = p;
+    } else if (what == "shadow") {
+      shadows[id] = p;
+    }
+  }
+  ASSERT_FALSE(robots.empty()) << r.out;
+  // The same frame without shadows, for comparison.
+  const fs::path plain_png = dir_ / "no-shadows.png";
+  const Result plain = view(robot_scene().string(), {"--screenshot", plain_png.string(), "--frames",
+                                                     "3", "--hide-ui", "--no-shadows"});
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const Image unshadowed = read_png(plain_png);
+  ASSERT_EQ(unshadowed.width, image.width);
+  int coloured = 0, shadowed = 0, on_screen = 0;
+  for (const auto& [id, p] : robots) {
+    if (colour_near(image, p.x, p.y, p.colour, 3))
+      ++coloured;
+    else
+      ADD_FAILURE() << id << ": no pixel of colour " << p.colour[0] << " " << p.colour[1] << " "
+                    << p.colour[2] << " near (" << p.x << ", " << p.y << ")";
+    // The shadow: the floor where the body's centre projects along the light is darker than
+    // the same pixels rendered without shadows.
+    const Projection& s = shadows[id];
+    const int sx = static_cast<int>(std::lround(s.x)), sy = static_cast<int>(std::lround(s.y));
+    if (sx < 1 || sy < 1 || sx >= image.width - 1 || sy >= image.height - 1) continue;
+    ++on_screen;
+    double darkest_ratio = 1;
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx)
+        darkest_ratio =
+            std::min(darkest_ratio, luminance(image.at(sx + dx, sy + dy)) /
+                                        (luminance(unshadowed.at(sx + dx, sy + dy)) + 1));
+    if (darkest_ratio < 0.8)
+      ++shadowed;
+    else  // another body may stand between the camera and the shadow
+      std::printf("%s: no shadow seen at (%.0f, %.0f)\n", id.c_str(), s.x, s.y);
+  }
+  EXPECT_EQ(coloured, static_cast<int>(robots.size()));
+  EXPECT_GT(shadowed, 0) << "no robot's shadow on the floor";
+  EXPECT_GE(2 * shadowed, on_screen) << "most robots' shadows are missing";
+}
+
+std::vector<double> printed_times(const std::string& out) {
+  std::vector<double> times;
+  std::istringstream lines(out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("time ", 0) == 0) times.push_back(std::stod(line.substr(5)));
+  return times;
+}
+
+TEST_F(Viewer, PauseStepAndResetButtonsDriveTheSimulatedTime) {
+  const Result r =
+      view((kSource / "scenes/default").string(),
+           {"--do", "wait 5",     "--do", "click Pause", "--do", "print time", "--do", "wait 3",
+            "--do", "print time", "--do", "click Step",  "--do", "print time", "--do", "click Step",
+            "--do", "print time", "--do", "click Reset", "--do", "print time", "--do", "click Play",
+            "--do", "wait 2",     "--do", "print time"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 6u) << r.out;
+  const double tick_s = 0.001;  // the default scene's physics step
+  EXPECT_GT(t[0], 0.05) << "the scene did not play before Pause";
+  EXPECT_DOUBLE_EQ(t[1], t[0]) << "time moved while paused";
+  EXPECT_NEAR(t[2], t[0] + tick_s, 1e-9) << "Step did not advance exactly one tick";
+  EXPECT_NEAR(t[3], t[0] + 2 * tick_s, 1e-9);
+  EXPECT_EQ(t[4], 0.0) << "Reset did not go back to t = 0";
+  EXPECT_GT(t[5], 0.0) << "Play did not restart the run";
+}
+
+TEST_F(Viewer, ChartExportEqualsTheRunnersCsvForTheSameSeed) {
+  // The NXT's motor speeds and currents while it drives at 6 V; on a scene without motors any
+  // other signals work the same way (the code is shared, apps/common/signal_csv.hpp).
+  const fs::path scene = robot_scene();
+  const bool nxt = scene.filename() == "nxt";
+  const std::vector<std::string> signals =
+      nxt ? std::vector<std::string>{"robots/nxt/axes/*/speed", "robots/nxt/axes/*/current"}
+          : std::vector<std::string>{"robots/*/axes/*/pos", "robots/*/axes/*/speed"};
+  const std::vector<std::string> inputs =
+      nxt ? std::vector<std::string>{"robots/nxt/axes/right/ref_voltage=6",
+                                     "robots/nxt/axes/left/ref_voltage=-6"}
+          : std::vector<std::string>{};
+  const fs::path runner_csv = dir_ / "runner.csv", chart_csv = dir_ / "chart.csv";
+  std::string command = quote(kRunner.string()) + " " + quote(scene.string()) +
+                        " --duration 1 --seed 7 --quiet --log " + quote(runner_csv.string());
+  for (const auto& i : inputs) {
+    command += " --set ";
+    command += quote(i);
+  }
+  command += " --signals";
+  for (const auto& s : signals) {
+    command += ' ';
+    command += quote(s);
+  }
+  const Result runner = run(command, dir_);
+  ASSERT_EQ(runner.status, 0) << runner.err;
+
+  std::vector<std::string> args = {"--seed", "7", "--hide-ui"};
+  for (const auto& i : inputs)
+    args.insert(args.end(), {"--set", i});
+  args.push_back("--chart");
+  args.insert(args.end(), signals.begin(), signals.end());
+  for (const char* c : {"speed 0", "run-until 1", "show chart"})
+    args.insert(args.end(), {"--do", c});
+  args.insert(args.end(), {"--do", "chart-csv " + chart_csv.string(), "--do", "click Export CSV",
+                           "--do", "print time"});
+  const Result viewer = view(scene.string(), args);
+  ASSERT_EQ(viewer.status, 0) << viewer.err;
+  EXPECT_EQ(printed_times(viewer.out), std::vector<double>{1.0});
+  const std::string expected = read_file(runner_csv), got = read_file(chart_csv);
+  ASSERT_FALSE(got.empty()) << "the chart wrote no CSV";
+  EXPECT_GT(std::count(expected.begin(), expected.end(), '\n'), 1000);
+  if (nxt) {
+    EXPECT_NE(expected.find("/current [A]"), std::string::npos) << expected.substr(0, 300);
+  }
+  EXPECT_TRUE(expected == got) << "the chart's CSV differs from s2sim-run's (first 300 bytes)\n"
+                               << expected.substr(0, 300) << "\n---\n"
+                               << got.substr(0, 300);
+}
+
+TEST_F(Viewer, ApplyingAnEditReloadsTheSceneAndKeepsTheCamera) {
+  const fs::path scene = dir_ / "scene";
+  fs::copy(kSource / "scenes/default", scene, fs::copy_options::recursive);
+  const Result r =
+      view(scene.string(), {"--do",
+                            "camera 30 20 4",
+                            "--do",
+                            "wait 20",
+                            "--do",
+                            "print camera",
+                            "--do",
+                            "editor-open scene.xml",
+                            "--do",
+                            "editor-insert 5 <robot><ID name='extra'/><pos x='3' y='3' z='0'/>"
+                            "<body file='pendulum.xml'/></robot>",
+                            "--do",
+                            "click Apply",
+                            "--do",
+                            "print editor-error",
+                            "--do",
+                            "print camera",
+                            "--do",
+                            "print time",
+                            "--do",
+                            "print signal robots/extra/y"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> cameras;
+  std::istringstream lines(r.out);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("camera ", 0) == 0) cameras.push_back(line);
+  ASSERT_EQ(cameras.size(), 2u) << r.out;
+  EXPECT_EQ(cameras[0], cameras[1]) << "the camera moved on reload";
+  EXPECT_NE(r.out.find("editor-error -1 \n"), std::string::npos) << r.out;
+  // The new scene runs from the start and has the new robot.
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 1u);
+  EXPECT_LT(t[0], 0.05);
+  EXPECT_NE(r.out.find("signal robots/extra/y 3\n"), std::string::npos) << r.out;
+  EXPECT_NE(read_file(scene / "scene.xml").find("name='extra'"), std::string::npos);
+}
+
+TEST_F(Viewer, SyntaxErrorInTheSceneEditorIsReportedWithItsLineAndKeepsTheScene) {
+  // A copy: applying writes the scene's files.
+  const fs::path scene = dir_ / "scene";
+  fs::copy(kSource / "scenes/default", scene, fs::copy_options::recursive);
+  const std::string original = read_file(scene / "scene.xml");
+  const Result r = view(scene.string(), {"--do", "wait 3", "--do", "editor-open scene.xml", "--do",
+                                         "editor-insert 12 <oops a=>", "--do", "click Apply",
+                                         "--do", "print editor-error", "--do", "print time", "--do",
+                                         "wait 5", "--do", "print time"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::istringstream lines(r.out);
+  int error_line = 0;
+  std::string message;
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("editor-error ", 0) == 0) {
+      std::istringstream in(line.substr(13));
+      in >> error_line;
+      std::getline(in, message);
+    }
+  EXPECT_EQ(error_line, 12) << r.out;
+  EXPECT_NE(message.find("scene.xml:12"), std::string::npos) << message;
+  // The running scene is kept (time goes on) and the file on disk is the one it came from.
+  const auto t = printed_times(r.out);
+  ASSERT_EQ(t.size(), 2u) << r.out;
+  EXPECT_GT(t[1], t[0]);
+  EXPECT_EQ(read_file(scene / "scene.xml"), original);
+}
+
+/// The kernel's component fixture (a thing `box`, test plugins) with extra `<plugin>` lines.
+fs::path fixture_with_plugins(const fs::path& dir, const std::string& plugins) {
+  const fs::path scene = dir / "fixture";
+  fs::copy(kSource / "tests/kernel/sim/fixtures/components", scene, fs::copy_options::recursive);
+  std::string text = read_file(scene / "scene.xml");
+  const auto end = text.rfind("</scene>");
+  text.insert(end, plugins);
+  std::ofstream(scene / "scene.xml", std::ios::binary) << text;
+  return scene;
+}
+
+// The test plugins, then the first-party ones (the fixture's axes need the drive train).
+const std::string kTestPlugins = (fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene").string();
+const std::string kFirstPartyPlugins = S2SIM_PLUGIN_DIR;
+
+TEST_F(Viewer, MovingAThingPlacesItAtRestWhereItIsDropped) {
+  const fs::path scene = fixture_with_plugins(dir_, "");
+  const Result r =
+      view(scene.string(), {"--plugin-path", kTestPlugins, "--plugin-path", kFirstPartyPlugins,
+                            "--do", "wait 3", "--do", "move box -1 0.5 2", "--do", "print body box",
+                            "--do", "move bob 0 0 1", "--do", "print body box"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("body box -1.000000000 0.500000000 2.000000000"), std::string::npos)
+      << r.out;
+  // A jointed body is refused with a message, not a crash; the script goes on.
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;
+}
+
+TEST_F(Viewer, SheetCellsAreInputsThatControllersReadAndWrite) {
+  // A controller writes A1; two components read B2 (a number) and C1 (a button). The cells
+  // are set the way the Sheet window sets them.
+  const fs::path scene = fixture_with_plugins(
+      dir_,
+      "  <plugin kind='test_reference_controller' id='writer' input='sheet/A1' value='2.5' "
+      "period_ms='40'/>\n"
+      "  <plugin kind='test_echo_sensor' id='number' input='sheet/B2'/>\n"
+      "  <plugin kind='test_echo_sensor' id='button' input='sheet/C1' unit='button'/>\n");
+  const Result r = view(scene.string(), {"--plugin-path", kTestPlugins,
+                                         "--plugin-path", kFirstPartyPlugins,
+                                         "--show-window", "sheet",
+                                         "--do",          "wait 3",
+                                         "--do",          "sheet-set B2 4",
+                                         "--do",          "click C1",
+                                         "--do",          "wait 2",
+                                         "--do",          "print signal sheet/A1",
+                                         "--do",          "print signal sensors/number/seen",
+                                         "--do",          "print signal sensors/button/seen"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The controller writes value x its update count: 2.5 at its first update, then 5, 7.5...
+  const auto a1 = r.out.find("signal sheet/A1 ");
+  ASSERT_NE(a1, std::string::npos) << r.out;
+  const double written = std::stod(r.out.substr(a1 + 16));
+  EXPECT_GT(written, 0);
+  EXPECT_DOUBLE_EQ(std::fmod(written, 2.5), 0.0) << written;
+  EXPECT_NE(r.out.find("signal sensors/number/seen 4\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("signal sensors/button/seen 1\n"), std::string::npos) << r.out;
+}
+
+TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
+  const Result missing = view((dir_ / "nowhere").string(), {"--frames", "1"});
+  EXPECT_EQ(missing.status, 2) << missing.err;
+  EXPECT_NE(missing.err.find("nowhere"), std::string::npos) << missing.err;
+  const Result option = view((kSource / "scenes/default").string(), {"--frobnicate"});
+  EXPECT_EQ(option.status, 4);
+  EXPECT_NE(option.err.find("--frobnicate"), std::string::npos) << option.err;
+  const Result script = view((kSource / "scenes/default").string(), {"--do", "wait many"});
+  EXPECT_EQ(script.status, 4);
+  EXPECT_NE(script.err.find("wait many"), std::string::npos) << script.err;
+  const Result signal =
+      view((kSource / "scenes/default").string(), {"--frames", "1", "--chart", "no/such"});
+  EXPECT_EQ(signal.status, 4);
+  EXPECT_NE(signal.err.find("no/such"), std::string::npos) << signal.err;
+}
+
+}  // namespace
