@@ -164,25 +164,19 @@ void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
     if (s.belt && s.body == body) s.belt_speed_input = input;
 }
 
-void ContactWorld::add_point_compliance(std::int32_t body, const Vec3& point, const Pose* poses,
-                                        Mat3& compliance) const {
-  // K = 1/m·1 + [r]ₓᵀ I⁻¹ [r]ₓ: a force f at the point accelerates it by K·f. The body's own
-  // inertia stands for its rotation, its apparent mass for its translation.
+void ContactWorld::inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
+                                  const Vec3* directions, double* inverse_mass) const {
+  // Along each direction d: 1/m + wᵀ I⁻¹ w with w = r × d in body axes. The body's own inertia
+  // stands for its rotation, its apparent mass for its translation.
   if (body == 0) return;
   const Pose& pose = poses[body];
-  const Vec3 r = point - (pose * com_m_[body]);
-  const Mat3& R = pose.rotation;
-  const Mat3 inverse_inertia_world = R * inverse_inertia_[body] * R.transposed();
-  Mat3 cross_r;  // [r]ₓ
-  cross_r.m[0][0] = cross_r.m[1][1] = cross_r.m[2][2] = 0;
-  cross_r.m[0][1] = -r.z, cross_r.m[0][2] = r.y;
-  cross_r.m[1][0] = r.z, cross_r.m[1][2] = -r.x;
-  cross_r.m[2][0] = -r.y, cross_r.m[2][1] = r.x;
-  const Mat3 k = cross_r.transposed() * inverse_inertia_world * cross_r;
-  const double inverse_mass = 1 / apparent_mass_kg_[body];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      compliance.m[i][j] += k.m[i][j] + (i == j ? inverse_mass : 0.0);
+  const Mat3 rt = pose.rotation.transposed();
+  const Vec3 r = rt * (point - pose.position) - com_m_[body];  // from the COM, body axes
+  const double translation = 1 / apparent_mass_kg_[body];
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 w = cross(r, rt * directions[k]);
+    inverse_mass[k] += translation + dot(w, inverse_inertia_[body] * w);
+  }
 }
 
 bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
@@ -329,17 +323,14 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   if (material.anisotropic)
     kin.friction_axis =
         (material.anisotropy_on_a ? world_pose_[shape_a] : world_pose_[other]).rotation.column(2);
-  Mat3 compliance;
-  compliance.m[0][0] = compliance.m[1][1] = compliance.m[2][2] = 0;
-  add_point_compliance(body_a, p.point_m, poses, compliance);
-  add_point_compliance(body_b, p.point_m, poses, compliance);
-  auto mass_along = [&](const Vec3& direction) {
-    return 1 / dot(direction, compliance * direction);
-  };
-  kin.mass_kg = mass_along(p.normal);
   const Vec3 helper = std::abs(p.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
   const Vec3 t1 = cross(p.normal, helper) / norm(cross(p.normal, helper));
-  kin.tangent_mass_kg = std::min(mass_along(t1), mass_along(cross(p.normal, t1)));
+  const Vec3 directions[3] = {p.normal, t1, cross(p.normal, t1)};
+  double inverse_mass[3] = {0, 0, 0};
+  inverse_masses(body_a, p.point_m, poses, directions, inverse_mass);
+  inverse_masses(body_b, p.point_m, poses, directions, inverse_mass);
+  kin.mass_kg = 1 / inverse_mass[0];
+  kin.tangent_mass_kg = 1 / std::max(inverse_mass[1], inverse_mass[2]);
   kin.step_s = step_s;
 
   const std::uint64_t other_id = other_is_plane ? shapes_.size() + static_cast<std::uint64_t>(other)

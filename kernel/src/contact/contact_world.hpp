@@ -55,8 +55,9 @@ class ContactWorld final : public model::SubstepForces {
                  const ContactPoint& p, const Pose* poses, const Twist* twists, double step_s,
                  Wrench* wrenches);
   bool excluded(std::int32_t body_a, std::int32_t body_b) const;
-  void add_point_compliance(std::int32_t body, const Vec3& point, const Pose* poses,
-                            Mat3& compliance) const;
+  /// Adds the body's inverse effective mass at `point` along three directions.
+  void inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
+                      const Vec3* directions, double* inverse_mass) const;
   void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
                       int count) const;
 

@@ -68,7 +68,14 @@ struct Multibody::Impl {
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter{system};
   SimTK::GeneralForceSubsystem forces{system};
-  SimTK::Force::Gravity gravity{forces, matter, SimTK::Vec3(0, 0, -9.81)};
+  // Gravity is applied by AppliedLoads, not by a Force::Gravity: Simbody's costs a tenth of
+  // a small robot's step in cache bookkeeping for three multiplications per body.
+  struct Weight {
+    SimTK::MobilizedBodyIndex mobod;
+    double mass_kg;
+    SimTK::Vec3 com_m;  // body frame
+  };
+  std::vector<Weight> weights;
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
   LooseBodies loose;                  // bodies with no joint, integrated outside Simbody
   std::vector<double> loose_mass_kg;  // per kernel body
@@ -108,6 +115,14 @@ struct Multibody::Impl {
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
   bool half_kick_pending = true;
   std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
+  // q' = N(q)·u by hand when every mobilizer is Free or has q' = u: Simbody's multiplyByN goes
+  // through its state digest for what is a copy plus one quaternion rate per free body.
+  struct FreeCoordinates {
+    int q, u;  // first indices: quaternion then position; angular then linear velocity
+  };
+  std::vector<FreeCoordinates> free_coordinates;
+  std::vector<std::pair<int, int>> direct_coordinates;  // (q, u) of mobilizers with q' = u
+  bool own_n = true;
   bool has_constraints = false;
   double tick_s = 1e-3;
   int substeps = 1;
@@ -158,6 +173,8 @@ double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a)
   return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
 }
 
+constexpr double kGravity = 9.81;  // m/s², along −Z
+
 /// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
 constexpr double kLoopFrictionSpeed = 1e-2;
 
@@ -172,6 +189,12 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
   void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                  SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
     const auto& mb = *m_;
+    for (const auto& w : mb.weights) {
+      const SimTK::Vec3 force(0, 0, -kGravity * w.mass_kg);
+      const SimTK::Vec3 com_G =
+          mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
+      body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
+    }
     for (std::size_t b = 1; b < mb.wrenches.size(); ++b) {
       if (!mb.mobod_of_body[b].isValid()) continue;  // a loose body
       const Wrench& w = mb.wrenches[b];
@@ -443,7 +466,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
         }
       }
       m.mobod_of_body[kernel_index(e.child)] = index;
-      if (!sb.gravity) m.gravity.setDefaultBodyIsExcluded(index, true);
+      if (sb.gravity) m.weights.push_back({index, sb.mass_kg, to_simtk(sb.com_m)});
     } catch (const Error&) {
       throw;
     } catch (const std::exception& ex) {
@@ -595,8 +618,17 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
   // the whole tree through its state digest.
   for (SimTK::MobilizedBodyIndex i(1); i < m.matter.getNumBodies(); ++i) {
     const auto& mob = m.matter.getMobilizedBody(i);
-    if (mob.getNumQ(m.initial_state) != mob.getNumU(m.initial_state))
-      m.quaternion_q.push_back(mob.getFirstQIndex(m.initial_state));
+    const int nq = mob.getNumQ(m.initial_state), nu = mob.getNumU(m.initial_state);
+    const int q0 = mob.getFirstQIndex(m.initial_state), u0 = mob.getFirstUIndex(m.initial_state);
+    if (nq != nu) m.quaternion_q.push_back(q0);
+    if (nq == nu) {
+      for (int c = 0; c < nq; ++c)
+        m.direct_coordinates.emplace_back(q0 + c, u0 + c);
+    } else if (nq == 7 && nu == 6) {
+      m.free_coordinates.push_back({q0, u0});
+    } else {
+      m.own_n = false;  // a Ball: leave it to Simbody
+    }
   }
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.udot.resize(m.initial_state.getNU());
@@ -723,6 +755,24 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
   } else {
     for (int i = 0; i < n; ++i)
       v[i] += a * x[i];
+  }
+}
+
+/// q' = N(q)·u for Free mobilizers (q = quaternion of R_FM then p_FM, u = ω then v, both in
+/// F: q̇_quat = ½·(0, ω)⊗q, ṗ = v) and mobilizers whose q' = u (Pin, Slider, Universal).
+void calc_qdot(const Multibody::Impl& m, const SimTK::Vector& u, const SimTK::Vector& q,
+               SimTK::Vector& qdot) {
+  for (const auto& [qi, ui] : m.direct_coordinates)
+    qdot[qi] = u[ui];
+  for (const auto& f : m.free_coordinates) {
+    const double w0 = u[f.u], w1 = u[f.u + 1], w2 = u[f.u + 2];
+    const double a = q[f.q], b = q[f.q + 1], c = q[f.q + 2], d = q[f.q + 3];
+    qdot[f.q] = -0.5 * (w0 * b + w1 * c + w2 * d);
+    qdot[f.q + 1] = 0.5 * (w0 * a + w1 * d - w2 * c);
+    qdot[f.q + 2] = 0.5 * (-w0 * d + w1 * a + w2 * b);
+    qdot[f.q + 3] = 0.5 * (w0 * c - w1 * b + w2 * a);
+    for (int k = 0; k < 3; ++k)
+      qdot[f.q + 4 + k] = u[f.u + 3 + k];
   }
 }
 
@@ -867,7 +917,11 @@ void advance(Multibody::Impl& m, SimTK::State& s, double h) {
     brake_axes(m, s, kick);
     m.loose.kick(m.wrenches.data(), m.substep_forces ? m.substep_wrenches.data() : nullptr, kick);
     m.loose.drift(h);
-    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
+    if (m.own_n) {
+      calc_qdot(m, s.getU(), s.getQ(), m.qdot);
+    } else {
+      m.matter.multiplyByN(s, false, s.getU(), m.qdot);
+    }
     SimTK::Vector& q = s.updQ();
     add_scaled(q, h, m.qdot);
     for (int first : m.quaternion_q) {
@@ -913,7 +967,12 @@ double Multibody::kinetic_energy_J() const {
 double Multibody::potential_energy_J() const {
   const SimTK::State& s = impl_->state();
   impl_->system.realize(s, SimTK::Stage::Dynamics);
-  return impl_->gravity.getPotentialEnergy(s) + impl_->loose.potential_energy_J();
+  double energy = impl_->loose.potential_energy_J();
+  for (const auto& w : impl_->weights) {
+    const auto& mob = impl_->matter.getMobilizedBody(w.mobod);
+    energy += w.mass_kg * kGravity * mob.findStationLocationInGround(s, w.com_m)[2];
+  }
+  return energy;
 }
 
 std::vector<double> Multibody::save() const {
