@@ -1,6 +1,7 @@
 // Ray casting: every primitive, the ground and the walls, the ignored body, materials, and
 // the broad phase against brute force on a random cluttered scene.
 #include "raycast/ray_caster.hpp"
+#include "kernel/model/scene_builder.hpp"
 #include "raycast/primitives.hpp"
 
 #include <gtest/gtest.h>
@@ -15,20 +16,7 @@ namespace {
 constexpr double kTol = 1e-12;
 
 Mat3 rot_axis(const Vec3& axis, double angle) {
-  const double n = norm(axis);
-  const double x = axis.x / n, y = axis.y / n, z = axis.z / n;
-  const double c = std::cos(angle), s = std::sin(angle), t = 1 - c;
-  Mat3 r;
-  r.m[0][0] = t * x * x + c;
-  r.m[0][1] = t * x * y - s * z;
-  r.m[0][2] = t * x * z + s * y;
-  r.m[1][0] = t * x * y + s * z;
-  r.m[1][1] = t * y * y + c;
-  r.m[1][2] = t * y * z - s * x;
-  r.m[2][0] = t * x * z - s * y;
-  r.m[2][1] = t * y * z + s * x;
-  r.m[2][2] = t * z * z + c;
-  return r;
+  return test::rotation_about(axis, angle);
 }
 
 scene::Geom box_geom(Vec3 size, Pose pose) {

@@ -5,6 +5,8 @@
 
 #include "model/multibody.hpp"
 
+#include "common/counting_new.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -12,24 +14,7 @@
 #include <filesystem>
 #include <new>
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-// The replacements below pair malloc with free; GCC cannot see that they replace each other.
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
-
-void* operator new(std::size_t n) {
-  ++allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
+using s2sim::test::allocations;
 
 namespace s2sim {
 namespace {

@@ -2,6 +2,8 @@
 // a simulation with sensors must allocate exactly what the bare Simbody model does.
 #include <s2sim/kernel/simulation.hpp>
 
+#include "common/counting_new.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -10,21 +12,7 @@
 #include <new>
 #include <string>
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t n) {
-  ++allocations;
-  if (void* p = std::malloc(n ? n : 1)) return p;
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept {
-  std::free(p);
-}
-void operator delete(void* p, std::size_t) noexcept {
-  std::free(p);
-}
+using s2sim::test::allocations;
 
 namespace s2sim {
 namespace {
