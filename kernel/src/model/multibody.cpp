@@ -110,6 +110,16 @@ struct Multibody::Impl {
   std::vector<Pose> substep_poses;
   std::vector<Twist> substep_twists;
   std::vector<Wrench> substep_wrenches;
+  // Joint reactions (request_joint_reactions): per scene joint, the mobilizer realising it
+  // (invalid for a loop-closing joint) and whether its child is body1.
+  struct JointReaction {
+    SimTK::MobilizedBodyIndex mobod;
+    bool child_is_body1 = true;
+  };
+  std::vector<JointReaction> joint_reaction_source;
+  std::vector<Wrench> joint_reactions;
+  SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
+  bool reactions_wanted = false;
   SimTK::State initial_state;
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
@@ -394,6 +404,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
     double sign;
   };
   std::vector<AxisPending> tree_axes;
+  m.joint_reaction_source.assign(static_cast<std::size_t>(n_joints), Impl::JointReaction{});
+  m.joint_reactions.assign(static_cast<std::size_t>(n_joints), Wrench{});
   for (const TreeEdge& e : tree) {
     const auto& sb = scene.bodies[e.child];
     SimTK::Inertia inertia_com;
@@ -466,6 +478,9 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
         }
       }
       m.mobod_of_body[kernel_index(e.child)] = index;
+      if (e.joint >= 0)
+        m.joint_reaction_source[static_cast<std::size_t>(e.joint)] = {
+            index, scene.joints[e.joint].body1 == e.child};
       if (sb.gravity) m.weights.push_back({index, sb.mass_kg, to_simtk(sb.com_m)});
     } catch (const Error&) {
       throw;
@@ -651,6 +666,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
           m.matter.getMobilizedBody(m.axis_impl[a].mobod).getFirstUIndex(m.initial_state) +
           m.axis_impl[a].coordinate;
   m.qdot.resize(m.initial_state.getNQ());
+  m.reactions_at_M.resize(m.matter.getNumBodies());
   reset();
 }
 
@@ -673,6 +689,15 @@ double* Multibody::applied_axis_forces() {
 }
 double* Multibody::applied_axis_friction() {
   return impl_->axis_friction.data();
+}
+void Multibody::request_joint_reactions() {
+  impl_->reactions_wanted = true;
+}
+const Wrench* Multibody::joint_reactions() const {
+  return impl_->joint_reactions.data();
+}
+bool Multibody::joint_is_loop(int joint) const {
+  return !impl_->joint_reaction_source.at(static_cast<std::size_t>(joint)).mobod.isValid();
 }
 void Multibody::set_substep_forces(SubstepForces* forces) {
   Impl& m = *impl_;
@@ -716,8 +741,13 @@ double Multibody::time_s() const {
   return static_cast<double>(impl_->ticks) * impl_->tick_s;
 }
 
+namespace {
+void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
+}  // namespace
+
 void Multibody::reset() {
   impl_->ticks = 0;
+  std::fill(impl_->joint_reactions.begin(), impl_->joint_reactions.end(), Wrench{});
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
   impl_->bodies_fresh = false;
@@ -725,6 +755,19 @@ void Multibody::reset() {
   std::fill(impl_->axis_mobility.begin(), impl_->axis_mobility.end(), 0.0);
   impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
+  if (impl_->reactions_wanted) {
+    // The reading before the first step: the initial state under gravity alone (the kernel
+    // rewrites every applied load before each step, so clearing them here changes nothing).
+    Impl& m = *impl_;
+    std::fill(m.wrenches.begin(), m.wrenches.end(), Wrench{});
+    std::fill(m.substep_wrenches.begin(), m.substep_wrenches.end(), Wrench{});
+    std::fill(m.axis_forces.begin(), m.axis_forces.end(), 0.0);
+    std::fill(m.axis_friction.begin(), m.axis_friction.end(), 0.0);
+    std::fill(m.sliding.begin(), m.sliding.end(), 0);
+    m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+    m.system.realize(m.current, SimTK::Stage::Acceleration);
+    compute_joint_reactions(m, m.current);
+  }
 }
 
 namespace {
@@ -849,6 +892,30 @@ void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   }
 }
 
+/// The joint reactions from a state realized to Acceleration: Simbody's mobilizer reaction
+/// on the child at M (mobility forces included), turned into the load on body1 about the
+/// anchor carried by body1 (M's origin when the child is body1, F's when it is the parent).
+void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s) {
+  m.matter.calcMobilizerReactionForces(s, m.reactions_at_M);
+  for (std::size_t j = 0; j < m.joint_reaction_source.size(); ++j) {
+    const auto& src = m.joint_reaction_source[j];
+    if (!src.mobod.isValid()) continue;  // a loop joint: zeros
+    const SimTK::SpatialVec& R = m.reactions_at_M[src.mobod];
+    if (src.child_is_body1) {
+      m.joint_reactions[j] = Wrench{from_simtk(R[0]), from_simtk(R[1])};
+      continue;
+    }
+    // On the parent: the opposite load, moved from Mo to Fo (they part along a slider).
+    const auto& mob = m.matter.getMobilizedBody(src.mobod);
+    const SimTK::Rotation R_GF =
+        mob.getParentMobilizedBody().getBodyRotation(s) * mob.getInboardFrame(s).R();
+    const SimTK::Vec3 p_FM_G = R_GF * mob.getMobilizerTransform(s).p();
+    const SimTK::Vec3 force = -R[1];
+    const SimTK::Vec3 torque = -R[0] + SimTK::cross(p_FM_G, force);
+    m.joint_reactions[j] = Wrench{from_simtk(torque), from_simtk(force)};
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -911,6 +978,9 @@ void advance(Multibody::Impl& m, SimTK::State& s, double h) {
     m.system.realize(s, SimTK::Stage::Acceleration);
     m.udot = 0.0;
     add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
+    // The reactions of the tick's last acceleration evaluation: no extra realize, and the
+    // same loads as the kick that follows (the friction brake's impulse excepted).
+    if (m.reactions_wanted && k == m.substeps - 1) compute_joint_reactions(m, s);
     const double kick = m.half_kick_pending ? 0.5 * h : h;
     m.half_kick_pending = false;
     add_scaled(s.updU(), kick, m.udot);
@@ -995,6 +1065,10 @@ std::vector<double> Multibody::save() const {
       out.push_back(column[i]);
   }
   out.insert(out.end(), m.columns_q.begin(), m.columns_q.end());
+  // The last reactions: what a joint sensor reads before the next step.
+  for (const Wrench& w : m.joint_reactions)
+    for (const Vec3* v : {&w.torque_Nm, &w.force_N})
+      out.insert(out.end(), {v->x, v->y, v->z});
   return out;
 }
 
@@ -1019,6 +1093,12 @@ void Multibody::restore(const std::vector<double>& saved) {
   }
   for (double& q : m.columns_q)
     q = saved.at(k++);
+  for (Wrench& w : m.joint_reactions)
+    for (Vec3* v : {&w.torque_Nm, &w.force_N}) {
+      v->x = saved.at(k++);
+      v->y = saved.at(k++);
+      v->z = saved.at(k++);
+    }
   m.bodies_fresh = false;
   s.setTime(time_s());
   m.current = s;

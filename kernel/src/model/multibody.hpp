@@ -50,6 +50,16 @@ class Multibody {
   /// level after the other forces: an axis whose load stays under the bound sticks.
   double* applied_axis_friction();
 
+  /// Turns on the joint reactions: from the next step on, `joint_reactions()` holds per scene
+  /// joint the load body2 exerts on body1 through the joint (world frame, torque about the
+  /// joint anchor as carried by body1), taken at the tick's last acceleration evaluation.
+  /// Loop-closing joints read zero. Off by default: it costs one reaction sweep per tick.
+  void request_joint_reactions();
+  /// Per scene joint (Scene::joints order); zeros until requested and stepped.
+  const Wrench* joint_reactions() const;
+  /// Whether a scene joint closes a kinematic loop (constraints: no reaction reported).
+  bool joint_is_loop(int joint) const;
+
   /// Loads recomputed from the state at every substep (contact); null = none. Not owned.
   void set_substep_forces(SubstepForces* forces);
   /// Per kernel body (0 = world, 0 kg): the smallest mass that a force at the body's centre

@@ -183,6 +183,12 @@ struct Simulation::Impl {
   std::string robot_prefix(int robot) const {
     return "robots/" + sim::segment(scene.robots[robot].id);
   }
+  /// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
+  std::string joint_prefix(int joint) const {
+    const auto& jt = scene.joints[static_cast<std::size_t>(joint)];
+    return (jt.robot >= 0 ? robot_prefix(jt.robot) : std::string("world")) + "/joints/" +
+           sim::segment(jt.id);
+  }
 
   void register_kernel_signals() {
     add_signal("time", "s", Source::time, 0);
@@ -490,6 +496,31 @@ class ConfigureContextImpl final : public ConfigureContext {
         names.push_back(sim_.signal_infos[i].name);
     throw fail(unknown("published signal", std::string(full_name), names));
   }
+  JointHandle joint(std::string_view name) override {
+    const std::string n(name);
+    const auto& joints = sim_.scene.joints;
+    std::vector<std::string> names;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      if (n.find('/') == std::string::npos) {
+        if (joints[j].robot != slot().robot) continue;
+        names.push_back(joints[j].id);
+      } else {
+        names.push_back(sim_.joint_prefix(static_cast<int>(j)));
+      }
+      if (names.back() != n) continue;
+      sim_.multibody->request_joint_reactions();
+      if (sim_.multibody->joint_is_loop(static_cast<int>(j)))
+        sim_.warnings.push_back(
+            slot().where.str() + ": " + slot().label() + ": joint '" + joints[j].id +
+            "' closes a kinematic loop (realised by constraints); its reaction reads zero");
+      return JointHandle{static_cast<std::int32_t>(j)};
+    }
+    throw fail(unknown("joint", n, names));
+  }
+  BodyHandle joint_body(JointHandle j, int which) const override {
+    const auto& jt = sim_.scene.joints.at(static_cast<std::size_t>(j.index));
+    return BodyHandle{(which == 2 ? jt.body2 : jt.body1) + 1};  // scene -1 (world) is 0
+  }
   std::string body_id(BodyHandle b) const override {
     if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
     return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;
@@ -690,6 +721,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.ray_caster = std::make_unique<raycast::RayCaster>(m.scene, m.poses.data());
   m.world.kernel = m.ray_caster.get();
   m.world.cast_ray = &raycast::RayCaster::callback;
+  m.world.joint_reaction = m.multibody->joint_reactions();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
 }

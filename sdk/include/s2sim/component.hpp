@@ -31,6 +31,11 @@ struct AxisHandle {
   std::int32_t index = -1;
   constexpr bool valid() const { return index >= 0; }
 };
+/// A joint of the scene (any type, Fixed and Ball included), for its reaction load.
+struct JointHandle {
+  std::int32_t index = -1;
+  constexpr bool valid() const { return index >= 0; }
+};
 /// A signal the component publishes (a reading, a motor current...).
 struct SignalHandle {
   std::int32_t index = -1;
@@ -150,6 +155,10 @@ struct WorldView {
   /// Casts a ray against every collision shape except `ignore_body`'s (-1 = none).
   RayHit (*cast_ray)(const void* kernel, const Vec3& origin_m, const Vec3& direction,
                      double max_distance_m, std::int32_t ignore_body) = nullptr;
+  /// Per joint (SDK 0.4, ABI 3): the load body2 exerts on body1 through the joint, world
+  /// frame, torque about the joint anchor carried by body1, from the last physics step. Zeros
+  /// until some component looked a joint up with `ConfigureContext::joint()`.
+  const Wrench* joint_reaction = nullptr;
 };
 }  // namespace detail
 
@@ -209,6 +218,12 @@ class StepContext {
                   BodyHandle ignore = {}) const {
     return w_->cast_ray(w_->kernel, origin_m, direction, max_distance_m, ignore.index);
   }
+
+  /// The load body2 exerts on body1 through a joint (ODE's body1/body2 of `<connect>`), in
+  /// the world frame, the torque about the joint anchor as carried by body1, over the last
+  /// physics step: constraint and drive loads together (what an F/T cell in the joint reads).
+  /// The joint must have been looked up with `ConfigureContext::joint()`.
+  const Wrench& joint_reaction(JointHandle j) const { return w_->joint_reaction[j.index]; }
 
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }
@@ -295,6 +310,19 @@ class ConfigureContext {
   /// `robots/r/sensors/ir0/value`), to read with `StepContext::signal()`. Scene sensors are
   /// configured before `<plugin>` components, in scene order. Throws when there is none.
   virtual SignalHandle published_signal(std::string_view full_name) const = 0;
+
+  // --- joint reactions (SDK 0.4 additions, appended) ---
+
+  /// A joint by name: a joint ID of the owning robot or a full path
+  /// `robots/<robot>/joints/<joint>` (`world/joints/<joint>` for a scene-level joint). Asks the
+  /// kernel to compute the joint's reaction load on every physics step, read with
+  /// `StepContext::joint_reaction()` (joints nobody looks up cost nothing). A joint that
+  /// closes a kinematic loop is realised by constraints: its reaction reads zero and the scene
+  /// gets a load-time warning.
+  virtual JointHandle joint(std::string_view name) = 0;
+  /// A joint's body1 (`which` = 1) or body2 (`which` = 2) as `<connect B1 B2>` gives them;
+  /// index 0 for the world.
+  virtual BodyHandle joint_body(JointHandle j, int which) const = 0;
 };
 
 /// Base of every plugin component.

@@ -56,6 +56,8 @@ class FakeConfigure : public ConfigureContext {
   int body_count() const override { return 3; }
   std::string body_id(BodyHandle) const override { return {}; }
   SignalHandle published_signal(std::string_view) const override { return {}; }
+  JointHandle joint(std::string_view) override { return {}; }
+  BodyHandle joint_body(JointHandle, int) const override { return {}; }
 };
 
 struct World {
