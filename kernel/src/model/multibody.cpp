@@ -115,9 +115,11 @@ struct Multibody::Impl {
   struct JointReaction {
     SimTK::MobilizedBodyIndex mobod;
     bool child_is_body1 = true;
+    int body1 = 0;  // kernel index
   };
   std::vector<JointReaction> joint_reaction_source;
-  std::vector<Wrench> joint_reactions;
+  std::vector<Wrench> joint_reactions;               // world frame, at the current state
+  std::vector<Wrench> joint_reactions_in_body1;      // body1's frame, as computed
   SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
   bool reactions_wanted = false;
   SimTK::State initial_state;
@@ -406,6 +408,7 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
   std::vector<AxisPending> tree_axes;
   m.joint_reaction_source.assign(static_cast<std::size_t>(n_joints), Impl::JointReaction{});
   m.joint_reactions.assign(static_cast<std::size_t>(n_joints), Wrench{});
+  m.joint_reactions_in_body1.assign(static_cast<std::size_t>(n_joints), Wrench{});
   for (const TreeEdge& e : tree) {
     const auto& sb = scene.bodies[e.child];
     SimTK::Inertia inertia_com;
@@ -480,7 +483,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
       m.mobod_of_body[kernel_index(e.child)] = index;
       if (e.joint >= 0)
         m.joint_reaction_source[static_cast<std::size_t>(e.joint)] = {
-            index, scene.joints[e.joint].body1 == e.child};
+            index, scene.joints[e.joint].body1 == e.child,
+            kernel_index(scene.joints[e.joint].body1)};
       if (sb.gravity) m.weights.push_back({index, sb.mass_kg, to_simtk(sb.com_m)});
     } catch (const Error&) {
       throw;
@@ -743,6 +747,7 @@ double Multibody::time_s() const {
 
 namespace {
 void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
+void carry_joint_reactions(Multibody::Impl& m, const Pose* poses);
 }  // namespace
 
 void Multibody::reset() {
@@ -901,18 +906,34 @@ void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s) {
     const auto& src = m.joint_reaction_source[j];
     if (!src.mobod.isValid()) continue;  // a loop joint: zeros
     const SimTK::SpatialVec& R = m.reactions_at_M[src.mobod];
-    if (src.child_is_body1) {
-      m.joint_reactions[j] = Wrench{from_simtk(R[0]), from_simtk(R[1])};
-      continue;
+    SimTK::Vec3 force = R[1], torque = R[0];
+    if (!src.child_is_body1) {
+      // On the parent: the opposite load, moved from Mo to Fo (they part along a slider).
+      const auto& mob = m.matter.getMobilizedBody(src.mobod);
+      const SimTK::Rotation R_GF =
+          mob.getParentMobilizedBody().getBodyRotation(s) * mob.getInboardFrame(s).R();
+      const SimTK::Vec3 p_FM_G = R_GF * mob.getMobilizerTransform(s).p();
+      force = -R[1];
+      torque = -R[0] + SimTK::cross(p_FM_G, force);
     }
-    // On the parent: the opposite load, moved from Mo to Fo (they part along a slider).
-    const auto& mob = m.matter.getMobilizedBody(src.mobod);
-    const SimTK::Rotation R_GF =
-        mob.getParentMobilizedBody().getBodyRotation(s) * mob.getInboardFrame(s).R();
-    const SimTK::Vec3 p_FM_G = R_GF * mob.getMobilizerTransform(s).p();
-    const SimTK::Vec3 force = -R[1];
-    const SimTK::Vec3 torque = -R[0] + SimTK::cross(p_FM_G, force);
     m.joint_reactions[j] = Wrench{from_simtk(torque), from_simtk(force)};
+    // Also in body1's frame: the step carries it to body1's pose at the step's end.
+    const SimTK::Rotation& R_G1 = m.mobod(src.body1).getBodyRotation(s);
+    m.joint_reactions_in_body1[j] = Wrench{from_simtk(~R_G1 * torque), from_simtk(~R_G1 * force)};
+  }
+}
+
+/// The reactions computed in the step, carried with body1 to its pose at the step's end: the
+/// reaction is taken at the last substep's start, the sensors read it with the poses after the
+/// drift (a steadily spinning joint would otherwise read a tangential ω·h fraction of its
+/// centripetal force). `poses` are the step-end body poses.
+void carry_joint_reactions(Multibody::Impl& m, const Pose* poses) {
+  for (std::size_t j = 0; j < m.joint_reaction_source.size(); ++j) {
+    const auto& src = m.joint_reaction_source[j];
+    if (!src.mobod.isValid()) continue;
+    const Mat3& R = poses[src.body1].rotation;
+    const Wrench& local = m.joint_reactions_in_body1[j];
+    m.joint_reactions[j] = Wrench{R * local.torque_Nm, R * local.force_N};
   }
 }
 
@@ -945,6 +966,7 @@ void Multibody::step() {
   // Read the bodies once here: for read() and for the next substep's contact.
   read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
   m.bodies_fresh = true;
+  if (m.reactions_wanted) carry_joint_reactions(m, m.substep_poses.data());
   // A NaN anywhere poisons the sums: one cheap check per tick.
   double sum = m.loose.checksum();
   const SimTK::Vector& q = s.getQ();
