@@ -169,6 +169,20 @@ class PenTip : public Component {
   SignalHandle value_, x_, y_;
 };
 
+/// `jointforce`: the reaction force and torque a joint transmits (body2 on body1, torque
+/// about the anchor, body1's frame): `fx fy fz` (N), `tx ty tz` (N·m).
+class JointForce : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  SensorSetup s_;
+  JointHandle joint_;
+  BodyHandle body1_;
+  SignalHandle force_[3], torque_[3];
+};
+
 /// `beacon`: a visual marker; publishes its world position.
 class Beacon : public Component {
  public:
