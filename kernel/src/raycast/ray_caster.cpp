@@ -15,6 +15,12 @@ constexpr double kPad = 1e-9;  // AABB padding against round-off on cell and box
 constexpr int kMaxCellsPerAxis = 256;
 constexpr std::size_t kSmallStatic = 16;   // up to this many obstacles: no grid walk
 constexpr std::size_t kFanMaxGeoms = 256;  // fan culling up to this many geoms
+// A fan is kept while its origin stays within kFanOriginMargin (in x and y) of where it was
+// built and every moving geom's box within kFanGeomMargin of its box then: it sorted the
+// boxes grown by both margins, which covers every direction a ray from the new origin can
+// meet the moved geoms in. (The margins trade rebuilds against a few more geoms per sector.)
+constexpr double kFanOriginMargin = 0.01;
+constexpr double kFanGeomMargin = 0.02;
 
 /// A monotonic stand-in for atan2(y, x), in [0, 4): 1 per quarter turn, no trigonometry.
 double pseudo_angle(double x, double y) {
@@ -110,6 +116,18 @@ RayCaster::RayCaster(const scene::Scene& scene, const Pose* poses) : poses_(pose
     fan_items_.assign(kFanSectors * total, 0);
     fan_first_.assign(total, 0);
     fan_last_.assign(total, 0);
+    fan_box_.assign(4 * moving_.size(), 0.0);
+    fan_geom_box_.assign(6 * total, 0.0);
+    for (std::size_t g = 0; g < statics_.size(); ++g) {
+      const GeomEntry& e = statics_[g];
+      double* fb = &fan_geom_box_[6 * g];
+      fb[0] = e.lo.z;
+      fb[1] = e.hi.z;
+      fb[2] = e.lo.x;
+      fb[3] = e.hi.x;
+      fb[4] = e.lo.y;
+      fb[5] = e.hi.y;
+    }
   }
   order_.resize(moving_.size());
   for (std::size_t i = 0; i < order_.size(); ++i)
@@ -177,6 +195,18 @@ void RayCaster::update_moving() const {
     box[3] = e.lo.z;
     box[4] = e.hi.z;
     max_width_x_ = std::max(max_width_x_, e.hi.x - e.lo.x);
+  }
+  if (fan_enabled_) {
+    double* fb = fan_geom_box_.data() + 6 * statics_.size();
+    for (const GeomEntry& e : moving_) {
+      fb[0] = e.lo.z;
+      fb[1] = e.hi.z;
+      fb[2] = e.lo.x;
+      fb[3] = e.hi.x;
+      fb[4] = e.lo.y;
+      fb[5] = e.hi.y;
+      fb += 6;
+    }
   }
   moving_dirty_ = false;
 }
@@ -248,21 +278,21 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
   test_planes(o, d, max_distance, best);
   auto limit = [&] { return best.hit ? best.distance_m : max_distance; };
 
-  const Vec3 inv = inverse_direction(d);
   if (fan_enabled_ && (d.x != 0 || d.y != 0)) {
-    if (!(fan_valid_ && o == fan_origin_)) {
+    if (!(fan_active_ && o == active_origin_)) {
       if (has_last_origin_ && o == last_origin_)
-        build_fan(o);  // the second ray from this origin in this tick
+        prepare_fan(o);  // the second ray from this origin in this tick
       else {
         last_origin_ = o;
         has_last_origin_ = true;
       }
     }
-    if (fan_valid_ && o == fan_origin_) {
-      cast_fan(o, d, inv, max_distance, ignore_body, best);
+    if (fan_active_ && o == active_origin_) {
+      cast_fan(o, d, max_distance, ignore_body, best);
       return best;
     }
   }
+  const Vec3 inv = inverse_direction(d);
   double s0 = 0, s1 = 0;
   if (statics_.size() <= kSmallStatic) {
     // A few obstacles: their packed boxes one by one, against the segment's box first, beat
@@ -368,8 +398,23 @@ RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_dis
   return best;
 }
 
-void RayCaster::build_fan(const Vec3& o) const {
+void RayCaster::prepare_fan(const Vec3& o) const {
   if (moving_dirty_) update_moving();
+  bool keep = fan_valid_ && std::abs(o.x - fan_origin_.x) <= kFanOriginMargin &&
+              std::abs(o.y - fan_origin_.y) <= kFanOriginMargin;
+  const double* box = fan_box_.data();
+  for (std::size_t i = 0, n = moving_.size(); keep && i < n; ++i) {
+    const GeomEntry& e = moving_[i];
+    const double* b = box + 4 * i;
+    keep = e.lo.x >= b[0] - kFanGeomMargin && e.hi.x <= b[1] + kFanGeomMargin &&
+           e.lo.y >= b[2] - kFanGeomMargin && e.hi.y <= b[3] + kFanGeomMargin;
+  }
+  if (!keep) build_fan(o);
+  fan_active_ = true;
+  active_origin_ = o;
+}
+
+void RayCaster::build_fan(const Vec3& o) const {
   const std::size_t n_static = statics_.size(), total = n_static + moving_.size();
   constexpr double kEps = 1e-9;
   std::fill(fan_start_.begin(), fan_start_.end(), 0);
@@ -380,7 +425,17 @@ void RayCaster::build_fan(const Vec3& o) const {
   for (std::size_t g = 0; g < total; ++g) {
     const GeomEntry& e = g < n_static ? statics_[g] : moving_[g - n_static];
     int first = 0, last = kFanSectors - 1;  // the whole circle unless narrowed below
-    const double x0 = e.lo.x - o.x, x1 = e.hi.x - o.x, y0 = e.lo.y - o.y, y1 = e.hi.y - o.y;
+    double m = kFanOriginMargin;
+    if (g >= n_static) {
+      double* b = &fan_box_[4 * (g - n_static)];
+      b[0] = e.lo.x;
+      b[1] = e.hi.x;
+      b[2] = e.lo.y;
+      b[3] = e.hi.y;
+      m += kFanGeomMargin;
+    }
+    const double x0 = e.lo.x - m - o.x, x1 = e.hi.x + m - o.x;
+    const double y0 = e.lo.y - m - o.y, y1 = e.hi.y + m - o.y;
     const bool around = x0 <= kEps && x1 >= -kEps && y0 <= kEps && y1 >= -kEps;
     if (!around) {
       // The box's footprint seen from outside spans less than half a turn: the corners'
@@ -424,7 +479,7 @@ void RayCaster::build_fan(const Vec3& o) const {
   ++fan_builds_;
 }
 
-void RayCaster::cast_fan(const Vec3& o, const Vec3& d, const Vec3& inv, double max_distance,
+void RayCaster::cast_fan(const Vec3& o, const Vec3& d, double max_distance,
                          std::int32_t ignore_body, RayHit& best) const {
   const int k =
       std::min(kFanSectors - 1, static_cast<int>(pseudo_angle(d.x, d.y) * (kFanSectors / 4.0)));
@@ -438,12 +493,24 @@ void RayCaster::cast_fan(const Vec3& o, const Vec3& d, const Vec3& inv, double m
   const double xa = std::min(o.x, end.x), xb = std::max(o.x, end.x);
   const double ya = std::min(o.y, end.y), yb = std::max(o.y, end.y);
   const double za = std::min(o.z, end.z), zb = std::max(o.z, end.z);
+  // The packed boxes first; the entry, and the inverse direction of the slab test, only for
+  // the geoms the segment's box meets.
+  const double* boxes = fan_geom_box_.data();
+  const GeomEntry* statics = statics_.data();
+  const GeomEntry* moving = moving_.data();
+  Vec3 inv;
+  bool have_inv = false;
   for (std::int32_t i = a; i < b; ++i) {
     const auto g = static_cast<std::size_t>(items[i]);
-    const GeomEntry& e = g < n_static ? statics_[g] : moving_[g - n_static];
-    if (e.lo.z > zb || e.hi.z < za || e.lo.x > xb || e.hi.x < xa || e.lo.y > yb || e.hi.y < ya)
+    const double* box = boxes + 6 * g;
+    if (box[0] > zb || box[1] < za || box[2] > xb || box[3] < xa || box[4] > yb || box[5] < ya)
       continue;
+    const GeomEntry& e = g < n_static ? statics[g] : moving[g - n_static];
     if (g >= n_static && ignore_body > 0 && e.body == ignore_body) continue;
+    if (!have_inv) {
+      inv = inverse_direction(d);
+      have_inv = true;
+    }
     const double t_lim = best.hit ? best.distance_m : max_distance;
     if (!ray_aabb(o, inv, e.lo, e.hi, t_lim, s0, s1)) continue;
     test_geom(e, o, d, t_lim, best);

@@ -11,7 +11,10 @@
 ///   (once per tick), kept sorted by their lower x (insertion sort: nearly sorted from the
 ///   previous tick); a cast scans only the geoms whose x range can meet the ray's.
 /// - in small scenes, rays sharing an origin (a ranger's fan) use a per-tick, per-origin
-///   bucketing of every geom by the azimuth sectors its box covers (fan culling).
+///   bucketing of every geom by the azimuth sectors its box covers (fan culling), kept from
+///   tick to tick while the origin and the moving geoms stay within a margin of where they
+///   were when it was built (the sectors are computed from margin-padded boxes, so reuse is
+///   exact).
 /// The exact tests are the analytic ones of primitives.hpp in each geom's frame.
 
 #include <s2sim/component.hpp>
@@ -31,7 +34,7 @@ class RayCaster {
   /// The body poses changed: the moving geoms' world boxes are recomputed on the next cast.
   void invalidate() {
     moving_dirty_ = true;
-    fan_valid_ = false;
+    fan_active_ = false;
     has_last_origin_ = false;
   }
 
@@ -77,11 +80,14 @@ class RayCaster {
                         RayHit& best);
   /// Ground and walls.
   void test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& best) const;
-  /// Fan culling: sorts every geom into the azimuth sectors its box covers as seen from `o`.
+  /// Fan culling: sorts every geom into the azimuth sectors its margin-padded box covers as
+  /// seen from `o`.
   void build_fan(const Vec3& o) const;
+  /// Makes the fan serve origin `o` this tick: the kept one when still valid, else rebuilt.
+  void prepare_fan(const Vec3& o) const;
   /// The cast through the fan of the current origin (after the planes).
-  void cast_fan(const Vec3& o, const Vec3& d, const Vec3& inv, double max_distance,
-                std::int32_t ignore_body, RayHit& best) const;
+  void cast_fan(const Vec3& o, const Vec3& d, double max_distance, std::int32_t ignore_body,
+                RayHit& best) const;
 
   const Pose* poses_;
   bool walls_ = true;
@@ -109,10 +115,17 @@ class RayCaster {
   // from one origin in a tick, the geoms are bucketed by the azimuth sectors (seen from that
   // origin) their boxes cover, and a ray visits only its sector's. Small scenes only (the
   // static grid serves big ones); storage reserved at load.
-  static constexpr int kFanSectors = 32;
+  static constexpr int kFanSectors = 64;
   bool fan_enabled_ = false;
-  mutable bool fan_valid_ = false, has_last_origin_ = false;
-  mutable Vec3 fan_origin_, last_origin_;
+  /// fan_valid_: a fan was built (from fan_origin_, moving boxes in fan_box_); fan_active_:
+  /// this tick's rays from active_origin_ take it (from the second ray from that origin, as
+  /// without reuse: which rays take the fan never depends on earlier ticks).
+  mutable bool fan_valid_ = false, fan_active_ = false, has_last_origin_ = false;
+  mutable Vec3 fan_origin_, active_origin_, last_origin_;
+  /// Every geom's current world box by fan id (statics, then moving + S), packed in the order
+  /// the fan tests them: lo.z, hi.z, lo.x, hi.x, lo.y, hi.y.
+  mutable std::vector<double> fan_geom_box_;
+  mutable std::vector<double> fan_box_;  ///< per moving geom at the build: lo.x, hi.x, lo.y, hi.y
   mutable std::size_t fan_builds_ = 0;
   mutable std::vector<std::int32_t> fan_start_;  ///< kFanSectors + 1 offsets into fan_items_
   mutable std::vector<std::int32_t> fan_items_;  ///< geom ids: statics, then moving + S

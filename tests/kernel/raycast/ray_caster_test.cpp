@@ -297,5 +297,53 @@ TEST(RayCaster, FanCullingAgreesWithBruteForceForRaysSharingAnOrigin) {
   EXPECT_EQ(rc.fan_builds(), 300u);  // one per fan: the culling was used
 }
 
+TEST(RayCaster, FanKeptAcrossTicksAgreesWithBruteForce) {
+  // A ranger's fan tick after tick from an origin that creeps (as on a slow robot), bodies
+  // moving by a few millimetres per tick and now and then jumping: the fan is kept while they
+  // stay within its margins, rebuilt otherwise, and always agrees with the brute force.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  scene::Scene sc;
+  for (int i = 0; i < 6; ++i)
+    sc.obstacles.push_back(
+        box_geom({0.3 + 0.3 * (u(rng) + 1), 0.3 + 0.3 * (u(rng) + 1), 0.5},
+                 {{3 * u(rng), 3 * u(rng), 0.25}, rot_axis({0, 0, 1}, 3 * u(rng))}));
+  std::vector<Pose> poses(1);
+  for (int b = 0; b < 12; ++b) {
+    scene::Body body;
+    body.geoms.push_back(b % 2 ? box_geom({0.2, 0.3, 0.2}, {})
+                               : cylinder_geom(0.05 + 0.1 * (u(rng) + 1), 0.3, {}));
+    sc.bodies.push_back(body);
+    poses.push_back({{3 * u(rng), 3 * u(rng), 0.2}, rot_axis({0, 0, 1}, 3 * u(rng))});
+  }
+  RayCaster rc(sc, poses.data());
+  Vec3 o{0.1, -0.2, 0.2};
+  int hits = 0;
+  for (int tick = 0; tick < 200; ++tick) {
+    for (std::size_t b = 1; b < poses.size(); ++b) {
+      const double step = tick % 25 == 0 ? 0.1 : 0.004;
+      poses[b].position += Vec3{step * u(rng), step * u(rng), 0};
+      poses[b].rotation = rot_axis({0, 0, 1}, 0.01 * u(rng)) * poses[b].rotation;
+    }
+    o += Vec3{0.003 * u(rng), 0.003 * u(rng), 0};
+    rc.invalidate();
+    const int ignore = tick % 3 == 0 ? 1 + tick % 12 : -1;
+    for (int i = 0; i < 77; ++i) {
+      const double phi = 2 * 3.141592653589793 * ((tick % 10) * 77 + i) / 770;
+      const Vec3 d{std::cos(phi), std::sin(phi), 0.05 * u(rng)};
+      const RayHit a = rc.cast(o, d, 5, ignore);
+      const RayHit b = rc.cast_brute_force(o, d, 5, ignore);
+      ASSERT_EQ(a.hit, b.hit) << tick << " " << i;
+      if (!a.hit) continue;
+      ++hits;
+      ASSERT_NEAR(a.distance_m, b.distance_m, 1e-12) << tick << " " << i;
+      ASSERT_EQ(a.body.index, b.body.index) << tick << " " << i;
+    }
+  }
+  EXPECT_GT(hits, 5000);
+  EXPECT_GT(rc.fan_builds(), 8u);    // rebuilt after the jumps and the creep...
+  EXPECT_LT(rc.fan_builds(), 150u);  // ...but mostly kept
+}
+
 }  // namespace
 }  // namespace s2sim::raycast
