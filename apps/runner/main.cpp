@@ -2,6 +2,7 @@
 // --duration seconds, logs and summarises.
 #include "options.hpp"
 #include "outputs.hpp"
+#include "simulation_options.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 #include <s2sim/version.hpp>
@@ -29,14 +30,7 @@ double seconds_since(Clock::time_point start) {
 
 int run(const s2sim::runner::Options& o) {
   using namespace s2sim;
-  SimulationOptions so;
-  so.seed = o.seed;
-  so.physics_step_s = o.physics_step_s;
-  so.substeps = o.substeps;
-  so.constants = o.constants;
-  for (const auto& p : o.plugin_path)
-    so.plugin_path.emplace_back(p);
-  auto sim = Simulation::load(o.scene, so);
+  auto sim = Simulation::load(o.scene, apps::simulation_options(o));
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());

@@ -1,5 +1,7 @@
 #include "viewer_state.hpp"
 
+#include "simulation_options.hpp"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -28,14 +30,7 @@ bool move_body(ViewerState& state, int body, const Vec3& position_m) {
 }
 
 std::unique_ptr<Simulation> load_simulation(const Options& o) {
-  SimulationOptions so;
-  so.seed = o.seed;
-  so.physics_step_s = o.physics_step_s;
-  so.substeps = o.substeps;
-  so.constants = o.constants;
-  for (const auto& p : o.plugin_path)
-    so.plugin_path.emplace_back(p);
-  auto sim = Simulation::load(o.scene, so);
+  auto sim = Simulation::load(o.scene, apps::simulation_options(o));
   for (const auto& [name, value] : o.inputs)
     sim->set_input(name, value);
   return sim;

@@ -49,9 +49,10 @@ double restitution_of(double beta) {
   return std::max(0.0, -v);
 }
 
-/// beta = alpha·v_in giving restitution e, from a table of restitution_of over log-spaced
-/// beta built once; infinity where even the critical cap cannot absorb enough (plastic).
-double beta_for(double e) {
+}  // namespace
+
+// From a table of restitution_of over log-spaced beta, built once.
+double restitution_beta(double e) {
   constexpr int kCount = 121;  // beta from 1e-3 to 1e3
   static const auto table = [] {
     struct Table {
@@ -72,8 +73,6 @@ double beta_for(double e) {
     }
   return INFINITY;
 }
-
-}  // namespace
 
 PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu) {
   // Symmetric rule: a surface without an explicit mu takes no part; two explicit surfaces
@@ -104,6 +103,9 @@ PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu)
     m.mu2 = m.mu1;  // plain solids are isotropic whatever their mu2 (spec §4.3)
   }
   m.restitution = std::max(a.surface.restitution, b ? b->surface.restitution : 0.0);
+  m.restitution_beta = b && b->surface.restitution > a.surface.restitution
+                           ? b->surface.restitution_beta
+                           : a.surface.restitution_beta;
   m.restitution_threshold_m_s =
       std::max(a.surface.restitution_threshold_m_s, b ? b->surface.restitution_threshold_m_s : 0.0);
   m.softness = std::max(a.surface.softness, b ? b->surface.softness : 0.0);
@@ -124,13 +126,13 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
 
   // Normal: Hunt–Crossley, F = k·d·(1 + alpha·v) with the damping capped at critical, alpha
   // from the restitution e and the approach speed v_in so that this very law rebounds at e·v_in
-  // (beta_for); e = 0, or an approach slower than the threshold, is plastic. Never pulls.
+  // (restitution_beta); e = 0, or an approach slower than the threshold, is plastic. Never pulls.
   const double approach = -dot(kin.relative_velocity_m_s, n);  // > 0 when closing
   if (new_point) state.approach_speed_m_s = std::max(approach, 1e-3);
   double damping = critical;
   const double e = material.restitution;
   if (e > 0 && state.approach_speed_m_s >= material.restitution_threshold_m_s) {
-    const double alpha = beta_for(e) / state.approach_speed_m_s;
+    const double alpha = material.restitution_beta / state.approach_speed_m_s;
     damping = std::min(critical, k * alpha * point.depth_m);
   }
   const double normal = std::max(0.0, k * point.depth_m + damping * approach);

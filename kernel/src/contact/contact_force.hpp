@@ -17,8 +17,13 @@ struct PairMaterial {
   bool anisotropy_on_a = true;  ///< whose local Z axis orients the friction directions
   double restitution = 0;
   double restitution_threshold_m_s = 0;
+  double restitution_beta = 0;  ///< that of the more elastic surface
   double softness = 1e-5;
 };
+
+/// beta = alpha·v_in with which the contact law rebounds at restitution e in (0, 1]; infinity
+/// where even critical damping cannot absorb enough. Computed once per surface at load.
+double restitution_beta(double e);
 
 /// `b` is null for the ground and the walls, which have no surface of their own.
 PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu);

@@ -39,6 +39,8 @@ Shape make_shape(const scene::Geom& g, std::int32_t body) {
   s.surface.softness = g.surface.softness;
   s.surface.restitution = g.surface.bounce;
   s.surface.restitution_threshold_m_s = g.surface.bounce_threshold_m_s;
+  if (s.surface.restitution > 0)
+    s.surface.restitution_beta = restitution_beta(s.surface.restitution);
   switch (g.friction) {
     case scene::FrictionKind::isotropic:
       s.anisotropy = Anisotropy::none;

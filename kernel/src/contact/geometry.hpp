@@ -24,6 +24,8 @@ struct SurfaceParams {
   double softness = 1e-5;
   double restitution = 0;
   double restitution_threshold_m_s = 0;
+  /// Hunt–Crossley's alpha·v_in that rebounds at `restitution` (contact_force.hpp), at load.
+  double restitution_beta = 0;
 };
 
 /// One collision primitive attached to a body (index 0 = the world: obstacles).

@@ -20,6 +20,12 @@ class LooseBodies {
   void add(int kernel_index, const scene::Body& body);
   std::size_t size() const { return model_.size(); }
   bool empty() const { return model_.empty(); }
+  /// Mass of kernel body `kernel_index`, 0 if it is not one of these (at load, not per step).
+  double mass_kg(int kernel_index) const {
+    for (const Model& m : model_)
+      if (m.kernel_index == kernel_index) return m.mass_kg;
+    return 0.0;
+  }
 
   /// Back to the load poses, at rest.
   void reset();

@@ -77,9 +77,8 @@ struct Multibody::Impl {
   };
   std::vector<Weight> weights;
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
-  LooseBodies loose;                  // bodies with no joint, integrated outside Simbody
-  std::vector<double> loose_mass_kg;  // per kernel body
-  std::vector<Pose> initial_pose;     // kernel body -> pose at load
+  LooseBodies loose;               // bodies with no joint, integrated outside Simbody
+  std::vector<Pose> initial_pose;  // kernel body -> pose at load
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
   std::vector<std::string> warnings;
@@ -207,19 +206,8 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
           mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
       body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
     }
-    for (std::size_t b = 1; b < mb.wrenches.size(); ++b) {
-      if (!mb.mobod_of_body[b].isValid()) continue;  // a loose body
-      const Wrench& w = mb.wrenches[b];
-      body_forces[mb.mobod_of_body[b]] +=
-          SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
-    }
-    if (mb.substep_forces)
-      for (std::size_t b = 1; b < mb.substep_wrenches.size(); ++b) {
-        if (!mb.mobod_of_body[b].isValid()) continue;
-        const Wrench& w = mb.substep_wrenches[b];
-        body_forces[mb.mobod_of_body[b]] +=
-            SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
-      }
+    add_wrenches(mb.wrenches, body_forces);
+    if (mb.substep_forces) add_wrenches(mb.substep_wrenches, body_forces);
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.axis_forces[a] != 0.0)
         apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
@@ -276,6 +264,19 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
 
  public:
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+
+ private:
+  /// Per-kernel-body wrenches (about each body origin, world frame) on Simbody's bodies; the
+  /// loose bodies take theirs in LooseBodies::kick.
+  void add_wrenches(const std::vector<Wrench>& wrenches,
+                    SimTK::Vector_<SimTK::SpatialVec>& body_forces) const {
+    for (std::size_t b = 1; b < wrenches.size(); ++b) {
+      if (!m_->mobod_of_body[b].isValid()) continue;
+      const Wrench& w = wrenches[b];
+      body_forces[m_->mobod_of_body[b]] +=
+          SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+    }
+  }
 
  private:
   const Multibody::Impl* m_;
@@ -373,7 +374,6 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
     queue.push_back(b);
     expand();
   }
-  m.loose_mass_kg.assign(n_bodies + 1, 0.0);
   std::vector<int> root_order;
   for (const auto& r : scene.robots)
     if (r.main_body >= 0) root_order.push_back(r.main_body);
@@ -384,7 +384,6 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
     visited[b] = 1;
     if (incident[b].empty() && !lone_bodies_in_simbody) {
       m.loose.add(b + 1, scene.bodies[b]);
-      m.loose_mass_kg[b + 1] = scene.bodies[b].mass_kg;
       continue;
     }
     tree.push_back({-1, -1, b});
@@ -718,7 +717,7 @@ std::vector<double> Multibody::apparent_mass_kg() const {
   SimTK::Vector f, udot;
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
     if (!m.mobod_of_body[b].isValid()) {  // a loose body: its own mass
-      out[b] = m.loose_mass_kg[b];
+      out[b] = m.loose.mass_kg(static_cast<int>(b));
       continue;
     }
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);

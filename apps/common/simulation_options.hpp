@@ -1,0 +1,22 @@
+#pragma once
+/// \file
+/// The runner's and the viewer's command lines load a scene the same way: their options
+/// (`seed`, `physics_step_s`, `substeps`, `constants`, `plugin_path`) become the façade's.
+
+#include <s2sim/kernel/simulation.hpp>
+
+namespace s2sim::apps {
+
+template <class CommandLine>
+SimulationOptions simulation_options(const CommandLine& o) {
+  SimulationOptions so;
+  so.seed = o.seed;
+  so.physics_step_s = o.physics_step_s;
+  so.substeps = o.substeps;
+  so.constants = o.constants;
+  for (const auto& p : o.plugin_path)
+    so.plugin_path.emplace_back(p);
+  return so;
+}
+
+}  // namespace s2sim::apps
