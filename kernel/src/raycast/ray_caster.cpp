@@ -266,14 +266,20 @@ void RayCaster::test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& 
   }
 }
 
+bool RayCaster::prepare(const Vec3& direction, double& max_distance, Vec3& unit) const {
+  const double len2 = dot(direction, direction);
+  if (!(len2 > 0) || !(max_distance >= 0)) return false;
+  max_distance = reach(max_distance);
+  // Sensors pass unit directions: skip the square root when it is one already.
+  unit = std::abs(len2 - 1) < 1e-15 ? direction : direction / std::sqrt(len2);
+  return true;
+}
+
 RayHit RayCaster::cast(const Vec3& origin, const Vec3& direction, double max_distance,
                        std::int32_t ignore_body) const {
   RayHit best;
-  const double len2 = dot(direction, direction);
-  if (!(len2 > 0) || !(max_distance >= 0)) return best;
-  max_distance = reach(max_distance);
-  // Sensors pass unit directions: skip the square root when it is one already.
-  const Vec3 d = std::abs(len2 - 1) < 1e-15 ? direction : direction / std::sqrt(len2);
+  Vec3 d;
+  if (!prepare(direction, max_distance, d)) return best;
   const Vec3& o = origin;
   test_planes(o, d, max_distance, best);
   auto limit = [&] { return best.hit ? best.distance_m : max_distance; };
@@ -520,11 +526,8 @@ void RayCaster::cast_fan(const Vec3& o, const Vec3& d, double max_distance,
 RayHit RayCaster::cast_brute_force(const Vec3& origin, const Vec3& direction, double max_distance,
                                    std::int32_t ignore_body) const {
   RayHit best;
-  const double len2 = dot(direction, direction);
-  if (!(len2 > 0) || !(max_distance >= 0)) return best;
-  max_distance = reach(max_distance);
-  // Sensors pass unit directions: skip the square root when it is one already.
-  const Vec3 d = std::abs(len2 - 1) < 1e-15 ? direction : direction / std::sqrt(len2);
+  Vec3 d;
+  if (!prepare(direction, max_distance, d)) return best;
   test_planes(origin, d, max_distance, best);
   if (moving_dirty_) update_moving();
   for (const auto& e : statics_)

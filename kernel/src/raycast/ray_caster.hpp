@@ -80,6 +80,9 @@ class RayCaster {
                         RayHit& best);
   /// Ground and walls.
   void test_planes(const Vec3& o, const Vec3& d, double t_max, RayHit& best) const;
+  /// Normalises a ray's direction into `unit` and clips `max_distance` to the world's reach;
+  /// false for a zero direction or a negative distance (no hit).
+  bool prepare(const Vec3& direction, double& max_distance, Vec3& unit) const;
   /// Fan culling: sorts every geom into the azimuth sectors its margin-padded box covers as
   /// seen from `o`.
   void build_fan(const Vec3& o) const;

@@ -1,6 +1,7 @@
 // The contact layer against analytic answers (docs/models/contact.md), at a 1 ms step.
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
+#include "model_runner.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -15,28 +16,12 @@ using scene::JointType;
 constexpr double kG = 9.81;
 
 /// A multibody model with the contact layer as its substep force.
-struct Runner {
+struct Runner : test::Runner {
   explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
-      : mb(s, dt, substeps),
-        contacts(s, mb.apparent_mass_kg()),
-        poses(mb.body_count()),
-        twists(mb.body_count()),
-        pos(mb.axes().size()),
-        vel(mb.axes().size()) {
+      : test::Runner(s, dt, substeps), contacts(s, mb.apparent_mass_kg()) {
     mb.set_substep_forces(&contacts);
-    read();
   }
-  void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
-  void step(int n = 1) {
-    for (int i = 0; i < n; ++i)
-      mb.step();
-    read();
-  }
-  model::Multibody mb;
   ContactWorld contacts;
-  std::vector<Pose> poses;
-  std::vector<Twist> twists;
-  std::vector<double> pos, vel;
 };
 
 void set_mu(scene::Body& b, double mu, double bounce = 0) {

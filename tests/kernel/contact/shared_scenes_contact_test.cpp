@@ -2,6 +2,8 @@
 // obstacle. Skipped when ../shared is absent.
 #include <s2sim/kernel/simulation.hpp>
 
+#include "common/edited_copy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,20 +27,7 @@ fs::path shared(const std::string& name) {
 /// A copy of a shared scene with `from` replaced by `to` in `file`.
 fs::path edited_copy(const std::string& scene, const std::string& file, const std::string& from,
                      const std::string& to) {
-  const fs::path dir = fs::path(testing::TempDir()) /
-                       ("s2sim_contact_" + scene + "_" +
-                        testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::remove_all(dir);
-  fs::copy(shared(scene), dir, fs::copy_options::recursive);
-  std::ifstream in(dir / file);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const auto at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << from << " not in " << file;
-  if (at != std::string::npos) s.replace(at, from.size(), to);
-  std::ofstream(dir / file) << s;
-  return dir;
+  return test::edited_copy(shared(scene), file, from, to);
 }
 
 void expect_things_at_rest(const char* scene) {

@@ -1,5 +1,6 @@
 // Physics of the multibody model against analytic answers (docs/models/multibody.md).
 #include "model/multibody.hpp"
+#include "model_runner.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -14,26 +15,7 @@ namespace {
 using scene::JointType;
 constexpr double kG = 9.81;
 
-/// Steps a model and reads it back into plain buffers.
-struct Runner {
-  explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
-      : mb(s, dt, substeps),
-        poses(mb.body_count()),
-        twists(mb.body_count()),
-        pos(mb.axes().size()),
-        vel(mb.axes().size()) {
-    read();
-  }
-  void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
-  void step() {
-    mb.step();
-    read();
-  }
-  Multibody mb;
-  std::vector<Pose> poses;
-  std::vector<Twist> twists;
-  std::vector<double> pos, vel;
-};
+using test::Runner;
 
 TEST(Multibody, FreeFallMatchesHalfGTSquared) {
   scene::Scene s;

@@ -3,6 +3,8 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include <gmock/gmock.h>
+#include "common/edited_copy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,17 +33,7 @@ std::unique_ptr<Simulation> load_fixture(std::uint64_t seed = 1) {
 
 /// A copy of the fixture with one file's text replaced, for error cases.
 fs::path fixture_with(const std::string& file, const std::string& from, const std::string& to) {
-  const fs::path dir = fs::path(testing::TempDir()) /
-                       ("s2sim_sim_" + std::to_string(std::hash<std::string>{}(file + from + to)));
-  fs::remove_all(dir);
-  fs::copy(kFixture, dir, fs::copy_options::recursive);
-  std::ifstream in(dir / file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  std::ofstream(dir / file) << text;
-  return dir;
+  return test::edited_copy(kFixture, file, from, to);
 }
 
 TEST(Simulation, LoadsThirdPartyComponentsByKindWithTheirSignals) {

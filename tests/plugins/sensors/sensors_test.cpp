@@ -2,6 +2,8 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include <gmock/gmock.h>
+#include "common/edited_copy.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,18 +37,7 @@ std::unique_ptr<Simulation> load(const std::string& fixture, SimulationOptions o
 /// A copy of a fixture with one file's text replaced, for error cases.
 fs::path fixture_with(const std::string& fixture, const std::string& file, const std::string& from,
                       const std::string& to) {
-  const fs::path dir =
-      fs::path(testing::TempDir()) /
-      ("s2sim_sensors_" + std::to_string(std::hash<std::string>{}(fixture + file + from + to)));
-  fs::remove_all(dir);
-  fs::copy(kFixtures / fixture, dir, fs::copy_options::recursive);
-  std::ifstream in(dir / file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  text.replace(at, from.size(), to);
-  std::ofstream(dir / file) << text;
-  return dir;
+  return test::edited_copy(kFixtures / fixture, file, from, to);
 }
 
 struct Stats {

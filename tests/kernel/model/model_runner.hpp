@@ -1,0 +1,31 @@
+#pragma once
+// Steps a multibody model and reads it back into plain buffers (model and contact tests).
+
+#include "model/multibody.hpp"
+
+#include <vector>
+
+namespace s2sim::test {
+
+struct Runner {
+  explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
+      : mb(s, dt, substeps),
+        poses(mb.body_count()),
+        twists(mb.body_count()),
+        pos(mb.axes().size()),
+        vel(mb.axes().size()) {
+    read();
+  }
+  void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
+  void step(int n = 1) {
+    for (int i = 0; i < n; ++i)
+      mb.step();
+    read();
+  }
+  model::Multibody mb;
+  std::vector<Pose> poses;
+  std::vector<Twist> twists;
+  std::vector<double> pos, vel;
+};
+
+}  // namespace s2sim::test
