@@ -37,6 +37,8 @@ Options:
   --set I=V      hold input I at V (e.g. a motor voltage, to time a robot that drives);
                  repeatable; every scene must have the input
   --json FILE    also write the results as JSON
+  --profile      after the timed repeats, one more run with per-stage timing: wall time per
+                 tick pipeline stage (sense ... finish, docs/architecture.md) in us/step
   --help
 )";
 
@@ -47,6 +49,7 @@ struct Options {
   int repeats = 3;
   std::string json_file;
   std::vector<std::pair<std::string, double>> inputs;  ///< --set
+  bool profile = false;
 };
 
 struct Result {
@@ -56,7 +59,8 @@ struct Result {
   std::size_t axes = 0;
   double step_s = 0;
   std::int64_t steps = 0;
-  double wall_s = 0;  ///< best of the repeats
+  double wall_s = 0;                                 ///< best of the repeats
+  std::vector<s2sim::Simulation::StageTime> stages;  ///< --profile
 };
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -111,6 +115,8 @@ Options parse_options(int argc, char** argv) {
         usage_error("--set needs INPUT=VALUE, got '" + v + "'");
       o.inputs.emplace_back(v.substr(0, eq),
                             parse_number("--set " + v.substr(0, eq), v.substr(eq + 1)));
+    } else if (a == "--profile") {
+      o.profile = true;
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);
@@ -163,6 +169,16 @@ Result measure(const fs::path& path, const Options& o) {
     const auto start = Clock::now();
     sim->step(r.steps);
     r.wall_s = std::min(r.wall_s, std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  if (o.profile) {  // a separate run: the clock reads must not weigh on the timed ones
+    sim->reset();
+    for (const auto& [name, value] : o.inputs)
+      sim->set_input(name, value);
+    sim->step(warmup);
+    sim->set_profiling(true);
+    sim->step(r.steps);
+    r.stages = sim->stage_times();
+    sim->set_profiling(false);
   }
   return r;
 }
@@ -224,6 +240,20 @@ void write_json(const std::string& file, const Options& o, const std::vector<Res
   }
 }
 
+void print_profile(const Result& r) {
+  double total = 0;
+  for (const auto& s : r.stages)
+    total += s.seconds;
+  const auto steps = static_cast<double>(r.steps);
+  std::printf("  %-16s %10s %9s %7s\n", "stage", "calls/step", "us/step", "share");
+  for (const auto& s : r.stages)
+    std::printf("  %-16s %10.2f %9.3f %6.1f%%\n", s.stage.c_str(),
+                static_cast<double>(s.calls) / steps, s.seconds * 1e6 / steps,
+                total > 0 ? 100 * s.seconds / total : 0.0);
+  std::printf("  %-16s %10s %9.3f  (with the profiler's own clock reads)\n", "total", "",
+              total * 1e6 / steps);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -239,6 +269,7 @@ int main(int argc, char** argv) {
       const Result r = measure(path, o);
       std::printf("%-32s %7d %5zu %9g %10.1f %9.2f %9.1f\n", r.scene.c_str(), r.bodies, r.axes,
                   r.step_s * 1e3, r.wall_s * 1e3, us_per_step(r), rtf(r));
+      if (o.profile) print_profile(r);
       std::fflush(stdout);
       results.push_back(r);
     } catch (const s2sim::Error& e) {

@@ -4,8 +4,6 @@
 /// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
 /// and writes plain arrays of applied loads.
 
-#include "model/substep_forces.hpp"
-
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -25,9 +23,12 @@ struct AxisInfo {
   bool loop = false;  ///< closes a kinematic loop (realised by constraints, not a mobilizer)
 };
 
-/// Builds and integrates the multibody system. Body index 0 is the world; scene body i is
-/// body i + 1. The kernel writes the loads for the coming tick into `applied_wrenches()` and
-/// `applied_axis_forces()` before `step()`; they are held constant over the tick's substeps.
+/// The scene's bodies and joints as a Simbody system, and the integrator's operations on it.
+/// Body index 0 is the world; scene body i is body i + 1. The kernel writes the loads for the
+/// coming tick into `applied_wrenches()` and `applied_axis_forces()`; they are held constant
+/// over the tick's substeps. sim/step.cpp runs a tick as, per substep: current_bodies() (for
+/// contact) → forces() → accelerations() → kick() → brake() → drift() → project(); then
+/// finish_tick().
 class Multibody {
  public:
   /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses. Bodies without
@@ -60,8 +61,9 @@ class Multibody {
   /// Whether a scene joint closes a kinematic loop (constraints: no reaction reported).
   bool joint_is_loop(int joint) const;
 
-  /// Loads recomputed from the state at every substep (contact); null = none. Not owned.
-  void set_substep_forces(SubstepForces* forces);
+  /// The per-body wrenches recomputed from the state at every substep (contact), applied
+  /// from now on; the caller writes them before each substep's forces().
+  Wrench* use_contact_wrenches();
   /// Per kernel body (0 = world, 0 kg): the smallest mass that a force at the body's centre
   /// of mass meets in the initial configuration, over the three world axes (a free body: its
   /// mass; a wheel: its share of the robot's). Infinite for a body welded to the world.
@@ -69,9 +71,28 @@ class Multibody {
 
   /// Back to the initial configuration at rest, t = 0.
   void reset();
-  /// Advances one tick. Throws s2sim::Error (runtime) if the state becomes non-finite.
-  void step();
   double time_s() const;
+
+  // --- One tick, stage by stage (in this order; sim/step.cpp) ---------------------------------
+  int substeps() const;
+  double substep_s() const;
+  /// Body poses and velocities at the current state, per kernel body (read once per state).
+  void current_bodies(const Pose*& poses, const Twist*& twists);
+  /// The substep's loads are final: classifies sliding axes, drops Simbody's cached forces.
+  void forces();
+  /// M·u' = f (Simbody's realize); the joint reactions on the tick's last substep.
+  void accelerations(bool last_substep);
+  /// u += h·u' (half a substep on the first one after a reset: leapfrog).
+  void kick();
+  /// Axis Coulomb friction as velocity-level impulses; loose bodies take their kick.
+  void brake();
+  /// q += h·N(q)·u; the time of the substep's end.
+  void drift(int substep);
+  /// Loop constraints: q and u projected back onto the constraint manifold.
+  void project();
+  /// Ends the tick: reads the bodies, carries the joint reactions, checks that the state is
+  /// finite (throws s2sim::Error, runtime, if not).
+  void finish_tick();
 
   /// Copies the current state into the kernel's buffers (sizes: body_count(), axes().size()).
   void read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity) const;

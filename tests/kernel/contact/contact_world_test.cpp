@@ -19,7 +19,8 @@ constexpr double kG = 9.81;
 struct Runner : test::Runner {
   explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
       : test::Runner(s, dt, substeps), contacts(s, mb.apparent_mass_kg()) {
-    mb.set_substep_forces(&contacts);
+    contact = &contacts;
+    mb.use_contact_wrenches();
   }
   ContactWorld contacts;
 };

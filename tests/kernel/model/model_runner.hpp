@@ -2,6 +2,7 @@
 // Steps a multibody model and reads it back into plain buffers (model and contact tests).
 
 #include "model/multibody.hpp"
+#include "sim/step.hpp"
 
 #include <vector>
 
@@ -19,10 +20,11 @@ struct Runner {
   void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
   void step(int n = 1) {
     for (int i = 0; i < n; ++i)
-      mb.step();
+      sim::physics_tick(mb, contact);
     read();
   }
   model::Multibody mb;
+  model::SubstepForces* contact = nullptr;  ///< contact forces at every substep, if set
   std::vector<Pose> poses;
   std::vector<Twist> twists;
   std::vector<double> pos, vel;

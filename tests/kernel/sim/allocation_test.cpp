@@ -4,6 +4,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "model/multibody.hpp"
+#include "sim/step.hpp"
 
 #include "common/counting_new.hpp"
 
@@ -40,10 +41,10 @@ Counts count(const std::filesystem::path& scene, const SimulationOptions& o) {
         (bare.axes()[a].which == 0 ? jt.drive1 : jt.drive2).friction.coulomb;
   }
   for (int i = 0; i < 10; ++i)
-    bare.step();
+    sim::physics_tick(bare, nullptr);
   before = allocations.load();
   for (int i = 0; i < 1000; ++i)
-    bare.step();
+    sim::physics_tick(bare, nullptr);
   c.simbody = allocations.load() - before;
   return c;
 }

@@ -58,6 +58,17 @@ class Simulation {
   void step(std::int64_t ticks = 1);
   /// Steps until time_s() >= t (rounded to the nearest tick).
   void run_until(double t_s);
+  /// Per-stage timing of the tick pipeline (sense, control, motor control, actuate, then per
+  /// substep collide, forces, accelerations, kick, brakes, drift, project; finish), for
+  /// profiling (`s2sim-bench --profile`). Off by default; turning it on starts from zero.
+  void set_profiling(bool on);
+  struct StageTime {
+    std::string stage;
+    double seconds = 0;      ///< wall time accumulated since profiling was turned on
+    std::int64_t calls = 0;  ///< times the stage ran
+  };
+  /// Empty while profiling is off.
+  std::vector<StageTime> stage_times() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
   /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
   void reset();

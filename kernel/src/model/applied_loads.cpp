@@ -1,0 +1,145 @@
+// The kernel's loads as one Simbody force: gravity, body wrenches (controllers, contact), axis
+// forces (motors), plain Coulomb friction on sliding axes and joint stops.
+#include "model/multibody_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::model {
+
+double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
+  const AxisImpl& ax = m.axis_impl[a];
+  if (!m.axes[a].loop)
+    return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneQ(s, ax.coordinate);
+  const auto& b1 = m.mobod(ax.body1);
+  const auto& b2 = m.mobod(ax.body2);
+  const SimTK::Rotation& R2 = b2.getBodyRotation(s);
+  if (m.axes[a].linear) {
+    const SimTK::Vec3 offset = ~R2 * (b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s));
+    return SimTK::dot(offset - ax.offset0_in_body2, ax.axis_in_body2);
+  }
+  // Rotation of body1 relative to body2 since load, about the axis (in (-pi, pi]).
+  const SimTK::Rotation delta = (~R2 * b1.getBodyRotation(s)) * ~ax.relative0;
+  const SimTK::Mat33& D = delta.asMat33();
+  const SimTK::Vec3 vee(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
+  return std::atan2(0.5 * SimTK::dot(vee, ax.axis_in_body2), (D.trace() - 1.0) / 2.0);
+}
+
+double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
+  const AxisImpl& ax = m.axis_impl[a];
+  if (!m.axes[a].loop)
+    return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneU(s, ax.coordinate);
+  const auto& b1 = m.mobod(ax.body1);
+  const auto& b2 = m.mobod(ax.body2);
+  const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
+  if (m.axes[a].linear) {
+    const SimTK::Vec3 r = b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s);
+    const SimTK::Vec3 v = b1.getBodyOriginVelocity(s) - b2.getBodyOriginVelocity(s) -
+                          SimTK::cross(b2.getBodyAngularVelocity(s), r);
+    return SimTK::dot(v, axis_G);
+  }
+  return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
+}
+
+namespace {
+
+/// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
+constexpr double kLoopFrictionSpeed = 1e-2;
+
+/// Applies the kernel's loads for the tick: body wrenches and axis forces.
+class AppliedLoads : public SimTK::Force::Custom::Implementation {
+ public:
+  explicit AppliedLoads(const Multibody::Impl* impl) : m_(impl) {}
+
+  void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                 SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
+    const auto& mb = *m_;
+    for (const auto& w : mb.weights) {
+      const SimTK::Vec3 force(0, 0, -kGravity * w.mass_kg);
+      const SimTK::Vec3 com_G =
+          mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
+      body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
+    }
+    add_wrenches(mb.wrenches, body_forces);
+    if (mb.contact_wrenches_used) add_wrenches(mb.substep_wrenches, body_forces);
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+      if (mb.axis_forces[a] != 0.0)
+        apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
+    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+      if (mb.sliding[a]) {  // clearly sliding: Coulomb's law as it is, no impulse needed
+        const double v = axis_rate(mb, state, a);
+        apply_axis_force(state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a], body_forces,
+                         mobility_forces);
+      } else if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
+        // No velocity-level brake on a constraint-realised axis: a steep regularisation.
+        const double v = axis_rate(mb, state, a);
+        const double f = -mb.axis_friction[a] * std::clamp(v / kLoopFrictionSpeed, -1.0, 1.0);
+        apply_axis_force(state, a, f, body_forces, mobility_forces);
+      }
+    for (const auto& stop : mb.stops) {
+      const auto a = static_cast<std::size_t>(stop.axis);
+      const double q = axis_value(mb, state, a);
+      if (q <= stop.high && q >= stop.low) continue;
+      const double limit = q > stop.high ? stop.high : stop.low;
+      const double f = -stop.stiffness * (q - limit) - stop.damping * axis_rate(mb, state, a);
+      // A stop pushes back into the range, never pulls toward the limit.
+      const double push = q > stop.high ? std::min(0.0, f) : std::max(0.0, f);
+      if (push != 0.0) apply_axis_force(state, a, push, body_forces, mobility_forces);
+    }
+  }
+
+ private:
+  /// A generalized force on one axis: a mobility force for a tree joint, equal and opposite
+  /// body loads about / along the axis for a loop joint.
+  void apply_axis_force(const SimTK::State& state, std::size_t a, double f,
+                        SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                        SimTK::Vector& mobility_forces) const {
+    const auto& mb = *m_;
+    const AxisImpl& ax = mb.axis_impl[a];
+    if (!mb.axes[a].loop) {
+      mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate, ax.sign * f,
+                                                                 mobility_forces);
+      return;
+    }
+    const auto& b1 = mb.mobod(ax.body1);
+    const auto& b2 = mb.mobod(ax.body2);
+    const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
+    if (mb.axes[a].linear) {
+      const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
+      const SimTK::Vec3 force = f * axis_G;
+      b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
+      b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
+                               body_forces);
+    } else {
+      b1.applyBodyTorque(state, f * axis_G, body_forces);
+      b2.applyBodyTorque(state, -f * axis_G, body_forces);
+    }
+  }
+
+ public:
+  SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
+
+ private:
+  /// Per-kernel-body wrenches (about each body origin, world frame) on Simbody's bodies; the
+  /// loose bodies take theirs in LooseBodies::kick.
+  void add_wrenches(const std::vector<Wrench>& wrenches,
+                    SimTK::Vector_<SimTK::SpatialVec>& body_forces) const {
+    for (std::size_t b = 1; b < wrenches.size(); ++b) {
+      if (!m_->mobod_of_body[b].isValid()) continue;
+      const Wrench& w = wrenches[b];
+      body_forces[m_->mobod_of_body[b]] +=
+          SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+    }
+  }
+
+ private:
+  const Multibody::Impl* m_;
+};
+
+}  // namespace
+
+void add_applied_loads(Multibody::Impl& m) {
+  SimTK::Force::Custom(m.forces, new AppliedLoads(&m));
+}
+
+}  // namespace s2sim::model

@@ -1,0 +1,154 @@
+// The leapfrog integrator's operations on the Simbody state, one substep at a time:
+// accelerations, kick, drift, projection, and the end-of-tick read-out and finite check. The
+// order in which they run is sim/step.cpp's (docs/models/multibody.md).
+#include "model/multibody_impl.hpp"
+
+#include <cmath>
+
+namespace s2sim::model {
+
+void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
+  const int n = v.size();
+  if (v.hasContiguousData() && x.hasContiguousData()) {
+    double* pv = v.updContiguousScalarData();
+    const double* px = x.getContiguousScalarData();
+    for (int i = 0; i < n; ++i)
+      pv[i] += a * px[i];
+  } else {
+    for (int i = 0; i < n; ++i)
+      v[i] += a * x[i];
+  }
+}
+
+namespace {
+
+/// q' = N(q)·u for Free mobilizers (q = quaternion of R_FM then p_FM, u = ω then v, both in
+/// F: q̇_quat = ½·(0, ω)⊗q, ṗ = v) and mobilizers whose q' = u (Pin, Slider, Universal).
+void calc_qdot(const Multibody::Impl& m, const SimTK::Vector& u, const SimTK::Vector& q,
+               SimTK::Vector& qdot) {
+  for (const auto& [qi, ui] : m.direct_coordinates)
+    qdot[qi] = u[ui];
+  for (const auto& f : m.free_coordinates) {
+    const double w0 = u[f.u], w1 = u[f.u + 1], w2 = u[f.u + 2];
+    const double a = q[f.q], b = q[f.q + 1], c = q[f.q + 2], d = q[f.q + 3];
+    qdot[f.q] = -0.5 * (w0 * b + w1 * c + w2 * d);
+    qdot[f.q + 1] = 0.5 * (w0 * a + w1 * d - w2 * c);
+    qdot[f.q + 2] = 0.5 * (-w0 * d + w1 * a + w2 * b);
+    qdot[f.q + 3] = 0.5 * (w0 * c - w1 * b + w2 * a);
+    for (int k = 0; k < 3; ++k)
+      qdot[f.q + 4 + k] = u[f.u + 3 + k];
+  }
+}
+
+}  // namespace
+
+int Multibody::substeps() const {
+  return impl_->substeps;
+}
+
+double Multibody::substep_s() const {
+  return impl_->tick_s / impl_->substeps;
+}
+
+void Multibody::current_bodies(const Pose*& poses, const Twist*& twists) {
+  Impl& m = *impl_;
+  if (!m.bodies_fresh) {
+    m.system.realize(m.current, SimTK::Stage::Velocity);
+    read_bodies(m, m.current, m.substep_poses.data(), m.substep_twists.data());
+  }
+  poses = m.substep_poses.data();
+  twists = m.substep_twists.data();
+}
+
+void Multibody::forces() {
+  Impl& m = *impl_;
+  m.bodies_fresh = false;
+  if (!m.axis_friction.empty()) classify_sliding(m, m.current, substep_s());
+  // The applied loads changed outside Simbody's knowledge: drop any cached forces.
+  m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+}
+
+void Multibody::accelerations(bool last_substep) {
+  Impl& m = *impl_;
+  SimTK::State& s = m.current;
+  m.system.realize(s, SimTK::Stage::Acceleration);
+  m.udot = 0.0;
+  add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
+  // The reactions of the tick's last acceleration evaluation: no extra realize, and the
+  // same loads as the kick that follows (the friction brake's impulse excepted).
+  if (m.reactions_wanted && last_substep) compute_joint_reactions(m, s);
+}
+
+// Semi-explicit Euler, u first then q with the new u, started with a half step of u
+// (leapfrog): the same single acceleration evaluation per step, but positions are second
+// order and exact under constant acceleration (free fall), and the generalized speeds u live
+// at the middle of the step (docs/models/multibody.md).
+void Multibody::kick() {
+  Impl& m = *impl_;
+  const double h = substep_s();
+  const double kick = m.half_kick_pending ? 0.5 * h : h;
+  m.half_kick_pending = false;
+  m.last_kick_s = kick;
+  add_scaled(m.current.updU(), kick, m.udot);
+}
+
+void Multibody::brake() {
+  Impl& m = *impl_;
+  brake_axes(m, m.current, m.last_kick_s);
+  m.loose.kick(m.wrenches.data(), m.contact_wrenches_used ? m.substep_wrenches.data() : nullptr,
+               m.last_kick_s);
+}
+
+void Multibody::drift(int substep) {
+  Impl& m = *impl_;
+  SimTK::State& s = m.current;
+  const double h = substep_s();
+  m.loose.drift(h);
+  if (m.own_n) {
+    calc_qdot(m, s.getU(), s.getQ(), m.qdot);
+  } else {
+    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
+  }
+  SimTK::Vector& q = s.updQ();
+  add_scaled(q, h, m.qdot);
+  for (int first : m.quaternion_q) {
+    double n2 = 0;
+    for (int c = 0; c < 4; ++c)
+      n2 += q[first + c] * q[first + c];
+    const double inverse_norm = 1 / std::sqrt(n2);
+    for (int c = 0; c < 4; ++c)
+      q[first + c] *= inverse_norm;
+  }
+  s.updTime() =
+      (static_cast<double>(m.ticks) + static_cast<double>(substep + 1) / m.substeps) * m.tick_s;
+  m.system.realize(s, SimTK::Stage::Time);
+}
+
+void Multibody::project() {
+  Impl& m = *impl_;
+  if (m.has_constraints) m.system.project(m.current, 1e-10);
+}
+
+void Multibody::finish_tick() {
+  Impl& m = *impl_;
+  SimTK::State& s = m.current;
+  ++m.ticks;
+  m.system.realize(s, SimTK::Stage::Velocity);
+  // Read the bodies once here: for read() and for the next substep's contact.
+  read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
+  m.bodies_fresh = true;
+  if (m.reactions_wanted) carry_joint_reactions(m, m.substep_poses.data());
+  // A NaN anywhere poisons the sums: one cheap check per tick.
+  double sum = m.loose.checksum();
+  const SimTK::Vector& q = s.getQ();
+  const SimTK::Vector& u = s.getU();
+  for (int i = 0; i < q.size(); ++i)
+    sum += q[i];
+  for (int i = 0; i < u.size(); ++i)
+    sum += u[i];
+  if (!std::isfinite(sum))
+    throw Error(ErrorKind::runtime,
+                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
+}
+
+}  // namespace s2sim::model

@@ -1,0 +1,304 @@
+// Component instances: creation from the plugin registry, and the ConfigureContext through
+// which each declares its signals, inputs, state and schedule.
+#include "sim/names.hpp"
+#include "sim/simulation_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim {
+
+namespace {
+
+Stage default_stage(Category c) {
+  switch (c) {
+    case Category::sensor:
+      return Stage::sense;
+    case Category::controller:
+      return Stage::control;
+    case Category::actuator:
+    case Category::body:
+      return Stage::actuate;
+  }
+  return Stage::actuate;
+}
+
+const char* category_folder(Category c) {
+  switch (c) {
+    case Category::sensor:
+      return "sensors";
+    case Category::controller:
+      return "controllers";
+    case Category::actuator:
+      return "actuators";
+    case Category::body:
+      return "bodies";
+  }
+  return "plugins";
+}
+
+/// The ConfigureContext a component sees while the simulation is being built.
+class ConfigureContextImpl final : public ConfigureContext {
+ public:
+  ConfigureContextImpl(Simulation::Impl& sim, int component_index)
+      : sim_(sim), index_(component_index) {}
+
+  const Params& params() const override { return *slot().params; }
+  std::string_view id() const override { return slot().id; }
+  std::string_view signal_prefix() const override { return slot().prefix; }
+  std::string_view robot() const override {
+    return slot().robot >= 0 ? std::string_view(sim_.scene.robots[slot().robot].id)
+                             : std::string_view();
+  }
+  double tick_s() const override { return sim_.tick_s; }
+
+  BodyHandle body(std::string_view name) override {
+    if (name == "world" || name == "0") return BodyHandle{0};
+    const std::string n(name);
+    const auto& bodies = sim_.scene.bodies;
+    if (n.find('/') == std::string::npos) {
+      if (slot().robot < 0)
+        throw fail(
+            "a scene-level component names bodies by full path ('things/<id>' or "
+            "'robots/<robot>/solids/<id>'), got '" +
+            n + "'");
+      for (int b : sim_.scene.robots[slot().robot].bodies)
+        if (bodies[b].id == n) return BodyHandle{b + 1};
+      throw fail(unknown("solid", n, robot_body_names(slot().robot)));
+    }
+    std::vector<std::string> all;
+    for (std::size_t r = 0; r < sim_.scene.robots.size(); ++r)
+      for (int b : sim_.scene.robots[r].bodies) {
+        all.push_back(sim_.robot_prefix(static_cast<int>(r)) + "/solids/" +
+                      sim::segment(bodies[b].id));
+        if (all.back() == n) return BodyHandle{b + 1};
+      }
+    for (int b : sim_.scene.things) {
+      all.push_back("things/" + sim::segment(bodies[b].id));
+      if (all.back() == n) return BodyHandle{b + 1};
+    }
+    throw fail(unknown("body", n, all));
+  }
+
+  double body_mass_kg(BodyHandle b) const override {
+    return b.index <= 0 ? 0.0 : sim_.scene.bodies[b.index - 1].mass_kg;
+  }
+
+  AxisHandle axis(std::string_view name) override {
+    const std::string n(name);
+    std::vector<std::string> names;
+    for (std::size_t a = 0; a < sim_.axis_views.size(); ++a) {
+      const auto& ax = sim_.axis_views[a];
+      if (n.find('/') == std::string::npos) {
+        if (ax.robot != slot().robot) continue;
+        names.push_back(ax.name);
+      } else {
+        names.push_back(axis_prefix(AxisHandle{static_cast<std::int32_t>(a)}));
+      }
+      if (names.back() == n) return AxisHandle{static_cast<std::int32_t>(a)};
+    }
+    throw fail(unknown("axis", n, names));
+  }
+
+  bool axis_is_linear(AxisHandle a) const override { return sim_.axis_views.at(a.index).linear; }
+  std::string axis_prefix(AxisHandle a) const override {
+    const auto& ax = sim_.axis_views.at(a.index);
+    return (ax.robot >= 0 ? sim_.robot_prefix(ax.robot) : std::string("world")) + "/axes/" +
+           sim::segment(ax.name);
+  }
+
+  SignalHandle declare_signal(std::string_view name, std::string_view unit) override {
+    return declare_signal_at(slot().prefix + "/" + std::string(name), unit);
+  }
+  SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) override {
+    const std::string n(full_name);
+    if (sim_.signal_by_name.count(n)) throw fail("signal '" + n + "' is already declared");
+    const auto index = static_cast<std::int32_t>(sim_.published.size());
+    sim_.published.push_back(0.0);
+    sim_.add_signal(n, std::string(unit), sim::Source::published, index);
+    return SignalHandle{index};
+  }
+  InputHandle declare_input(std::string_view name, std::string_view unit, double initial) override {
+    return declare_input_at(slot().prefix + "/" + std::string(name), unit, initial);
+  }
+  InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
+                               double initial) override {
+    return InputHandle{
+        sim_.add_input(std::string(full_name), std::string(unit), initial, slot().where)};
+  }
+  StateHandle declare_state(std::string_view name, int count, double initial) override {
+    if (count <= 0) throw fail("state '" + std::string(name) + "' must have a positive size");
+    const auto offset = static_cast<std::int32_t>(sim_.state_initial.size());
+    sim_.state_initial.insert(sim_.state_initial.end(), static_cast<std::size_t>(count), initial);
+    return StateHandle{offset, count};
+  }
+  const SensorSpec* sensor_spec() const override {
+    if (slot().sensor < 0) return nullptr;
+    const scene::Sensor& s = sim_.scene.sensors[static_cast<std::size_t>(slot().sensor)];
+    SensorSpec& o = spec_;
+    o.kind = s.kind;
+    o.body = BodyHandle{s.body + 1};  // scene body i is body i + 1; -1 (world) is 0
+    o.pose = s.pose;
+    o.absolute_coords = s.absolute_coords;
+    o.is_tool = s.is_tool;
+    o.beam = {s.beam.length_m, s.beam.initial_width_m, s.beam.final_width_m, s.beam.angle_rad,
+              s.beam.rays};
+    o.noise = {s.noise.present, s.noise.stdev, s.noise.stdev_p, s.noise.offset,
+               s.noise.gain,    s.noise.var_k, s.noise.var_d};
+    o.tags = s.tags;
+    o.period_s = s.period_s;
+    o.force_fmax_N = s.force.fmax_N;
+    o.force_k1 = s.force.k1;
+    o.force_k2 = s.force.k2;
+    return &o;
+  }
+  std::vector<FloorPolygon> floor_polygons() const override {
+    std::vector<FloorPolygon> out;
+    for (const auto& t : sim_.scene.tracks) {
+      FloorPolygon p;
+      p.tag = t.tag;
+      p.z_m = t.z_m;
+      for (const auto& [x, y] : t.vertices) {
+        p.x_m.push_back(x);
+        p.y_m.push_back(y);
+      }
+      out.push_back(std::move(p));
+    }
+    return out;
+  }
+  int body_count() const override { return static_cast<int>(sim_.poses.size()); }
+  SignalHandle published_signal(std::string_view full_name) const override {
+    auto it = sim_.signal_by_name.find(std::string(full_name));
+    if (it != sim_.signal_by_name.end() &&
+        sim_.signal_entries[it->second].source == sim::Source::published)
+      return SignalHandle{sim_.signal_entries[it->second].index};
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < sim_.signal_infos.size(); ++i)
+      if (sim_.signal_entries[i].source == sim::Source::published)
+        names.push_back(sim_.signal_infos[i].name);
+    throw fail(unknown("published signal", std::string(full_name), names));
+  }
+  JointHandle joint(std::string_view name) override {
+    const std::string n(name);
+    const auto& joints = sim_.scene.joints;
+    std::vector<std::string> names;
+    for (std::size_t j = 0; j < joints.size(); ++j) {
+      if (n.find('/') == std::string::npos) {
+        if (joints[j].robot != slot().robot) continue;
+        names.push_back(joints[j].id);
+      } else {
+        names.push_back(sim_.joint_prefix(static_cast<int>(j)));
+      }
+      if (names.back() != n) continue;
+      sim_.multibody->request_joint_reactions();
+      if (sim_.multibody->joint_is_loop(static_cast<int>(j)))
+        sim_.warnings.push_back(
+            slot().where.str() + ": " + slot().label() + ": joint '" + joints[j].id +
+            "' closes a kinematic loop (realised by constraints); its reaction reads zero");
+      return JointHandle{static_cast<std::int32_t>(j)};
+    }
+    throw fail(unknown("joint", n, names));
+  }
+  BodyHandle joint_body(JointHandle j, int which) const override {
+    const auto& jt = sim_.scene.joints.at(static_cast<std::size_t>(j.index));
+    return BodyHandle{(which == 2 ? jt.body2 : jt.body1) + 1};  // scene -1 (world) is 0
+  }
+  std::string body_id(BodyHandle b) const override {
+    if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
+    return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;
+  }
+
+  void set_schedule(Stage stage, double period_s, double phase_s) override {
+    auto to_ticks = [&](double t, const char* what) {
+      const double ticks = t / sim_.tick_s;
+      const double rounded = std::round(ticks);
+      if (!std::isfinite(ticks) || std::abs(ticks - rounded) > 1e-6 * std::max(1.0, ticks))
+        throw fail(std::string(what) + " " + std::to_string(t) +
+                   " s is not a whole multiple of the physics step " + std::to_string(sim_.tick_s) +
+                   " s");
+      return static_cast<std::int64_t>(rounded);
+    };
+    const std::int64_t period = to_ticks(period_s, "period");
+    const std::int64_t phase = to_ticks(phase_s, "phase");
+    if (period < 1) throw fail("period must be at least one physics step");
+    if (phase < 0) throw fail("phase must not be negative");
+    sim::ComponentSlot& s = sim_.components[index_];
+    s.stage = stage;
+    s.period_ticks = period;
+    s.phase_ticks = phase;
+  }
+
+ private:
+  sim::ComponentSlot& slot() const { return sim_.components[index_]; }
+  Error fail(const std::string& message) const {
+    return Error(ErrorKind::plugin, slot().where, slot().label() + ": " + message);
+  }
+  static std::string unknown(const char* what, const std::string& name,
+                             const std::vector<std::string>& names) {
+    return sim::unknown_name_message(what, name, names);
+  }
+  std::vector<std::string> robot_body_names(int robot) const {
+    std::vector<std::string> names;
+    for (int b : sim_.scene.robots[robot].bodies)
+      names.push_back(sim_.scene.bodies[b].id);
+    return names;
+  }
+
+  Simulation::Impl& sim_;
+  int index_;
+  mutable SensorSpec spec_;
+};
+
+}  // namespace
+
+void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std::string& kind,
+                                     const std::string& id, int robot,
+                                     const scene::ParamSource& params, const Location& where,
+                                     std::optional<Category> required) {
+  const plugin::KindInfo* found = nullptr;
+  try {
+    found = &registry.find(kind);
+  } catch (const Error& e) {
+    throw Error(ErrorKind::plugin, where, e.message());  // say where the scene asks for it
+  }
+  const plugin::KindInfo& info = *found;
+  if (required && info.category != *required)
+    throw Error(ErrorKind::plugin, where,
+                "kind '" + kind + "' from " + info.library.string() + " is not a sensor kind");
+  sim::ComponentSlot slot;
+  slot.kind = kind;
+  slot.id = id;
+  slot.robot = robot;
+  slot.category = info.category;
+  slot.stage = default_stage(info.category);
+  slot.where = where;
+  slot.prefix = (robot >= 0 ? robot_prefix(robot) + "/" : std::string()) +
+                category_folder(info.category) + "/" + sim::segment(id);
+  slot.params = std::make_unique<scene::ElementParams>(params);
+  if (info.category == Category::controller) {
+    slot.period_ticks = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(std::llround(scene.settings.control_period_s / tick_s)));
+  }
+  slot.component = registry.create(kind);
+  components.push_back(std::move(slot));
+}
+
+void Simulation::Impl::configure_components() {
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    ConfigureContextImpl ctx(*this, static_cast<int>(c));
+    try {
+      components[c].component->configure(ctx);
+    } catch (const Error&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw Error(ErrorKind::plugin, components[c].where,
+                  components[c].label() + " refused its configuration: " + e.what());
+    }
+  }
+  for (std::size_t c = 0; c < components.size(); ++c)
+    stage_order[static_cast<std::size_t>(components[c].stage)].push_back(static_cast<int>(c));
+}
+
+// --- façade ------------------------------------------------------------------------------------
+
+}  // namespace s2sim

@@ -1,0 +1,114 @@
+// Simulation::load: the scene, the model, contact, ray casting and every component.
+#include "sim/drive_train_components.hpp"
+#include "sim/names.hpp"
+#include "sim/simulation_impl.hpp"
+
+#include <cmath>
+
+namespace s2sim {
+
+std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_path,
+                                             const SimulationOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  Impl& m = *impl;
+  m.options = options;
+  scene::LoadOptions load_options;
+  load_options.constants = options.constants;
+  m.scene = scene::load_scene(scene_path, load_options);
+  m.warnings = m.scene.warnings;
+
+  if (options.physics_step_s) m.scene.settings.physics_step_s = *options.physics_step_s;
+  if (options.substeps) m.scene.settings.substeps = *options.substeps;
+  if (!(m.scene.settings.physics_step_s > 0) || !std::isfinite(m.scene.settings.physics_step_s))
+    throw Error(ErrorKind::usage, "the physics step must be positive, got " +
+                                      std::to_string(m.scene.settings.physics_step_s) + " s");
+  if (m.scene.settings.substeps < 1)
+    throw Error(ErrorKind::usage,
+                "substeps must be at least 1, got " + std::to_string(m.scene.settings.substeps));
+  m.tick_s = m.scene.settings.physics_step_s;
+
+  m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
+  m.contacts = std::make_unique<contact::ContactWorld>(m.scene, m.multibody->apparent_mass_kg());
+  m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
+  for (const auto& w : m.multibody->warnings())
+    m.warnings.push_back(w);
+  for (const auto& ax : m.multibody->axes())
+    m.axis_views.push_back({ax.name, ax.robot, ax.joint, ax.linear});
+  m.poses.resize(static_cast<std::size_t>(m.multibody->body_count()));
+  m.twists.resize(m.poses.size());
+  m.axis_position.assign(m.axis_views.size(), 0.0);
+  m.axis_velocity.assign(m.axis_views.size(), 0.0);
+  m.axis_force_applied.assign(m.axis_views.size(), 0.0);
+  m.register_kernel_signals();
+
+  // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
+  // drive train of every axis (sim/drive_train_components.hpp).
+  const bool needs_plugins =
+      !m.scene.sensors.empty() || !m.scene.plugins.empty() || !m.axis_views.empty();
+  std::optional<plugin::PluginRegistry> registry;
+  if (needs_plugins)
+    registry.emplace(options.plugin_path.empty() ? plugin::PluginRegistry::default_search_path()
+                                                 : options.plugin_path);
+  for (const auto& sensor : m.scene.sensors) {
+    if (!registry->has(sensor.kind)) {
+      m.warnings.push_back(sensor.where.str() + ": no plugin provides the sensor kind '" +
+                           sensor.kind + "'; sensor '" + sensor.id + "' is inert");
+      continue;
+    }
+    m.add_component(*registry, sensor.kind, sensor.id, sensor.robot, sensor.params, sensor.where,
+                    Category::sensor);
+    m.components.back().sensor = static_cast<int>(&sensor - m.scene.sensors.data());
+  }
+  for (const auto& p : m.scene.plugins)
+    m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+  std::vector<sim::DriveAxis> drive_axes;
+  for (const auto& ax : m.multibody->axes())
+    drive_axes.push_back({ax.name,
+                          (ax.robot >= 0 ? m.robot_prefix(ax.robot) : std::string("world")) +
+                              "/axes/" + sim::segment(ax.name),
+                          ax.robot, ax.joint, ax.which, ax.linear});
+  for (auto& c : sim::drive_train_components(m.scene, drive_axes)) {
+    if (!registry->has(c.kind)) {
+      // Refuse rather than run unpowered and frictionless axes (docs/models/dc-motor.md).
+      std::string why;
+      try {
+        (void)registry->find(c.kind);
+      } catch (const Error& e) {
+        why = e.message();
+      }
+      throw Error(ErrorKind::plugin, c.where,
+                  "axis '" + c.prefix.substr(0, c.prefix.rfind('/')) +
+                      "' needs the drive-train kind '" + c.kind +
+                      "' (plugin drive_train, libdrive_train.so): " + why);
+    }
+    m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
+    m.components.back().prefix = c.prefix;
+  }
+  m.configure_components();
+
+  m.state = m.state_initial;
+  m.random.assign(4 * m.components.size(), 0);
+  m.world.body_pose = m.poses.data();
+  m.world.body_twist = m.twists.data();
+  m.world.body_wrench = m.multibody->applied_wrenches();
+  m.world.axis_position = m.axis_position.data();
+  m.world.axis_velocity = m.axis_velocity.data();
+  m.world.axis_force = m.multibody->applied_axis_forces();
+  m.world.axis_friction = m.multibody->applied_axis_friction();
+  m.world.inputs = m.inputs.data();
+  m.world.signals = m.published.data();
+  m.world.state = m.state.data();
+  m.world.random_state = m.random.data();
+  m.world.tick_s = m.tick_s;
+  m.world.contacts = m.contacts->contacts();
+  m.world.contact_count = m.contacts->contact_count();
+  m.contacts->set_inputs(m.inputs.data());
+  m.ray_caster = std::make_unique<raycast::RayCaster>(m.scene, m.poses.data());
+  m.world.kernel = m.ray_caster.get();
+  m.world.cast_ray = &raycast::RayCaster::callback;
+  m.world.joint_reaction = m.multibody->joint_reactions();
+  m.reset();
+  return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
+}
+
+}  // namespace s2sim

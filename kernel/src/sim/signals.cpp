@@ -1,0 +1,205 @@
+// The signal and input registry: every readable value has a name, a unit and a source.
+#include "sim/names.hpp"
+#include "sim/simulation_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim {
+
+std::size_t Simulation::Impl::add_signal(std::string name, std::string unit, sim::Source source,
+                                         std::int32_t index) {
+  // Duplicate scene IDs are legal in SimTwo; later ones get a "#n" suffix.
+  std::string unique = name;
+  for (int n = 2; signal_by_name.count(unique); ++n)
+    unique = name + "#" + std::to_string(n);
+  signal_by_name.emplace(unique, signal_infos.size());
+  signal_infos.push_back({unique, std::move(unit)});
+  signal_entries.push_back({source, index});
+  return signal_infos.size() - 1;
+}
+
+/// Declares an input or joins an existing one (units must agree).
+std::int32_t Simulation::Impl::add_input(const std::string& name, const std::string& unit,
+                                         double initial, const Location& where) {
+  if (auto it = input_by_name.find(name); it != input_by_name.end()) {
+    if (input_infos[it->second].unit != unit)
+      throw Error(ErrorKind::plugin, where,
+                  "input '" + name + "' is declared with unit '" + unit +
+                      "' but already exists with unit '" + input_infos[it->second].unit + "'");
+    return static_cast<std::int32_t>(it->second);
+  }
+  const auto index = static_cast<std::int32_t>(inputs.size());
+  input_by_name.emplace(name, inputs.size());
+  input_infos.push_back({name, unit});
+  inputs.push_back(initial);
+  inputs_initial.push_back(initial);
+  add_signal(name, unit, sim::Source::input, index);
+  return index;
+}
+
+std::string Simulation::Impl::robot_prefix(int robot) const {
+  return "robots/" + sim::segment(scene.robots[robot].id);
+}
+/// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
+std::string Simulation::Impl::joint_prefix(int joint) const {
+  const auto& jt = scene.joints[static_cast<std::size_t>(joint)];
+  return (jt.robot >= 0 ? robot_prefix(jt.robot) : std::string("world")) + "/joints/" +
+         sim::segment(jt.id);
+}
+
+void Simulation::Impl::register_kernel_signals() {
+  add_signal("time", "s", sim::Source::time, 0);
+  add_signal("contacts/count", "1", sim::Source::contact_count, 0);
+  auto add_body = [&](const std::string& p, int body) {
+    const std::pair<const char*, sim::Source> fields[] = {
+        {"x", sim::Source::body_x},         {"y", sim::Source::body_y},
+        {"z", sim::Source::body_z},         {"roll", sim::Source::body_roll},
+        {"pitch", sim::Source::body_pitch}, {"yaw", sim::Source::body_yaw},
+        {"vx", sim::Source::body_vx},       {"vy", sim::Source::body_vy},
+        {"vz", sim::Source::body_vz},       {"wx", sim::Source::body_wx},
+        {"wy", sim::Source::body_wy},       {"wz", sim::Source::body_wz}};
+    for (const auto& [name, source] : fields) {
+      const std::string_view n = name;
+      const char* unit = n[0] == 'v' ? "m/s" : n[0] == 'w' ? "rad/s" : n.size() == 1 ? "m" : "rad";
+      add_signal(p + "/" + name, unit, source, body);
+    }
+    add_signal(p + "/contact_force", "N", sim::Source::body_contact_force, body);
+  };
+  for (std::size_t r = 0; r < scene.robots.size(); ++r) {
+    const auto& robot = scene.robots[r];
+    if (robot.main_body >= 0) add_body(robot_prefix(static_cast<int>(r)), robot.main_body + 1);
+    for (int b : robot.bodies)
+      add_body(robot_prefix(static_cast<int>(r)) + "/solids/" + sim::segment(scene.bodies[b].id),
+               b + 1);
+  }
+  for (int b : scene.things)
+    add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
+  // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
+  for (std::int32_t body : contacts->belt_bodies()) {
+    const auto& b = scene.bodies[body - 1];
+    const std::string p = b.robot >= 0 ? robot_prefix(b.robot) + "/solids/" + sim::segment(b.id)
+                                       : "things/" + sim::segment(b.id);
+    contacts->set_belt_speed_input(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
+  }
+  for (std::size_t a = 0; a < axis_views.size(); ++a) {
+    const AxisView& ax = axis_views[a];
+    const std::string p = (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) +
+                          "/axes/" + sim::segment(ax.name);
+    const auto i = static_cast<std::int32_t>(a);
+    add_signal(p + "/pos", ax.linear ? "m" : "rad", sim::Source::axis_position, i);
+    add_signal(p + "/speed", ax.linear ? "m/s" : "rad/s", sim::Source::axis_velocity, i);
+    add_signal(p + "/torque", ax.linear ? "N" : "N*m", sim::Source::axis_force, i);
+    ref_torque_input.push_back(
+        add_input(p + "/ref_torque", ax.linear ? "N" : "N*m", 0.0, scene.joints[ax.joint].where));
+  }
+}
+
+double Simulation::Impl::read_signal(std::size_t i) const {
+  const sim::SignalEntry& e = signal_entries[i];
+  const std::int32_t k = e.index;
+  switch (e.source) {
+    case sim::Source::published:
+      return published[k];
+    case sim::Source::input:
+      return inputs[k];
+    case sim::Source::time:
+      return static_cast<double>(tick) * tick_s;
+    case sim::Source::body_x:
+      return poses[k].position.x;
+    case sim::Source::body_y:
+      return poses[k].position.y;
+    case sim::Source::body_z:
+      return poses[k].position.z;
+    case sim::Source::body_roll:
+      return std::atan2(poses[k].rotation.m[2][1], poses[k].rotation.m[2][2]);
+    case sim::Source::body_pitch:
+      return std::asin(std::clamp(-poses[k].rotation.m[2][0], -1.0, 1.0));
+    case sim::Source::body_yaw:
+      return yaw_of(poses[k].rotation);
+    case sim::Source::body_vx:
+      return twists[k].linear_m_s.x;
+    case sim::Source::body_vy:
+      return twists[k].linear_m_s.y;
+    case sim::Source::body_vz:
+      return twists[k].linear_m_s.z;
+    case sim::Source::body_wx:
+      return twists[k].angular_rad_s.x;
+    case sim::Source::body_wy:
+      return twists[k].angular_rad_s.y;
+    case sim::Source::body_wz:
+      return twists[k].angular_rad_s.z;
+    case sim::Source::axis_position:
+      return axis_position[k];
+    case sim::Source::axis_velocity:
+      return axis_velocity[k];
+    case sim::Source::axis_force:
+      return axis_force_applied[k];
+    case sim::Source::body_contact_force: {
+      Vec3 sum;
+      const ContactInfo* c = contacts->contacts();
+      for (std::int32_t n = 0; n < *contacts->contact_count(); ++n) {
+        if (c[n].body_a.index == k) sum += c[n].force_N;
+        if (c[n].body_b.index == k) sum -= c[n].force_N;
+      }
+      return norm(sum);
+    }
+    case sim::Source::contact_count:
+      return *contacts->contact_count();
+  }
+  return 0.0;
+}
+
+std::size_t Simulation::signal_count() const {
+  return impl_->signal_infos.size();
+}
+const SignalInfo& Simulation::signal_info(std::size_t i) const {
+  return impl_->signal_infos.at(i);
+}
+std::optional<std::size_t> Simulation::find_signal(std::string_view name) const {
+  auto it = impl_->signal_by_name.find(std::string(name));
+  if (it == impl_->signal_by_name.end()) return std::nullopt;
+  return it->second;
+}
+std::size_t Simulation::signal_index(std::string_view name) const {
+  if (auto i = find_signal(name)) return *i;
+  std::vector<std::string> names;
+  for (const auto& s : impl_->signal_infos)
+    names.push_back(s.name);
+  throw Error(ErrorKind::usage, sim::unknown_name_message("signal", name, names));
+}
+double Simulation::signal(std::size_t index) const {
+  return impl_->read_signal(index);
+}
+std::vector<std::size_t> Simulation::match_signals(std::string_view pattern) const {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < impl_->signal_infos.size(); ++i)
+    if (sim::glob_match(pattern, impl_->signal_infos[i].name)) out.push_back(i);
+  return out;
+}
+
+std::size_t Simulation::input_count() const {
+  return impl_->input_infos.size();
+}
+const SignalInfo& Simulation::input_info(std::size_t i) const {
+  return impl_->input_infos.at(i);
+}
+std::size_t Simulation::input_index(std::string_view name) const {
+  auto it = impl_->input_by_name.find(std::string(name));
+  if (it != impl_->input_by_name.end()) return it->second;
+  std::vector<std::string> names;
+  for (const auto& s : impl_->input_infos)
+    names.push_back(s.name);
+  throw Error(ErrorKind::usage, sim::unknown_name_message("input", name, names));
+}
+void Simulation::set_input(std::size_t index, double value) {
+  if (!std::isfinite(value))
+    throw Error(ErrorKind::usage, "input '" + impl_->input_infos.at(index).name +
+                                      "' must be finite, got " + std::to_string(value));
+  impl_->inputs.at(index) = value;
+}
+double Simulation::input(std::size_t index) const {
+  return impl_->inputs.at(index);
+}
+
+}  // namespace s2sim

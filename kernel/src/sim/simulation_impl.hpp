@@ -1,0 +1,142 @@
+#pragma once
+/// \file
+/// Simulation's internals, shared by the kernel's sim/ files: the façade's Impl with its
+/// buffers, its signal registry and its component slots. Which file does what:
+/// - load.cpp: builds a Simulation from a scene (model, contact, rays, components);
+/// - signals.cpp: the signal and input registry and the façade's signal/input calls;
+/// - component_host.cpp: component instances and the ConfigureContext they configure through;
+/// - step.cpp: what happens in a tick, in order; reset;
+/// - snapshot.cpp: save, restore and placing bodies;
+/// - simulation.cpp: the remaining façade calls.
+
+#include <s2sim/kernel/simulation.hpp>
+
+#include "contact/contact_world.hpp"
+#include "model/multibody.hpp"
+#include "plugin/plugin_loader.hpp"
+#include "raycast/ray_caster.hpp"
+#include "scene/element_params.hpp"
+#include "sim/stage_profile.hpp"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace s2sim {
+namespace sim {
+
+/// Where a readable signal's value lives.
+enum class Source : std::uint8_t {
+  published,  // a component's signal slot
+  input,
+  time,
+  body_x,
+  body_y,
+  body_z,
+  body_roll,
+  body_pitch,
+  body_yaw,
+  body_vx,
+  body_vy,
+  body_vz,
+  body_wx,
+  body_wy,
+  body_wz,
+  axis_position,
+  axis_velocity,
+  axis_force,
+  body_contact_force,
+  contact_count,
+};
+
+struct SignalEntry {
+  Source source;
+  std::int32_t index;
+};
+
+/// One component instance: a plugin object, where it came from and its schedule.
+struct ComponentSlot {
+  plugin::ComponentPtr component;
+  std::string kind;
+  std::string id;
+  std::string prefix;  // signal prefix
+  int robot = -1;
+  Category category = Category::actuator;
+  Stage stage = Stage::actuate;
+  std::int64_t period_ticks = 1;
+  std::int64_t phase_ticks = 0;
+  std::unique_ptr<scene::ElementParams> params;
+  Location where;
+  int sensor = -1;  // index into scene.sensors when made for a scene sensor element
+  std::string label() const { return prefix + " (kind '" + kind + "')"; }
+};
+
+}  // namespace sim
+
+struct Simulation::Impl {
+  scene::Scene scene;
+  SimulationOptions options;
+  std::vector<std::string> warnings;
+  double tick_s = 1e-3;
+  std::int64_t tick = 0;
+  std::unique_ptr<model::Multibody> multibody;
+  std::unique_ptr<contact::ContactWorld> contacts;
+  std::vector<AxisView> axis_views;
+
+  // Per-tick buffers the components see through detail::WorldView.
+  std::vector<Pose> poses;
+  std::vector<Twist> twists;
+  std::vector<double> axis_position, axis_velocity, axis_force_applied;
+  std::vector<double> inputs, inputs_initial;
+  std::vector<double> published;
+  std::vector<double> state, state_initial;
+  std::vector<std::uint64_t> random;
+  detail::WorldView world;
+
+  std::vector<SignalInfo> signal_infos;
+  std::vector<sim::SignalEntry> signal_entries;
+  std::unordered_map<std::string, std::size_t> signal_by_name;
+  std::vector<SignalInfo> input_infos;
+  std::unordered_map<std::string, std::size_t> input_by_name;
+  std::vector<std::int32_t> ref_torque_input;  // per axis
+
+  std::vector<sim::ComponentSlot> components;
+  std::array<std::vector<int>, 4> stage_order;
+
+  // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
+  std::unique_ptr<raycast::RayCaster> ray_caster;
+
+  // Per-stage timing of the tick pipeline (Simulation::set_profiling); null when off.
+  std::unique_ptr<sim::StageProfile> profile;
+
+  // --- registration (signals.cpp) --------------------------------------------------------------
+  std::size_t add_signal(std::string name, std::string unit, sim::Source source,
+                         std::int32_t index);
+  /// Declares an input or joins an existing one (units must agree).
+  std::int32_t add_input(const std::string& name, const std::string& unit, double initial,
+                         const Location& where);
+  std::string robot_prefix(int robot) const;
+  /// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
+  std::string joint_prefix(int joint) const;
+  void register_kernel_signals();
+  double read_signal(std::size_t i) const;
+
+  // --- components (component_host.cpp) ---------------------------------------------------------
+  void add_component(plugin::PluginRegistry& registry, const std::string& kind,
+                     const std::string& id, int robot, const scene::ParamSource& params,
+                     const Location& where, std::optional<Category> required);
+  void configure_components();
+
+  // --- stepping (step.cpp) ---------------------------------------------------------------------
+  /// The buffers the components read, from the multibody's state after a tick.
+  void refresh();
+  void reset();
+  /// One tick: the scheduled stages, then the physics.
+  void step_once();
+};
+
+}  // namespace s2sim

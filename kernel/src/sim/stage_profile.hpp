@@ -1,0 +1,62 @@
+#pragma once
+/// \file
+/// Time spent per stage of the tick pipeline (sim/step.cpp), for `s2sim-bench --profile`.
+/// Off unless asked for: a null profile costs one pointer test per stage.
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+
+namespace s2sim::sim {
+
+/// The stages of a tick, in the order they run (docs/architecture.md).
+enum class PipelineStage : std::uint8_t {
+  sense,          ///< sensor components
+  control,        ///< controllers
+  motor_control,  ///< motor controllers
+  actuate,        ///< motors, servos and other actuators write their loads
+  collide,        ///< contact: narrow phase and contact forces (per substep)
+  forces,         ///< the substep's loads handed to the multibody (per substep)
+  accelerations,  ///< M·u' = f, Simbody (per substep)
+  kick,           ///< u += h·u' (per substep)
+  brakes,         ///< axis Coulomb friction at velocity level (per substep)
+  drift,          ///< q += h·N(q)·u (per substep)
+  project,        ///< loop constraints (per substep)
+  finish,         ///< finite check, body read-out, sensors' view refreshed
+  count
+};
+
+/// Display name of a stage.
+const char* stage_name(PipelineStage stage);
+
+/// Accumulated wall time and calls per stage.
+struct StageProfile {
+  static constexpr std::size_t kStages = static_cast<std::size_t>(PipelineStage::count);
+  std::array<double, kStages> seconds{};
+  std::array<std::int64_t, kStages> calls{};
+};
+
+/// Adds the time from construction to destruction to one stage of `profile` (if not null).
+class StageTimer {
+ public:
+  StageTimer(StageProfile* profile, PipelineStage stage) : profile_(profile), stage_(stage) {
+    if (profile_) start_ = std::chrono::steady_clock::now();
+  }
+  ~StageTimer() {
+    if (!profile_) return;
+    const auto i = static_cast<std::size_t>(stage_);
+    profile_->seconds[i] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    ++profile_->calls[i];
+  }
+  StageTimer(const StageTimer&) = delete;
+  StageTimer& operator=(const StageTimer&) = delete;
+
+ private:
+  StageProfile* profile_;
+  PipelineStage stage_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace s2sim::sim

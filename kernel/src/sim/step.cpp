@@ -1,0 +1,183 @@
+// What happens in a tick, and in which order (docs/architecture.md):
+//
+//   scheduled stages   sense → control → motor control → actuate
+//                      (each component whose period is due; they read the state of the tick's
+//                      start and write loads, inputs and published signals)
+//   physics, per substep
+//                      collide → forces → accelerations → kick → brakes → drift → project
+//   finish             finite check, bodies read out, the components' view refreshed
+//
+// A motor's torque is computed in `actuate` (the dc_motor component), contact forces in
+// `collide` (contact::ContactWorld), sensor readings in `sense` of the next tick, from the
+// state this tick ends with.
+#include "sim/step.hpp"
+
+#include "sim/simulation_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace s2sim {
+namespace sim {
+
+const char* stage_name(PipelineStage stage) {
+  static constexpr const char* kNames[] = {"sense",   "control", "motor control", "actuate",
+                                           "collide", "forces",  "accelerations", "kick",
+                                           "brakes",  "drift",   "project",       "finish"};
+  static_assert(std::size(kNames) == StageProfile::kStages);
+  return kNames[static_cast<std::size_t>(stage)];
+}
+
+namespace {
+
+/// One substep of the leapfrog (docs/models/multibody.md).
+void physics_substep(model::Multibody& mb, model::SubstepForces* contact, int substep,
+                     StageProfile* profile) {
+  if (contact) {
+    StageTimer timer(profile, PipelineStage::collide);
+    const Pose* poses = nullptr;
+    const Twist* twists = nullptr;
+    mb.current_bodies(poses, twists);
+    contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+  }
+  {
+    StageTimer timer(profile, PipelineStage::forces);
+    mb.forces();
+  }
+  {
+    StageTimer timer(profile, PipelineStage::accelerations);
+    mb.accelerations(substep == mb.substeps() - 1);
+  }
+  {
+    StageTimer timer(profile, PipelineStage::kick);
+    mb.kick();
+  }
+  {
+    StageTimer timer(profile, PipelineStage::brakes);
+    mb.brake();
+  }
+  {
+    StageTimer timer(profile, PipelineStage::drift);
+    mb.drift(substep);
+  }
+  {
+    StageTimer timer(profile, PipelineStage::project);
+    mb.project();
+  }
+}
+
+std::uint64_t fnv1a(std::string_view s) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+}  // namespace
+
+void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProfile* profile) {
+  try {
+    for (int k = 0; k < mb.substeps(); ++k)
+      physics_substep(mb, contact, k, profile);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    // Simbody refuses a state that went non-finite inside the tick (a blow-up).
+    throw Error(ErrorKind::runtime, "the simulation failed at t = " + std::to_string(mb.time_s()) +
+                                        " s (" + e.what() +
+                                        "); the scene may need a smaller step or more substeps");
+  }
+  StageTimer timer(profile, PipelineStage::finish);
+  mb.finish_tick();
+}
+
+}  // namespace sim
+
+void Simulation::Impl::step_once() {
+  Wrench* wrenches = multibody->applied_wrenches();
+  double* axis_force = multibody->applied_axis_forces();
+  double* axis_friction = multibody->applied_axis_friction();
+  std::fill(wrenches, wrenches + poses.size(), Wrench{});
+  std::fill(axis_force, axis_force + axis_views.size(), 0.0);
+  std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
+  // The scheduled stages, in Stage order: sense, control, motor control, actuate.
+  for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
+    sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
+    for (int c : stage_order[stage]) {
+      const sim::ComponentSlot& slot = components[c];
+      const std::int64_t since = tick - slot.phase_ticks;
+      if (since < 0 || since % slot.period_ticks != 0) continue;
+      StepContext ctx(&world, c, slot.period_ticks);
+      slot.component->update(ctx);
+    }
+  }
+  for (std::size_t a = 0; a < axis_views.size(); ++a)
+    axis_force[a] += inputs[ref_torque_input[a]];
+  std::copy(axis_force, axis_force + axis_views.size(), axis_force_applied.begin());
+  sim::physics_tick(*multibody, contacts.get(), profile.get());
+  ++tick;
+  sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
+  refresh();
+  world.contacts = contacts->contacts();  // the buffer may have grown
+}
+
+void Simulation::Impl::refresh() {
+  multibody->read(poses.data(), twists.data(), axis_position.data(), axis_velocity.data());
+  world.time_s = static_cast<double>(tick) * tick_s;
+  world.tick = tick;
+  if (ray_caster) ray_caster->invalidate();
+}
+
+void Simulation::Impl::reset() {
+  tick = 0;
+  multibody->reset();
+  contacts->reset();
+  // Copy in place: the WorldView points into these buffers.
+  std::copy(inputs_initial.begin(), inputs_initial.end(), inputs.begin());
+  std::copy(state_initial.begin(), state_initial.end(), state.begin());
+  std::fill(published.begin(), published.end(), 0.0);
+  std::fill(axis_force_applied.begin(), axis_force_applied.end(), 0.0);
+  for (std::size_t c = 0; c < components.size(); ++c)
+    RandomStream::seed(random.data() + 4 * c, options.seed ^ sim::fnv1a(components[c].prefix));
+  refresh();
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    StepContext ctx(&world, static_cast<std::int32_t>(c), components[c].period_ticks);
+    components[c].component->initialize(ctx);
+  }
+}
+
+void Simulation::step(std::int64_t ticks) {
+  for (std::int64_t i = 0; i < ticks; ++i)
+    impl_->step_once();
+}
+
+void Simulation::run_until(double t_s) {
+  const auto target = static_cast<std::int64_t>(std::llround(t_s / impl_->tick_s));
+  while (impl_->tick < target)
+    impl_->step_once();
+}
+
+void Simulation::reset() {
+  impl_->reset();
+}
+void Simulation::set_profiling(bool on) {
+  if (!on) {
+    impl_->profile.reset();
+  } else if (!impl_->profile) {
+    impl_->profile = std::make_unique<sim::StageProfile>();
+  }
+}
+
+std::vector<Simulation::StageTime> Simulation::stage_times() const {
+  std::vector<StageTime> out;
+  if (!impl_->profile) return out;
+  for (std::size_t i = 0; i < sim::StageProfile::kStages; ++i)
+    out.push_back({sim::stage_name(static_cast<sim::PipelineStage>(i)), impl_->profile->seconds[i],
+                   impl_->profile->calls[i]});
+  return out;
+}
+
+}  // namespace s2sim

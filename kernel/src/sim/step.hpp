@@ -1,0 +1,20 @@
+#pragma once
+/// \file
+/// The physics part of a tick (sim/step.cpp): the substep pipeline over the multibody and the
+/// contact layer. Simulation runs it after the scheduled components; model and contact tests
+/// run it alone.
+
+#include "model/multibody.hpp"
+#include "model/substep_forces.hpp"
+#include "sim/stage_profile.hpp"
+
+namespace s2sim::sim {
+
+/// Advances `multibody` by one tick: per substep, collide (`contact`, may be null) → forces →
+/// accelerations → kick → brakes → drift → project; then the end-of-tick read-out and finite
+/// check. Throws s2sim::Error (runtime) when the state becomes non-finite or Simbody refuses
+/// it. `profile` (may be null) accumulates the time per stage.
+void physics_tick(model::Multibody& multibody, model::SubstepForces* contact,
+                  StageProfile* profile = nullptr);
+
+}  // namespace s2sim::sim
