@@ -1,9 +1,9 @@
 #include <s2sim/kernel/simulation.hpp>
 
+#include "collision/ray_caster.hpp"
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
 #include "plugin/plugin_loader.hpp"
-#include "raycast/ray_caster.hpp"
 #include "scene/element_params.hpp"
 #include "sim/drive_train_components.hpp"
 #include "sim/names.hpp"
@@ -122,6 +122,7 @@ struct Simulation::Impl {
   double tick_s = 1e-3;
   std::int64_t tick = 0;
   std::unique_ptr<model::Multibody> multibody;
+  std::unique_ptr<collision::ShapeTable> shapes;
   std::unique_ptr<contact::ContactWorld> contacts;
   std::vector<AxisView> axis_views;
 
@@ -146,7 +147,7 @@ struct Simulation::Impl {
   std::array<std::vector<int>, 4> stage_order;
 
   // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
-  std::unique_ptr<raycast::RayCaster> ray_caster;
+  std::unique_ptr<collision::RayCaster> ray_caster;
 
   // --- registration -----------------------------------------------------------------------
 
@@ -643,7 +644,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.tick_s = m.scene.settings.physics_step_s;
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
-  m.contacts = std::make_unique<contact::ContactWorld>(m.scene, m.multibody->apparent_mass_kg());
+  m.shapes = std::make_unique<collision::ShapeTable>(m.scene);
+  m.contacts =
+      std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   m.multibody->set_substep_forces(m.contacts.get());
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);
@@ -718,9 +721,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.contacts = m.contacts->contacts();
   m.world.contact_count = m.contacts->contact_count();
   m.contacts->set_inputs(m.inputs.data());
-  m.ray_caster = std::make_unique<raycast::RayCaster>(m.scene, m.poses.data());
+  m.ray_caster = std::make_unique<collision::RayCaster>(*m.shapes, m.poses.data());
   m.world.kernel = m.ray_caster.get();
-  m.world.cast_ray = &raycast::RayCaster::callback;
+  m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

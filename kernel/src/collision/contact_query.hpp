@@ -1,0 +1,51 @@
+#pragma once
+/// \file
+/// The contact query on placed shapes: which shapes reach a static plane and their points
+/// there, which pairs of shapes have overlapping boxes (broad phase), and a pair's points
+/// (narrow phase: analytic for spheres, FCL for the rest). The query's buffers (the broad
+/// phase's, FCL's solver) belong to the caller's instance; the table is only read.
+
+#include "collision/broad_phase.hpp"
+#include "collision/contact_point.hpp"
+#include "collision/fcl_pairs.hpp"
+#include "collision/placement.hpp"
+#include "collision/shape_table.hpp"
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace s2sim::collision {
+
+class ContactQuery {
+ public:
+  /// Reserves every buffer for the table's shapes.
+  explicit ContactQuery(const ShapeTable& table);
+
+  /// Forgets what the buffers learnt (sizes back to those at load).
+  void reset();
+
+  /// Points of shape `s` against plane `p` of the table (written to `out`, at most
+  /// kMaxPointsPerPair); 0 without calling the narrow phase when its box stays clear.
+  static int plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
+                          std::int32_t p, ContactPoint* out);
+
+  /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order. Allocates
+  /// only when more pairs overlap than ever before.
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs(
+      const Placement& placement);
+
+  /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
+  /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
+  /// gives them stable feature ids.
+  int pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
+                  std::int32_t b, ContactPoint* out, bool& renumbered);
+
+ private:
+  int count_ = 0;
+  BroadPhase broad_phase_;
+  FclPairs fcl_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
+};
+
+}  // namespace s2sim::collision
