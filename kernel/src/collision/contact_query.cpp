@@ -1,9 +1,5 @@
 #include "collision/contact_query.hpp"
 
-#include "collision/contact_primitives.hpp"
-
-#include <cmath>
-
 namespace s2sim::collision {
 
 ContactQuery::ContactQuery(const ShapeTable& table) : count_(table.size()) {
@@ -13,18 +9,6 @@ ContactQuery::ContactQuery(const ShapeTable& table) : count_(table.size()) {
 
 void ContactQuery::reset() {
   broad_phase_.resize(count_);
-}
-
-int ContactQuery::plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
-                               std::int32_t p, ContactPoint* out) {
-  const Aabb& box = placement.boxes()[s];
-  const Plane& plane = table.planes()[static_cast<std::size_t>(p)];
-  const Vec3 center = (box.min + box.max) * 0.5, half = (box.max - box.min) * 0.5;
-  const double reach = std::abs(plane.normal.x) * half.x + std::abs(plane.normal.y) * half.y +
-                       std::abs(plane.normal.z) * half.z;
-  if (dot(plane.normal, center) - reach >= plane.offset_m) return 0;
-  return plane_contacts(table.shapes()[static_cast<std::size_t>(s)], placement.world()[s], plane,
-                        out);
 }
 
 const std::vector<std::pair<std::int32_t, std::int32_t>>& ContactQuery::overlapping_pairs(

@@ -7,10 +7,12 @@
 
 #include "collision/broad_phase.hpp"
 #include "collision/contact_point.hpp"
+#include "collision/contact_primitives.hpp"
 #include "collision/fcl_pairs.hpp"
 #include "collision/placement.hpp"
 #include "collision/shape_table.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -25,10 +27,11 @@ class ContactQuery {
   /// Forgets what the buffers learnt (sizes back to those at load).
   void reset();
 
-  /// Points of shape `s` against plane `p` of the table (written to `out`, at most
-  /// kMaxPointsPerPair); 0 without calling the narrow phase when its box stays clear.
-  static int plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
-                          std::int32_t p, ContactPoint* out);
+  /// Points of shape `s` against each static plane p of the table its box reaches: calls
+  /// `sink(p, points, count)` with the points written to `buffer` (kMaxPointsPerPair).
+  template <class Sink>
+  static void plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
+                           ContactPoint* buffer, Sink&& sink);
 
   /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order. Allocates
   /// only when more pairs overlap than ever before.
@@ -47,5 +50,22 @@ class ContactQuery {
   FclPairs fcl_;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
 };
+
+template <class Sink>
+void ContactQuery::plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
+                                ContactPoint* buffer, Sink&& sink) {
+  const Aabb& box = placement.boxes()[s];
+  const Vec3 center = (box.min + box.max) * 0.5, half = (box.max - box.min) * 0.5;
+  const auto& planes = table.planes();
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    const Plane& plane = planes[p];
+    const double reach = std::abs(plane.normal.x) * half.x + std::abs(plane.normal.y) * half.y +
+                         std::abs(plane.normal.z) * half.z;
+    if (dot(plane.normal, center) - reach >= plane.offset_m) continue;
+    const int n = plane_contacts(table.shapes()[static_cast<std::size_t>(s)], placement.world()[s],
+                                 plane, buffer);
+    sink(static_cast<std::int32_t>(p), buffer, n);
+  }
+}
 
 }  // namespace s2sim::collision

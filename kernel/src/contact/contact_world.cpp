@@ -113,16 +113,15 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
   info_.clear();
 
   const std::int32_t* body = table_.bodies().data();
-  const auto plane_count = static_cast<std::int32_t>(table_.planes().size());
   collision::ContactPoint points[collision::kMaxPointsPerPair];
   // Moving shapes against the ground and the walls.
   for (const std::int32_t s : table_.moving()) {
     if (fixed_to_world_[body[s]]) continue;
-    for (std::int32_t p = 0; p < plane_count; ++p) {
-      const int n = collision::ContactQuery::plane_points(table_, placement_, s, p, points);
-      for (int k = 0; k < n; ++k)
-        add_point(s, p, true, points[k], poses, twists, step_s, wrenches);
-    }
+    collision::ContactQuery::plane_points(
+        table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
+          for (int k = 0; k < n; ++k)
+            add_point(s, p, true, found[k], poses, twists, step_s, wrenches);
+        });
   }
   // Shape pairs.
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -109,8 +110,14 @@ TEST(SameGeometry, EveryKindOnTheGround) {
     Placement placement(table);
     placement.update(table, poses.data());
     RayCaster rays(table, poses.data());
-    ContactPoint points[kMaxPointsPerPair];
-    const int n = ContactQuery::plane_points(table, placement, 0, 0, points);
+    ContactPoint buffer[kMaxPointsPerPair], points[kMaxPointsPerPair];
+    int n = 0;
+    ContactQuery::plane_points(table, placement, 0, buffer,
+                               [&](std::int32_t plane, const ContactPoint* found, int count) {
+                                 EXPECT_EQ(plane, 0);  // the ground: no walls here
+                                 std::copy(found, found + count, points);
+                                 n = count;
+                               });
     check_points(std::string(name(k)) + " on the ground", rays, points, n, 1, 0);
   }
 }
