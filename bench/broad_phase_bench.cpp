@@ -2,7 +2,7 @@
 // added, to check that it stays near N log N. Boxes of 0.1 m scattered over a floor whose area
 // grows with N (constant density, as objects added to a world), each moving a little per
 // step; the time per call is divided by N·log2(N).
-#include "contact/broad_phase.hpp"
+#include "collision/broad_phase.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 int main() {
   using s2sim::Vec3;
-  using s2sim::contact::Aabb;
+  using s2sim::collision::Aabb;
   std::printf("%8s %12s %12s %16s\n", "objects", "pairs", "us/call", "ns/(N log2 N)");
   for (int n : {100, 300, 1000, 3000, 10000, 30000}) {
     std::mt19937 rng(1);
@@ -22,7 +22,7 @@ int main() {
     for (auto& c : centres)
       c = {where(rng), where(rng), 0.05};
     std::vector<Aabb> boxes(n);
-    s2sim::contact::BroadPhase bp;
+    s2sim::collision::BroadPhase bp;
     bp.resize(n);
     std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
     const int calls = 200;

@@ -74,18 +74,19 @@ double restitution_beta(double e) {
   return INFINITY;
 }
 
-PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu) {
+PairMaterial combine_surfaces(const Surface& a, double beta_a, const Surface* b, double beta_b,
+                              double default_mu) {
   // Symmetric rule: a surface without an explicit mu takes no part; two explicit surfaces
   // combine by geometric mean; none at all gives the project's default friction.
-  const SurfaceParams* sa = a.surface.has_mu ? &a.surface : nullptr;
-  const SurfaceParams* sb = b && b->surface.has_mu ? &b->surface : nullptr;
-  auto second = [](const SurfaceParams& s) { return s.mu2 >= 0 ? s.mu2 : s.mu; };
+  const Surface* sa = a.has_mu ? &a : nullptr;
+  const Surface* sb = b && b->has_mu ? b : nullptr;
+  auto second = [](const Surface& s) { return s.mu2 >= 0 ? s.mu2 : s.mu; };
   PairMaterial m;
   if (sa && sb) {
     m.mu1 = geometric_mean(sa->mu, sb->mu);
     m.mu2 = geometric_mean(second(*sa), second(*sb));
   } else if (sa || sb) {
-    const SurfaceParams& s = sa ? *sa : *sb;
+    const Surface& s = sa ? *sa : *sb;
     m.mu1 = s.mu;
     m.mu2 = second(s);
   } else {
@@ -102,13 +103,11 @@ PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu)
   } else {
     m.mu2 = m.mu1;  // plain solids are isotropic whatever their mu2 (spec §4.3)
   }
-  m.restitution = std::max(a.surface.restitution, b ? b->surface.restitution : 0.0);
-  m.restitution_beta = b && b->surface.restitution > a.surface.restitution
-                           ? b->surface.restitution_beta
-                           : a.surface.restitution_beta;
+  m.restitution = std::max(a.restitution, b ? b->restitution : 0.0);
+  m.restitution_beta = b && b->restitution > a.restitution ? beta_b : beta_a;
   m.restitution_threshold_m_s =
-      std::max(a.surface.restitution_threshold_m_s, b ? b->surface.restitution_threshold_m_s : 0.0);
-  m.softness = std::max(a.surface.softness, b ? b->surface.softness : 0.0);
+      std::max(a.restitution_threshold_m_s, b ? b->restitution_threshold_m_s : 0.0);
+  m.softness = std::max(a.softness, b ? b->softness : 0.0);
   return m;
 }
 

@@ -4,9 +4,13 @@
 /// Coulomb friction regularised by a transition velocity, with an elastic bristle that gives
 /// true stiction; anisotropic coefficients for omni and mecanum wheels.
 
-#include "contact/geometry.hpp"
+#include "collision/contact_point.hpp"
 
 namespace s2sim::contact {
+
+using collision::Anisotropy;
+using collision::ContactPoint;
+using collision::Surface;
 
 /// Combined parameters of two surfaces (symmetric in a and b).
 struct PairMaterial {
@@ -25,8 +29,10 @@ struct PairMaterial {
 /// where even critical damping cannot absorb enough. Computed once per surface at load.
 double restitution_beta(double e);
 
-/// `b` is null for the ground and the walls, which have no surface of their own.
-PairMaterial combine_surfaces(const Shape& a, const Shape* b, double default_mu);
+/// `b` is null for the ground and the walls, which have no surface of their own; `beta_a`,
+/// `beta_b` are the surfaces' restitution_beta.
+PairMaterial combine_surfaces(const Surface& a, double beta_a, const Surface* b, double beta_b,
+                              double default_mu);
 
 /// Numbers of the force law shared by every contact of the run.
 struct ForceLawSettings {

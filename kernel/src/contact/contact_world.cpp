@@ -1,7 +1,5 @@
 #include "contact/contact_world.hpp"
 
-#include "contact/primitives.hpp"
-
 #include <algorithm>
 #include <cmath>
 
@@ -10,80 +8,6 @@ namespace {
 
 constexpr double kMaxApparentMass = 1e12;  // a body that cannot move (welded to the world)
 constexpr double kBeltTopCosine = 0.7;     // contacts within 45° of the belt's +Z ride it
-
-Shape make_shape(const scene::Geom& g, std::int32_t body) {
-  Shape s;
-  s.body = body;
-  s.local = g.pose;
-  switch (g.shape.type) {
-    case scene::ShapeType::box:
-      s.kind = ShapeKind::box;
-      s.half_extents_m = g.shape.size_m * 0.5;
-      s.bounding_radius_m = norm(s.half_extents_m);
-      break;
-    case scene::ShapeType::cylinder:
-      s.kind = ShapeKind::cylinder;
-      s.radius_m = g.shape.radius_m;
-      s.half_length_m = 0.5 * g.shape.length_m;
-      s.bounding_radius_m = std::hypot(s.radius_m, s.half_length_m);
-      break;
-    case scene::ShapeType::sphere:
-      s.kind = ShapeKind::sphere;
-      s.radius_m = g.shape.radius_m;
-      s.bounding_radius_m = s.radius_m;
-      break;
-  }
-  s.surface.has_mu = g.surface.explicit_surface && g.surface.mu >= 0;
-  s.surface.mu = g.surface.mu;
-  s.surface.mu2 = g.surface.mu2;
-  s.surface.softness = g.surface.softness;
-  s.surface.restitution = g.surface.bounce;
-  s.surface.restitution_threshold_m_s = g.surface.bounce_threshold_m_s;
-  if (s.surface.restitution > 0)
-    s.surface.restitution_beta = restitution_beta(s.surface.restitution);
-  switch (g.friction) {
-    case scene::FrictionKind::isotropic:
-      s.anisotropy = Anisotropy::none;
-      break;
-    case scene::FrictionKind::omni:
-      s.anisotropy = Anisotropy::omni;
-      break;
-    case scene::FrictionKind::mecanum_left:
-      s.anisotropy = Anisotropy::mecanum_left;
-      break;
-    case scene::FrictionKind::mecanum_right:
-      s.anisotropy = Anisotropy::mecanum_right;
-      break;
-  }
-  return s;
-}
-
-Aabb bounds(const Shape& s, const Pose& pose) {
-  Vec3 e;
-  const Mat3& r = pose.rotation;
-  switch (s.kind) {
-    case ShapeKind::box:
-      e = {std::abs(r.m[0][0]) * s.half_extents_m.x + std::abs(r.m[0][1]) * s.half_extents_m.y +
-               std::abs(r.m[0][2]) * s.half_extents_m.z,
-           std::abs(r.m[1][0]) * s.half_extents_m.x + std::abs(r.m[1][1]) * s.half_extents_m.y +
-               std::abs(r.m[1][2]) * s.half_extents_m.z,
-           std::abs(r.m[2][0]) * s.half_extents_m.x + std::abs(r.m[2][1]) * s.half_extents_m.y +
-               std::abs(r.m[2][2]) * s.half_extents_m.z};
-      break;
-    case ShapeKind::cylinder: {
-      const Vec3 a = r.column(2);
-      auto extent = [&](double ai) {
-        return std::abs(ai) * s.half_length_m + s.radius_m * std::sqrt(std::max(0.0, 1 - ai * ai));
-      };
-      e = {extent(a.x), extent(a.y), extent(a.z)};
-      break;
-    }
-    case ShapeKind::sphere:
-      e = {s.radius_m, s.radius_m, s.radius_m};
-      break;
-  }
-  return {pose.position - e, pose.position + e};
-}
 
 std::uint64_t pair_key(std::int32_t shape_a, std::uint64_t other_id, std::int32_t feature) {
   return (static_cast<std::uint64_t>(shape_a) << 40) | (other_id << 16) |
@@ -97,29 +21,19 @@ std::uint64_t body_pair(std::int32_t a, std::int32_t b) {
 
 }  // namespace
 
-ContactWorld::ContactWorld(const scene::Scene& scene, const std::vector<double>& apparent_mass_kg,
-                           const ForceLawSettings& law)
-    : apparent_mass_kg_(apparent_mass_kg), default_mu_(scene.settings.default_friction), law_(law) {
+ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Scene& scene,
+                           const std::vector<double>& apparent_mass_kg, const ForceLawSettings& law)
+    : table_(shapes),
+      apparent_mass_kg_(apparent_mass_kg),
+      default_mu_(scene.settings.default_friction),
+      law_(law),
+      placement_(shapes),
+      query_(shapes) {
   law_.erp = scene.settings.erp;
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
-    const auto& body = scene.bodies[i];
-    for (std::size_t g = 0; g < body.geoms.size(); ++g) {
-      Shape s = make_shape(body.geoms[g], static_cast<std::int32_t>(i + 1));
-      s.belt = body.kind == scene::SolidKind::belt && g == 0;
-      shapes_.push_back(s);
-    }
-  }
-  for (const auto& obstacle : scene.obstacles)
-    shapes_.push_back(make_shape(obstacle, 0));
-
-  planes_.push_back({{0, 0, 1}, 0});  // the ground
-  if (scene.settings.world_walls) {
-    const double d = scene.settings.world_wall_distance_m;
-    planes_.push_back({{1, 0, 0}, -d});
-    planes_.push_back({{-1, 0, 0}, -d});
-    planes_.push_back({{0, 1, 0}, -d});
-    planes_.push_back({{0, -1, 0}, -d});
-  }
+  for (const auto& surface : table_.surfaces())
+    restitution_beta_.push_back(surface.restitution > 0 ? restitution_beta(surface.restitution)
+                                                        : 0.0);
+  belt_speed_input_.assign(restitution_beta_.size(), -1);
 
   com_m_.assign(scene.bodies.size() + 1, Vec3{});
   inverse_inertia_.assign(scene.bodies.size() + 1, Mat3{});
@@ -139,16 +53,7 @@ ContactWorld::ContactWorld(const scene::Scene& scene, const std::vector<double>&
   for (double& m : apparent_mass_kg_)
     if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
 
-  world_pose_.resize(shapes_.size());
-  boxes_.resize(shapes_.size());
-  for (std::size_t s = 0; s < shapes_.size(); ++s)
-    if (shapes_[s].body == 0) {
-      world_pose_[s] = shapes_[s].local;
-      boxes_[s] = bounds(shapes_[s], world_pose_[s]);
-    }
-  broad_phase_.resize(static_cast<int>(shapes_.size()));
-  const std::size_t reserve = 64 + 16 * shapes_.size();
-  pairs_.reserve(reserve);
+  const std::size_t reserve = 64 + 16 * static_cast<std::size_t>(table_.size());
   memory_.reserve(reserve);
   next_memory_.reserve(reserve);
   info_.reserve(reserve);
@@ -156,14 +61,17 @@ ContactWorld::ContactWorld(const scene::Scene& scene, const std::vector<double>&
 
 std::vector<std::int32_t> ContactWorld::belt_bodies() const {
   std::vector<std::int32_t> out;
-  for (const auto& s : shapes_)
-    if (s.belt) out.push_back(s.body);
+  for (std::int32_t s = 0; s < table_.size(); ++s)
+    if (table_.surfaces()[static_cast<std::size_t>(s)].belt)
+      out.push_back(table_.bodies()[static_cast<std::size_t>(s)]);
   return out;
 }
 
 void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
-  for (auto& s : shapes_)
-    if (s.belt && s.body == body) s.belt_speed_input = input;
+  for (std::int32_t s = 0; s < table_.size(); ++s) {
+    const auto i = static_cast<std::size_t>(s);
+    if (table_.surfaces()[i].belt && table_.bodies()[i] == body) belt_speed_input_[i] = input;
+  }
 }
 
 void ContactWorld::inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
@@ -193,65 +101,37 @@ void ContactWorld::reset() {
   next_memory_.clear();
   info_.clear();
   info_count_ = 0;
-  broad_phase_.resize(static_cast<int>(shapes_.size()));
+  query_.reset();
 }
 
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
                            Wrench* wrenches) {
   const std::size_t body_count = apparent_mass_kg_.size();
   std::fill(wrenches, wrenches + body_count, Wrench{});
-  for (std::size_t s = 0; s < shapes_.size(); ++s) {
-    const Shape& shape = shapes_[s];
-    if (shape.body == 0) continue;
-    world_pose_[s] = poses[shape.body] * shape.local;
-    boxes_[s] = bounds(shape, world_pose_[s]);
-  }
+  placement_.update(table_, poses);
   next_memory_.clear();
   info_.clear();
 
-  ContactPoint points[kMaxPointsPerPair];
+  const std::int32_t* body = table_.bodies().data();
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
   // Moving shapes against the ground and the walls.
-  for (std::size_t s = 0; s < shapes_.size(); ++s) {
-    const Shape& shape = shapes_[s];
-    if (shape.body == 0 || fixed_to_world_[shape.body]) continue;
-    const Aabb& box = boxes_[s];
-    const Vec3 center = (box.min + box.max) * 0.5, half = (box.max - box.min) * 0.5;
-    for (std::size_t p = 0; p < planes_.size(); ++p) {
-      const Plane& plane = planes_[p];
-      const double reach = std::abs(plane.normal.x) * half.x + std::abs(plane.normal.y) * half.y +
-                           std::abs(plane.normal.z) * half.z;
-      if (dot(plane.normal, center) - reach >= plane.offset_m) continue;
-      const int n = plane_contacts(shape, world_pose_[s], plane, points);
-      for (int k = 0; k < n; ++k)
-        add_point(static_cast<std::int32_t>(s), static_cast<std::int32_t>(p), true, points[k],
-                  poses, twists, step_s, wrenches);
-    }
+  for (const std::int32_t s : table_.moving()) {
+    if (fixed_to_world_[body[s]]) continue;
+    collision::ContactQuery::plane_points(
+        table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
+          for (int k = 0; k < n; ++k)
+            add_point(s, p, true, found[k], poses, twists, step_s, wrenches);
+        });
   }
   // Shape pairs.
-  broad_phase_.find_pairs(boxes_.data(), pairs_);
-  for (const auto& [i, j] : pairs_) {
-    const Shape& a = shapes_[i];
-    const Shape& b = shapes_[j];
-    if (excluded(a.body, b.body)) continue;
+  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
+    if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
-    const bool swap = a.body == 0;
+    const bool swap = body[i] == 0;
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const Shape& sa = shapes_[ia];
-    const Shape& sb = shapes_[ib];
-    const Pose& pa = world_pose_[ia];
-    const Pose& pb = world_pose_[ib];
-    int n = 0;
-    if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::sphere) {
-      n = sphere_sphere(sa.radius_m, pa.position, sb.radius_m, pb.position, points);
-    } else if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::box) {
-      n = sphere_box(sa.radius_m, pa.position, sb.half_extents_m, pb, points);
-    } else if (sa.kind == ShapeKind::box && sb.kind == ShapeKind::sphere) {
-      n = sphere_box(sb.radius_m, pb.position, sa.half_extents_m, pa, points);
-      swap_roles(points, n);
-    } else {
-      n = fcl_.collide(sa, pa, sb, pb, points);
-      match_features(ia, ib, points, n);
-    }
+    bool renumbered = false;
+    const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
+    if (renumbered) match_features(ia, ib, points, n);
     for (int k = 0; k < n; ++k)
       add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
   }
@@ -272,8 +152,9 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   auto last = first;
   while (last != memory_.end() && (last->key >> 16) == (prefix >> 16))
     ++last;
-  const Pose inverse = world_pose_[shape_a].inverse();
-  const double tolerance = 0.25 * shapes_[shape_a].bounding_radius_m;
+  const Pose inverse = placement_.world()[shape_a].inverse();
+  const double tolerance =
+      0.25 * table_.shapes()[static_cast<std::size_t>(shape_a)].bounding_radius_m;
   std::uint32_t taken = 0;  // bit per remembered point (at most 16 per pair)
   int next_free = 0;
   for (auto it = first; it != last; ++it)
@@ -300,9 +181,13 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
 void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
                              const ContactPoint& p, const Pose* poses, const Twist* twists,
                              double step_s, Wrench* wrenches) {
-  const Shape& a = shapes_[shape_a];
-  const Shape* b = other_is_plane ? nullptr : &shapes_[other];
-  const std::int32_t body_a = a.body, body_b = b ? b->body : 0;
+  const auto& surfaces = table_.surfaces();
+  const auto& bodies = table_.bodies();
+  const Pose* world = placement_.world();
+  const auto ia = static_cast<std::size_t>(shape_a), ib = static_cast<std::size_t>(other);
+  const Surface& a = surfaces[ia];
+  const Surface* b = other_is_plane ? nullptr : &surfaces[ib];
+  const std::int32_t body_a = bodies[ia], body_b = b ? bodies[ib] : 0;
 
   auto point_velocity = [&](std::int32_t body) {
     if (body == 0) return Vec3{};
@@ -311,20 +196,21 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   };
   // A conveyor's surface moves on its top face only (+Z of the belt); its sides and its
   // underside are the frame. `toward_other` is the normal pointing from the belt to the other.
-  auto belt_velocity = [&](const Shape& s, std::int32_t index, const Vec3& toward_other) {
-    if (!s.belt || s.belt_speed_input < 0 || !inputs_) return Vec3{};
-    const Mat3& r = world_pose_[index].rotation;
+  auto belt_velocity = [&](const Surface& s, std::size_t index, const Vec3& toward_other) {
+    const std::int32_t input = belt_speed_input_[index];
+    if (!s.belt || input < 0 || !inputs_) return Vec3{};
+    const Mat3& r = world[index].rotation;
     if (dot(toward_other, r.column(2)) < kBeltTopCosine) return Vec3{};
-    return r.column(0) * inputs_[s.belt_speed_input];
+    return r.column(0) * inputs_[input];
   };
   PointKinematics kin;
-  kin.relative_velocity_m_s = point_velocity(body_a) + belt_velocity(a, shape_a, -p.normal) -
+  kin.relative_velocity_m_s = point_velocity(body_a) + belt_velocity(a, ia, -p.normal) -
                               point_velocity(body_b) -
-                              (b ? belt_velocity(*b, other, p.normal) : Vec3{});
-  const PairMaterial material = combine_surfaces(a, b, default_mu_);
+                              (b ? belt_velocity(*b, ib, p.normal) : Vec3{});
+  const PairMaterial material =
+      combine_surfaces(a, restitution_beta_[ia], b, b ? restitution_beta_[ib] : 0.0, default_mu_);
   if (material.anisotropic)
-    kin.friction_axis =
-        (material.anisotropy_on_a ? world_pose_[shape_a] : world_pose_[other]).rotation.column(2);
+    kin.friction_axis = (material.anisotropy_on_a ? world[ia] : world[ib]).rotation.column(2);
   const Vec3 helper = std::abs(p.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
   const Vec3 t1 = cross(p.normal, helper) / norm(cross(p.normal, helper));
   const Vec3 directions[3] = {p.normal, t1, cross(p.normal, t1)};
@@ -335,15 +221,16 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   kin.tangent_mass_kg = 1 / std::max(inverse_mass[1], inverse_mass[2]);
   kin.step_s = step_s;
 
-  const std::uint64_t other_id = other_is_plane ? shapes_.size() + static_cast<std::uint64_t>(other)
-                                                : static_cast<std::uint64_t>(other);
+  const std::uint64_t other_id =
+      other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
+                     : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
   auto found = std::lower_bound(memory_.begin(), memory_.end(), key,
                                 [](const Memory& m, std::uint64_t k) { return m.key < k; });
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
   const Vec3 force = contact_force(p, material, kin, law_, !known, state);
-  state.local_point_m = world_pose_[shape_a].inverse() * p.point_m;
+  state.local_point_m = world[ia].inverse() * p.point_m;
   next_memory_.push_back({key, state});
 
   Wrench& wa = wrenches[body_a];

@@ -1,13 +1,15 @@
 #pragma once
 /// \file
-/// The contact layer: every collision shape of the scene (solids, shells, things, obstacles),
-/// the ground plane and SimTwo's walls; broad phase, narrow phase, the force law and the
-/// contact points' memory from step to step. Applied to the multibody model as a substep force.
+/// The contact layer: at every substep, places the scene's collision shapes (the shared
+/// collision::ShapeTable) at the substep's poses, asks the contact query for the points where
+/// they touch each other, the ground and SimTwo's walls, and turns them into forces with the
+/// force law and the contact points' memory from step to step (which it owns). Applied to the
+/// multibody model as a substep force.
 
-#include "contact/broad_phase.hpp"
+#include "collision/contact_query.hpp"
+#include "collision/placement.hpp"
+#include "collision/shape_table.hpp"
 #include "contact/contact_force.hpp"
-#include "contact/fcl_pairs.hpp"
-#include "contact/geometry.hpp"
 #include "model/substep_forces.hpp"
 
 #include <s2sim/component.hpp>
@@ -20,10 +22,11 @@ namespace s2sim::contact {
 
 class ContactWorld final : public model::SubstepForces {
  public:
+  /// `shapes`: the scene's collision table, which must outlive the contact world.
   /// `apparent_mass_kg` per kernel body (0 = world, ignored): the mass a force at the body's
   /// centre of mass meets, which sets each contact's stiffness.
-  ContactWorld(const scene::Scene& scene, const std::vector<double>& apparent_mass_kg,
-               const ForceLawSettings& law = {});
+  ContactWorld(const collision::ShapeTable& shapes, const scene::Scene& scene,
+               const std::vector<double>& apparent_mass_kg, const ForceLawSettings& law = {});
 
   /// Where the belt speeds live (the kernel's input array), read at every substep.
   void set_inputs(const double* inputs) { inputs_ = inputs; }
@@ -36,8 +39,9 @@ class ContactWorld final : public model::SubstepForces {
   /// Contacts of the last substep.
   const ContactInfo* contacts() const { return info_.data(); }
   const std::int32_t* contact_count() const { return &info_count_; }
-  const std::vector<Shape>& shapes() const { return shapes_; }
-  const std::vector<Plane>& planes() const { return planes_; }
+  const collision::ShapeTable& shapes() const { return table_; }
+  /// Where the shapes were at the last substep.
+  const collision::Placement& placement() const { return placement_; }
 
   /// Forgets every contact (back to t = 0).
   void reset();
@@ -61,8 +65,9 @@ class ContactWorld final : public model::SubstepForces {
   void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
                       int count) const;
 
-  std::vector<Shape> shapes_;
-  std::vector<Plane> planes_;
+  const collision::ShapeTable& table_;
+  std::vector<double> restitution_beta_;        // per shape
+  std::vector<std::int32_t> belt_speed_input_;  // per shape: kernel input of the belt's speed
   std::vector<double> apparent_mass_kg_;
   std::vector<Vec3> com_m_;                  // per body, body frame
   std::vector<Mat3> inverse_inertia_;        // per body, about the COM, body axes
@@ -73,11 +78,8 @@ class ContactWorld final : public model::SubstepForces {
   const double* inputs_ = nullptr;
 
   // Per substep (reserved at load).
-  std::vector<Pose> world_pose_;
-  std::vector<Aabb> boxes_;
-  std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
-  BroadPhase broad_phase_;
-  FclPairs fcl_;
+  collision::Placement placement_;
+  collision::ContactQuery query_;
   std::vector<Memory> memory_, next_memory_;
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;

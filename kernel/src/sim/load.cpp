@@ -28,7 +28,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.tick_s = m.scene.settings.physics_step_s;
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
-  m.contacts = std::make_unique<contact::ContactWorld>(m.scene, m.multibody->apparent_mass_kg());
+  m.shapes = std::make_unique<collision::ShapeTable>(m.scene);
+  m.contacts =
+      std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);
@@ -103,9 +105,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.contacts = m.contacts->contacts();
   m.world.contact_count = m.contacts->contact_count();
   m.contacts->set_inputs(m.inputs.data());
-  m.ray_caster = std::make_unique<raycast::RayCaster>(m.scene, m.poses.data());
+  m.ray_caster = std::make_unique<collision::RayCaster>(*m.shapes, m.poses.data());
   m.world.kernel = m.ray_caster.get();
-  m.world.cast_ray = &raycast::RayCaster::callback;
+  m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

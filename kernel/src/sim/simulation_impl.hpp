@@ -11,10 +11,10 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include "collision/ray_caster.hpp"
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
 #include "plugin/plugin_loader.hpp"
-#include "raycast/ray_caster.hpp"
 #include "scene/element_params.hpp"
 #include "sim/stage_profile.hpp"
 
@@ -84,6 +84,7 @@ struct Simulation::Impl {
   double tick_s = 1e-3;
   std::int64_t tick = 0;
   std::unique_ptr<model::Multibody> multibody;
+  std::unique_ptr<collision::ShapeTable> shapes;
   std::unique_ptr<contact::ContactWorld> contacts;
   std::vector<AxisView> axis_views;
 
@@ -108,7 +109,7 @@ struct Simulation::Impl {
   std::array<std::vector<int>, 4> stage_order;
 
   // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
-  std::unique_ptr<raycast::RayCaster> ray_caster;
+  std::unique_ptr<collision::RayCaster> ray_caster;
 
   // Per-stage timing of the tick pipeline (Simulation::set_profiling); null when off.
   std::unique_ptr<sim::StageProfile> profile;

@@ -18,10 +18,11 @@ constexpr double kG = 9.81;
 /// A multibody model with the contact layer as its substep force.
 struct Runner : test::Runner {
   explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
-      : test::Runner(s, dt, substeps), contacts(s, mb.apparent_mass_kg()) {
+      : test::Runner(s, dt, substeps), table(s), contacts(table, s, mb.apparent_mass_kg()) {
     contact = &contacts;
     mb.use_contact_wrenches();
   }
+  collision::ShapeTable table;
   ContactWorld contacts;
 };
 

@@ -1,9 +1,9 @@
-#include "contact/broad_phase.hpp"
+#include "collision/broad_phase.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 constexpr int kBruteForceBelow = 48;
@@ -113,4 +113,4 @@ void BroadPhase::find_pairs(const Aabb* boxes,
   std::sort(out.begin(), out.end());
 }
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -1,8 +1,8 @@
 // Ray casting: every primitive, the ground and the walls, the ignored body, materials, and
 // the broad phase against brute force on a random cluttered scene.
-#include "raycast/ray_caster.hpp"
+#include "collision/ray_caster.hpp"
+#include "collision/ray_primitives.hpp"
 #include "kernel/model/scene_builder.hpp"
-#include "raycast/primitives.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <random>
 #include <vector>
 
-namespace s2sim::raycast {
+namespace s2sim::collision {
 namespace {
 
 constexpr double kTol = 1e-12;
@@ -121,7 +121,8 @@ struct Fixture {
 
 TEST(RayCaster, GroundWallsObstaclesAndBodies) {
   Fixture f;
-  RayCaster rc(f.sc, f.poses.data());
+  const ShapeTable table(f.sc);
+  RayCaster rc(table, f.poses.data());
   // Straight down from above the floor, clear of everything.
   RayHit h = rc.cast({-5, 5, 2}, {0, 0, -1}, 10, -1);
   ASSERT_TRUE(h.hit);
@@ -155,17 +156,20 @@ TEST(RayCaster, GroundWallsObstaclesAndBodies) {
 TEST(RayCaster, WallsCanBeTurnedOffOrMoved) {
   Fixture f;
   f.sc.settings.world_walls = false;
-  RayCaster off(f.sc, f.poses.data());
+  const ShapeTable table_off(f.sc);
+  RayCaster off(table_off, f.poses.data());
   EXPECT_FALSE(off.cast({-5, 5, 0.5}, {-1, 0, 0}, 100, -1).hit);
   f.sc.settings.world_walls = true;
   f.sc.settings.world_wall_distance_m = 20;
-  RayCaster far(f.sc, f.poses.data());
+  const ShapeTable table_far(f.sc);
+  RayCaster far(table_far, f.poses.data());
   EXPECT_NEAR(far.cast({-5, 5, 0.5}, {-1, 0, 0}, 100, -1).distance_m, 15, kTol);
 }
 
 TEST(RayCaster, IgnoresTheSensorsOwnBodyButSeesTheOthers) {
   Fixture f;
-  RayCaster rc(f.sc, f.poses.data());
+  const ShapeTable table(f.sc);
+  RayCaster rc(table, f.poses.data());
   // From outside the robot (at x = -1) toward +X: the robot's own box first...
   RayHit h = rc.cast({-1, 0, 0.3}, {1, 0, 0}, 10, -1);
   ASSERT_TRUE(h.hit);
@@ -186,7 +190,8 @@ TEST(RayCaster, IgnoresTheSensorsOwnBodyButSeesTheOthers) {
 
 TEST(RayCaster, FollowsMovedAndRotatedBodiesAfterInvalidate) {
   Fixture f;
-  RayCaster rc(f.sc, f.poses.data());
+  const ShapeTable table(f.sc);
+  RayCaster rc(table, f.poses.data());
   EXPECT_EQ(rc.cast({1.5, -1, 0.3}, {0, 1, 0}, 10, -1).body.index, 2);
   // Lay the cylinder along X at y = 2: a ray along y meets its side.
   f.poses[2] = {{1.5, 2, 0.3}, rot_axis({0, 1, 0}, 3.141592653589793 / 2)};
@@ -220,7 +225,8 @@ TEST(RayCaster, BroadPhaseAgreesWithBruteForceOnAClutteredScene) {
     sc.bodies.push_back(body);
     poses.push_back({{9 * u(rng), 9 * u(rng), 1 + u(rng)}, random_rotation()});
   }
-  RayCaster rc(sc, poses.data());
+  const ShapeTable table(sc);
+  RayCaster rc(table, poses.data());
   EXPECT_EQ(rc.static_geom_count(), 400u);
   EXPECT_EQ(rc.moving_geom_count(), 120u);
   int hits = 0, body_hits = 0;
@@ -268,7 +274,8 @@ TEST(RayCaster, FanCullingAgreesWithBruteForceForRaysSharingAnOrigin) {
     sc.bodies.push_back(body);
     poses.push_back({{4 * u(rng), 4 * u(rng), 0.3 + 0.2 * u(rng)}, rot_axis({1, 0, 0}, u(rng))});
   }
-  RayCaster rc(sc, poses.data());
+  const ShapeTable table(sc);
+  RayCaster rc(table, poses.data());
   int hits = 0;
   for (int fan = 0; fan < 300; ++fan) {
     if (fan % 10 == 0) {  // a new tick: bodies move
@@ -316,7 +323,8 @@ TEST(RayCaster, FanKeptAcrossTicksAgreesWithBruteForce) {
     sc.bodies.push_back(body);
     poses.push_back({{3 * u(rng), 3 * u(rng), 0.2}, rot_axis({0, 0, 1}, 3 * u(rng))});
   }
-  RayCaster rc(sc, poses.data());
+  const ShapeTable table(sc);
+  RayCaster rc(table, poses.data());
   Vec3 o{0.1, -0.2, 0.2};
   int hits = 0;
   for (int tick = 0; tick < 200; ++tick) {
@@ -346,4 +354,4 @@ TEST(RayCaster, FanKeptAcrossTicksAgreesWithBruteForce) {
 }
 
 }  // namespace
-}  // namespace s2sim::raycast
+}  // namespace s2sim::collision

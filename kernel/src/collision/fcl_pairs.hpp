@@ -5,11 +5,11 @@
 /// cylinder (GJK/EPA through libccd, one point). FCL and Eigen stay in fcl_pairs.cpp: Simbody's
 /// headers break Eigen's templates.
 
-#include "contact/geometry.hpp"
+#include "collision/contact_point.hpp"
 
 #include <memory>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 
 class FclPairs {
  public:
@@ -28,4 +28,4 @@ class FclPairs {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -1,9 +1,9 @@
-#include "contact/primitives.hpp"
+#include "collision/contact_primitives.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 /// Below this tangential share of the normal, a cylinder's cap counts as flat on a plane.
@@ -59,8 +59,7 @@ int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, Con
     case ShapeKind::cylinder:
       // Omni and mecanum wheels touch on their rollers' crowns, in the wheel's mid-plane: one
       // point (two tread edges would scrub against each other when the robot turns).
-      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane,
-                            shape.anisotropy != Anisotropy::none, out);
+      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane, shape.mid_plane, out);
     case ShapeKind::sphere: {
       const double depth = shape.radius_m - (dot(plane.normal, pose.position) - plane.offset_m);
       if (depth <= 0) return 0;
@@ -117,4 +116,4 @@ void swap_roles(ContactPoint* points, int count) {
   }
 }
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

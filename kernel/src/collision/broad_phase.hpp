@@ -7,17 +7,13 @@
 /// it N log N as objects are added, whatever their layout (a sweep-and-prune degrades to
 /// N^1.5 on a floor covered with objects). A few dozen boxes are simply tested pairwise.
 
-#include <s2sim/math.hpp>
+#include "collision/shape.hpp"
 
 #include <cstdint>
 #include <utility>
 #include <vector>
 
-namespace s2sim::contact {
-
-struct Aabb {
-  Vec3 min, max;
-};
+namespace s2sim::collision {
 
 class BroadPhase {
  public:
@@ -39,4 +35,4 @@ class BroadPhase {
   std::vector<char> is_large_;
 };
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

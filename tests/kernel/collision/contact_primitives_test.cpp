@@ -1,12 +1,12 @@
 // Analytic narrow phase against hand-computed answers.
-#include "contact/primitives.hpp"
+#include "collision/contact_primitives.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 const Plane kGround{{0, 0, 1}, 0};
@@ -74,4 +74,4 @@ TEST(Primitives, SphereContacts) {
 }
 
 }  // namespace
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -1,12 +1,12 @@
 // The only translation unit that sees FCL and Eigen.
-#include "contact/fcl_pairs.hpp"
+#include "collision/fcl_pairs.hpp"
 
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/box_box.h>
 
 #include <vector>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 fcl::Transform3d to_fcl(const Pose& p) {
@@ -96,4 +96,4 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
   return n;
 }
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -5,15 +5,13 @@
 /// to `out` and returns how many it wrote; shape a is the first argument, normals point from
 /// b toward a and points lie on a's surface.
 
-#include "contact/geometry.hpp"
+#include "collision/contact_point.hpp"
 
-namespace s2sim::contact {
-
-/// Most points one primitive pair can produce (a box on a plane: its 8 corners).
-constexpr int kMaxPointsPerPair = 8;
+namespace s2sim::collision {
 
 /// `pose` is the shape's world pose. A cylinder on its side touches at its tread's two edges,
-/// exactly at its radius from the axle; an omni or mecanum wheel at its mid-plane only.
+/// exactly at its radius from the axle; one with `mid_plane` (omni and mecanum wheels) at its
+/// mid-plane only.
 int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out);
 
 int sphere_sphere(double radius_a, const Vec3& center_a, double radius_b, const Vec3& center_b,
@@ -27,4 +25,4 @@ int sphere_box(double radius_a, const Vec3& center_a, const Vec3& half_b, const 
 /// each point moves from b's surface to a's, `depth` along the old normal.
 void swap_roles(ContactPoint* points, int count);
 
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

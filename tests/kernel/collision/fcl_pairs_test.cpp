@@ -1,9 +1,9 @@
 // FCL pairs follow the narrow phase's conventions: normal from b toward a, points on a.
-#include "contact/fcl_pairs.hpp"
+#include "collision/fcl_pairs.hpp"
 
 #include <gtest/gtest.h>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 Shape box(double half) {
@@ -59,4 +59,4 @@ TEST(FclPairs, SeparatedShapesGiveNothing) {
 }
 
 }  // namespace
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -1,11 +1,11 @@
 // The broad phase finds exactly the overlapping pairs that a brute-force test finds.
-#include "contact/broad_phase.hpp"
+#include "collision/broad_phase.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
-namespace s2sim::contact {
+namespace s2sim::collision {
 namespace {
 
 std::vector<std::pair<std::int32_t, std::int32_t>> brute_force(const std::vector<Aabb>& boxes) {
@@ -44,4 +44,4 @@ TEST(BroadPhase, MatchesBruteForceWhileObjectsMove) {
 }
 
 }  // namespace
-}  // namespace s2sim::contact
+}  // namespace s2sim::collision

@@ -1,10 +1,10 @@
-#include "raycast/primitives.hpp"
+#include "collision/ray_primitives.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace s2sim::raycast {
+namespace s2sim::collision {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -116,4 +116,4 @@ bool ray_plane(const Vec3& o, const Vec3& d, const Vec3& point, const Vec3& norm
   return true;
 }
 
-}  // namespace s2sim::raycast
+}  // namespace s2sim::collision

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <utility>
 
-namespace s2sim::raycast {
+namespace s2sim::collision {
 
 /// Axis-aligned box centred at the origin with half extents `half` (slab test).
 bool ray_box(const Vec3& o, const Vec3& d, const Vec3& half, double t_max, double& t, Vec3& n);
@@ -52,4 +52,4 @@ inline bool ray_aabb(const Vec3& o, const Vec3& inv_d, const Vec3& lo, const Vec
   return true;
 }
 
-}  // namespace s2sim::raycast
+}  // namespace s2sim::collision

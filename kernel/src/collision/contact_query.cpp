@@ -1,0 +1,40 @@
+#include "collision/contact_query.hpp"
+
+namespace s2sim::collision {
+
+ContactQuery::ContactQuery(const ShapeTable& table) : count_(table.size()) {
+  broad_phase_.resize(count_);
+  pairs_.reserve(64 + 16 * static_cast<std::size_t>(count_));
+}
+
+void ContactQuery::reset() {
+  broad_phase_.resize(count_);
+}
+
+const std::vector<std::pair<std::int32_t, std::int32_t>>& ContactQuery::overlapping_pairs(
+    const Placement& placement) {
+  broad_phase_.find_pairs(placement.boxes(), pairs_);
+  return pairs_;
+}
+
+int ContactQuery::pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
+                              std::int32_t b, ContactPoint* out, bool& renumbered) {
+  const Shape& sa = table.shapes()[static_cast<std::size_t>(a)];
+  const Shape& sb = table.shapes()[static_cast<std::size_t>(b)];
+  const Pose& pa = placement.world()[a];
+  const Pose& pb = placement.world()[b];
+  renumbered = false;
+  if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::sphere)
+    return sphere_sphere(sa.radius_m, pa.position, sb.radius_m, pb.position, out);
+  if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::box)
+    return sphere_box(sa.radius_m, pa.position, sb.half_extents_m, pb, out);
+  if (sa.kind == ShapeKind::box && sb.kind == ShapeKind::sphere) {
+    const int n = sphere_box(sb.radius_m, pb.position, sa.half_extents_m, pa, out);
+    swap_roles(out, n);
+    return n;
+  }
+  renumbered = true;
+  return fcl_.collide(sa, pa, sb, pb, out);
+}
+
+}  // namespace s2sim::collision

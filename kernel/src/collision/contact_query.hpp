@@ -1,0 +1,71 @@
+#pragma once
+/// \file
+/// The contact query on placed shapes: which shapes reach a static plane and their points
+/// there, which pairs of shapes have overlapping boxes (broad phase), and a pair's points
+/// (narrow phase: analytic for spheres, FCL for the rest). The query's buffers (the broad
+/// phase's, FCL's solver) belong to the caller's instance; the table is only read.
+
+#include "collision/broad_phase.hpp"
+#include "collision/contact_point.hpp"
+#include "collision/contact_primitives.hpp"
+#include "collision/fcl_pairs.hpp"
+#include "collision/placement.hpp"
+#include "collision/shape_table.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace s2sim::collision {
+
+class ContactQuery {
+ public:
+  /// Reserves every buffer for the table's shapes.
+  explicit ContactQuery(const ShapeTable& table);
+
+  /// Forgets what the buffers learnt (sizes back to those at load).
+  void reset();
+
+  /// Points of shape `s` against each static plane p of the table its box reaches: calls
+  /// `sink(p, points, count)` with the points written to `buffer` (kMaxPointsPerPair).
+  template <class Sink>
+  static void plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
+                           ContactPoint* buffer, Sink&& sink);
+
+  /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order. Allocates
+  /// only when more pairs overlap than ever before.
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs(
+      const Placement& placement);
+
+  /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
+  /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
+  /// gives them stable feature ids.
+  int pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
+                  std::int32_t b, ContactPoint* out, bool& renumbered);
+
+ private:
+  int count_ = 0;
+  BroadPhase broad_phase_;
+  FclPairs fcl_;
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
+};
+
+template <class Sink>
+void ContactQuery::plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
+                                ContactPoint* buffer, Sink&& sink) {
+  const Aabb& box = placement.boxes()[s];
+  const Vec3 center = (box.min + box.max) * 0.5, half = (box.max - box.min) * 0.5;
+  const auto& planes = table.planes();
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    const Plane& plane = planes[p];
+    const double reach = std::abs(plane.normal.x) * half.x + std::abs(plane.normal.y) * half.y +
+                         std::abs(plane.normal.z) * half.z;
+    if (dot(plane.normal, center) - reach >= plane.offset_m) continue;
+    const int n = plane_contacts(table.shapes()[static_cast<std::size_t>(s)], placement.world()[s],
+                                 plane, buffer);
+    sink(static_cast<std::int32_t>(p), buffer, n);
+  }
+}
+
+}  // namespace s2sim::collision

@@ -1,0 +1,65 @@
+#pragma once
+/// \file
+/// The collision layer's vocabulary: the geometry of one collision shape in its own frame,
+/// its surface as written in the scene, world-aligned bounding boxes and static planes. Plain
+/// data with the SDK's math types; no Simbody, no Eigen (FCL lives in fcl_pairs.cpp alone).
+
+#include <s2sim/math.hpp>
+
+#include <cstdint>
+
+namespace s2sim::collision {
+
+enum class ShapeKind : std::uint8_t { box, cylinder, sphere };
+
+/// The geometry of one primitive in its own frame (a cylinder's axis is local Z).
+struct Shape {
+  ShapeKind kind = ShapeKind::box;
+  Vec3 half_extents_m;           ///< box
+  double radius_m = 0;           ///< cylinder, sphere
+  double half_length_m = 0;      ///< cylinder, along local Z
+  double bounding_radius_m = 0;  ///< about the shape origin
+  /// A cylinder that touches a plane at its mid-plane only (omni and mecanum wheels roll on
+  /// their rollers' crowns), not at its tread's two edges.
+  bool mid_plane = false;
+};
+
+/// Anisotropic friction (spec §4.3): the direction of the full coefficient `mu`; `mu2` acts
+/// across it.
+enum class Anisotropy : std::uint8_t { none, omni, mecanum_left, mecanum_right };
+
+/// Contact parameters of one surface, as written in the scene.
+struct Surface {
+  bool has_mu = false;  ///< an explicit mu (SimTwo's "has surface")
+  double mu = 0;        ///< along the first friction direction (all directions if isotropic)
+  double mu2 = -1;      ///< across it, for anisotropic surfaces; -1 = same as mu
+  double softness = 1e-5;
+  double restitution = 0;
+  double restitution_threshold_m_s = 0;
+  Anisotropy anisotropy = Anisotropy::none;
+  bool belt = false;  ///< a conveyor's belt: the surface moves along its local +X
+};
+
+/// A world-aligned bounding box.
+struct Aabb {
+  Vec3 min, max;
+};
+
+/// A static half-space boundary: points p with dot(normal, p) < offset_m are inside matter.
+struct Plane {
+  Vec3 normal;  ///< unit, pointing out of the matter
+  double offset_m = 0;
+};
+
+/// Half the sides of the exact world-aligned box of `shape` turned by `rotation`.
+Vec3 extent(const Shape& shape, const Mat3& rotation);
+
+/// The world-aligned box of `shape` at world pose `pose`, exact when `margin` is 0, else
+/// grown by `margin` on every side.
+inline Aabb bounds(const Shape& shape, const Pose& pose, double margin = 0) {
+  Vec3 e = extent(shape, pose.rotation);
+  if (margin != 0) e += Vec3{margin, margin, margin};
+  return {pose.position - e, pose.position + e};
+}
+
+}  // namespace s2sim::collision
