@@ -58,9 +58,10 @@ void DcMotor::update(StepContext& ctx) {
 
   double v = 0, e = 0;
   CurrentStep step;
+  const double de_dw = simtwo_back_emf_ ? K_ / N_ : K_ * N_;
   if (active_) {
     v = std::clamp(ctx.input(ref_voltage_), -vmax_, vmax_);
-    e = simtwo_back_emf_ ? K_ * w / N_ : K_ * N_ * w;
+    e = de_dw * w;
     step = advance_current(i, v, e, R_, L_, imax_, simple_, dt);
   }
   i = step.end;
@@ -68,7 +69,17 @@ void DcMotor::update(StepContext& ctx) {
   const double power = v * step.mean;
   energy += power * dt;
 
-  ctx.apply_axis_force(axis_, motor_torque - bv_ * w - spring_k_ * (q - zero_pos_));
+  // The motor torque falls with the speed through the back-EMF, within the current limit;
+  // the viscous friction too: drives, which the kernel integrates implicitly (stable and
+  // without ringing on any inertia, docs/models/dc-motor.md). The spring stays an explicit
+  // force: the leapfrog keeps its energy exactly, an implicit spring would bleed it.
+  if (active_) {
+    const double torque_limit = N_ * K_ * imax_;
+    ctx.apply_axis_drive(axis_, N_ * K_ * step.unlimited_mean, -N_ * K_ * step.dmean_de * de_dw,
+                         -torque_limit, torque_limit);
+  }
+  if (bv_ > 0) ctx.apply_axis_drive(axis_, -bv_ * w, bv_);
+  if (spring_k_ > 0) ctx.apply_axis_force(axis_, -spring_k_ * (q - zero_pos_));
   if (fc_ > 0) ctx.apply_axis_friction(axis_, fc_);
 
   ctx.publish(voltage_, v);

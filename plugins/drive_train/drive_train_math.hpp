@@ -15,6 +15,11 @@ inline constexpr double kPi = 3.14159265358979323846;
 struct CurrentStep {
   double end = 0;
   double mean = 0;
+  /// The mean before the current limit, and d(mean)/d(e): how it falls as the back-EMF rises
+  /// (A/V, <= 0; zero for the `simple` law and without R and L). The mean over the step is
+  /// clamp(unlimited_mean + dmean_de·Δe, ±imax) for a back-EMF e + Δe: a drive law.
+  double unlimited_mean = 0;
+  double dmean_de = 0;
 };
 
 /// Advances the armature current `i0` by `dt` with the terminal voltage `v` and the back-EMF
@@ -36,14 +41,18 @@ inline CurrentStep advance_current(double i0, double v, double e, double R, doub
     const double one_minus_a = -std::expm1(-x);
     s.end = target + (i0 - target) * a;
     s.mean = target + (i0 - target) * (one_minus_a / x);
+    s.dmean_de = -(1 - one_minus_a / x) / R;
   } else if (L > 0) {
     s.end = i0 + dt * (v - e) / L;
     s.mean = i0 + 0.5 * dt * (v - e) / L;
+    s.dmean_de = -0.5 * dt / L;
   } else if (R > 0) {
     s.end = s.mean = (v - e) / R;
+    s.dmean_de = -1 / R;
   } else {
     s.end = s.mean = v > 0 ? imax : (v < 0 ? -imax : 0.0);
   }
+  s.unlimited_mean = s.mean;
   s.end = std::clamp(s.end, -imax, imax);
   s.mean = std::clamp(s.mean, -imax, imax);
   return s;

@@ -41,6 +41,32 @@ double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a)
   return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
 }
 
+/// A generalized force on one axis: a mobility force for a tree joint, equal and opposite
+/// body loads about / along the axis for a loop joint.
+void apply_axis_load(const Multibody::Impl& mb, const SimTK::State& state, std::size_t a, double f,
+                     SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                     SimTK::Vector& mobility_forces) {
+  const AxisImpl& ax = mb.axis_impl[a];
+  if (!mb.axes[a].loop) {
+    mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate, ax.sign * f,
+                                                               mobility_forces);
+    return;
+  }
+  const auto& b1 = mb.mobod(ax.body1);
+  const auto& b2 = mb.mobod(ax.body2);
+  const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
+  if (mb.axes[a].linear) {
+    const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
+    const SimTK::Vec3 force = f * axis_G;
+    b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
+    b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
+                             body_forces);
+  } else {
+    b1.applyBodyTorque(state, f * axis_G, body_forces);
+    b2.applyBodyTorque(state, -f * axis_G, body_forces);
+  }
+}
+
 namespace {
 
 /// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
@@ -64,18 +90,22 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
     if (mb.contact_wrenches_used) add_wrenches(mb.substep_wrenches, body_forces);
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.axis_forces[a] != 0.0)
-        apply_axis_force(state, a, mb.axis_forces[a], body_forces, mobility_forces);
+        apply_axis_load(mb, state, a, mb.axis_forces[a], body_forces, mobility_forces);
     for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
       if (mb.sliding[a]) {  // clearly sliding: Coulomb's law as it is, no impulse needed
         const double v = axis_rate(mb, state, a);
-        apply_axis_force(state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a], body_forces,
-                         mobility_forces);
-      } else if (mb.axes[a].loop && mb.axis_friction[a] > 0.0) {
-        // No velocity-level brake on a constraint-realised axis: a steep regularisation.
-        const double v = axis_rate(mb, state, a);
-        const double f = -mb.axis_friction[a] * std::clamp(v / kLoopFrictionSpeed, -1.0, 1.0);
-        apply_axis_force(state, a, f, body_forces, mobility_forces);
+        apply_axis_load(mb, state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a],
+                        body_forces, mobility_forces);
       }
+    // The axis drives (motors, viscous friction, the loop axes' regularised Coulomb friction)
+    // at their values for this substep; solve_drives makes them implicit after the kick.
+    for (const auto& row : mb.rows)
+      if (row.applied != 0.0)
+        apply_axis_load(mb, state, static_cast<std::size_t>(row.axis), row.applied, body_forces,
+                        mobility_forces);
+    for (std::size_t a = 0; a < mb.explicit_drive.size(); ++a)
+      if (mb.explicit_drive[a] != 0.0)
+        apply_axis_load(mb, state, a, mb.explicit_drive[a], body_forces, mobility_forces);
     for (const auto& stop : mb.stops) {
       const auto a = static_cast<std::size_t>(stop.axis);
       const double q = axis_value(mb, state, a);
@@ -84,35 +114,7 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
       const double f = -stop.stiffness * (q - limit) - stop.damping * axis_rate(mb, state, a);
       // A stop pushes back into the range, never pulls toward the limit.
       const double push = q > stop.high ? std::min(0.0, f) : std::max(0.0, f);
-      if (push != 0.0) apply_axis_force(state, a, push, body_forces, mobility_forces);
-    }
-  }
-
- private:
-  /// A generalized force on one axis: a mobility force for a tree joint, equal and opposite
-  /// body loads about / along the axis for a loop joint.
-  void apply_axis_force(const SimTK::State& state, std::size_t a, double f,
-                        SimTK::Vector_<SimTK::SpatialVec>& body_forces,
-                        SimTK::Vector& mobility_forces) const {
-    const auto& mb = *m_;
-    const AxisImpl& ax = mb.axis_impl[a];
-    if (!mb.axes[a].loop) {
-      mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate, ax.sign * f,
-                                                                 mobility_forces);
-      return;
-    }
-    const auto& b1 = mb.mobod(ax.body1);
-    const auto& b2 = mb.mobod(ax.body2);
-    const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
-    if (mb.axes[a].linear) {
-      const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
-      const SimTK::Vec3 force = f * axis_G;
-      b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
-      b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
-                               body_forces);
-    } else {
-      b1.applyBodyTorque(state, f * axis_G, body_forces);
-      b2.applyBodyTorque(state, -f * axis_G, body_forces);
+      if (push != 0.0) apply_axis_load(mb, state, a, push, body_forces, mobility_forces);
     }
   }
 
@@ -137,6 +139,10 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
 };
 
 }  // namespace
+
+double loop_friction_speed() {
+  return kLoopFrictionSpeed;
+}
 
 void add_applied_loads(Multibody::Impl& m) {
   SimTK::Force::Custom(m.forces, new AppliedLoads(&m));

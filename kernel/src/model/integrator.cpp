@@ -64,6 +64,7 @@ void Multibody::forces() {
   Impl& m = *impl_;
   m.bodies_fresh = false;
   if (!m.axis_friction.empty()) classify_sliding(m, m.current, substep_s());
+  if (!m.axes.empty()) prepare_drives(m, m.current);
   // The applied loads changed outside Simbody's knowledge: drop any cached forces.
   m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
 }
@@ -75,14 +76,14 @@ void Multibody::accelerations(bool last_substep) {
   m.udot = 0.0;
   add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
   // The reactions of the tick's last acceleration evaluation: no extra realize, and the
-  // same loads as the kick that follows (the friction brake's impulse excepted).
+  // same loads as the kick that follows (the implicit axis solve's corrections excepted).
   if (m.reactions_wanted && last_substep) compute_joint_reactions(m, s);
 }
 
-// Semi-explicit Euler, u first then q with the new u, started with a half step of u
-// (leapfrog): the same single acceleration evaluation per step, but positions are second
-// order and exact under constant acceleration (free fall), and the generalized speeds u live
-// at the middle of the step (docs/models/multibody.md).
+// Semi-explicit Euler, u first (implicit in the declared damping) then q with the new u, started
+// with a half step of u (leapfrog): the same single acceleration evaluation per step, but positions
+// are second order and exact under constant acceleration (free fall), and the generalized speeds u
+// live at the middle of the step (docs/models/multibody.md).
 void Multibody::kick() {
   Impl& m = *impl_;
   const double h = substep_s();
@@ -90,13 +91,18 @@ void Multibody::kick() {
   m.half_kick_pending = false;
   m.last_kick_s = kick;
   add_scaled(m.current.updU(), kick, m.udot);
+  m.loose.kick(m.wrenches.data(), m.contact_wrenches_used ? m.substep_wrenches.data() : nullptr,
+               kick);
 }
 
-void Multibody::brake() {
+void Multibody::solve_axes() {
   Impl& m = *impl_;
-  brake_axes(m, m.current, m.last_kick_s);
-  m.loose.kick(m.wrenches.data(), m.contact_wrenches_used ? m.substep_wrenches.data() : nullptr,
-               m.last_kick_s);
+  // The axis drives implicitly, (M + κ·C)·Δu = κ·f within their bounds, with the axes'
+  // Coulomb friction as a velocity-level brake.
+  model::solve_axes(m, m.current, m.last_kick_s);
+  // Loops: the speeds the drift integrates satisfy the velocity constraints (the solve above
+  // works in the tree's coordinates), so that positions move by h times the speeds reported.
+  if (m.has_constraints && !m.rows.empty()) m.system.projectU(m.current, 1e-10);
 }
 
 void Multibody::drift(int substep) {
@@ -122,6 +128,7 @@ void Multibody::drift(int substep) {
   s.updTime() =
       (static_cast<double>(m.ticks) + static_cast<double>(substep + 1) / m.substeps) * m.tick_s;
   m.system.realize(s, SimTK::Stage::Time);
+  m.substep = substep + 1;
 }
 
 void Multibody::project() {
@@ -133,6 +140,11 @@ void Multibody::finish_tick() {
   Impl& m = *impl_;
   SimTK::State& s = m.current;
   ++m.ticks;
+  m.substep = 0;
+  for (std::size_t a = 0; a < m.drive_sum.size(); ++a) {
+    m.drive_applied[a] = m.drive_sum[a] / m.substeps;
+    m.drive_sum[a] = 0.0;
+  }
   m.system.realize(s, SimTK::Stage::Velocity);
   // Read the bodies once here: for read() and for the next substep's contact.
   read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());

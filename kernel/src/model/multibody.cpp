@@ -27,6 +27,18 @@ double* Multibody::applied_axis_forces() {
 double* Multibody::applied_axis_friction() {
   return impl_->axis_friction.data();
 }
+AxisDrive* Multibody::axis_drives() {
+  return impl_->drives.data();
+}
+std::int32_t* Multibody::axis_drive_count() {
+  return &impl_->drive_count;
+}
+std::int32_t Multibody::axis_drive_capacity() const {
+  return static_cast<std::int32_t>(impl_->drives.size());
+}
+const double* Multibody::drive_force_applied() const {
+  return impl_->drive_applied.data();
+}
 void Multibody::request_joint_reactions() {
   impl_->reactions_wanted = true;
 }
@@ -84,8 +96,13 @@ void Multibody::reset() {
   impl_->current = impl_->initial_state;
   impl_->half_kick_pending = true;
   impl_->bodies_fresh = false;
-  impl_->columns_for.clear();
-  std::fill(impl_->axis_mobility.begin(), impl_->axis_mobility.end(), 0.0);
+  clear_columns(*impl_);
+  impl_->substep = 0;
+  impl_->drive_count = 0;
+  impl_->rows.clear();
+  std::fill(impl_->explicit_drive.begin(), impl_->explicit_drive.end(), 0.0);
+  std::fill(impl_->drive_sum.begin(), impl_->drive_sum.end(), 0.0);
+  std::fill(impl_->drive_applied.begin(), impl_->drive_applied.end(), 0.0);
   impl_->loose.reset();
   impl_->system.realize(impl_->current, SimTK::Stage::Velocity);
   if (impl_->reactions_wanted) {
@@ -96,6 +113,7 @@ void Multibody::reset() {
     std::fill(m.substep_wrenches.begin(), m.substep_wrenches.end(), Wrench{});
     std::fill(m.axis_forces.begin(), m.axis_forces.end(), 0.0);
     std::fill(m.axis_friction.begin(), m.axis_friction.end(), 0.0);
+    m.drive_count = 0;
     std::fill(m.sliding.begin(), m.sliding.end(), 0);
     m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
     m.system.realize(m.current, SimTK::Stage::Acceleration);
@@ -161,16 +179,17 @@ std::vector<double> Multibody::save() const {
       out.push_back((*v)[i]);
   const Impl& m = *impl_;
   m.loose.save(out);
-  // The brakes' memory decides what the next steps compute: part of the state.
+  // The M^-1 columns kept across steps decide what the next steps compute: part of the state.
   out.insert(out.end(), m.axis_mobility.begin(), m.axis_mobility.end());
-  out.push_back(static_cast<double>(m.columns_for.size()));
-  for (std::size_t c = 0; c < m.columns_for.size(); ++c) {
-    out.push_back(m.columns_for[c]);
-    const SimTK::Vector& column = m.minv_column[c];
-    for (int i = 0; i < column.size(); ++i)
-      out.push_back(column[i]);
+  for (std::size_t a = 0; a < m.column_valid.size(); ++a) {
+    out.push_back(m.column_valid[a]);
+    if (!m.column_valid[a]) continue;
+    for (const SimTK::Vector* v : {&m.minv_column[a], &m.loop_unit_force[a]})
+      for (int i = 0; i < v->size(); ++i)
+        out.push_back((*v)[i]);
   }
   out.insert(out.end(), m.columns_q.begin(), m.columns_q.end());
+  out.insert(out.end(), m.column_root_quat.begin(), m.column_root_quat.end());
   // The last reactions: what a joint sensor reads before the next step.
   for (const Wrench& w : m.joint_reactions)
     for (const Vec3* v : {&w.torque_Nm, &w.force_N})
@@ -190,14 +209,16 @@ void Multibody::restore(const std::vector<double>& saved) {
   k = m.loose.restore(saved, k);
   for (double& w : m.axis_mobility)
     w = saved.at(k++);
-  m.columns_for.resize(static_cast<std::size_t>(saved.at(k++)));
-  for (std::size_t c = 0; c < m.columns_for.size(); ++c) {
-    m.columns_for[c] = static_cast<int>(saved.at(k++));
-    SimTK::Vector& column = m.minv_column[c];
-    for (int i = 0; i < column.size(); ++i)
-      column[i] = saved.at(k++);
+  for (std::size_t a = 0; a < m.column_valid.size(); ++a) {
+    m.column_valid[a] = saved.at(k++) != 0.0;
+    if (!m.column_valid[a]) continue;
+    for (SimTK::Vector* v : {&m.minv_column[a], &m.loop_unit_force[a]})
+      for (int i = 0; i < v->size(); ++i)
+        (*v)[i] = saved.at(k++);
   }
   for (double& q : m.columns_q)
+    q = saved.at(k++);
+  for (double& q : m.column_root_quat)
     q = saved.at(k++);
   for (Wrench& w : m.joint_reactions)
     for (Vec3* v : {&w.torque_Nm, &w.force_N}) {
@@ -206,6 +227,7 @@ void Multibody::restore(const std::vector<double>& saved) {
       v->z = saved.at(k++);
     }
   m.bodies_fresh = false;
+  m.substep = 0;
   s.setTime(time_s());
   m.current = s;
   m.system.realize(m.current, SimTK::Stage::Velocity);

@@ -4,6 +4,7 @@
 /// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
 /// and writes plain arrays of applied loads.
 
+#include <s2sim/component.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -27,7 +28,7 @@ struct AxisInfo {
 /// Body index 0 is the world; scene body i is body i + 1. The kernel writes the loads for the
 /// coming tick into `applied_wrenches()` and `applied_axis_forces()`; they are held constant
 /// over the tick's substeps. sim/step.cpp runs a tick as, per substep: current_bodies() (for
-/// contact) → forces() → accelerations() → kick() → brake() → drift() → project(); then
+/// contact) → forces() → accelerations() → kick() → solve_axes() → drift() → project(); then
 /// finish_tick().
 class Multibody {
  public:
@@ -50,6 +51,14 @@ class Multibody {
   /// Per axis, the Coulomb friction bound (N·m or N) for the coming tick, solved at velocity
   /// level after the other forces: an axis whose load stays under the bound sticks.
   double* applied_axis_friction();
+  /// The velocity-dependent axis forces for the coming tick (the components' drives, written
+  /// through the SDK): `axis_drive_capacity()` slots, `*axis_drive_count()` used; integrated
+  /// implicitly (docs/models/multibody.md).
+  AxisDrive* axis_drives();
+  std::int32_t* axis_drive_count();
+  std::int32_t axis_drive_capacity() const;
+  /// Per axis, the mean force its drives applied over the last tick (N·m or N).
+  const double* drive_force_applied() const;
 
   /// Turns on the joint reactions: from the next step on, `joint_reactions()` holds per scene
   /// joint the load body2 exerts on body1 through the joint (world frame, torque about the
@@ -82,10 +91,12 @@ class Multibody {
   void forces();
   /// M·u' = f (Simbody's realize); the joint reactions on the tick's last substep.
   void accelerations(bool last_substep);
-  /// u += h·u' (half a substep on the first one after a reset: leapfrog).
+  /// u += h·u' (half a substep on the first one after a reset: leapfrog); loose bodies too.
   void kick();
-  /// Axis Coulomb friction as velocity-level impulses; loose bodies take their kick.
-  void brake();
+  /// The axis drives at the kick's end velocity, implicit, (M + h·C)·Δu = h·f within their
+  /// bounds, with the axes' Coulomb friction as a velocity-level brake; loops: velocities
+  /// projected onto the constraints.
+  void solve_axes();
   /// q += h·N(q)·u; the time of the substep's end.
   void drift(int substep);
   /// Loop constraints: q and u projected back onto the constraint manifold.

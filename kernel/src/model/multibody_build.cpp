@@ -387,17 +387,37 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
     }
   }
   m.has_constraints = m.matter.getNumConstraints() > 0;
+  find_mass_matrix_coordinates(m);
   m.udot.resize(m.initial_state.getNU());
   m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
   m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
   m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
   m.unit_force.resize(m.initial_state.getNU());
-  m.braked.reserve(m.axes.size());
-  m.columns_for.reserve(m.axes.size());
   m.columns_q.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
   m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
-  m.delassus.assign(m.axes.size() * m.axes.size(), 0.0);
-  m.impulse.assign(m.axes.size(), 0.0);
+  m.loop_unit_force.assign(m.axes.size(), SimTK::Vector());
+  for (std::size_t a = 0; a < m.axes.size(); ++a)
+    if (m.axes[a].loop) m.loop_unit_force[a].resize(m.initial_state.getNU());
+  m.column_valid.assign(m.axes.size(), 0);
+  m.unit_body_forces.resize(m.matter.getNumBodies());
+  // Room for four drives per axis (a motor and a viscous friction take two), and the rows of
+  // the implicit solve: every drive and every loop axis's friction.
+  m.drives.assign(4 * m.axes.size(), AxisDrive{});
+  const std::size_t max_rows = m.drives.size() + m.axes.size();
+  m.rows.reserve(max_rows);
+  m.next_row.assign(max_rows, -1);
+  m.first_row.assign(m.axes.size(), -1);
+  m.solve_list.reserve(m.axes.size());
+  m.friction_bound.assign(m.axes.size(), 0.0);
+  m.friction_applied.assign(m.axes.size(), 0.0);
+  m.axis_stuck.assign(m.axes.size(), 0);
+  m.breakpoints.assign(2 * max_rows, 0.0);
+  m.row_matrix.assign(max_rows * max_rows, 0.0);
+  m.row_rhs.assign(max_rows, 0.0);
+  m.explicit_drive.assign(m.axes.size(), 0.0);
+  m.rate0.assign(m.axes.size(), 0.0);
+  m.drive_sum.assign(m.axes.size(), 0.0);
+  m.drive_applied.assign(m.axes.size(), 0.0);
   m.axis_mobility.assign(m.axes.size(), 0.0);
   m.sliding.assign(m.axes.size(), 0);
   m.axis_u.assign(m.axes.size(), -1);

@@ -6,6 +6,8 @@
 #include "model/loose_bodies.hpp"
 #include "model/multibody.hpp"
 
+#include <s2sim/component.hpp>
+
 #include <Simbody.h>
 
 #include <cstdint>
@@ -87,17 +89,50 @@ struct Multibody::Impl {
   std::vector<double> axis_forces;
   std::vector<double> axis_friction;
   // Velocity-level Coulomb friction on tree axes (preallocated: stepping must not allocate).
-  std::vector<int> braked;                 // axes with a bound this substep
-  std::vector<SimTK::Vector> minv_column;  // per braked axis: M^-1 * e_axis
-  std::vector<double> delassus, impulse;   // braked x braked, braked
-  std::vector<int> axis_u;                 // per tree axis, its index in u (-1: loop axis)
-  std::vector<double> axis_mobility;       // per axis, (M^-1)_aa at its last solve (0: none)
-  std::vector<char> sliding;               // per axis: Coulomb friction as a plain force
-  // M^-1 columns of the braked axes are reused while the configuration stays put (a robot at
-  // rest): M depends on q only.
-  std::vector<int> columns_for;   // the braked axes the columns belong to
-  std::vector<double> columns_q;  // the q they were computed at
-  bool bodies_fresh = false;      // substep_poses/twists hold the current state
+  std::vector<int> axis_u;            // per tree axis, its index in u (-1: loop axis)
+  std::vector<double> axis_mobility;  // per axis, its (M^-1)_aa at its last solve (0: none)
+  std::vector<char> sliding;          // per axis: Coulomb friction as a plain force
+  // Per axis: g, the generalized force of a unit load on the axis (tree axis: ±e_u; loop axis:
+  // the torque or force pair on its bodies through Jᵀ), and M^-1·g, of the implicit axis solve
+  // (axis_columns.cpp). A column is reused while the configuration stays
+  // within 1e-7 of the one it was computed at (a robot at rest): M depends on q only.
+  std::vector<SimTK::Vector> minv_column;
+  std::vector<SimTK::Vector> loop_unit_force;  // g of the loop axes (empty for tree axes)
+  std::vector<char> column_valid;
+  std::vector<double> columns_q;    // the q the valid columns were computed at
+  std::vector<char> q_shapes_mass;  // per q: whether M depends on it (axis_columns.cpp)
+  struct Root {
+    int q0, u0;  // a free root's quaternion and angular velocity indices
+  };
+  std::vector<Root> roots;
+  std::vector<int> axis_root;            // per axis: its tree's free root (-1: none)
+  std::vector<double> column_root_quat;  // per axis: its root's orientation for its column
+  SimTK::Vector_<SimTK::SpatialVec> unit_body_forces;  // scratch for the loop axes' g
+  // Axis drives (axis_drives.cpp): the components' velocity-dependent axis forces for the tick
+  // (written through the SDK), and this substep's rows of the implicit solve: the drives with
+  // damping and the loop axes' regularised Coulomb friction.
+  std::vector<AxisDrive> drives;
+  std::int32_t drive_count = 0;
+  struct DriveRow {
+    int axis;
+    double force, damping, rate0, low, high;  // f(v) = clamp(force − damping·(v − rate0))
+    double applied;                           // its value in this substep
+    bool component;                           // a component's (not the loop friction)
+  };
+  std::vector<DriveRow> rows;
+  std::vector<int> first_row, next_row;     // the rows of each axis, as linked lists
+  std::vector<int> solve_list;              // the axes solved this substep
+  std::vector<double> friction_bound;       // per axis: its Coulomb bound in the solve (0: none)
+  std::vector<double> friction_applied;     // per axis: the friction force found
+  std::vector<char> axis_stuck;             // per axis: its friction holds it still
+  std::vector<double> breakpoints;          // scratch: one axis's drive breakpoints
+  std::vector<double> explicit_drive;       // per axis: the drives without damping, clamped
+  std::vector<double> rate0;                // per axis: its rate at the tick's first substep
+  std::vector<double> drive_sum;            // per axis: Σ over the tick's substeps of drive forces
+  std::vector<double> drive_applied;        // per axis: their mean over the last tick
+  std::vector<double> row_matrix, row_rhs;  // rows x rows, rows
+  int substep = 0;                          // index of the current substep in the tick
+  bool bodies_fresh = false;                // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   bool contact_wrenches_used = false;  // substep_wrenches are written every substep (contact)
   std::vector<Pose> substep_poses;
@@ -119,7 +154,7 @@ struct Multibody::Impl {
   SimTK::State current;
   SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
   bool half_kick_pending = true;
-  double last_kick_s = 0;  // the kick of the current substep (the brakes bound their impulse by it)
+  double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
   std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
   // q' = N(q)·u by hand when every mobilizer is Free or has q' = u: Simbody's multiplyByN goes
   // through its state digest for what is a copy plus one quaternion rate per free body.
@@ -150,14 +185,39 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
 /// v += a·x, through raw storage where it is contiguous (element access goes through a
 /// non-inline helper, and Vector expressions allocate).
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x);
+/// Adds a load `f` (N·m or N) on axis a: a mobility force for a tree axis, equal and opposite
+/// body loads for a loop axis; `state` realized to Position.
+void apply_axis_load(const Multibody::Impl& m, const SimTK::State& state, std::size_t a, double f,
+                     SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                     SimTK::Vector& mobility_forces);
 /// Registers the kernel's loads (gravity, wrenches, axis forces, stops) as a Simbody force.
 void add_applied_loads(Multibody::Impl& m);
 
-/// Axis Coulomb friction (axis_friction.cpp): marks the axes that slide clearly, which get a
+/// Axis Coulomb friction (implicit_axes.cpp): marks the axes that slide clearly, which get a
 /// plain force, before the accelerations are computed.
 void classify_sliding(Multibody::Impl& m, const SimTK::State& s, double h);
-/// The velocity-level brake of the other axes with friction, after the kick.
-void brake_axes(Multibody::Impl& m, SimTK::State& s, double kick_s);
+/// The regularisation speed of a loop axis's Coulomb friction (a force, not a brake).
+double loop_friction_speed();
+
+/// M^-1 columns (axis_columns.cpp): makes minv_column[a] current for every axis in `axes`;
+/// `state` realized to Position.
+void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector<int>& axes);
+/// g·x for axis a: the axis's rate for generalized speeds x, or its share of a generalized
+/// force x.
+double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x);
+/// Marks the coordinates M does not depend on (a root's translation, a symmetric wheel's
+/// angle): columns stay valid while only those change. After the initial state is built.
+void find_mass_matrix_coordinates(Multibody::Impl& m);
+/// Forgets every column (reset, restore of an older snapshot format).
+void clear_columns(Multibody::Impl& m);
+
+/// Axis drives (implicit_axes.cpp). Before the accelerations: the rows of this substep and
+/// their explicit values, which the applied loads add.
+void prepare_drives(Multibody::Impl& m, const SimTK::State& s);
+/// After the explicit kick u += κ·u': the drives' forces at the kick's end velocity, implicit,
+/// within their bounds, together with the tree axes' Coulomb friction (implicit_axes.cpp);
+/// the drives' mean over the tick is recorded for the axis torque signals.
+void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s);
 
 /// Joint reactions (joint_reactions.cpp) from a state realized to Acceleration.
 void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);

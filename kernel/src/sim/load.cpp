@@ -97,6 +97,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.axis_velocity = m.axis_velocity.data();
   m.world.axis_force = m.multibody->applied_axis_forces();
   m.world.axis_friction = m.multibody->applied_axis_friction();
+  m.world.axis_drives = m.multibody->axis_drives();
+  m.world.axis_drive_count = m.multibody->axis_drive_count();
+  m.world.axis_drive_capacity = m.multibody->axis_drive_capacity();
   m.world.inputs = m.inputs.data();
   m.world.signals = m.published.data();
   m.world.state = m.state.data();

@@ -20,7 +20,7 @@ enum class PipelineStage : std::uint8_t {
   forces,         ///< the substep's loads handed to the multibody (per substep)
   accelerations,  ///< M·u' = f, Simbody (per substep)
   kick,           ///< u += h·u' (per substep)
-  brakes,         ///< axis Coulomb friction at velocity level (per substep)
+  axes,           ///< axis drives (implicit) and Coulomb friction (per substep)
   drift,          ///< q += h·N(q)·u (per substep)
   project,        ///< loop constraints (per substep)
   finish,         ///< finite check, body read-out, sensors' view refreshed

@@ -4,7 +4,7 @@
 //                      (each component whose period is due; they read the state of the tick's
 //                      start and write loads, inputs and published signals)
 //   physics, per substep
-//                      collide → forces → accelerations → kick → brakes → drift → project
+//                      collide → forces → accelerations → kick → axes → drift → project
 //   finish             finite check, bodies read out, the components' view refreshed
 //
 // A motor's torque is computed in `actuate` (the dc_motor component), contact forces in
@@ -24,7 +24,7 @@ namespace sim {
 const char* stage_name(PipelineStage stage) {
   static constexpr const char* kNames[] = {"sense",   "control", "motor control", "actuate",
                                            "collide", "forces",  "accelerations", "kick",
-                                           "brakes",  "drift",   "project",       "finish"};
+                                           "axes",    "drift",   "project",       "finish"};
   static_assert(std::size(kNames) == StageProfile::kStages);
   return kNames[static_cast<std::size_t>(stage)];
 }
@@ -54,8 +54,8 @@ void physics_substep(model::Multibody& mb, model::SubstepForces* contact, int su
     mb.kick();
   }
   {
-    StageTimer timer(profile, PipelineStage::brakes);
-    mb.brake();
+    StageTimer timer(profile, PipelineStage::axes);
+    mb.solve_axes();
   }
   {
     StageTimer timer(profile, PipelineStage::drift);
@@ -103,6 +103,7 @@ void Simulation::Impl::step_once() {
   std::fill(wrenches, wrenches + poses.size(), Wrench{});
   std::fill(axis_force, axis_force + axis_views.size(), 0.0);
   std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
+  *multibody->axis_drive_count() = 0;
   // The scheduled stages, in Stage order: sense, control, motor control, actuate.
   for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
     sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
@@ -116,8 +117,11 @@ void Simulation::Impl::step_once() {
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
-  std::copy(axis_force, axis_force + axis_views.size(), axis_force_applied.begin());
   sim::physics_tick(*multibody, contacts.get(), profile.get());
+  // What the axes carried over the tick: the plain forces and the drives' implicit values.
+  const double* drive = multibody->drive_force_applied();
+  for (std::size_t a = 0; a < axis_views.size(); ++a)
+    axis_force_applied[a] = axis_force[a] + drive[a];
   ++tick;
   sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
   refresh();

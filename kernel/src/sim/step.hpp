@@ -11,7 +11,7 @@
 namespace s2sim::sim {
 
 /// Advances `multibody` by one tick: per substep, collide (`contact`, may be null) → forces →
-/// accelerations → kick → brakes → drift → project; then the end-of-tick read-out and finite
+/// accelerations → kick → axes → drift → project; then the end-of-tick read-out and finite
 /// check. Throws s2sim::Error (runtime) when the state becomes non-finite or Simbody refuses
 /// it. `profile` (may be null) accumulates the time per stage.
 void physics_tick(model::Multibody& multibody, model::SubstepForces* contact,

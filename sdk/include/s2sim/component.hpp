@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -129,6 +130,16 @@ struct FloorPolygon {
   std::vector<double> x_m, y_m;
 };
 
+/// A velocity-dependent force on an axis for one tick (StepContext::apply_axis_drive):
+/// f(v) = clamp(force − damping·(v − v_tick), min_force, max_force), v_tick the axis velocity
+/// the component read.
+struct AxisDrive {
+  std::int32_t axis = -1;
+  double force = 0;    ///< N·m or N, at the velocity read this tick
+  double damping = 0;  ///< −df/dv >= 0, N·m·s/rad or N·s/m
+  double min_force = 0, max_force = 0;
+};
+
 namespace detail {
 /// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
 /// through `StepContext`. Its layout is part of the plugin ABI.
@@ -159,6 +170,11 @@ struct WorldView {
   /// frame, torque about the joint anchor carried by body1, from the last physics step. Zeros
   /// until some component looked a joint up with `ConfigureContext::joint()`.
   const Wrench* joint_reaction = nullptr;
+  /// Velocity-dependent axis forces for the coming tick (SDK 0.5, ABI 4), integrated
+  /// implicitly by the kernel: `axis_drive_capacity` slots, `*axis_drive_count` used.
+  AxisDrive* axis_drives = nullptr;
+  std::int32_t* axis_drive_count = nullptr;
+  std::int32_t axis_drive_capacity = 0;
 };
 }  // namespace detail
 
@@ -206,6 +222,28 @@ class StepContext {
   /// the full bound.
   void apply_axis_friction(AxisHandle a, double max_force) {
     w_->axis_friction[a.index] += max_force;
+  }
+  /// Applies a force on an axis for the coming tick that falls as the axis speeds up, as a
+  /// motor's back-EMF or a viscous friction does: with v the axis velocity during the tick,
+  ///   f(v) = clamp(force − damping·(v − axis_velocity()), min_force, max_force),
+  /// `force` being its value at the velocity read now, `damping` = −df/dv >= 0 (N·m·s/rad or
+  /// N·s/m), and the bounds a saturation (a motor's current limit). The kernel integrates it
+  /// implicitly, (M + h·C)·Δu = h·f, with the bounds as a box: stable and free of
+  /// step-to-step ringing at any step and on any inertia, where the same force applied with
+  /// `apply_axis_force` rings once h·damping/inertia exceeds 1 and diverges past 2. Several
+  /// drives on one axis add up, each within its own bounds. The axis's `torque` signal reports
+  /// what was applied (docs/models/multibody.md).
+  void apply_axis_drive(AxisHandle a, double force, double damping,
+                        double min_force = -std::numeric_limits<double>::infinity(),
+                        double max_force = std::numeric_limits<double>::infinity()) {
+    if (*w_->axis_drive_count < w_->axis_drive_capacity) {
+      w_->axis_drives[(*w_->axis_drive_count)++] =
+          AxisDrive{a.index, force, damping, min_force, max_force};
+    } else {  // more drives than the kernel reserved: applied explicitly
+      w_->axis_force[a.index] += force < min_force   ? min_force
+                                 : force > max_force ? max_force
+                                                     : force;
+    }
   }
 
   /// Number of contacts found in the last physics step.

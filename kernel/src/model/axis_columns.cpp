@@ -1,0 +1,151 @@
+// M^-1 columns of the axes: the generalized-speed response to a unit impulse on an axis. The
+// implicit axis solve (implicit_axes.cpp: drives and Coulomb friction) works in the axes'
+// Delassus matrix W_ab = g_a·M^-1·g_b built from them.
+#include "model/multibody_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::model {
+namespace {
+
+/// Columns computed at a configuration within 1e-7 (rad or m) of the current one in every
+/// coordinate the mass matrix depends on are still valid; otherwise every column is forgotten.
+void check_configuration(Multibody::Impl& m, const SimTK::State& s) {
+  const SimTK::Vector& q = s.getQ();
+  const double* now = q.hasContiguousData() ? q.getContiguousScalarData() : nullptr;
+  bool same = now != nullptr;
+  for (int i = 0; same && i < q.size(); ++i)
+    same = !m.q_shapes_mass[static_cast<std::size_t>(i)] ||
+           std::abs(now[i] - m.columns_q[static_cast<std::size_t>(i)]) <= 1e-7;
+  if (same) return;
+  std::fill(m.column_valid.begin(), m.column_valid.end(), 0);
+  for (int i = 0; i < q.size(); ++i)
+    m.columns_q[static_cast<std::size_t>(i)] = q[i];
+}
+
+/// A column kept while the robot turned as a whole about its free root: M transforms as
+/// T·M·Tᵀ with T = diag(R, R, 1) on the root's ground-frame (ω, v) and the joint rates, and a
+/// joint axis's g is unchanged, so its column is T·column: the root's two vectors rotated by
+/// R = R_now·R_thenᵀ.
+void rotate_with_root(Multibody::Impl& m, const SimTK::State& s, int a) {
+  const int root = m.axis_root[a];
+  if (root < 0) return;
+  const Multibody::Impl::Root& r = m.roots[static_cast<std::size_t>(root)];
+  const SimTK::Vector& q = s.getQ();
+  double* then = &m.column_root_quat[4 * static_cast<std::size_t>(a)];
+  bool same = true;
+  for (int k = 0; k < 4; ++k)
+    same = same && then[k] == q[r.q0 + k];
+  if (same) return;
+  const SimTK::Rotation R_now(SimTK::Quaternion(q[r.q0], q[r.q0 + 1], q[r.q0 + 2], q[r.q0 + 3]));
+  const SimTK::Rotation R_then(SimTK::Quaternion(then[0], then[1], then[2], then[3]));
+  const SimTK::Rotation R = R_now * ~R_then;
+  SimTK::Vector& column = m.minv_column[a];
+  for (int part = 0; part < 2; ++part) {
+    const int i = r.u0 + 3 * part;
+    const SimTK::Vec3 v = R * SimTK::Vec3(column[i], column[i + 1], column[i + 2]);
+    for (int k = 0; k < 3; ++k)
+      column[i + k] = v[k];
+  }
+  for (int k = 0; k < 4; ++k)
+    then[k] = q[r.q0 + k];
+}
+
+}  // namespace
+
+void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector<int>& axes) {
+  if (axes.empty()) return;
+  check_configuration(m, s);
+  for (int a : axes) {
+    if (m.column_valid[a]) {
+      rotate_with_root(m, s, a);
+      continue;
+    }
+    if (!m.axes[a].loop) {
+      m.unit_force = 0.0;
+      m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;  // g: a unit load along the axis
+      m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
+    } else {
+      // g = Jᵀ·(the body loads of a unit axis load), then M^-1·g.
+      SimTK::Vector& g = m.loop_unit_force[a];
+      m.unit_body_forces.setToZero();
+      m.unit_force = 0.0;
+      apply_axis_load(m, s, static_cast<std::size_t>(a), 1.0, m.unit_body_forces, m.unit_force);
+      m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, g);
+      m.matter.multiplyByMInv(s, g, m.minv_column[a]);
+    }
+    m.axis_mobility[a] = axis_dot(m, static_cast<std::size_t>(a), m.minv_column[a]);
+    m.column_valid[a] = 1;
+    if (m.axis_root[a] >= 0)
+      for (int k = 0; k < 4; ++k)
+        m.column_root_quat[4 * static_cast<std::size_t>(a) + k] =
+            s.getQ()[m.roots[static_cast<std::size_t>(m.axis_root[a])].q0 + k];
+  }
+}
+
+double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x) {
+  if (!m.axes[a].loop) return m.axis_impl[a].sign * x[m.axis_u[a]];
+  const SimTK::Vector& g = m.loop_unit_force[a];
+  double sum = 0;
+  for (int i = 0; i < g.size(); ++i)
+    sum += g[i] * x[i];
+  return sum;
+}
+
+void find_mass_matrix_coordinates(Multibody::Impl& m) {
+  const SimTK::State& s = m.initial_state;
+  m.q_shapes_mass.assign(static_cast<std::size_t>(s.getNQ()), 1);
+  m.axis_root.assign(m.axes.size(), -1);
+  m.column_root_quat.assign(4 * m.axes.size(), 0.0);
+  // With loops the loop axes' g depends on every body's pose: keep every coordinate.
+  if (m.matter.getNumConstraints() > 0) return;
+  std::vector<char> has_children(static_cast<std::size_t>(m.matter.getNumBodies()), 0);
+  for (SimTK::MobilizedBodyIndex i(1); i < m.matter.getNumBodies(); ++i)
+    has_children[m.matter.getMobilizedBody(i).getParentMobilizedBody().getMobilizedBodyIndex()] = 1;
+  for (SimTK::MobilizedBodyIndex i(1); i < m.matter.getNumBodies(); ++i) {
+    const auto& mob = m.matter.getMobilizedBody(i);
+    const auto q0 = static_cast<std::size_t>(mob.getFirstQIndex(s));
+    // A root's translation: M (ground-frame generalized speeds) is translation invariant.
+    // Its orientation: the columns of its tree's axes turn with it (rotate_with_root).
+    if (SimTK::MobilizedBody::Free::isInstanceOf(mob) && mob.getParentMobilizedBody().isGround()) {
+      for (std::size_t k = 0; k < 7; ++k)
+        m.q_shapes_mass[q0 + k] = 0;
+      m.roots.push_back({static_cast<int>(q0), mob.getFirstUIndex(s)});
+      continue;
+    }
+    // A pin whose child is a leaf with its mass centre on the axis and an inertia symmetric
+    // about it (a wheel, a rotor): turning it leaves the mass distribution unchanged.
+    if (!SimTK::MobilizedBody::Pin::isInstanceOf(mob) || has_children[i]) continue;
+    const SimTK::Transform& X_BM = mob.getOutboardFrame(s);
+    const SimTK::Vec3 axis = X_BM.R().z();
+    const SimTK::MassProperties& mp = mob.getBodyMassProperties(s);
+    const SimTK::Vec3 offset = mp.getMassCenter() - X_BM.p();
+    const double scale = 1 + offset.norm();
+    if (SimTK::cross(offset, axis).norm() > 1e-12 * scale) continue;
+    const SimTK::Mat33 I(mp.calcCentralInertia().asSymMat33());
+    const double along = ~axis * (I * axis);
+    const double across = 0.5 * (I.trace() - along);
+    const SimTK::Mat33 aa = axis * ~axis;
+    const SimTK::Mat33 symmetric = along * aa + across * (SimTK::Mat33(1) - aa);
+    if ((I - symmetric).norm() <= 1e-9 * (1e-300 + std::abs(I.trace()))) m.q_shapes_mass[q0] = 0;
+  }
+  // Each tree axis's root, when that root is free.
+  for (std::size_t a = 0; a < m.axes.size(); ++a) {
+    if (m.axes[a].loop) continue;
+    SimTK::MobilizedBodyIndex b = m.axis_impl[a].mobod;
+    while (!m.matter.getMobilizedBody(b).getParentMobilizedBody().isGround())
+      b = m.matter.getMobilizedBody(b).getParentMobilizedBody().getMobilizedBodyIndex();
+    const auto& root = m.matter.getMobilizedBody(b);
+    if (!SimTK::MobilizedBody::Free::isInstanceOf(root)) continue;
+    for (std::size_t r = 0; r < m.roots.size(); ++r)
+      if (m.roots[r].q0 == root.getFirstQIndex(s)) m.axis_root[a] = static_cast<int>(r);
+  }
+}
+
+void clear_columns(Multibody::Impl& m) {
+  std::fill(m.column_valid.begin(), m.column_valid.end(), 0);
+  std::fill(m.axis_mobility.begin(), m.axis_mobility.end(), 0.0);
+}
+
+}  // namespace s2sim::model

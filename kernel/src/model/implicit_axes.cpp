@@ -1,0 +1,287 @@
+// The axis loads solved at the end of the kick (docs/models/multibody.md): the drives and the
+// Coulomb friction of the joint axes.
+//
+// A drive is a force on an axis that falls with the axis velocity v within bounds,
+//   f(v) = clamp(F − c·(v − v0), lo, hi),
+// as a motor's back-EMF (bounded by its current limit), a viscous friction, or the loop axes'
+// regularised Coulomb friction. Applied at the velocity of the substep's start, such a force
+// rings on a light axis once h·c/inertia > 1 and diverges past 2. Here, after the explicit
+// kick Δu* = κ·M^-1·f, the axis forces are re-solved at the kick's end velocity:
+//   f⁺ = clamp(F − c·(v⁺ − v0)),   v⁺ = v* + κ·W·(f⁺ − f),   W_ij = g_i·M^-1·g_j,
+// that is linearly implicit Euler, (M + κ·C)·Δu = κ·f, within the bounds. Coulomb friction on a
+// tree axis joins as the set-valued law f ∈ −F·Sign(v) (a velocity-level brake: true stick).
+//  1. The drives without their bounds: one symmetric positive definite solve,
+//     (I + κ·S·W·S)·z = S^-1·r, S = diag(√c), d = S·z: exact for any number of coupled axes.
+//  2. Where a bound binds or an axis has friction: block Gauss-Seidel over the axes, each
+//     axis's monotone piecewise-linear law solved exactly for its own speed (its breakpoints
+//     walked in order), the others held; from the clamped solution of 1.
+// An axis alone: its speed change is the explicit one divided by 1 + κ·c·w, never
+// overshooting, whatever c·κ/inertia; a motor stronger than its friction turns, a weaker one
+// sticks.
+#include "model/multibody_impl.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::model {
+namespace {
+
+/// The axis's rate for the current generalized speeds; `state` realized to Velocity for a
+/// loop axis.
+double current_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
+  if (!m.axes[a].loop) return m.axis_impl[a].sign * s.getU()[m.axis_u[a]];
+  return axis_rate(m, s, a);
+}
+
+double law(const Multibody::Impl::DriveRow& r, double rate) {
+  return std::clamp(r.force - r.damping * (rate - r.rate0), r.low, r.high);
+}
+
+/// Solves A·x = b in place (A symmetric positive definite, n x n, row-major; b becomes x) by
+/// Cholesky: n is the number of rows, a handful.
+void solve_spd(double* A, double* b, std::size_t n) {
+  for (std::size_t j = 0; j < n; ++j) {
+    double d = A[j * n + j];
+    for (std::size_t k = 0; k < j; ++k)
+      d -= A[j * n + k] * A[j * n + k];
+    d = std::sqrt(d);
+    A[j * n + j] = d;
+    for (std::size_t i = j + 1; i < n; ++i) {
+      double v = A[i * n + j];
+      for (std::size_t k = 0; k < j; ++k)
+        v -= A[i * n + k] * A[j * n + k];
+      A[i * n + j] = v / d;
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {  // L·y = b
+    for (std::size_t k = 0; k < i; ++k)
+      b[i] -= A[i * n + k] * b[k];
+    b[i] /= A[i * n + i];
+  }
+  for (std::size_t i = n; i-- > 0;) {  // Lᵀ·x = y
+    for (std::size_t k = i + 1; k < n; ++k)
+      b[i] -= A[k * n + i] * b[k];
+    b[i] /= A[i * n + i];
+  }
+}
+
+}  // namespace
+
+/// Which axes with friction slide so fast that friction cannot stop them within a step (ten
+/// times the speed change the bound can make): they get Coulomb's law as a plain force and
+/// skip the solve. (M^-1)_aa is remembered from the last solve.
+void classify_sliding(Multibody::Impl& m, const SimTK::State& s, double h) {
+  const SimTK::Vector& u = s.getU();
+  for (std::size_t a = 0; a < m.axis_friction.size(); ++a) {
+    m.sliding[a] = 0;
+    if (!(m.axis_friction[a] > 0.0) || m.axes[a].loop || !(m.axis_mobility[a] > 0)) continue;
+    const double threshold = 10 * m.axis_friction[a] * h * m.axis_mobility[a];
+    m.sliding[a] = std::abs(u[m.axis_u[a]]) > threshold;
+  }
+}
+
+void prepare_drives(Multibody::Impl& m, const SimTK::State& s) {
+  m.rows.clear();
+  std::fill(m.explicit_drive.begin(), m.explicit_drive.end(), 0.0);
+  std::fill(m.friction_applied.begin(), m.friction_applied.end(), 0.0);
+  bool realized = false;
+  auto rate = [&](std::size_t a) {
+    if (m.axes[a].loop && !realized) {
+      m.system.realize(s, SimTK::Stage::Velocity);
+      realized = true;
+    }
+    return current_rate(m, s, a);
+  };
+  // The components read the axis velocities of the tick's start: their drives are laws about
+  // those (on later substeps, the law followed to the substep's velocity).
+  if (m.substep == 0)
+    for (std::int32_t d = 0; d < m.drive_count; ++d) {
+      const auto a = static_cast<std::size_t>(m.drives[static_cast<std::size_t>(d)].axis);
+      m.rate0[a] = rate(a);
+    }
+  for (std::int32_t d = 0; d < m.drive_count; ++d) {
+    const AxisDrive& drive = m.drives[static_cast<std::size_t>(d)];
+    const auto a = static_cast<std::size_t>(drive.axis);
+    if (!(drive.damping > 0)) {  // no velocity dependence: a plain (clamped) force
+      m.explicit_drive[a] += std::clamp(drive.force, drive.min_force, drive.max_force);
+      continue;
+    }
+    Multibody::Impl::DriveRow row{drive.axis,      drive.force,     drive.damping, m.rate0[a],
+                                  drive.min_force, drive.max_force, 0.0,           true};
+    row.applied = law(row, rate(a));
+    m.rows.push_back(row);
+  }
+  // A loop axis has no velocity-level brake: its Coulomb friction is regularised over
+  // loop_friction_speed(), a drive of slope F/v_s within ±F.
+  for (std::size_t a = 0; a < m.axes.size(); ++a) {
+    if (!m.axes[a].loop || !(m.axis_friction[a] > 0.0)) continue;
+    const double bound = m.axis_friction[a];
+    Multibody::Impl::DriveRow row{
+        static_cast<int>(a), 0.0, bound / loop_friction_speed(), 0.0, -bound, bound, 0.0, false};
+    row.applied = law(row, rate(a));
+    m.rows.push_back(row);
+  }
+  for (std::size_t a = 0; a < m.explicit_drive.size(); ++a)
+    m.drive_sum[a] += m.explicit_drive[a];
+}
+
+namespace {
+
+/// The root of an increasing, continuous function f that is linear between the sorted
+/// `points` (and beyond them): the piece holding it found, then solved exactly.
+template <class F>
+double root_of_piecewise_linear(const F& f, const double* points, int count) {
+  if (count == 0) {  // one line: through f(0) and f(1)
+    const double f0 = f(0.0);
+    return -f0 / (f(1.0) - f0);
+  }
+  int j = 0;
+  double f_j = f(points[0]);
+  // Beyond the breakpoints f is one line: its slope from a second point a step away that
+  // stays distinct from the first in floating point.
+  auto away = [](double x) { return std::max(1.0, std::abs(x)); };
+  if (f_j >= 0) {  // left of every breakpoint
+    const double left = points[0] - away(points[0]);
+    return points[0] - f_j * (points[0] - left) / (f_j - f(left));
+  }
+  for (j = 1; j < count; ++j) {
+    const double f_next = f(points[j]);
+    if (f_next >= 0) {
+      const double span = points[j] - points[j - 1];
+      return span > 0 ? points[j - 1] - f_j * span / (f_next - f_j) : points[j];
+    }
+    f_j = f_next;
+  }
+  const double last = points[count - 1];  // right of every breakpoint
+  const double right = last + away(last);
+  return last - f_j * (right - last) / (f(right) - f_j);
+}
+
+/// The drives' law summed on one axis, Σ clamp(F − c·(v − v0)), over its rows.
+double axis_law(const Multibody::Impl& m, int axis, double v) {
+  double sum = 0;
+  for (int i = m.first_row[axis]; i >= 0; i = m.next_row[i])
+    sum += law(m.rows[i], v);
+  return sum;
+}
+
+/// Solves one axis exactly, the others held: the speed v and the total force G of its drives
+/// and friction such that v = v_now + κ·w·(G − G_now). With q(v) = v − v_now −
+/// κ·w·(D(v) − G_now), D the drives' law (non-increasing, so q increases with slope >= 1):
+/// q(v) = κ·w·φ, φ ∈ −F·Sign(v). Returns the change of G.
+double solve_one_axis(Multibody::Impl& m, int a, double v_now, double w, double kick_s) {
+  const double k = kick_s * w;
+  double g_now = m.friction_applied[a];
+  for (int i = m.first_row[a]; i >= 0; i = m.next_row[i])
+    g_now += m.rows[i].applied;
+  auto q = [&](double v) { return v - v_now - k * (axis_law(m, a, v) - g_now); };
+  const double F = m.friction_bound[a];
+  double target = 0;  // the friction's share of q at the solution
+  double v = 0;
+  const double q0 = q(0.0);
+  m.axis_stuck[a] = F > 0 && std::abs(q0) <= k * F;
+  if (m.axis_stuck[a]) {  // sticks
+    m.friction_applied[a] = q0 / k;
+    v = 0;
+  } else {
+    if (F > 0) target = q0 > 0 ? k * F : -k * F;  // slides against the bound
+    m.friction_applied[a] = F > 0 ? target / k : 0.0;
+    // q is piecewise linear between the drives' breakpoints: walk them in order.
+    int count = 0;
+    double* points = m.breakpoints.data();
+    for (int i = m.first_row[a]; i >= 0; i = m.next_row[i]) {
+      const auto& r = m.rows[i];
+      for (double bound : {r.low, r.high})
+        if (std::isfinite(bound)) points[count++] = r.rate0 + (r.force - bound) / r.damping;
+    }
+    std::sort(points, points + count);
+    v = root_of_piecewise_linear([&](double x) { return q(x) - target; }, points, count);
+  }
+  double g_new = m.friction_applied[a];
+  for (int i = m.first_row[a]; i >= 0; i = m.next_row[i]) {
+    m.rows[i].applied = law(m.rows[i], v);
+    g_new += m.rows[i].applied;
+  }
+  return g_new - g_now;
+}
+
+}  // namespace
+
+void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
+  // The axes to solve: those with drive rows, and the tree axes whose friction may stop them.
+  m.solve_list.clear();
+  std::fill(m.first_row.begin(), m.first_row.end(), -1);
+  std::fill(m.friction_bound.begin(), m.friction_bound.end(), 0.0);
+  for (int i = static_cast<int>(m.rows.size()); i-- > 0;) {
+    const int a = m.rows[i].axis;
+    if (m.first_row[a] < 0) m.solve_list.push_back(a);
+    m.next_row[i] = m.first_row[a];
+    m.first_row[a] = i;
+  }
+  for (std::size_t a = 0; a < m.axes.size(); ++a)
+    if (m.axis_friction[a] > 0.0 && !m.axes[a].loop && !m.sliding[a]) {
+      m.friction_bound[a] = m.axis_friction[a];
+      if (m.first_row[a] < 0) m.solve_list.push_back(static_cast<int>(a));
+    }
+  if (m.solve_list.empty()) return;
+  update_columns(m, s, m.solve_list);
+  SimTK::Vector& u = s.updU();
+
+  // 1. The drive rows without bounds, all at once.
+  const std::size_t n = m.rows.size();
+  bool bounded = false;
+  if (n > 0) {
+    double* A = m.row_matrix.data();
+    double* b = m.row_rhs.data();
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& ri = m.rows[i];
+      const double si = std::sqrt(ri.damping);
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto& rk = m.rows[k];
+        const double w = axis_dot(m, static_cast<std::size_t>(ri.axis), m.minv_column[rk.axis]);
+        A[i * n + k] = (i == k ? 1.0 : 0.0) + kick_s * si * w * std::sqrt(rk.damping);
+      }
+      const double v = axis_dot(m, static_cast<std::size_t>(ri.axis), u);
+      b[i] = (ri.force - ri.damping * (v - ri.rate0) - ri.applied) / si;
+    }
+    solve_spd(A, b, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      auto& row = m.rows[i];
+      const double wanted = row.applied + std::sqrt(row.damping) * b[i];
+      const double f = std::clamp(wanted, row.low, row.high);
+      bounded = bounded || f != wanted;
+      if (f != row.applied) add_scaled(u, kick_s * (f - row.applied), m.minv_column[row.axis]);
+      row.applied = f;
+    }
+  }
+  bool friction = false;
+  for (int a : m.solve_list)
+    friction = friction || m.friction_bound[a] > 0;
+
+  // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves.
+  if (bounded || friction) {
+    const int sweeps = m.solve_list.size() == 1 ? 1 : 16;
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      bool changed = false;
+      for (int a : m.solve_list) {
+        const auto axis = static_cast<std::size_t>(a);
+        const double w = axis_dot(m, axis, m.minv_column[a]);
+        if (!(w > 0)) continue;
+        const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
+        if (delta == 0.0) continue;
+        add_scaled(u, kick_s * delta, m.minv_column[a]);
+        // A tree axis that sticks stands exactly still (no creep from rounding).
+        if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
+          u[m.axis_u[axis]] = 0.0;
+        // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
+        changed =
+            changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
+      }
+      if (!changed) break;
+    }
+  }
+  for (const auto& row : m.rows)
+    if (row.component) m.drive_sum[row.axis] += row.applied;
+}
+
+}  // namespace s2sim::model
