@@ -55,6 +55,14 @@ Limits make_limits(double min, double max, bool given, bool rotational) {
   return l;
 }
 
+/// A range whose minimum exceeds its maximum holds no position: refused, not reinterpreted.
+void check_limits(const Reader& r, const Element& el, double min, double max) {
+  if (min > max)
+    r.fail(el, "Min",
+           "Min (" + format_number(min) + ") is greater than Max (" + format_number(max) +
+               "): the joint would have no allowed position");
+}
+
 }  // namespace
 
 void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, int robot) {
@@ -101,10 +109,12 @@ void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, 
       } else if (n == "limits") {
         lim_min = r.number(c, "Min", lim_min);
         lim_max = r.number(c, "Max", lim_max);
+        check_limits(r, c, lim_min, lim_max);
         lim_given = true;
       } else if (n == "limits2") {
         lim2_min = r.number(c, "Min", lim2_min);
         lim2_max = r.number(c, "Max", lim2_max);
+        check_limits(r, c, lim2_min, lim2_max);
         lim2_given = true;
       } else if (n == "solid") {
         solid_el = &c;

@@ -84,6 +84,14 @@ void load_scene_robot(LoadContext& ctx, const Reader& r, const Element& el, Cons
     }
   }
   placement.id = element_id(r, el, placement.id);
+  // Robot IDs name every signal and input of the robot: two robots cannot share one.
+  for (const Robot& other : ctx.scene.robots)
+    if (other.id == placement.id) {
+      const Element* id = el.child("ID");
+      r.fail(id ? *id : el, id && r.has(*id, "name") ? "name" : (id ? "value" : ""),
+             "duplicate robot ID '" + placement.id + "' (the robot at " + other.where.str() +
+                 " has it already)");
+    }
   if (!body || !r.has(*body, "file")) {
     ctx.warn(r.at(body ? *body : el, "file"),
              "robot '" + placement.id + "' has no <body file>; skipped");

@@ -55,6 +55,8 @@ bool read_visual_child(LoadContext& ctx, const Reader& reader, const Element& ch
 
 /// `<surface>` into `surface` (explicit when mu >= 0).
 void read_surface(const Reader& reader, const Element& el, Surface& surface);
+/// `softness` of a surface element: > 0, or a located error.
+double read_softness(const Reader& reader, const Element& el, double fallback);
 
 void load_shells(LoadContext& ctx, const Reader& reader, const Element& shells, int robot);
 void load_wheels(LoadContext& ctx, const Reader& reader, const Element& wheels, int robot);

@@ -51,11 +51,27 @@ int find_body(const Scene& scene, const std::vector<int>& list, std::string_view
   return found;
 }
 
+double read_softness(const Reader& r, const Element& el, double fallback) {
+  const double softness = r.number(el, "softness", fallback);
+  // ODE's CFM read at the reference step: the contact stiffness is erp/(softness·h). Zero or
+  // less is no stiffness at all; a hard contact is a small positive value (the stiffness is
+  // capped at what the step can carry anyway, docs/models/contact.md).
+  if (!(softness > 0))
+    r.fail(el, "softness",
+           "must be > 0, got " + format_number(softness) +
+               " (for a hard contact give a small value such as 1e-6)");
+  return softness;
+}
+
 void read_surface(const Reader& r, const Element& el, Surface& s) {
   s.mu = r.number(el, "mu", s.mu);
   s.mu2 = r.number(el, "mu2", s.mu2);
-  s.softness = r.number(el, "softness", s.softness);
+  s.softness = read_softness(r, el, s.softness);
   s.bounce = r.number(el, "bounce", s.bounce);
+  // A restitution is a fraction of the approach speed: above 1 a bounce makes energy (and the
+  // contact law cannot realise it), below 0 it has no meaning.
+  if (!(s.bounce >= 0 && s.bounce <= 1))
+    r.fail(el, "bounce", "must be in [0, 1], got " + format_number(s.bounce));
   s.bounce_threshold_m_s = r.number(el, "bounce_tresh", s.bounce_threshold_m_s);  // sic
   s.explicit_surface = s.mu >= 0;
 }

@@ -47,7 +47,7 @@ void read_wheel(LoadContext& ctx, const Reader& r, const Element& el, WheelSpec&
     } else if (n == "surface") {
       w.surface.mu = r.number(c, "mu", w.surface.mu);
       w.surface.mu2 = r.number(c, "mu2", w.surface.mu2);
-      w.surface.softness = r.number(c, "softness", w.surface.softness);
+      w.surface.softness = read_softness(r, c, w.surface.softness);
     } else if (n == "axis") {
       w.angle_deg = r.number(c, "angle", w.angle_deg);  // x, y are unused (quirk 28)
     } else if (n == "offset") {

@@ -3,6 +3,8 @@
 
 #include "scene_test_util.hpp"
 
+#include "common/edited_copy.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -55,6 +57,48 @@ TEST(SceneErrors, MotherSolidMustComeEarlier) {
   EXPECT_EQ(e.where().element, "robot/solids/cuboid[1]/solid");
   EXPECT_EQ(e.where().attribute, "id");
   EXPECT_THAT(e.message(), HasSubstr("'Later'"));
+}
+
+// ../shared/repro R17: a hinge whose limits hold no position was accepted.
+TEST(SceneErrors, LimitsWithMinAboveMaxAreRefused) {
+  const Error e = load_error(fixture("err_limits_inverted"));
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().file, "arm.xml");
+  EXPECT_EQ(e.where().element, "robot/articulations/joint/limits");
+  EXPECT_EQ(e.where().attribute, "Min");
+  EXPECT_THAT(e.message(), HasSubstr("Min (45) is greater than Max (-45)"));
+}
+
+// ../shared/repro R16: two robots with one ID ended as a plugin error (exit 3) about a signal.
+TEST(SceneErrors, DuplicateRobotIdIsASceneErrorAtTheSecondRobot) {
+  const Error e = load_error(fixture("err_duplicate_robot"));
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().file, "scene.xml");
+  EXPECT_EQ(e.where().element, "scene/robot[2]/ID");
+  EXPECT_EQ(e.where().attribute, "name");
+  EXPECT_THAT(e.message(), HasSubstr("duplicate robot ID 'bot'"));
+  EXPECT_THAT(e.message(), HasSubstr("scene/robot[1]"));
+}
+
+// ../shared/repro R09: bounce 2 made a ball fall through the floor, exit 0; negative bounce and
+// softness <= 0 were accepted.
+TEST(SceneErrors, BounceOutsideZeroToOneAndNonPositiveSoftnessAreRefused) {
+  const Error e = load_error(fixture("err_bounce"));
+  EXPECT_EQ(e.where().file, "things.xml");
+  EXPECT_EQ(e.where().element, "things/sphere/surface");
+  EXPECT_EQ(e.where().attribute, "bounce");
+  EXPECT_THAT(e.message(), HasSubstr("must be in [0, 1], got 2"));
+  for (const char* bad : {"bounce='-0.5'", "bounce='1.5'"}) {
+    const Error b =
+        load_error(test::edited_copy(fixture("err_bounce"), "things.xml", "bounce='2'", bad));
+    EXPECT_EQ(b.where().attribute, "bounce") << bad;
+  }
+  for (const char* bad : {"softness='0'", "softness='-1e-5'"}) {
+    const Error s =
+        load_error(test::edited_copy(fixture("err_bounce"), "things.xml", "bounce='2'", bad));
+    EXPECT_EQ(s.where().attribute, "softness") << bad;
+    EXPECT_THAT(s.message(), HasSubstr("must be > 0")) << bad;
+  }
 }
 
 TEST(SceneErrors, FailingExpressionWithColumn) {
