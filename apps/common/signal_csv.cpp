@@ -2,6 +2,8 @@
 
 #include <s2sim/error.hpp>
 
+#include <cmath>
+
 namespace s2sim::apps {
 
 std::vector<std::size_t> select_signals(const Simulation& sim,
@@ -34,13 +36,30 @@ std::vector<std::size_t> select_signals(const Simulation& sim,
   return selected;
 }
 
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) {
+    if (c == '"') quoted += '"';  // RFC 4180: a quote inside a quoted field is doubled
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
 void write_csv_header(std::FILE* out, const Simulation& sim, std::span<const std::size_t> signals) {
   std::fputs("time [s]", out);
   for (std::size_t i : signals) {
     const SignalInfo& info = sim.signal_info(i);
-    std::fprintf(out, ",%s [%s]", info.name.c_str(), info.unit.c_str());
+    std::fputc(',', out);
+    std::fputs(csv_field(info.name + " [" + info.unit + "]").c_str(), out);
   }
   std::fputc('\n', out);
+}
+
+std::ptrdiff_t first_non_finite(std::span<const double> values) {
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k])) return static_cast<std::ptrdiff_t>(k);
+  return -1;
 }
 
 void write_csv_row(std::FILE* out, double time_s, std::span<const double> values) {

@@ -99,6 +99,17 @@ void CsvLog::close() {
 void CsvLog::write_row(const Simulation& sim) {
   for (std::size_t k = 0; k < signals_.size(); ++k)
     row_[k] = sim.signal(signals_[k]);
+  // A non-finite value is no measurement: the log keeps its rows up to the last finite one and
+  // the run fails (exit 5) naming the signal, rather than writing inf/nan with exit 0.
+  if (const auto bad = apps::first_non_finite(row_); bad >= 0) {
+    std::fflush(out_);
+    char value[32];
+    std::snprintf(value, sizeof value, "%g", row_[static_cast<std::size_t>(bad)]);
+    throw Error(ErrorKind::runtime,
+                "signal '" + sim.signal_info(signals_[static_cast<std::size_t>(bad)]).name +
+                    "' is " + value + " at t = " + std::to_string(sim.time_s()) +
+                    " s; --log keeps the rows before it");
+  }
   apps::write_csv_row(out_, sim.time_s(), row_);
   if (std::ferror(out_)) throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
 }

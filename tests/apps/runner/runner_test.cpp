@@ -37,9 +37,11 @@ using ::testing::ElementsAreArray;
 using ::testing::EndsWith;
 using ::testing::HasSubstr;
 using ::testing::Not;
+using ::testing::StartsWith;
 
 const fs::path kRunner = fs::path(S2SIM_BIN_DIR) / "s2sim-run";
 const fs::path kShared = S2SIM_SHARED_SCENES;
+const fs::path kFixtures = fs::path(S2SIM_SOURCE_DIR) / "tests/apps/runner/fixtures";
 
 #define SKIP_WITHOUT_SHARED_SCENES() \
   if (!fs::is_directory(kShared))    \
@@ -401,6 +403,36 @@ TEST_F(Runner, ListSignalsPrintsNamesWithUnits) {
   const auto lines = split(r.out, '\n');
   EXPECT_THAT(lines, Contains("time [s]"));
   EXPECT_THAT(lines, Contains("robots/Motor/axes/InertialBoard/pos [rad]"));
+}
+
+// ../shared/repro R10: IDs with ',', '"' or a line break corrupted the CSV header.
+TEST_F(Runner, CsvHeaderQuotesNamesPerRfc4180) {
+  const Result r = run({(kFixtures / "odd_names").string(), "--quiet", "--duration", "0.002",
+                        "--log", "a.csv", "--signals", "things/*/x"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string text = read_file(dir_ / "a.csv");
+  EXPECT_THAT(text, StartsWith("time [s],\"things/crate,\"\"big\"\"/x [m]\",\"things/two\nlines/x "
+                               "[m]\"\n"));
+  // Three rows after the header, each with three fields: the quoted line break is not a row.
+  std::size_t unquoted_newlines = 0;
+  bool quoted = false;
+  for (char c : text) {
+    if (c == '"') quoted = !quoted;
+    if (c == '\n' && !quoted) ++unquoted_newlines;
+  }
+  EXPECT_EQ(unquoted_newlines, 4u);
+}
+
+// ../shared/repro R14: an encoder count overflowing to infinity was written as "inf", exit 0.
+TEST_F(Runner, NonFiniteSignalStopsTheRunWithExit5NamingItAndKeepsTheFiniteRows) {
+  const Result r = run(
+      {(kFixtures / "nonfinite_encoder").string(), "--quiet", "--duration", "1", "--log", "a.csv"});
+  EXPECT_EQ(r.status, 5);
+  EXPECT_THAT(r.err, HasSubstr("signal 'robots/r/axes/swing/encoder' is inf at t = "));
+  const std::string text = read_file(dir_ / "a.csv");
+  EXPECT_EQ(text.find("inf"), std::string::npos);
+  EXPECT_EQ(text.find("nan"), std::string::npos);
+  EXPECT_EQ(text.back(), '\n') << "the last row is complete";
 }
 
 TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
