@@ -158,9 +158,47 @@ void Multibody::finish_tick() {
     sum += q[i];
   for (int i = 0; i < u.size(); ++i)
     sum += u[i];
-  if (!std::isfinite(sum))
+  if (!std::isfinite(sum)) {
+    const int body = first_non_finite_body();
     throw Error(ErrorKind::runtime,
-                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s");
+                "the simulation state became non-finite at t = " + std::to_string(time_s()) + " s" +
+                    (body > 0 ? ", first at body " + body_name(body) : std::string()));
+  }
+}
+
+int Multibody::first_non_finite_body() const {
+  const Impl& m = *impl_;
+  const SimTK::State& s = m.current;
+  const SimTK::Vector& q = s.getQ();
+  const SimTK::Vector& u = s.getU();
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) continue;
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    for (int k = 0; k < mob.getNumQ(s); ++k)
+      if (!std::isfinite(q[mob.getFirstQIndex(s) + k])) return static_cast<int>(b);
+    for (int k = 0; k < mob.getNumU(s); ++k)
+      if (!std::isfinite(u[mob.getFirstUIndex(s) + k])) return static_cast<int>(b);
+  }
+  // Loose bodies: their poses and twists as LooseBodies holds them (only on failure).
+  std::vector<Pose> poses(m.mobod_of_body.size());
+  std::vector<Twist> twists(m.mobod_of_body.size());
+  m.loose.read(poses.data(), twists.data());
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (m.mobod_of_body[b].isValid()) continue;
+    const Pose& p = poses[b];
+    const Twist& w = twists[b];
+    double sum = p.position.x + p.position.y + p.position.z + w.linear_m_s.x + w.linear_m_s.y +
+                 w.linear_m_s.z + w.angular_rad_s.x + w.angular_rad_s.y + w.angular_rad_s.z;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        sum += p.rotation.m[i][j];
+    if (!std::isfinite(sum)) return static_cast<int>(b);
+  }
+  return -1;
+}
+
+const std::string& Multibody::body_name(int body) const {
+  return impl_->body_names.at(static_cast<std::size_t>(body));
 }
 
 }  // namespace s2sim::model

@@ -102,8 +102,12 @@ class Multibody {
   /// Loop constraints: q and u projected back onto the constraint manifold.
   void project();
   /// Ends the tick: reads the bodies, carries the joint reactions, checks that the state is
-  /// finite (throws s2sim::Error, runtime, if not).
+  /// finite (throws s2sim::Error, runtime, naming the first body that is not).
   void finish_tick();
+  /// After a failed tick: the first kernel body whose coordinates or speeds are not finite
+  /// (-1: none found), and its name for messages ("'id' of robot 'r'").
+  int first_non_finite_body() const;
+  const std::string& body_name(int body) const;
 
   /// Copies the current state into the kernel's buffers (sizes: body_count(), axes().size()).
   void read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity) const;

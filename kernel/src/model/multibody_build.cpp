@@ -58,8 +58,15 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
   m.mobod_of_body.assign(n_bodies + 1, SimTK::MobilizedBodyIndex());
   m.mobod_of_body[0] = SimTK::GroundIndex;
   m.initial_pose.assign(n_bodies + 1, Pose{});
-  for (int i = 0; i < n_bodies; ++i)
+  m.body_names.assign(n_bodies + 1, "the world");
+  for (int i = 0; i < n_bodies; ++i) {
     m.initial_pose[i + 1] = scene.bodies[i].pose;
+    const auto& b = scene.bodies[i];
+    m.body_names[i + 1] =
+        "'" + b.id + "'" +
+        (b.robot >= 0 ? " of robot '" + scene.robots[static_cast<std::size_t>(b.robot)].id + "'"
+                      : std::string(" (a thing)"));
+  }
 
   // Spanning forest of the joint graph: world-connected bodies hang from Ground through their
   // joint, every other group gets a Free root (the robot's main body where there is one).

@@ -75,6 +75,7 @@ struct Multibody::Impl {
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
   LooseBodies loose;               // bodies with no joint, integrated outside Simbody
   std::vector<Pose> initial_pose;  // kernel body -> pose at load
+  std::vector<std::string> body_names;  // kernel body -> "'id' (robot 'r')", for errors
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
   std::vector<std::string> warnings;

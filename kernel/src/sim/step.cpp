@@ -82,16 +82,19 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
   try {
     for (int k = 0; k < mb.substeps(); ++k)
       physics_substep(mb, contact, k, profile);
+    StageTimer timer(profile, PipelineStage::finish);
+    mb.finish_tick();
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    // Simbody refuses a state that went non-finite inside the tick (a blow-up).
-    throw Error(ErrorKind::runtime, "the simulation failed at t = " + std::to_string(mb.time_s()) +
-                                        " s (" + e.what() +
-                                        "); the scene may need a smaller step or more substeps");
+    // Simbody refuses a state that went non-finite inside the tick (a blow-up): say where.
+    const int body = mb.first_non_finite_body();
+    throw Error(ErrorKind::runtime,
+                "the simulation diverged at t = " + std::to_string(mb.time_s()) + " s" +
+                    (body > 0 ? ", first at body " + mb.body_name(body) : std::string()) + " (" +
+                    e.what() +
+                    "); the scene may need a smaller step, more substeps or saner parameters");
   }
-  StageTimer timer(profile, PipelineStage::finish);
-  mb.finish_tick();
 }
 
 }  // namespace sim
