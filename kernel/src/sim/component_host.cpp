@@ -279,8 +279,28 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
     slot.period_ticks = std::max<std::int64_t>(
         1, static_cast<std::int64_t>(std::llround(scene.settings.control_period_s / tick_s)));
   }
+  slot.library = info.library.string();
   slot.component = registry.create(kind);
   components.push_back(std::move(slot));
+}
+
+void sim::rethrow_from_component(const ComponentSlot& slot, const char* call, ErrorKind fallback) {
+  const std::string label = slot.label();
+  const std::string from = " from " + slot.library;
+  try {
+    throw;
+  } catch (const Error& e) {
+    // Copied while the plugin is still loaded; the kernel's own errors (a ConfigureContext
+    // lookup) already name the component.
+    std::string message = e.message();
+    if (message.rfind(label, 0) != 0) message = label + from + ", " + call + ": " + message;
+    throw Error(e.kind(), e.where().file.empty() ? slot.where : e.where(), message);
+  } catch (const std::exception& e) {
+    throw Error(fallback, slot.where, label + from + ", " + call + ": " + e.what());
+  } catch (...) {
+    throw Error(fallback, slot.where,
+                label + from + ", " + call + ": threw something that is not an exception");
+  }
 }
 
 void Simulation::Impl::configure_components() {
@@ -288,11 +308,8 @@ void Simulation::Impl::configure_components() {
     ConfigureContextImpl ctx(*this, static_cast<int>(c));
     try {
       components[c].component->configure(ctx);
-    } catch (const Error&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw Error(ErrorKind::plugin, components[c].where,
-                  components[c].label() + " refused its configuration: " + e.what());
+    } catch (...) {
+      sim::rethrow_from_component(components[c], "configure", ErrorKind::plugin);
     }
   }
   for (std::size_t c = 0; c < components.size(); ++c)

@@ -71,9 +71,18 @@ struct ComponentSlot {
   std::int64_t phase_ticks = 0;
   std::unique_ptr<scene::ElementParams> params;
   Location where;
-  int sensor = -1;  // index into scene.sensors when made for a scene sensor element
+  int sensor = -1;      // index into scene.sensors when made for a scene sensor element
+  std::string library;  // the plugin file it came from, for messages
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
 };
+
+/// Inside a catch block around a call into a component (`call`: "configure", "update"...):
+/// turns the exception in flight into a kernel-owned s2sim::Error naming the component, its
+/// kind and its plugin, and throws it. A plugin's own exception object may not outlive its
+/// library (its vtable is there), and a non-standard one would terminate the process.
+/// `fallback` is the kind for what is not an s2sim::Error.
+[[noreturn]] void rethrow_from_component(const ComponentSlot& slot, const char* call,
+                                         ErrorKind fallback);
 
 }  // namespace sim
 

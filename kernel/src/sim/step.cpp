@@ -115,7 +115,11 @@ void Simulation::Impl::step_once() {
       const std::int64_t since = tick - slot.phase_ticks;
       if (since < 0 || since % slot.period_ticks != 0) continue;
       StepContext ctx(&world, c, slot.period_ticks);
-      slot.component->update(ctx);
+      try {  // free unless something is thrown
+        slot.component->update(ctx);
+      } catch (...) {
+        sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
+      }
     }
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
@@ -152,7 +156,11 @@ void Simulation::Impl::reset() {
   refresh();
   for (std::size_t c = 0; c < components.size(); ++c) {
     StepContext ctx(&world, static_cast<std::int32_t>(c), components[c].period_ticks);
-    components[c].component->initialize(ctx);
+    try {
+      components[c].component->initialize(ctx);
+    } catch (...) {
+      sim::rethrow_from_component(components[c], "initialize", ErrorKind::runtime);
+    }
   }
 }
 

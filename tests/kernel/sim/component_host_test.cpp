@@ -1,0 +1,70 @@
+// Calls into components are guarded (kernel/src/sim/component_host.cpp): whatever a plugin
+// throws, from configure() or update(), the simulation reports a kernel-owned s2sim::Error
+// naming the component, its kind and its plugin; ../shared/repro R07 and R08.
+#include <s2sim/kernel/simulation.hpp>
+
+#include "common/edited_copy.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace s2sim {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+const fs::path kScene = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile";
+
+/// Loads the hostile scene in `mode` and steps it 100 ticks; returns the error (copied: by the
+/// time it is read the plugin's library is unloaded, which is what crashed before).
+Error error_in(const std::string& mode) {
+  SimulationOptions o;
+  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "hostile"};
+  const fs::path scene = test::edited_copy(kScene, "scene.xml", "MODE", mode);
+  try {
+    auto sim = Simulation::load(scene, o);
+    sim->step(100);  // controllers run every 40 ms: ticks 0, 40, 80
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << mode << ": nothing was thrown";
+  return Error(ErrorKind::usage, "none");
+}
+
+TEST(ComponentHost, AnSdkErrorThrownFromConfigureSurvivesItsPluginAndNamesIt) {
+  const Error e = error_in("configure_error");
+  EXPECT_EQ(e.kind(), ErrorKind::scene);  // the plugin's own kind
+  EXPECT_THAT(e.message(), HasSubstr("controllers/villain (kind 'test_hostile')"));
+  EXPECT_THAT(e.message(), HasSubstr("libs2sim_test_hostile_plugin.so, configure: hostile: the "
+                                     "parameter 'mode' is not to my liking"));
+  EXPECT_EQ(e.where().file, "scene.xml");
+  EXPECT_THAT(std::string(e.what()), HasSubstr("scene.xml"));
+}
+
+TEST(ComponentHost, NonStandardAndStandardExceptionsFromConfigureArePluginErrors) {
+  const Error i = error_in("configure_int");
+  EXPECT_EQ(i.kind(), ErrorKind::plugin);
+  EXPECT_THAT(i.message(), HasSubstr("configure: threw something that is not an exception"));
+  const Error s = error_in("configure_std");
+  EXPECT_EQ(s.kind(), ErrorKind::plugin);
+  EXPECT_THAT(s.message(), HasSubstr("configure: hostile: a std::runtime_error"));
+}
+
+TEST(ComponentHost, ExceptionsFromUpdateNameTheComponentAndAreRuntimeErrors) {
+  const Error e = error_in("update_error");
+  EXPECT_EQ(e.kind(), ErrorKind::runtime);
+  EXPECT_THAT(e.message(), HasSubstr("controllers/villain (kind 'test_hostile') from "));
+  EXPECT_THAT(e.message(), HasSubstr("update: hostile: failed in update"));
+  for (const char* mode : {"update_std", "update_int"}) {
+    const Error x = error_in(mode);
+    EXPECT_EQ(x.kind(), ErrorKind::runtime) << mode;
+    EXPECT_THAT(x.message(), HasSubstr("controllers/villain (kind 'test_hostile')")) << mode;
+  }
+}
+
+}  // namespace
+}  // namespace s2sim

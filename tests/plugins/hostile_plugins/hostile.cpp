@@ -1,0 +1,35 @@
+// A plugin that misbehaves on purpose (issue 16, ../shared/repro R07, R08): it throws from
+// configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
+// a std::exception or something that is not an exception at all. Built like a third party's.
+#include <s2sim/sdk.hpp>
+
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+using namespace s2sim;
+
+class Hostile : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    mode_ = ctx.params().text("mode");
+    if (mode_ == "configure_error")
+      throw Error(ErrorKind::scene, "hostile: the parameter 'mode' is not to my liking");
+    if (mode_ == "configure_std") throw std::runtime_error("hostile: a std::runtime_error");
+    if (mode_ == "configure_int") throw 42;
+  }
+  void update(StepContext& ctx) override {
+    if (ctx.tick() < 3) return;
+    if (mode_ == "update_error") throw Error(ErrorKind::runtime, "hostile: failed in update");
+    if (mode_ == "update_std") throw std::runtime_error("hostile: a std::runtime_error in update");
+    if (mode_ == "update_int") throw 7;
+  }
+
+ private:
+  std::string mode_;
+};
+
+}  // namespace
+
+S2SIM_PLUGIN("s2sim_test_hostile", S2SIM_KIND("test_hostile", Category::controller, Hostile))
