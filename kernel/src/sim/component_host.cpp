@@ -290,11 +290,18 @@ void sim::rethrow_from_component(const ComponentSlot& slot, const char* call, Er
   try {
     throw;
   } catch (const Error& e) {
-    // Copied while the plugin is still loaded; the kernel's own errors (a ConfigureContext
-    // lookup) already name the component.
-    std::string message = e.message();
-    if (message.rfind(label, 0) != 0) message = label + from + ", " + call + ": " + message;
-    throw Error(e.kind(), e.where().file.empty() ? slot.where : e.where(), message);
+    // Copied while the plugin is still loaded. A located error (a parameter's, through
+    // Params) or one that names the component already (a ConfigureContext lookup) keeps its
+    // words; any other gets the component's place and name.
+    const Location& at = e.where();
+    if (!at.element.empty() || !at.attribute.empty()) {  // located by the plugin or Params
+      throw Error(e.kind(),
+                  Location{at.file.empty() ? slot.where.file : at.file, at.element, at.attribute},
+                  e.message());
+    }
+    if (!at.file.empty() || e.message().rfind(label, 0) == 0)
+      throw Error(e.kind(), at, e.message());
+    throw Error(e.kind(), slot.where, label + from + ", " + call + ": " + e.message());
   } catch (const std::exception& e) {
     throw Error(fallback, slot.where, label + from + ", " + call + ": " + e.what());
   } catch (...) {
