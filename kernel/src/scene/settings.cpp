@@ -2,6 +2,7 @@
 /// Project settings (simtwo-format.md §10.1): `config_Params.ini` when present, else the
 /// `[Config]` section of `SimTwo.ini`, else defaults; then scene.xml's `<s2sim>` overrides.
 
+#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 
 #include <charconv>
@@ -116,8 +117,17 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
   for (const Element& c : el.children) {
     if (c.name == "physics") {
       positive(c, "step_ms", s.physics_step_s, 1e-3);
+      if (r.has(c, "step_ms") && (s.physics_step_s < limits::kMinPhysicsStep_s ||
+                                  s.physics_step_s > limits::kMaxPhysicsStep_s))
+        r.fail(c, "step_ms",
+               "must be from " + format_number(limits::kMinPhysicsStep_s * 1e3) + " to " +
+                   format_number(limits::kMaxPhysicsStep_s * 1e3) + " ms, got " +
+                   format_number(s.physics_step_s * 1e3));
       const auto substeps = r.integer(c, "substeps", s.substeps);
-      if (substeps < 1) r.fail(c, "substeps", "must be >= 1, got " + std::to_string(substeps));
+      if (substeps < 1 || substeps > limits::kMaxSubsteps)
+        r.fail(c, "substeps",
+               "must be an integer from 1 to " + std::to_string(limits::kMaxSubsteps) + ", got " +
+                   std::to_string(substeps));
       s.substeps = static_cast<int>(substeps);
       any = true;
     } else if (c.name == "control") {

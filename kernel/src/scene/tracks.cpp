@@ -1,6 +1,7 @@
 /// \file
 /// Track files (simtwo-format.md §7): floor markings as flat tagged polygons.
 
+#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
@@ -29,7 +30,10 @@ bool read_common(const Reader& r, const Element& c, Common& k) {
     k.color.a = r.number(c, "alpha", k.color.a);
   } else if (c.name == "repeat") {
     const auto times = r.integer(c, "times", k.times);
-    if (times < 0) r.fail(c, "times", "must be >= 0, got " + std::to_string(times));
+    if (times < 0 || times > limits::kMaxTrackRepeats)
+      r.fail(c, "times",
+             "must be an integer from 0 to " + std::to_string(limits::kMaxTrackRepeats) + ", got " +
+                 std::to_string(times));
     k.times = static_cast<int>(times);
     k.x_disp = r.number(c, "x_disp", k.x_disp);
     k.y_disp = r.number(c, "y_disp", k.y_disp);
@@ -141,6 +145,11 @@ void load_track_file(LoadContext& ctx, const std::filesystem::path& file,
           const char* attr = r.has(c, "step") ? "step" : "steps";
           step = r.number(c, attr, step);
           if (!(step > 0)) r.fail(c, attr, "must be > 0, got " + format_number(step));
+          if (std::abs(stop - start) / step > static_cast<double>(limits::kMaxArcSegments))
+            r.fail(c, attr,
+                   "makes " + format_number(std::abs(stop - start) / step) +
+                       " segments, more than the " + std::to_string(limits::kMaxArcSegments) +
+                       " an arc may have");
         }
       }
       for (int i = 0; i <= k.times; ++i) {

@@ -1,9 +1,11 @@
 // Simulation::load: the scene, the model, contact, ray casting and every component.
+#include "scene/limits.hpp"
 #include "sim/drive_train_components.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 namespace s2sim {
 
@@ -19,12 +21,18 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
 
   if (options.physics_step_s) m.scene.settings.physics_step_s = *options.physics_step_s;
   if (options.substeps) m.scene.settings.substeps = *options.substeps;
-  if (!(m.scene.settings.physics_step_s > 0) || !std::isfinite(m.scene.settings.physics_step_s))
-    throw Error(ErrorKind::usage, "the physics step must be positive, got " +
-                                      std::to_string(m.scene.settings.physics_step_s) + " s");
-  if (m.scene.settings.substeps < 1)
-    throw Error(ErrorKind::usage,
-                "substeps must be at least 1, got " + std::to_string(m.scene.settings.substeps));
+  // The scene's own values were checked at load (located); these are the caller's overrides.
+  const double step = m.scene.settings.physics_step_s;
+  if (!(step >= scene::limits::kMinPhysicsStep_s && step <= scene::limits::kMaxPhysicsStep_s)) {
+    char message[160];
+    std::snprintf(message, sizeof message, "the physics step must be from %g to %g s, got %g s",
+                  scene::limits::kMinPhysicsStep_s, scene::limits::kMaxPhysicsStep_s, step);
+    throw Error(ErrorKind::usage, message);
+  }
+  if (m.scene.settings.substeps < 1 || m.scene.settings.substeps > scene::limits::kMaxSubsteps)
+    throw Error(ErrorKind::usage, "substeps must be from 1 to " +
+                                      std::to_string(scene::limits::kMaxSubsteps) + ", got " +
+                                      std::to_string(m.scene.settings.substeps));
   m.tick_s = m.scene.settings.physics_step_s;
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);

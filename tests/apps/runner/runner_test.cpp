@@ -435,6 +435,16 @@ TEST_F(Runner, NonFiniteSignalStopsTheRunWithExit5NamingItAndKeepsTheFiniteRows)
   EXPECT_EQ(text.back(), '\n') << "the last row is complete";
 }
 
+// A physics step below the documented limit blamed the encoder (exit 3); it is a usage error.
+TEST_F(Runner, PhysicsStepOutsideItsLimitsIsAUsageError) {
+  for (const char* step : {"1e-300", "2"}) {
+    const Result r = run({(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt").string(), "--quiet",
+                          "--duration", "0.01", "--physics-step", step});
+    EXPECT_EQ(r.status, 4) << step;
+    EXPECT_THAT(r.err, HasSubstr("the physics step must be from 1e-06 to 1 s")) << step;
+  }
+}
+
 TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
   SKIP_WITHOUT_SHARED_SCENES();
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full to simulate a full disk";

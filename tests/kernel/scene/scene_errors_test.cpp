@@ -101,6 +101,39 @@ TEST(SceneErrors, BounceOutsideZeroToOneAndNonPositiveSoftnessAreRefused) {
   }
 }
 
+// ../shared/repro R05, R06, R04: counts and steps beyond the documented limits
+// (kernel/src/scene/limits.hpp) hung the run, exhausted memory or were silently truncated.
+TEST(SceneErrors, CountsAndStepsBeyondTheLimitsAreRefusedWithoutTruncation) {
+  struct Case {
+    const char* folder;
+    const char* file;
+    const char* from;
+    const char* to;
+    const char* attribute;
+    const char* message;
+  };
+  const Case cases[] = {
+      {"s2sim_settings", "scene.xml", "substeps='4'", "substeps='1e12'", "substeps",
+       "must be an integer from 1 to 1000, got 1000000000000"},
+      {"s2sim_settings", "scene.xml", "substeps='4'", "substeps='4294967297'", "substeps",
+       "got 4294967297"},
+      {"s2sim_settings", "scene.xml", "step_ms='dt'", "step_ms='1e-12'", "step_ms",
+       "must be from 0.001 to 1000 ms, got 1e-12"},
+      {"tracks", "track.xml", "times='1'", "times='2147483647'", "times",
+       "must be an integer from 0 to 10000, got 2147483647"},
+      {"tracks", "track.xml", "times='1'", "times='4294967296'", "times", "got 4294967296"},
+      {"tracks", "track.xml", "step='30'", "step='1e-12'", "step",
+       "more than the 100000 an arc may have"},
+  };
+  for (const Case& c : cases) {
+    const Error e = load_error(test::edited_copy(fixture(c.folder), c.file, c.from, c.to));
+    EXPECT_EQ(e.kind(), ErrorKind::scene) << c.to;
+    EXPECT_EQ(e.where().file, c.file) << c.to;
+    EXPECT_EQ(e.where().attribute, c.attribute) << c.to;
+    EXPECT_THAT(e.message(), HasSubstr(c.message)) << c.to;
+  }
+}
+
 TEST(SceneErrors, FailingExpressionWithColumn) {
   const Error e = load_error(fixture("err_expression"));
   EXPECT_EQ(e.where().file, "bot.xml");

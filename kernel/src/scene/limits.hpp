@@ -1,0 +1,20 @@
+#pragma once
+/// \file
+/// Resource limits of a scene, checked at load with located errors (docs/reliability.md): a
+/// count or a step beyond them would exhaust memory or time rather than simulate anything.
+
+#include <cstdint>
+
+namespace s2sim::scene::limits {
+
+/// Substeps per physics step (the runner's --substeps has the same bound).
+inline constexpr std::int64_t kMaxSubsteps = 1000;
+/// The physics step: from 1 µs to 1 s (--physics-step has the same bounds).
+inline constexpr double kMinPhysicsStep_s = 1e-6;
+inline constexpr double kMaxPhysicsStep_s = 1.0;
+/// Copies one track element makes with `<repeat times>`.
+inline constexpr std::int64_t kMaxTrackRepeats = 10000;
+/// Segments of one track arc ((stop − start) / step).
+inline constexpr std::int64_t kMaxArcSegments = 100000;
+
+}  // namespace s2sim::scene::limits
