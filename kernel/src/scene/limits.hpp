@@ -12,6 +12,9 @@ inline constexpr std::int64_t kMaxSubsteps = 1000;
 /// The physics step: from 1 µs to 1 s (--physics-step has the same bounds).
 inline constexpr double kMinPhysicsStep_s = 1e-6;
 inline constexpr double kMaxPhysicsStep_s = 1.0;
+/// A solid's or shell's size or radius, m (10 km): beyond it the narrow phase loses its
+/// precision and FCL/libccd may not terminate.
+inline constexpr double kMaxLength_m = 1e4;
 /// Copies one track element makes with `<repeat times>`.
 inline constexpr std::int64_t kMaxTrackRepeats = 10000;
 /// Segments of one track arc ((stop − start) / step).

@@ -59,7 +59,12 @@ std::string file_or_previous(LoadContext& ctx, const Reader& r, const Element& e
 bool exists_or_warn(LoadContext& ctx, const Reader& r, const Element& el, const std::string& attr,
                     const std::string& name, const std::filesystem::path& file,
                     const std::string& what) {
-  if (std::filesystem::is_regular_file(file)) return true;
+  // The error_code form: an over-long name or a folder we may not read is a located scene
+  // error, not an exception from the file system library.
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) return true;
+  if (ec && ec != std::errc::no_such_file_or_directory)
+    r.fail(el, attr, "cannot read '" + name + "': " + ec.message());
   ctx.warn(r.at(el, attr), "file '" + name + "' not found; " + what + " skipped");
   return false;
 }
@@ -129,9 +134,13 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
   using namespace detail;
   namespace fs = std::filesystem;
   const fs::path p = fs::absolute(path).lexically_normal();
-  const fs::path file = fs::is_directory(p) ? p / "scene.xml" : p;
-  if (!fs::is_regular_file(file))
-    throw Error(ErrorKind::scene, Location{file.generic_string(), "", ""}, "scene file not found");
+  std::error_code ec;
+  const fs::path file = fs::is_directory(p, ec) ? p / "scene.xml" : p;
+  if (!fs::is_regular_file(file, ec))
+    throw Error(ErrorKind::scene, Location{file.generic_string(), "", ""},
+                ec && ec != std::errc::no_such_file_or_directory
+                    ? "cannot read the scene: " + ec.message()
+                    : std::string("scene file not found"));
 
   Scene scene;
   scene.file = file;

@@ -1,4 +1,5 @@
 #include "scene/primitive.hpp"
+#include "scene/limits.hpp"
 
 namespace s2sim::scene::detail {
 
@@ -33,6 +34,11 @@ bool PrimitiveFields::read(const Reader& r, const Element& c, bool size_radius_s
 void PrimitiveFields::require_positive(const Reader& r, const Element& owner, const Element* where,
                                        const char* attr, double v) {
   if (!(v > 0)) r.fail(where ? *where : owner, attr, "must be > 0, got " + format_number(v));
+  // Beyond it the narrow phase (FCL/libccd) loses its precision and may not terminate.
+  if (v > limits::kMaxLength_m)
+    r.fail(
+        where ? *where : owner, attr,
+        "must be at most " + format_number(limits::kMaxLength_m) + " m, got " + format_number(v));
 }
 
 Vec3 PrimitiveFields::box_size(const Reader& r, const Element& owner) const {

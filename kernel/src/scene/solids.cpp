@@ -26,7 +26,8 @@ void visual_file(LoadContext& ctx, const Reader& r, const Element& el, std::stri
   const std::string name = r.text(el, attr, "");
   if (name.empty()) return;
   const std::filesystem::path p = ctx.resolve(name);
-  if (std::filesystem::exists(p)) {
+  std::error_code ec;  // an unreadable or over-long name is "not found" here: visual only
+  if (std::filesystem::exists(p, ec)) {
     out = p;
   } else {
     ctx.warn(r.at(el, attr), std::string(what) + " '" + name + "' not found (visual only)");

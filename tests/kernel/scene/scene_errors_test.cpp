@@ -134,6 +134,28 @@ TEST(SceneErrors, CountsAndStepsBeyondTheLimitsAreRefusedWithoutTruncation) {
   }
 }
 
+// ../shared/repro R03: a file name longer than the file system allows ended as an internal
+// error (exit 1) from the file system library.
+TEST(SceneErrors, UnreadableFileNameIsALocatedSceneError) {
+  const std::string long_name(300, 'a');
+  const Error e = load_error(test::edited_copy(
+      fixture("err_duplicate_robot"), "scene.xml", "<robot><ID name='bot'/><body file='bot.xml'/>",
+      "<robot><ID name='bot'/><body file='" + long_name + "'/>"));
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().element, "scene/robot[1]/body");
+  EXPECT_EQ(e.where().attribute, "file");
+  EXPECT_THAT(e.message(), HasSubstr("cannot read 'aaa"));
+}
+
+// ../shared/repro R19: a 1e16 m shell hung the narrow phase for minutes.
+TEST(SceneErrors, SizesBeyondTenKilometresAreRefused) {
+  const Error e = load_error(test::edited_copy(fixture("err_duplicate_robot"), "bot.xml",
+                                               "size x='0.1'", "size x='1e16'"));
+  EXPECT_EQ(e.where().file, "bot.xml");
+  EXPECT_EQ(e.where().attribute, "x");
+  EXPECT_THAT(e.message(), HasSubstr("must be at most 10000 m, got 1e+16"));
+}
+
 TEST(SceneErrors, FailingExpressionWithColumn) {
   const Error e = load_error(fixture("err_expression"));
   EXPECT_EQ(e.where().file, "bot.xml");
