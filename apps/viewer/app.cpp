@@ -92,6 +92,7 @@ class App {
     state_.render.shadows = options.shadows;
     renderer_.init();
     install(load_simulation(options));
+    state_.run.held_inputs = options.inputs;
     // The runner's selection, so an exported chart has s2sim-run's columns in its order.
     if (!options.chart_signals.empty()) {
       for (std::size_t i : apps::select_signals(*state_.sim, options.chart_signals, "--chart"))

@@ -21,6 +21,8 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
     pending_steps_ = 0;
     owed_sim_s_ = 0;
     sim.reset();
+    for (const auto& [name, value] : held_inputs)  // reset() restores the scene's values
+      sim.set_input(name, value);
     chart.clear_samples();
     chart.record(sim);
   }

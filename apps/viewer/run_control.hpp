@@ -8,6 +8,9 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace s2sim::viewer {
 
@@ -21,6 +24,10 @@ class RunControl {
   double pause_at_s = -1;
   /// Wall time a frame may spend stepping, so the window stays responsive.
   double frame_budget_s = 0.025;
+
+  /// Inputs held for the whole run (`--set`): set again after every reset, so that Reset
+  /// replays the run as it started.
+  std::vector<std::pair<std::string, double>> held_inputs;
 
   void request_step(std::int64_t ticks = 1) { pending_steps_ += ticks; }
   void request_reset() { pending_reset_ = true; }

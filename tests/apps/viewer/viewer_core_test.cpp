@@ -135,6 +135,29 @@ TEST(RunControl, PacesTicksToWallTimeTimesSpeedAndStepsWhilePaused) {
   EXPECT_FALSE(run.playing);
 }
 
+// ../shared/repro (issue 16): the viewer's Reset forgot the --set inputs, so a reset run was
+// not the run it had started as. Reset replays it tick for tick.
+TEST(RunControl, ResetKeepsTheHeldInputsAndReplaysTheRun) {
+  auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt");
+  const std::string input = "robots/nxt/axes/right/ref_voltage";
+  ChartData chart;
+  RunControl run;
+  run.held_inputs = {{input, 6.0}};
+  sim->set_input(input, 6.0);  // as load_simulation does with --set
+  run.as_fast_as_possible = true;
+  run.pause_at_s = 0.3;
+  run.advance(*sim, 0.05, chart, true);
+  const double speed = sim->signal("robots/nxt/axes/right/speed");
+  const double x = sim->signal("robots/nxt/x");
+  EXPECT_GT(speed, 1.0) << "the held voltage drives the wheel";
+  run.request_reset();
+  run.playing = true;
+  run.advance(*sim, 0.05, chart, true);
+  EXPECT_EQ(sim->input(sim->input_index(input)), 6.0);
+  EXPECT_EQ(sim->signal("robots/nxt/axes/right/speed"), speed);
+  EXPECT_EQ(sim->signal("robots/nxt/x"), x);
+}
+
 TEST(ChartData, RecordsEveryTickAndExportsTheRunnersFormat) {
   auto sim = Simulation::load(kDefaultScene);
   ChartData chart;
