@@ -30,6 +30,11 @@ void DcMotor::configure(ConfigureContext& ctx) {
   fc_ = p.number("friction.fc", 1e-3, Range::non_negative());
   spring_k_ = p.number("spring.k", 0.0, Range::non_negative());
   zero_pos_ = p.number("spring.zeropos", 0.0);
+  // The rotor's inertia reflected through the gear, N²·J, is the axis's armature: the kernel
+  // adds it to the mass matrix (none on a slider: a rotary motor on a slider needs a lead, m/rad,
+  // the format does not have).
+  const double rotor_J = p.number("rotor.J", 0.0);
+  if (active_ && !linear && N_ * N_ * rotor_J > 0) ctx.add_axis_inertia(axis_, N_ * N_ * rotor_J);
 
   const std::string at = ctx.axis_prefix(axis_) + "/";
   const char* torque_unit = linear ? "N" : "N*m";
