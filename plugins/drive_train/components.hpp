@@ -1,12 +1,30 @@
 #pragma once
 /// \file
 /// The three components of an axis's drive train (docs/models/dc-motor.md). The kernel creates
-/// one of each on every hinge, slider and universal axis with a synthesised element (see
-/// kernel/src/sim/drive_train_components.hpp for its attributes).
+/// one of each on every hinge, slider and universal axis, with the joint's drive-train elements
+/// as written (kernel/src/sim/drive_train_components.hpp); the defaults are the plugin's
+/// (defaults.hpp).
 
 #include <s2sim/sdk.hpp>
 
+#include <cctype>
+#include <string>
+#include <string_view>
+
 namespace s2sim::drive_train {
+
+/// A keyword attribute (`mode`, `law`, `backemf`), lower-cased as SimTwo compares them.
+inline std::string keyword(const Params& p, std::string_view path, std::string_view fallback) {
+  std::string s = p.text(path, fallback);
+  for (char& c : s)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+/// A scene error located at the attribute `path` of the component's element.
+inline Error bad_value(const Params& p, std::string_view path, const std::string& message) {
+  return Error(ErrorKind::scene, p.where(path), message);
+}
 
 /// DC motor, gearbox, joint friction and spring; applies the axis torque every tick.
 class DcMotor final : public Component {

@@ -2,34 +2,52 @@
 /// dc_motor: Ua = e + Ra ia + La dia/dt, Td = Ks ia, e = Ks N w (docs/models/dc-motor.md).
 
 #include "components.hpp"
+#include "defaults.hpp"
 #include "drive_train_math.hpp"
 
 #include <string>
+#include <utility>
 
 namespace s2sim::drive_train {
 
 void DcMotor::configure(ConfigureContext& ctx) {
+  namespace d = defaults;
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));
   const bool linear = ctx.axis_is_linear(axis_);
-  active_ = p.boolean("motor.active", true);
-  simple_ = p.boolean("motor.simple", false);
-  R_ = p.number("motor.ri", 1.0, Range::non_negative());
-  L_ = p.number("motor.li", 0.0, Range::non_negative());
-  K_ = p.number("motor.ki", 1.4e-2, Range::non_negative());
-  vmax_ = p.number("motor.vmax", 24.0, Range::non_negative());
-  imax_ = p.number("motor.imax", 4.0, Range::non_negative());
-  N_ = p.number("gear.ratio", 10.0, Range::positive());
-  const std::string back_emf = p.text("motor.backemf", "physical");
+  active_ = p.boolean("motor.active", d::kMotorActive);
+  simple_ = p.boolean("motor.simple", d::kMotorSimple);
+  R_ = p.number("motor.ri", d::kMotorRi, Range::non_negative());
+  L_ = p.number("motor.li", d::kMotorLi, Range::non_negative());
+  K_ = p.number("motor.ki", d::kMotorKi, Range::non_negative());
+  vmax_ = p.number("motor.vmax", d::kMotorVmax, Range::non_negative());
+  imax_ = p.number("motor.imax", d::kMotorImax, Range::non_negative());
+  N_ = p.number("gear.ratio", d::kGearRatio, Range::positive());
+  const std::string back_emf = keyword(p, "motor.backemf", d::kMotorBackEmf);
   if (back_emf != "physical" && back_emf != "simtwo")
-    throw Error(ErrorKind::scene, p.location() + "/motor@backemf: must be 'physical' or " +
-                                      "'simtwo', got '" + back_emf + "'");
+    throw bad_value(p, "motor.backemf",
+                    "must be 'physical' or 'simtwo', got '" + p.text("motor.backemf") + "'");
   simtwo_back_emf_ = back_emf == "simtwo";
   if (simple_ && active_) R_ = p.number("motor.ri", Range::positive());  // i = V/R
-  bv_ = p.number("friction.bv", 1e-5, Range::non_negative());
-  fc_ = p.number("friction.fc", 1e-3, Range::non_negative());
-  spring_k_ = p.number("spring.k", 0.0, Range::non_negative());
-  zero_pos_ = p.number("spring.zeropos", 0.0);
+  bv_ = p.number("friction.bv", d::kFrictionBv, Range::non_negative());
+  fc_ = p.number("friction.fc", d::kFrictionFc, Range::non_negative());
+  spring_k_ = p.number("spring.k", d::kSpringK, Range::non_negative());
+  // `zeropos` is in degrees on a rotational axis; a slider keeps metres (S2Sim deviation from
+  // quirk 14, where SimTwo converts degrees even there).
+  zero_pos_ = p.number("spring.zeropos", d::kSpringZeroPos);
+  if (!linear) zero_pos_ = zero_pos_ * kPi / 180.0;
+  // Parsed, so that a bad value is an error, but not modelled (as SimTwo): the gearbox's
+  // losses and the rotor's own friction (docs/models/dc-motor.md).
+  const std::pair<const char*, double> unmodelled[] = {
+      {"gear.ke", d::kGearKe},   {"gear.be", d::kGearBe},   {"gear.ke2", d::kGearKe2},
+      {"gear.kv2", d::kGearKv2}, {"rotor.bv", d::kRotorBv}, {"rotor.fc", d::kRotorFc}};
+  for (const auto& [path, fallback] : unmodelled)
+    (void)p.number(path, fallback);
+  // The rotor's inertia reflected through the gear, N²·J, is the axis's armature: the kernel
+  // adds it to the mass matrix (none on a slider: a rotary motor on a slider needs a lead, m/rad,
+  // the format does not have).
+  const double rotor_J = p.number("rotor.J", p.number("rotor.j", d::kRotorJ));
+  if (active_ && !linear && N_ * N_ * rotor_J > 0) ctx.add_axis_inertia(axis_, N_ * N_ * rotor_J);
 
   const std::string at = ctx.axis_prefix(axis_) + "/";
   const char* torque_unit = linear ? "N" : "N*m";

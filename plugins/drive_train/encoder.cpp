@@ -4,9 +4,11 @@
 /// in ticks per sample (docs/models/dc-motor.md).
 
 #include "components.hpp"
+#include "defaults.hpp"
 #include "drive_train_math.hpp"
 
 #include <cmath>
+#include <string>
 
 namespace s2sim::drive_train {
 
@@ -18,14 +20,16 @@ void Encoder::configure(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));
   linear_ = ctx.axis_is_linear(axis_);
-  const std::int64_t ppr = p.integer("encoder.ppr", 1000);
-  if (ppr <= 0)
-    throw Error(ErrorKind::scene,
-                p.location() + "/encoder@ppr: must be > 0, got " + std::to_string(ppr));
+  // SimTwo rounds the tick count (RobotTh_wo_comm writes ppr='700.8').
+  const std::int64_t ppr = std::llround(p.number("encoder.ppr", defaults::kEncoderPpr));
+  if (ppr <= 0) throw bad_value(p, "encoder.ppr", "must be > 0, got " + std::to_string(ppr));
   ppr_ = static_cast<double>(ppr);
-  mean_ = p.number("encoder.mean", 0.0);
-  stdev_ = p.number("encoder.stdev", -1.0);
-  const double period_ms = p.number("encoder.period", ctx.tick_s() * 1000.0, Range::positive());
+  mean_ = p.number("encoder.mean", defaults::kEncoderMean);
+  stdev_ = p.number("encoder.stdev", defaults::kEncoderStdev);
+  // S2Sim's `period` (ms); by default the scene's control period, SimTwo's script tick.
+  const double period_ms = p.number(
+      "encoder.period", p.number("control_period", ctx.tick_s() * 1000.0, Range::positive()),
+      Range::positive());
   ctx.set_schedule(Stage::sense, period_on_grid(period_ms / 1000.0, ctx.tick_s()));
   const std::string at = ctx.axis_prefix(axis_) + "/";
   count_ = ctx.declare_signal_at(at + "encoder", "1");

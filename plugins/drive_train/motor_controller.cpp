@@ -4,6 +4,7 @@
 /// (docs/models/dc-motor.md).
 
 #include "components.hpp"
+#include "defaults.hpp"
 #include "drive_train_math.hpp"
 
 #include <cmath>
@@ -19,29 +20,35 @@ void MotorController::configure(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));
   const bool linear = ctx.axis_is_linear(axis_);
-  const std::string mode = p.text("controller.mode", "pidspeed");
-  if (mode == "pidspeed")
+  const std::string mode = keyword(p, "controller.mode", defaults::kControllerMode);
+  if (mode == "pidspeed") {
     mode_ = Mode::pid_speed;
-  else if (mode == "pidposition")
+  } else if (mode == "pidposition") {
     mode_ = Mode::pid_position;
-  else if (mode == "state" || mode == "statefeedback")
+  } else if (mode == "state" || mode == "statefeedback") {
     mode_ = Mode::state;
-  else
-    throw Error(ErrorKind::scene, p.location() + "/controller@mode: must be 'pidspeed', " +
-                                      "'pidposition' or 'state', got '" + mode + "'");
-  const std::string law = p.text("controller.law", "textbook");
+  } else {
+    // SimTwo silently keeps the previous mode for an unknown string; a typo would leave the
+    // axis under another law, so S2Sim refuses it.
+    throw bad_value(p, "controller.mode",
+                    "unknown controller mode '" + p.text("controller.mode") +
+                        "' (expected pidspeed, pidposition or state)");
+  }
+  const std::string law = keyword(p, "controller.law", defaults::kControllerLaw);
   if (law != "textbook" && law != "simtwo")
-    throw Error(ErrorKind::scene, p.location() + "/controller@law: must be 'textbook' or " +
-                                      "'simtwo', got '" + law + "'");
+    throw bad_value(p, "controller.law",
+                    "must be 'textbook' or 'simtwo', got '" + p.text("controller.law") + "'");
   simtwo_law_ = law == "simtwo";
-  kp_ = p.number("controller.kp", 1.0);
-  ki_ = p.number("controller.ki", 0.0);
-  kd_ = p.number("controller.kd", 0.0);
-  kf_ = p.number("controller.kf", 0.0);
-  const double period_ms = p.number("controller.period", 10.0, Range::positive());
-  const bool active = p.boolean("controller.active", false);
-  motor_active_ = p.boolean("motor.active", true);
-  vmax_ = p.number("motor.vmax", 24.0, Range::non_negative());
+  const bool wheel = p.boolean("wheel", false);  // `<wheels>` have their own gains
+  kp_ = p.number("controller.kp", wheel ? defaults::kWheelControllerKp : defaults::kControllerKp);
+  ki_ = p.number("controller.ki", defaults::kControllerKi);
+  kd_ = p.number("controller.kd", defaults::kControllerKd);
+  kf_ = p.number("controller.kf", wheel ? defaults::kWheelControllerKf : defaults::kControllerKf);
+  const double period_ms =
+      p.number("controller.period", defaults::kControllerPeriodMs, Range::positive());
+  const bool active = p.boolean("controller.active", defaults::kControllerActive);
+  motor_active_ = p.boolean("motor.active", defaults::kMotorActive);
+  vmax_ = p.number("motor.vmax", defaults::kMotorVmax, Range::non_negative());
   wrap_ = p.boolean("wrap", !linear) && !linear;
   ctx.set_schedule(Stage::motor_control, period_on_grid(period_ms / 1000.0, ctx.tick_s()));
 

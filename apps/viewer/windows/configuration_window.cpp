@@ -36,10 +36,16 @@ void draw_configuration_window(ViewerState& state) {
     }
     ImGui::Text("substeps %d   (settings from %s)", settings.substeps, settings.source.c_str());
     ImGui::Text("controller period %.1f ms", settings.control_period_s * 1e3);
-    for (const auto& j : sim.scene().joints)
-      if (j.drive1.controller.active)
-        ImGui::BulletText("%s: motor controller period %.1f ms", j.id.c_str(),
-                          j.drive1.controller.period_s * 1e3);
+    // Active motor controllers (their period is the drive-train plugin's business).
+    for (std::size_t i = 0; i < sim.input_count(); ++i) {
+      const std::string& name = sim.input_info(i).name;
+      const std::string suffix = "/controller_active";
+      if (name.size() > suffix.size() &&
+          name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0 &&
+          sim.input(i) != 0)
+        ImGui::BulletText("%s: motor controller on",
+                          name.substr(0, name.size() - suffix.size()).c_str());
+    }
   }
 
   if (ImGui::CollapsingHeader("Speed and view", ImGuiTreeNodeFlags_DefaultOpen)) {

@@ -59,14 +59,6 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   info_.reserve(reserve);
 }
 
-std::vector<std::int32_t> ContactWorld::belt_bodies() const {
-  std::vector<std::int32_t> out;
-  for (std::int32_t s = 0; s < table_.size(); ++s)
-    if (table_.surfaces()[static_cast<std::size_t>(s)].belt)
-      out.push_back(table_.bodies()[static_cast<std::size_t>(s)]);
-  return out;
-}
-
 void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
   for (std::int32_t s = 0; s < table_.size(); ++s) {
     const auto i = static_cast<std::size_t>(s);

@@ -30,8 +30,8 @@ class ContactWorld final : public model::SubstepForces {
 
   /// Where the belt speeds live (the kernel's input array), read at every substep.
   void set_inputs(const double* inputs) { inputs_ = inputs; }
-  /// The belt solids (kernel body indices) whose speed the caller exposes as an input.
-  std::vector<std::int32_t> belt_bodies() const;
+  /// The input holding the surface speed of the belt solid `body` (kernel body index): the
+  /// caller exposes one per shape table surface marked `belt`.
   void set_belt_speed_input(std::int32_t body, std::int32_t input);
 
   void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override;

@@ -24,6 +24,26 @@ struct AxisInfo {
   bool loop = false;  ///< closes a kinematic loop (realised by constraints, not a mobilizer)
 };
 
+/// The joint graph resolved before any Simbody object exists: the spanning forest the
+/// multibody is built along and its axis table. The simulation configures its components
+/// against these axes (they may declare axis inertias, e.g. a motor's reflected rotor inertia)
+/// and builds the Multibody from the same plan afterwards.
+struct Topology {
+  struct Edge {
+    int joint, parent, child;  ///< scene indices; parent -1 = the world, joint -1 = a Free root
+  };
+  std::vector<Edge> tree;           ///< parents first
+  std::vector<int> loops;           ///< loop-closing joints (constraints), in the order met
+  std::vector<int> loose;           ///< bodies with no joint, integrated outside Simbody
+  std::vector<char> joint_is_loop;  ///< per scene joint
+  std::vector<AxisInfo> axes;       ///< in joint order, then axis 1, axis 2
+};
+
+/// Plans the multibody of `scene`. Throws s2sim::Error (scene) for a joint Simbody cannot
+/// realise in any tree (a joint from the world to itself). Bodies without any joint are loose
+/// unless `lone_bodies_in_simbody` (for tests that compare the two).
+Topology plan_topology(const scene::Scene& scene, bool lone_bodies_in_simbody = false);
+
 /// The scene's bodies and joints as a Simbody system, and the integrator's operations on it.
 /// Body index 0 is the world; scene body i is body i + 1. The kernel writes the loads for the
 /// coming tick into `applied_wrenches()` and `applied_axis_forces()`; they are held constant
@@ -37,6 +57,13 @@ class Multibody {
   /// compare the two).
   Multibody(const scene::Scene& scene, double tick_s, int substeps,
             bool lone_bodies_in_simbody = false);
+  /// Builds the planned `topology` of `scene`. `axis_inertia` (per axis of the plan, kg·m²;
+  /// shorter or empty: zero) adds to the mass matrix: on a hinge or Universal axis of the tree,
+  /// as a massless disk on the axis carried by the joint's child body (exact for the spin of
+  /// the axis when the parent does not turn about it, docs/models/multibody.md); on a slider
+  /// or a loop-closing axis it is not carried, with a warning.
+  Multibody(const scene::Scene& scene, const Topology& topology,
+            const std::vector<double>& axis_inertia, double tick_s, int substeps);
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;

@@ -13,17 +13,13 @@ namespace {
 
 /// What `<default>` captures for the following joints (axis 1 drive train and the marker).
 struct JointDefaults {
-  DriveTrain drive;
+  ParamSource drive;  ///< the drive-train elements as written (the plugin has the defaults)
   JointDraw draw;
 };
 
-JointDefaults articulation_defaults() {
+JointDefaults articulation_defaults(const Reader& r, const Element& list) {
   JointDefaults d;
-  // Kp 1, Kf 0 as in SimTwo; the period is 10 ms instead of SimTwo's 10 s (S2Sim deviation
-  // from quirk 7a: a 10 s controller tick is never what a scene means).
-  d.drive.controller.kp = 1;
-  d.drive.controller.kf = 0;
-  d.drive.controller.period_s = 0.010;
+  d.drive = drive_train_source(r, std::make_shared<const ConstantTable>(r.constants()), list);
   d.draw.color = color_from_tcolor(0x800000);
   return d;
 }
@@ -67,7 +63,7 @@ void check_limits(const Reader& r, const Element& el, double min, double max) {
 
 void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, int robot) {
   Scene& scene = ctx.scene;
-  JointDefaults defaults = articulation_defaults();
+  JointDefaults defaults = articulation_defaults(r, list);
   for (const Element& el : list.children) {
     if (el.name != "joint" && el.name != "default") continue;
     const bool is_default = el.name == "default";
@@ -77,6 +73,7 @@ void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, 
     j.where = r.at(el);
     j.drive1 = defaults.drive;
     j.drive2 = defaults.drive;  // `*2` children start from axis 1's current defaults
+    j.drive1.element.path = j.drive2.element.path = j.where.element;
     j.draw = defaults.draw;
     std::optional<std::string> id;
     Vec3 pos, axis{0, 0, 1}, axis2{0, 0, 1};
@@ -122,8 +119,8 @@ void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, 
         read_draw(r, c, j.draw);
       } else if (n == "desc") {
         j.description = r.text(c, "Eng", j.description);
-      } else if (!read_drive_child(ctx, r, c, "", j.drive1)) {
-        read_drive_child(ctx, r, c, "2", j.drive2);
+      } else if (!read_drive_child(c, "", j.drive1)) {
+        read_drive_child(c, "2", j.drive2);
       }
     }
 
@@ -174,11 +171,6 @@ void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, 
     if (j.body1 < 0) std::swap(j.body1, j.body2);  // the solid is body 1, as in SimTwo
 
     const bool rotational = j.type != JointType::slider;
-    if (rotational) {
-      j.drive1.spring.zero_position = deg_to_rad(j.drive1.spring.zero_position);
-      j.drive2.spring.zero_position = deg_to_rad(j.drive2.spring.zero_position);
-    }
-    // Sliders keep `zeropos` in metres (S2Sim deviation from quirk 14).
 
     if (j.type == JointType::hinge || j.type == JointType::slider ||
         j.type == JointType::universal) {

@@ -44,7 +44,15 @@ ElementParams::Target ElementParams::resolve(std::string_view path) const {
   t.attribute = std::string(dot == std::string_view::npos ? path : path.substr(dot + 1));
   t.element = find_element(dot == std::string_view::npos ? std::string_view{} : path.substr(0, dot),
                            &t.element_path);
-  t.value = t.element ? t.element->attribute(t.attribute) : nullptr;
+  if (!t.element) return t;
+  const auto& attributes = t.element->attributes;
+  for (std::size_t i = 0; i < attributes.size(); ++i)
+    if (attributes[i].first == t.attribute) {
+      t.value = &attributes[i].second;
+      if (t.element->attribute_paths.size() == attributes.size())
+        t.element_path = t.element->attribute_paths[i];  // inherited: where it is written
+      break;
+    }
   return t;
 }
 
@@ -127,6 +135,11 @@ Vec3 ElementParams::vec3(std::string_view element_path, Vec3 fallback) const {
   const std::string prefix = element_path.empty() ? "" : std::string(element_path) + ".";
   return {number(prefix + "x", fallback.x), number(prefix + "y", fallback.y),
           number(prefix + "z", fallback.z)};
+}
+
+Location ElementParams::where(std::string_view path) const {
+  const Target t = resolve(path);
+  return Location{source_.file, t.element_path, t.attribute};
 }
 
 std::string ElementParams::location() const {

@@ -2,7 +2,8 @@
 /// \file
 /// `s2sim::Params` over a scene element: what a component (sensor, plugin instance) reads its
 /// parameters through. Numbers are SimTwo expressions evaluated with the constants in scope
-/// where the element stands; every error names file, element path and attribute.
+/// where the element stands; every error names file, element path and attribute (for an
+/// attribute inherited from a `<default>`, the element it is written in).
 
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/params.hpp>
@@ -27,6 +28,7 @@ class ElementParams final : public Params {
   std::string text(std::string_view path, std::string_view fallback) const override;
   Vec3 vec3(std::string_view element_path, Vec3 fallback = {}) const override;
   std::string location() const override;
+  Location where(std::string_view path) const override;
 
   const ParamSource& source() const { return source_; }
 

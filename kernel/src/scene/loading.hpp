@@ -10,6 +10,7 @@
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -65,12 +66,15 @@ void load_articulations(LoadContext& ctx, const Reader& reader, const Element& l
 void load_sensors(LoadContext& ctx, const Reader& reader, const Element& list, int robot,
                   bool is_tool);
 
+/// An axis's drive-train elements before any is read: none, in `reader`'s file, evaluated
+/// with `constants` (the scope of the section being read), located at `at`.
+ParamSource drive_train_source(const Reader& reader, std::shared_ptr<const ConstantTable> constants,
+                               const Element& at);
 /// Drive-train children: `motor`, `gear`, `rotor`, `encoder`, `controller`, `friction`,
-/// `spring` with the name suffix `suffix` ("" or "2"). Spring `zeropos` is stored as written
-/// (degrees or metres); the joint converts it once its type is known. Returns whether
-/// `child` was one of them.
-bool read_drive_child(LoadContext& ctx, const Reader& reader, const Element& child,
-                      std::string_view suffix, DriveTrain& drive);
+/// `spring` with the name suffix `suffix` ("" or "2"), stored under the name without it and
+/// overlaid on what `drive` holds (the inherited attributes), not interpreted: the drive-train
+/// plugin reads them. Returns whether `child` was one of them.
+bool read_drive_child(const Element& child, std::string_view suffix, ParamSource& drive);
 
 /// A `<plugin>` element at the top level of scene.xml (`robot` = -1) or a robot file.
 void load_plugin(LoadContext& ctx, const Reader& reader, const Element& el, int robot);

@@ -18,20 +18,18 @@ struct WheelSpec {
   Surface surface{true, 1, 0.001, 0.001, 0, 0};
   double angle_deg = 0;
   Vec3 offset_m;
-  DriveTrain drive;
+  ParamSource drive;  ///< the drive-train elements as written (the plugin has the defaults)
   Color color{128 / 255.0, 128 / 255.0, 128 / 255.0, 1};
   const Element* tyre_el = nullptr;  // for messages
 };
 
-WheelSpec wheel_defaults() {
+WheelSpec wheel_defaults(const Reader& r, const Element& wheels) {
   WheelSpec w;
-  w.drive.controller.kp = 0.5;
-  w.drive.controller.kf = 0.5;
-  w.drive.controller.period_s = 0.010;
+  w.drive = drive_train_source(r, std::make_shared<const ConstantTable>(r.constants()), wheels);
   return w;
 }
 
-void read_wheel(LoadContext& ctx, const Reader& r, const Element& el, WheelSpec& w) {
+void read_wheel(const Reader& r, const Element& el, WheelSpec& w) {
   for (const Element& c : el.children) {
     const std::string& n = c.name;
     if (n == "ID") {
@@ -55,7 +53,7 @@ void read_wheel(LoadContext& ctx, const Reader& r, const Element& el, WheelSpec&
     } else if (n == "color_rgb") {
       w.color = r.color_rgb(c, w.color);
     } else {
-      read_drive_child(ctx, r, c, "", w.drive);
+      read_drive_child(c, "", w.drive);
     }
   }
 }
@@ -64,10 +62,10 @@ void read_wheel(LoadContext& ctx, const Reader& r, const Element& el, WheelSpec&
 
 void load_wheels(LoadContext& ctx, const Reader& r, const Element& wheels, int robot) {
   Scene& scene = ctx.scene;
-  WheelSpec defaults = wheel_defaults();
+  WheelSpec defaults = wheel_defaults(r, wheels);
   for (const Element& el : wheels.children) {
     if (el.name == "default") {
-      read_wheel(ctx, r, el, defaults);
+      read_wheel(r, el, defaults);
       continue;
     }
     if (el.name != "wheel") continue;
@@ -75,7 +73,7 @@ void load_wheels(LoadContext& ctx, const Reader& r, const Element& wheels, int r
     if (rb.main_body < 0) r.fail(el, "", "<wheels> need a solid (the main body) before them");
     WheelSpec w = defaults;
     w.tyre_el = nullptr;
-    read_wheel(ctx, r, el, w);
+    read_wheel(r, el, w);
     const Element& tyre_el = w.tyre_el ? *w.tyre_el : el;
     if (!(w.mass_kg > 0)) r.fail(tyre_el, "mass", "must be > 0, got " + format_number(w.mass_kg));
     if (!(w.radius_m > 0))
@@ -124,10 +122,11 @@ void load_wheels(LoadContext& ctx, const Reader& r, const Element& wheels, int r
     j.body2 = rb.main_body;
     j.anchor_m = centre;
     j.axis1 = -radial;
-    j.drive1 = w.drive;
-    j.drive2 = w.drive;
     j.from_wheels = true;
     j.where = r.at(el);
+    j.drive1 = w.drive;
+    j.drive1.element.path = j.where.element;
+    j.drive2 = j.drive1;
     scene.joints.push_back(std::move(j));
     rb.joints.push_back(static_cast<int>(scene.joints.size() - 1));
   }

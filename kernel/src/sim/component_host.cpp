@@ -190,8 +190,8 @@ class ConfigureContextImpl final : public ConfigureContext {
         names.push_back(sim_.joint_prefix(static_cast<int>(j)));
       }
       if (names.back() != n) continue;
-      sim_.multibody->request_joint_reactions();
-      if (sim_.multibody->joint_is_loop(static_cast<int>(j)))
+      sim_.joint_reactions_wanted = true;  // asked of the multibody once it is built
+      if (sim_.topology.joint_is_loop[j])
         sim_.warnings.push_back(
             slot().where.str() + ": " + slot().label() + ": joint '" + joints[j].id +
             "' closes a kinematic loop (realised by constraints); its reaction reads zero");
@@ -206,6 +206,16 @@ class ConfigureContextImpl final : public ConfigureContext {
   std::string body_id(BodyHandle b) const override {
     if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
     return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;
+  }
+
+  void add_axis_inertia(AxisHandle a, double inertia) override {
+    if (a.index < 0 || a.index >= static_cast<std::int32_t>(sim_.axis_inertia.size()))
+      throw fail("add_axis_inertia: invalid axis handle");
+    if (!(inertia >= 0) || !std::isfinite(inertia))
+      throw fail("add_axis_inertia: the inertia of axis '" +
+                 sim_.axis_views[static_cast<std::size_t>(a.index)].name +
+                 "' must be finite and >= 0, got " + std::to_string(inertia));
+    sim_.axis_inertia[static_cast<std::size_t>(a.index)] += inertia;
   }
 
   void set_schedule(Stage stage, double period_s, double phase_s) override {

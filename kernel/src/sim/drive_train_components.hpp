@@ -6,10 +6,11 @@
 /// `<wheels>`; fixed and ball joints have none) the kernel instantiates three components of
 /// the first-party `drive_train` plugin: an `encoder` (sensor), a `motor_controller` (stage
 /// motor_control, at the controller's period) and a `dc_motor` (actuator, every tick). Their
-/// parameters are an element synthesised here from the loader's resolved `scene::DriveTrain`
-/// (defaults and `<default>` inheritance applied), with SimTwo's element and attribute names,
-/// located at the joint, so that the plugins read e.g. `motor.ri` through the normal Params API
-/// and every error names the scene file, the joint element and the attribute.
+/// parameters are the joint's drive-train elements as the loader kept them (SimTwo's
+/// inheritance resolved, nothing interpreted: the defaults are the plugin's), under an element
+/// located at the joint that says which axis they drive, so that the plugins read e.g.
+/// `motor.ri` through the normal Params API and every error names the scene file, the element
+/// the value is written in and the attribute.
 
 #include <s2sim/kernel/scene.hpp>
 
@@ -41,17 +42,16 @@ struct DriveAxis {
   bool linear = false;
 };
 
-/// The synthesised parameter element of one axis:
+/// The parameter element of one axis:
 ///
-///     <drive_train axis='robots/r/axes/a' linear='0' wheel='0' wrap='1'>
-///       <motor ri li ki vmax imax active simple backemf/>  <gear ratio ke be ke2 kv2/>
-///       <rotor J bv fc/>  <encoder ppr mean stdev period/>
-///       <controller mode kp ki kd kf period active law/>  <friction bv fc/>  <spring k zeropos/>
+///     <drive_train axis='robots/r/axes/a' linear='0' wheel='0' wrap='1' control_period='40'>
+///       the joint's <motor>, <gear>, <rotor>, <encoder>, <controller>, <friction>, <spring>
+///       as written (a Universal joint's second axis: its `motor2`... named `motor`...)
 ///     </drive_train>
 ///
-/// Units are the loader's (SI) except `controller.period` and `encoder.period`, in ms as in
-/// SimTwo; `zeropos` is in rad (m for sliders), already converted. `wrap` is true when the
-/// shortest-way rule of `pidposition` applies (rotational, `wrap` set, no engaging stop).
+/// `wheel` says the joint was made by `<wheels>` (its own controller defaults), `wrap` that
+/// the shortest-way rule of `pidposition` applies (rotational, `wrap` set, no engaging stop),
+/// `control_period` is the scene's control period in ms (the encoder's default period).
 scene::ParamSource drive_train_params(const scene::Scene& scene, const DriveAxis& axis);
 
 /// The components of every axis, in axis order then kDriveTrainKinds order.

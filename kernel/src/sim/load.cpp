@@ -1,4 +1,5 @@
-// Simulation::load: the scene, the model, contact, ray casting and every component.
+// Simulation::load: the scene, the multibody's plan, every component, then the multibody built
+// with the axis inertias the components declared, contact and ray casting.
 #include "scene/limits.hpp"
 #include "sim/drive_train_components.hpp"
 #include "sim/names.hpp"
@@ -35,20 +36,18 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
                                       std::to_string(m.scene.settings.substeps));
   m.tick_s = m.scene.settings.physics_step_s;
 
-  m.multibody = std::make_unique<model::Multibody>(m.scene, m.tick_s, m.scene.settings.substeps);
+  // The multibody's plan first: the components configure against its axes and may declare
+  // axis inertias, which the Simbody system is then built with.
+  m.topology = model::plan_topology(m.scene);
   m.shapes = std::make_unique<collision::ShapeTable>(m.scene);
-  m.contacts =
-      std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
-  m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
-  for (const auto& w : m.multibody->warnings())
-    m.warnings.push_back(w);
-  for (const auto& ax : m.multibody->axes())
+  for (const auto& ax : m.topology.axes)
     m.axis_views.push_back({ax.name, ax.robot, ax.joint, ax.linear});
-  m.poses.resize(static_cast<std::size_t>(m.multibody->body_count()));
+  m.poses.resize(m.scene.bodies.size() + 1);  // body 0 is the world
   m.twists.resize(m.poses.size());
   m.axis_position.assign(m.axis_views.size(), 0.0);
   m.axis_velocity.assign(m.axis_views.size(), 0.0);
   m.axis_force_applied.assign(m.axis_views.size(), 0.0);
+  m.axis_inertia.assign(m.axis_views.size(), 0.0);
   m.register_kernel_signals();
 
   // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
@@ -72,7 +71,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   for (const auto& p : m.scene.plugins)
     m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
   std::vector<sim::DriveAxis> drive_axes;
-  for (const auto& ax : m.multibody->axes())
+  for (const auto& ax : m.topology.axes)
     drive_axes.push_back({ax.name,
                           (ax.robot >= 0 ? m.robot_prefix(ax.robot) : std::string("world")) +
                               "/axes/" + sim::segment(ax.name),
@@ -95,6 +94,17 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.components.back().prefix = c.prefix;
   }
   m.configure_components();
+
+  m.multibody = std::make_unique<model::Multibody>(m.scene, m.topology, m.axis_inertia, m.tick_s,
+                                                   m.scene.settings.substeps);
+  if (m.joint_reactions_wanted) m.multibody->request_joint_reactions();
+  m.contacts =
+      std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
+  for (const auto& [body, input] : m.belt_speed_inputs)
+    m.contacts->set_belt_speed_input(body, input);
+  m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
+  for (const auto& w : m.multibody->warnings())
+    m.warnings.push_back(w);
 
   m.state = m.state_initial;
   m.random.assign(4 * m.components.size(), 0);

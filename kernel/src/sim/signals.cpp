@@ -76,11 +76,14 @@ void Simulation::Impl::register_kernel_signals() {
   for (int b : scene.things)
     add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
   // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
-  for (std::int32_t body : contacts->belt_bodies()) {
+  // Handed to contact once it exists (it is built after the components, with the multibody).
+  for (std::int32_t s = 0; s < shapes->size(); ++s) {
+    if (!shapes->surfaces()[static_cast<std::size_t>(s)].belt) continue;
+    const std::int32_t body = shapes->bodies()[static_cast<std::size_t>(s)];
     const auto& b = scene.bodies[body - 1];
     const std::string p = b.robot >= 0 ? robot_prefix(b.robot) + "/solids/" + sim::segment(b.id)
                                        : "things/" + sim::segment(b.id);
-    contacts->set_belt_speed_input(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
+    belt_speed_inputs.emplace_back(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a) {
     const AxisView& ax = axis_views[a];

@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace s2sim {
@@ -92,6 +93,13 @@ struct Simulation::Impl {
   std::vector<std::string> warnings;
   double tick_s = 1e-3;
   std::int64_t tick = 0;
+  /// The multibody's plan: its axes are known to the components before it is built.
+  model::Topology topology;
+  /// Per axis, the inertia the components declared (ConfigureContext::add_axis_inertia).
+  std::vector<double> axis_inertia;
+  bool joint_reactions_wanted = false;  ///< a component looked up a joint
+  /// (body, input) of every conveyor belt's `belt_speed`, for contact once it is built.
+  std::vector<std::pair<std::int32_t, std::int32_t>> belt_speed_inputs;
   std::unique_ptr<model::Multibody> multibody;
   std::unique_ptr<collision::ShapeTable> shapes;
   std::unique_ptr<contact::ContactWorld> contacts;

@@ -361,6 +361,17 @@ class ConfigureContext {
   /// A joint's body1 (`which` = 1) or body2 (`which` = 2) as `<connect B1 B2>` gives them;
   /// index 0 for the world.
   virtual BodyHandle joint_body(JointHandle j, int which) const = 0;
+
+  // --- axis inertia (SDK 0.5 addition, appended) ---
+
+  /// Adds `inertia` to the axis's own inertia, as MuJoCo's joint "armature": kg·m² on a
+  /// rotational axis, e.g. a motor's rotor inertia reflected through its gear, N²·J_rotor.
+  /// Declarations on one axis add up. The kernel carries it on a hinge or Universal axis as a
+  /// massless disk on the axis fixed to the joint's child body (axial `inertia`, half of it
+  /// across): exact for the spin of the axis while the parent does not turn about it
+  /// (docs/models/multibody.md). A slider or a loop-closing axis does not carry it (a
+  /// load-time warning says so). Throws for a negative or non-finite value.
+  virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
 };
 
 /// Base of every plugin component.

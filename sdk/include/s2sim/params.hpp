@@ -2,6 +2,7 @@
 /// \file
 /// A component's parameters, read from its XML element in the scene.
 
+#include <s2sim/error.hpp>
 #include <s2sim/math.hpp>
 
 #include <cstdint>
@@ -61,6 +62,16 @@ class Params {
 
   /// "file: element" of the component's element, for messages of the component's own.
   virtual std::string location() const = 0;
+
+  // --- SDK 0.5 addition, appended so the earlier vtable slots keep their place ---
+
+  /// Where the attribute at `path` is written (or would be, when absent): file, element path
+  /// and attribute, to locate a component's own checks as the getters locate theirs:
+  /// `throw Error(ErrorKind::scene, p.where("controller.mode"), "unknown mode 'x'")`. The
+  /// default, for Params implementations outside the kernel, knows only location().
+  virtual Location where(std::string_view path) const {
+    return Location{"", location(), std::string(path)};
+  }
 };
 
 }  // namespace s2sim

@@ -17,6 +17,16 @@ struct Runner {
         vel(mb.axes().size()) {
     read();
   }
+  /// With declared axis inertias (Multibody's armature, per axis of the plan).
+  Runner(const scene::Scene& s, const std::vector<double>& axis_inertia, double dt = 1e-3,
+         int substeps = 1)
+      : mb(s, model::plan_topology(s), axis_inertia, dt, substeps),
+        poses(mb.body_count()),
+        twists(mb.body_count()),
+        pos(mb.axes().size()),
+        vel(mb.axes().size()) {
+    read();
+  }
   void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
   void step(int n = 1) {
     for (int i = 0; i < n; ++i)

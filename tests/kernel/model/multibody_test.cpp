@@ -204,14 +204,13 @@ TEST(Multibody, CoulombBrakeAboveItsBoundSlidesAgainstTheFullBound) {
   EXPECT_NEAR(r.pos[0], expected, 0.01 * expected);
 }
 
-TEST(Multibody, ReflectedRotorInertiaAddsNSquaredJToTheAxis) {
-  // A torque on a gravity-free hinge: theta'' = T / (I_body + N^2 J).
+TEST(Multibody, DeclaredAxisInertiaAddsToTheAxis) {
+  // A torque on a gravity-free hinge: theta'' = T / (I_body + J), J a reflected rotor inertia
+  // N^2 J_rotor declared for the axis (ConfigureContext::add_axis_inertia).
   scene::Scene s = horizontal_arm(1.0, 0.5);
   s.bodies[0].gravity = false;
-  s.joints[0].drive1.gear.ratio = 48;
-  s.joints[0].drive1.rotor.inertia_kg_m2 = 1e-5;
   const double inertia = 0.25 + 0.4 * 0.01 * 0.01 + 48.0 * 48.0 * 1e-5;
-  Runner r(s);
+  Runner r(s, std::vector<double>{48.0 * 48.0 * 1e-5});
   for (int n = 0; n < 100; ++n) {
     r.mb.applied_axis_forces()[0] = 0.1;
     r.step();

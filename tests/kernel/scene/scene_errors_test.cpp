@@ -256,12 +256,14 @@ TEST(SceneErrors, NonPositiveTyreAndShellSizes) {
 }
 
 TEST(SceneErrors, BadBooleanAndIntegers) {
+  // A drive-train boolean (`<motor active='yes'/>`) is the plugin's to read:
+  // DriveTrain.BadParametersNameFileElementAttributeAndValue.
   Error e = load_error(
       temp_scene("bool", std::string(kTwoSolids) +
                              "<articulations><joint><type value='Hinge'/><connect B1='A' B2='B'/>"
-                             "<motor active='yes'/></joint></articulations>"));
-  EXPECT_EQ(e.where().element, "robot/articulations/joint/motor");
-  EXPECT_EQ(e.where().attribute, "active");
+                             "<axis x='1' y='0' z='0' wrap='yes'/></joint></articulations>"));
+  EXPECT_EQ(e.where().element, "robot/articulations/joint/axis");
+  EXPECT_EQ(e.where().attribute, "wrap");
   EXPECT_THAT(e.message(), HasSubstr("'yes'"));
   e = load_error(
       temp_scene("color", "<solids><cuboid><ID value='A'/><color_rgb r='300'/></cuboid></solids>"));
@@ -296,16 +298,8 @@ TEST(SceneErrors, FailingDefine) {
   EXPECT_EQ(e.where().attribute, "value");
 }
 
-TEST(SceneErrors, UnknownControllerModeIsAnError) {
-  const Error e = load_error(
-      temp_scene("mode", std::string(kTwoSolids) +
-                             "<articulations><joint><type value='Hinge'/><connect B1='A' B2='B'/>"
-                             "<controller mode='fuzzy'/></joint></articulations>"));
-  EXPECT_EQ(e.where().file, "bot.xml");
-  EXPECT_EQ(e.where().element, "robot/articulations/joint/controller");
-  EXPECT_EQ(e.where().attribute, "mode");
-  EXPECT_NE(std::string(e.what()).find("unknown controller mode 'fuzzy'"), std::string::npos);
-}
+// An unknown controller mode is the drive-train plugin's error, located the same way:
+// DriveTrain.BadParametersNameFileElementAttributeAndValue.
 
 TEST(SceneWarnings, RobotTilt) {
   const auto dir = temp_scene("warn", std::string(kTwoSolids) +

@@ -225,17 +225,19 @@ TEST(SceneLoader, WheelsGenerator) {
   EXPECT_TRUE(near_vec(l.axis1, {0, -1, 0}));
   EXPECT_TRUE(near_vec(w3.axis1, {1, 0, 0}));
   EXPECT_FALSE(w1.limits1.active);
-  // Drive train: <default> values over the wheel defaults of §4.10.
-  EXPECT_DOUBLE_EQ(w1.drive1.motor.resistance_ohm, 0.3);
-  EXPECT_DOUBLE_EQ(w1.drive1.motor.voltage_max_V, 12);
-  EXPECT_DOUBLE_EQ(w1.drive1.motor.torque_constant_Nm_A, 1.4e-2);
-  EXPECT_DOUBLE_EQ(w1.drive1.gear.ratio, 12);
-  EXPECT_DOUBLE_EQ(w1.drive1.controller.kp, 0.2);
-  EXPECT_DOUBLE_EQ(w1.drive1.controller.kf, 0.5);
-  EXPECT_DOUBLE_EQ(w1.drive1.controller.period_s, 0.01);
-  EXPECT_TRUE(w1.drive1.controller.active);
-  EXPECT_TRUE(w1.drive1.motor.active);
-  EXPECT_FALSE(w3.drive1.motor.active);
+  // Drive train: the wheels' <default> elements as written, the wheel's own over them; what
+  // is not written is left to the plugin's defaults.
+  const ElementParams d1(w1.drive1), d3(w3.drive1);
+  EXPECT_DOUBLE_EQ(d1.number("motor.ri"), 0.3);
+  EXPECT_DOUBLE_EQ(d1.number("motor.vmax"), 12);
+  EXPECT_FALSE(d1.has("motor.ki"));
+  EXPECT_DOUBLE_EQ(d1.number("gear.ratio"), 12);
+  EXPECT_DOUBLE_EQ(d1.number("controller.kp"), 0.2);
+  EXPECT_FALSE(d1.has("controller.kf"));
+  EXPECT_FALSE(d1.has("controller.period"));
+  EXPECT_TRUE(d1.boolean("controller.active", false));
+  EXPECT_TRUE(d1.boolean("motor.active", true));
+  EXPECT_FALSE(d3.boolean("motor.active", true));
   EXPECT_TRUE(w1.from_wheels);
 }
 
@@ -266,8 +268,8 @@ TEST(SceneLoader, JointTypesConnectionsAndLimits) {
   EXPECT_TRUE(sl.limits1.active);
   EXPECT_DOUBLE_EQ(sl.limits1.min, -0.5);  // metres
   EXPECT_DOUBLE_EQ(sl.limits1.max, 0.5);
-  EXPECT_DOUBLE_EQ(sl.drive1.spring.stiffness, 100);
-  EXPECT_DOUBLE_EQ(sl.drive1.spring.zero_position, 0.2);  // metres for sliders
+  EXPECT_DOUBLE_EQ(ElementParams(sl.drive1).number("spring.k"), 100);
+  EXPECT_DOUBLE_EQ(ElementParams(sl.drive1).number("spring.zeropos"), 0.2);  // as written
 
   const Joint& u = joint(s, 0, "Uni");
   EXPECT_EQ(u.type, JointType::universal);
@@ -280,14 +282,15 @@ TEST(SceneLoader, JointTypesConnectionsAndLimits) {
   EXPECT_TRUE(u.limits2.active);
   EXPECT_DOUBLE_EQ(u.limits2.min, -30 * kDeg);
   EXPECT_DOUBLE_EQ(u.limits2.max, 30 * kDeg);
-  EXPECT_EQ(u.drive1.encoder.ppr, 701);  // rounded
+  const ElementParams u1(u.drive1), u2(u.drive2);
+  EXPECT_DOUBLE_EQ(u1.number("encoder.ppr"), 700.8);  // as written (the plugin rounds)
   // Axis 2: the <default> axis-1 values (not <default>'s motor2), then the joint's *2.
-  EXPECT_DOUBLE_EQ(u.drive2.motor.resistance_ohm, 5);
-  EXPECT_DOUBLE_EQ(u.drive2.motor.voltage_max_V, 6);
-  EXPECT_DOUBLE_EQ(u.drive2.controller.kp, 7);
-  EXPECT_EQ(u.drive2.controller.mode, ControllerMode::pid_speed);  // no mode: reset
-  EXPECT_EQ(u.drive2.encoder.ppr, 1000);
-  EXPECT_DOUBLE_EQ(u.drive1.motor.resistance_ohm, 2);
+  EXPECT_DOUBLE_EQ(u2.number("motor.ri"), 5);
+  EXPECT_DOUBLE_EQ(u2.number("motor.vmax"), 6);
+  EXPECT_DOUBLE_EQ(u2.number("controller.kp"), 7);
+  EXPECT_FALSE(u2.has("controller.mode"));  // no mode: reset (quirk 7b), pidspeed
+  EXPECT_FALSE(u2.has("encoder.ppr"));
+  EXPECT_DOUBLE_EQ(u1.number("motor.ri"), 2);
 
   const Joint& ball = joint(s, 0, "B");
   EXPECT_EQ(ball.type, JointType::ball);
@@ -306,31 +309,33 @@ TEST(SceneLoader, JointTypesConnectionsAndLimits) {
   EXPECT_TRUE(rel.limits1.active);  // one side inside (-180°, 180°)
   EXPECT_EQ(rel.limits1.min, -std::numeric_limits<double>::infinity());
   EXPECT_DOUBLE_EQ(rel.limits1.max, 170 * kDeg);
-  EXPECT_EQ(rel.drive1.controller.mode, ControllerMode::pid_speed);  // quirk 7b
-  EXPECT_DOUBLE_EQ(rel.drive1.controller.kp, 2);
+  EXPECT_FALSE(ElementParams(rel.drive1).has("controller.mode"));  // quirk 7b: pidspeed
+  EXPECT_DOUBLE_EQ(ElementParams(rel.drive1).number("controller.kp"), 2);
 }
 
 TEST(SceneLoader, JointDefaultCapture) {
   const Scene s = load_scene(fixture("joints"));
   const Joint& h = joint(s, 0, "H");
-  const DriveTrain& d = h.drive1;
-  EXPECT_DOUBLE_EQ(d.motor.resistance_ohm, 2);
-  EXPECT_DOUBLE_EQ(d.motor.voltage_max_V, 6);
-  EXPECT_DOUBLE_EQ(d.motor.torque_constant_Nm_A, 1.4e-2);  // untouched SimTwo default
-  EXPECT_DOUBLE_EQ(d.gear.ratio, 10);
-  EXPECT_EQ(d.controller.mode, ControllerMode::pid_position);
-  EXPECT_DOUBLE_EQ(d.controller.kp, 5);
-  EXPECT_DOUBLE_EQ(d.controller.kf, 0);
-  EXPECT_DOUBLE_EQ(d.controller.period_s, 0.020);
-  EXPECT_FALSE(d.controller.active);
-  EXPECT_DOUBLE_EQ(d.friction.viscous, 1e-5);
-  EXPECT_DOUBLE_EQ(d.friction.coulomb, 1e-3);
-  EXPECT_DOUBLE_EQ(d.spring.stiffness, 3);
-  EXPECT_DOUBLE_EQ(d.spring.zero_position, 10 * kDeg);  // degrees -> radians for hinges
+  const ElementParams d(h.drive1);
+  EXPECT_DOUBLE_EQ(d.number("motor.ri"), 2);
+  EXPECT_DOUBLE_EQ(d.number("motor.vmax"), 6);
+  EXPECT_FALSE(d.has("motor.ki"));  // the plugin's default
+  EXPECT_FALSE(d.has("gear.ratio"));
+  EXPECT_EQ(d.text("controller.mode"), "pidposition");
+  EXPECT_DOUBLE_EQ(d.number("controller.kp"), 5);
+  EXPECT_FALSE(d.has("controller.kf"));
+  EXPECT_DOUBLE_EQ(d.number("controller.period"), 20);  // ms, as written
+  EXPECT_FALSE(d.has("controller.active"));
+  EXPECT_FALSE(d.has_element("friction"));
+  EXPECT_DOUBLE_EQ(d.number("spring.k"), 3);
+  EXPECT_DOUBLE_EQ(d.number("spring.zeropos"), 10);  // degrees, as written
+  // An inherited attribute is located where it is written: in the <default>.
+  EXPECT_EQ(d.where("spring.k").element, "robot/articulations/default/spring");
   EXPECT_DOUBLE_EQ(h.draw.radius_m, 0.01);
   EXPECT_DOUBLE_EQ(h.draw.color.r, 1);  // rgb24 0000FF is red (BGR)
   EXPECT_DOUBLE_EQ(h.draw.color.b, 0);
-  EXPECT_DOUBLE_EQ(h.drive2.motor.resistance_ohm, 2);  // <default><motor2> not captured
+  EXPECT_DOUBLE_EQ(ElementParams(h.drive2).number("motor.ri"),
+                   2);  // <default><motor2> not captured
 }
 
 // ---------------------------------------------------------------------------------------

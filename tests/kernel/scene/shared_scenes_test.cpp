@@ -1,6 +1,7 @@
 // The three real SimTwo scenes of /work/shared/simtwo-scenes load to what SimTwo builds
 // (simtwo-format.md §15). Skipped when the folder is absent.
 
+#include "scene/element_params.hpp"
 #include "scene_test_util.hpp"
 
 #include <gmock/gmock.h>
@@ -66,15 +67,16 @@ TEST(SharedScenes, BaseRobotsWheelsAndSettings) {
     EXPECT_EQ(j->type, JointType::hinge);
     EXPECT_TRUE(j->from_wheels);
     EXPECT_EQ(j->body2, classic.main_body);
-    EXPECT_DOUBLE_EQ(j->drive1.gear.ratio, 12);
-    EXPECT_DOUBLE_EQ(j->drive1.motor.resistance_ohm, 0.3);
-    EXPECT_DOUBLE_EQ(j->drive1.motor.voltage_max_V, 12);
-    EXPECT_EQ(j->drive1.controller.mode, ControllerMode::pid_speed);
-    EXPECT_DOUBLE_EQ(j->drive1.controller.kp, 0.2);
-    EXPECT_DOUBLE_EQ(j->drive1.controller.kd, 0.01);
-    EXPECT_DOUBLE_EQ(j->drive1.controller.kf, 0.05);
-    EXPECT_DOUBLE_EQ(j->drive1.controller.period_s, 0.01);
-    EXPECT_TRUE(j->drive1.controller.active);
+    const ElementParams d(j->drive1);
+    EXPECT_DOUBLE_EQ(d.number("gear.ratio"), 12);
+    EXPECT_DOUBLE_EQ(d.number("motor.ri"), 0.3);
+    EXPECT_DOUBLE_EQ(d.number("motor.vmax"), 12);
+    EXPECT_EQ(d.text("controller.mode", "pidspeed"), "pidspeed");
+    EXPECT_DOUBLE_EQ(d.number("controller.kp"), 0.2);
+    EXPECT_DOUBLE_EQ(d.number("controller.kd"), 0.01);
+    EXPECT_DOUBLE_EQ(d.number("controller.kf"), 0.05);
+    EXPECT_DOUBLE_EQ(d.number("controller.period", 10), 10);
+    EXPECT_TRUE(d.boolean("controller.active", false));
   }
   EXPECT_EQ(s.bodies[static_cast<std::size_t>(w1.body1)].id, "Tyre -90");
   EXPECT_TRUE(near_vec(w1.axis1, {0, 1, 0}));
@@ -83,8 +85,8 @@ TEST(SharedScenes, BaseRobotsWheelsAndSettings) {
   EXPECT_TRUE(near_vec(w1.anchor_m, {0, -1.09, 0.04}));
   EXPECT_TRUE(near_vec(w2.anchor_m, {0, -0.91, 0.04}));
   EXPECT_TRUE(near_vec(w3.anchor_m, {-0.09, -1, 0.04}));
-  EXPECT_TRUE(w1.drive1.motor.active);
-  EXPECT_FALSE(w3.drive1.motor.active);  // the passive caster
+  EXPECT_TRUE(ElementParams(w1.drive1).boolean("motor.active", true));
+  EXPECT_FALSE(ElementParams(w3.drive1).boolean("motor.active", true));  // the passive caster
   EXPECT_EQ(s.bodies[static_cast<std::size_t>(w3.body1)].geoms[0].friction, FrictionKind::omni);
 
   const Robot& belt = s.robots[1];
@@ -235,19 +237,19 @@ TEST(SharedScenes, MotorModelDriveTrainAndIniPrecedence) {
   EXPECT_TRUE(near_vec(hinge.axis1, {0, 1, 0}));
   EXPECT_TRUE(near_vec(hinge.anchor_m, {0, 0, 0.82}, 1e-12));
   EXPECT_FALSE(hinge.limits1.active);
-  const DriveTrain& d = hinge.drive1;
-  EXPECT_DOUBLE_EQ(d.motor.resistance_ohm, 7.1);
-  EXPECT_DOUBLE_EQ(d.motor.inductance_H, 3.4e-3);
-  EXPECT_DOUBLE_EQ(d.motor.torque_constant_Nm_A, 0.187);
-  EXPECT_DOUBLE_EQ(d.motor.voltage_max_V, 15);
-  EXPECT_DOUBLE_EQ(d.motor.current_max_A, 10);
-  EXPECT_DOUBLE_EQ(d.gear.ratio, 1);
-  EXPECT_DOUBLE_EQ(d.friction.viscous, 0.000931);
-  EXPECT_DOUBLE_EQ(d.friction.coulomb, 0.026);
-  EXPECT_EQ(d.encoder.ppr, 10044);
-  EXPECT_FALSE(d.controller.active);
-  EXPECT_DOUBLE_EQ(d.controller.kp, 100);
-  EXPECT_DOUBLE_EQ(d.controller.period_s, 0.01);
+  const ElementParams d(hinge.drive1);
+  EXPECT_DOUBLE_EQ(d.number("motor.ri"), 7.1);
+  EXPECT_DOUBLE_EQ(d.number("motor.li"), 3.4e-3);
+  EXPECT_DOUBLE_EQ(d.number("motor.ki"), 0.187);
+  EXPECT_DOUBLE_EQ(d.number("motor.vmax"), 15);
+  EXPECT_DOUBLE_EQ(d.number("motor.imax"), 10);
+  EXPECT_DOUBLE_EQ(d.number("gear.ratio"), 1);
+  EXPECT_DOUBLE_EQ(d.number("friction.bv"), 0.000931);
+  EXPECT_DOUBLE_EQ(d.number("friction.fc"), 0.026);
+  EXPECT_EQ(d.integer("encoder.ppr"), 10044);
+  EXPECT_FALSE(d.boolean("controller.active", false));
+  EXPECT_DOUBLE_EQ(d.number("controller.kp"), 100);
+  EXPECT_DOUBLE_EQ(d.number("controller.period", 10), 10);
   EXPECT_DOUBLE_EQ(hinge.draw.radius_m, 0.005);
   EXPECT_NEAR(hinge.draw.color.g, 0x8F / 255.0, 1e-12);
   const Joint& glue = joint(s, 0, "Glue");

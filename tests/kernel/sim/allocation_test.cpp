@@ -4,6 +4,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "model/multibody.hpp"
+#include "scene/element_params.hpp"
 #include "sim/step.hpp"
 
 #include "common/counting_new.hpp"
@@ -39,11 +40,12 @@ Counts count(const std::filesystem::path& scene, const SimulationOptions& o) {
   // products and velocity projections allocate).
   for (std::size_t a = 0; a < bare.axes().size(); ++a) {
     const auto& jt = sim->scene().joints[bare.axes()[a].joint];
-    const auto& drive = bare.axes()[a].which == 0 ? jt.drive1 : jt.drive2;
-    bare.applied_axis_friction()[a] = drive.friction.coulomb;
-    if (drive.friction.viscous > 0)
+    const scene::ElementParams drive(bare.axes()[a].which == 0 ? jt.drive1 : jt.drive2);
+    bare.applied_axis_friction()[a] = drive.number("friction.fc", 1e-3);  // plugin defaults
+    const double viscous = drive.number("friction.bv", 1e-5);
+    if (viscous > 0)
       bare.axis_drives()[(*bare.axis_drive_count())++] =
-          AxisDrive{static_cast<std::int32_t>(a), 0.0, drive.friction.viscous, -INFINITY, INFINITY};
+          AxisDrive{static_cast<std::int32_t>(a), 0.0, viscous, -INFINITY, INFINITY};
   }
   for (int i = 0; i < 10; ++i)
     sim::physics_tick(bare, nullptr);

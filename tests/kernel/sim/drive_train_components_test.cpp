@@ -1,4 +1,4 @@
-// The drive-train element the kernel synthesises for each axis from the loader's values.
+// The drive-train element the kernel hands each axis: the joint's elements as written.
 #include "sim/drive_train_components.hpp"
 #include "scene/element_params.hpp"
 
@@ -42,11 +42,12 @@ TEST(DriveTrainComponents, UniversalAxesGetTheirOwnChildrenAndTheDefaults) {
   EXPECT_EQ(a2.number("controller.kp"), 7.0);
   EXPECT_EQ(a1.text("controller.mode"), "pidposition");
   EXPECT_EQ(a1.number("controller.period"), 20.0);  // ms, as written
-  EXPECT_EQ(a1.integer("encoder.ppr"), 701);        // SimTwo rounds 700.8
+  EXPECT_EQ(a1.number("encoder.ppr"), 700.8);       // as written: the plugin rounds
   EXPECT_FALSE(a1.boolean("wrap", true));           // <axis wrap='0'>
   EXPECT_FALSE(a2.boolean("wrap", true));           // limits2 ±30° engage
-  EXPECT_EQ(a1.text("motor.backemf"), "physical");
-  EXPECT_EQ(a1.text("controller.law"), "textbook");
+  EXPECT_FALSE(a1.has("motor.backemf"));            // the plugin's default
+  EXPECT_FALSE(a2.has("controller.mode"));          // <controller2> without mode: reset
+  EXPECT_EQ(a1.number("control_period"), 40.0);     // ms, the encoder's default period
   // Errors name the joint's file and the child as the user writes it.
   EXPECT_EQ(a2.location(), "robot.xml: robot/articulations/joint[3]");
   try {
@@ -56,19 +57,25 @@ TEST(DriveTrainComponents, UniversalAxesGetTheirOwnChildrenAndTheDefaults) {
     EXPECT_EQ(e.where().element, "robot/articulations/joint[3]/motor2");
     EXPECT_EQ(e.where().attribute, "ri");
   }
+  // An inherited value is reported where it is written: the <default>.
+  try {
+    (void)a2.number("motor.vmax", Range{0, 1});
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where().element, "robot/articulations/default/motor");
+    EXPECT_EQ(e.where().attribute, "vmax");
+  }
 }
 
-TEST(DriveTrainComponents, ValuesRoundTripExactly) {
-  const scene::Scene& s = joints_scene();
+TEST(DriveTrainComponents, ValuesAreAsWritten) {
   const scene::ElementParams slider = params("S", 0, true);
-  const auto& jt = s.joints[joint_index(s, "S")];
-  EXPECT_EQ(slider.number("spring.zeropos"), jt.drive1.spring.zero_position);  // metres
+  EXPECT_EQ(slider.number("spring.zeropos"), 0.2);  // metres on a slider (the plugin knows)
   EXPECT_EQ(slider.number("spring.k"), 100.0);
   EXPECT_FALSE(slider.boolean("wrap", true));
-  EXPECT_EQ(slider.number("friction.fc"), jt.drive1.friction.coulomb);
+  EXPECT_TRUE(slider.boolean("linear", false));
+  EXPECT_FALSE(slider.has("friction.fc"));
   const scene::ElementParams hinge = params("H", 0);
-  EXPECT_EQ(hinge.number("spring.zeropos"),
-            s.joints[joint_index(s, "H")].drive1.spring.zero_position);
+  EXPECT_EQ(hinge.number("spring.zeropos"), 10.0);  // degrees, from the <default>
 }
 
 TEST(DriveTrainComponents, ThreeComponentsPerAxisInOrder) {

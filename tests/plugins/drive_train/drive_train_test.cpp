@@ -390,6 +390,26 @@ TEST(DriveTrain, BadParametersNameFileElementAttributeAndValue) {
               HasSubstr("controller@mode: unknown controller mode 'pidspede'"));
   EXPECT_THAT(bench_error({}, {{"<motor ", "<motor backemf='ideal' "}}).what(),
               HasSubstr("motor@backemf: must be 'physical' or 'simtwo', got 'ideal'"));
+  // The loader hands the elements over as written: the plugin's errors are located as the
+  // loader's are (file, element, attribute, value).
+  Error e = bench_error({}, {{"active='1'", "active='yes'"}});
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().file, "nxt_motor.xml");
+  EXPECT_EQ(e.where().element, "robot/articulations/joint/motor");
+  EXPECT_EQ(e.where().attribute, "active");
+  EXPECT_THAT(e.message(), HasSubstr("'yes'"));
+  e = bench_error({}, {{"mode='pidspeed'", "mode='fuzzy'"}});
+  EXPECT_EQ(e.where().element, "robot/articulations/joint/controller");
+  EXPECT_EQ(e.where().attribute, "mode");
+  EXPECT_THAT(e.message(), HasSubstr("unknown controller mode 'fuzzy'"));
+  EXPECT_NO_THROW(
+      Simulation::load(bench_with({{"mode='pidspeed'", "mode='PIDSpeed' law='SimTwo'"}}),
+                       bench_options({})));  // keywords are case-insensitive
+  // A value inherited from a <default> is reported where it is written.
+  e = bench_error({}, {{"<articulations>", "<articulations><default><spring k='-1'/></default>"}});
+  EXPECT_EQ(e.where().element, "robot/articulations/default/spring");
+  EXPECT_EQ(e.where().attribute, "k");
+  EXPECT_THAT(e.message(), HasSubstr("must be >= 0, got -1"));
 }
 
 TEST(DriveTrain, SnapshotAndResetAreExactWithMotorState) {

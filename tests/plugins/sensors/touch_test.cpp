@@ -58,6 +58,7 @@ class FakeConfigure : public ConfigureContext {
   SignalHandle published_signal(std::string_view) const override { return {}; }
   JointHandle joint(std::string_view) override { return {}; }
   BodyHandle joint_body(JointHandle, int) const override { return {}; }
+  void add_axis_inertia(AxisHandle, double) override {}
 };
 
 struct World {

@@ -24,6 +24,9 @@ struct Element {
   std::vector<std::pair<std::string, std::string>> attributes;  ///< in document order
   std::vector<Element> children;                                ///< in document order
   std::string path;  ///< element path in its file, e.g. `robot/solids/cuboid[2]`
+  /// Per attribute, the element path it was written at when that is not `path` (attributes
+  /// inherited from a `<default>`); empty when every attribute stands at `path`.
+  std::vector<std::string> attribute_paths;
 
   /// The attribute's raw (trimmed) text, or nullptr.
   const std::string* attribute(std::string_view attr) const {
@@ -173,65 +176,6 @@ struct Body {
 
 enum class JointType { hinge, slider, universal, ball, fixed };
 
-/// `<motor>` (§4.10).
-struct Motor {
-  double resistance_ohm = 1;
-  double inductance_H = 0;
-  double torque_constant_Nm_A = 1.4e-2;  ///< also the back-EMF constant, V·s/rad
-  double voltage_max_V = 24;
-  double current_max_A = 4;
-  bool active = true;
-  bool simple = false;
-  /// S2Sim switch `backemf`: `physical` (default, e = K·N·ω) or `simtwo` (SimTwo HEAD's
-  /// e = K·ω/N, simtwo-format.md §11.4).
-  bool back_emf_simtwo = false;
-};
-struct Gear {
-  double ratio = 10;
-  double ke = 0.05, be = 0.01, ke2 = 0, kv2 = 0;
-};
-struct Rotor {
-  double inertia_kg_m2 = 0;
-  double viscous_Nms_rad = 1e-3;
-  double coulomb_Nm = 0;
-};
-struct Encoder {
-  std::int64_t ppr = 1000;
-  double mean = 0;
-  double stdev = -1;
-  /// S2Sim attribute `period` (ms in the file): sampling period; 0 = the scene's control
-  /// period (SimTwo samples encoders on the script tick).
-  double period_s = 0;
-};
-enum class ControllerMode { pid_speed, pid_position, state };
-struct MotorController {
-  ControllerMode mode = ControllerMode::pid_speed;
-  double kp = 1, ki = 0, kd = 0, kf = 0;
-  double period_s = 10;  ///< SimTwo's articulation default is 10 s; the loader uses 10 ms
-  bool active = false;
-  /// S2Sim switch `law`: `textbook` (default, a discrete PID at the controller period) or
-  /// `simtwo` (SimTwo's law with the physics step, simtwo-format.md §11.2).
-  bool simtwo_law = false;
-};
-struct JointFriction {
-  double viscous = 1e-5;  ///< N·m·s/rad or N·s/m
-  double coulomb = 1e-3;  ///< N·m or N
-};
-struct Spring {
-  double stiffness = 0;      ///< N·m/rad or N/m
-  double zero_position = 0;  ///< rad, or m for sliders (SimTwo converts degrees even there)
-};
-/// Everything that drives one axis (behaviour in the drive-train issue).
-struct DriveTrain {
-  Motor motor;
-  Gear gear;
-  Rotor rotor;
-  Encoder encoder;
-  MotorController controller;
-  JointFriction friction;
-  Spring spring;
-};
-
 struct Limits {
   double min = -2 * 3.141592653589793;  ///< rad (hinge/universal) or m (slider)
   double max = 2 * 3.141592653589793;
@@ -257,7 +201,13 @@ struct Joint {
   Vec3 axis2{0, 0, 1};
   Limits limits1, limits2;
   bool wrap1 = true, wrap2 = true;
-  DriveTrain drive1, drive2;
+  /// The drive-train elements of each axis (`<motor>`, `<gear>`, `<rotor>`, `<encoder>`,
+  /// `<controller>`, `<friction>`, `<spring>`; a Universal joint's `motor2`... for its second
+  /// axis, renamed `motor`...) as written, SimTwo's inheritance resolved attribute by attribute:
+  /// `<default>` for joints and wheels, and axis 2 starting from axis 1's defaults. The kernel
+  /// does not read them: the drive-train plugin does, with its defaults
+  /// (docs/models/dc-motor.md). Attributes inherited from a `<default>` keep its path.
+  ParamSource drive1, drive2;
   JointDraw draw;
   std::string description;
   bool from_wheels = false;  ///< made by the `<wheels>` generator
