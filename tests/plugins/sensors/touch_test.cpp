@@ -157,7 +157,8 @@ TEST(Touch, ABoxOnTheFloorFeelsItsWeightUnderneathAndNothingOnTop) {
       std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures/touch_floor", o);
   sim->run_until(1.0);
   EXPECT_EQ(sim->signal("robots/box/sensors/under/value"), 1.0);
-  EXPECT_NEAR(sim->signal("robots/box/sensors/under/force"), 2 * 9.81, 0.01 * 2 * 9.81);
+  EXPECT_NEAR(sim->signal("robots/box/sensors/under/force"), 2 * kGravity_m_s2,
+              0.01 * 2 * kGravity_m_s2);
   EXPECT_EQ(sim->signal("robots/box/sensors/top/value"), 0.0);
   EXPECT_EQ(sim->signal("robots/box/sensors/top/force"), 0.0);
 }

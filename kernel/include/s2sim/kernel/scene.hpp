@@ -233,8 +233,8 @@ struct DriveTrain {
 };
 
 struct Limits {
-  double min = -2 * 3.141592653589793;  ///< rad (hinge/universal) or m (slider)
-  double max = 2 * 3.141592653589793;
+  double min = -2 * kPi;  ///< rad (hinge/universal) or m (slider)
+  double max = 2 * kPi;
   bool active = false;  ///< whether the stop engages (SimTwo: only inside (-pi, pi) for hinges)
   // When active, a rotational side that SimTwo's ODE would never reach is ±infinity.
 };
@@ -269,7 +269,7 @@ struct Beam {
   double length_m = 0.8;
   double initial_width_m = 0.01;
   double final_width_m = 0.015;
-  double angle_rad = 30 * 3.141592653589793 / 180;
+  double angle_rad = 30 * kPi / 180;
   int rays = 9;
 };
 struct Noise {
