@@ -69,12 +69,11 @@ class ConfigureContextImpl final : public ConfigureContext {
     std::vector<std::string> all;
     for (std::size_t r = 0; r < sim_.scene.robots.size(); ++r)
       for (int b : sim_.scene.robots[r].bodies) {
-        all.push_back(sim_.robot_prefix(static_cast<int>(r)) + "/solids/" +
-                      sim::segment(bodies[b].id));
+        all.push_back(sim::solid_path(sim_.robot_prefix(static_cast<int>(r)), bodies[b].id));
         if (all.back() == n) return BodyHandle{b + 1};
       }
     for (int b : sim_.scene.things) {
-      all.push_back("things/" + sim::segment(bodies[b].id));
+      all.push_back(sim::thing_path(bodies[b].id));
       if (all.back() == n) return BodyHandle{b + 1};
     }
     throw fail(unknown("body", n, all));
@@ -102,13 +101,14 @@ class ConfigureContextImpl final : public ConfigureContext {
 
   bool axis_is_linear(AxisHandle a) const override { return sim_.axis_views.at(a.index).linear; }
   std::string axis_prefix(AxisHandle a) const override {
-    const auto& ax = sim_.axis_views.at(a.index);
-    return (ax.robot >= 0 ? sim_.robot_prefix(ax.robot) : std::string("world")) + "/axes/" +
-           sim::segment(ax.name);
+    // The handle comes from the plugin: a bad one is the plugin's error, not an invariant.
+    if (a.index < 0 || static_cast<std::size_t>(a.index) >= sim_.axis_views.size())
+      throw fail("axis handle " + std::to_string(a.index) + " is out of range");
+    return sim_.axis_prefix(a.index);
   }
 
   SignalHandle declare_signal(std::string_view name, std::string_view unit) override {
-    return declare_signal_at(slot().prefix + "/" + std::string(name), unit);
+    return declare_signal_at(sim::field_path(slot().prefix, name), unit);
   }
   SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) override {
     const std::string n(full_name);
@@ -119,7 +119,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     return SignalHandle{index};
   }
   InputHandle declare_input(std::string_view name, std::string_view unit, double initial) override {
-    return declare_input_at(slot().prefix + "/" + std::string(name), unit, initial);
+    return declare_input_at(sim::field_path(slot().prefix, name), unit, initial);
   }
   InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
                                double initial) override {
@@ -272,8 +272,8 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
   slot.category = info.category;
   slot.stage = default_stage(info.category);
   slot.where = where;
-  slot.prefix = (robot >= 0 ? robot_prefix(robot) + "/" : std::string()) +
-                category_folder(info.category) + "/" + sim::segment(id);
+  slot.prefix = sim::component_path(robot >= 0 ? robot_prefix(robot) : std::string(),
+                                    category_folder(info.category), id);
   slot.params = std::make_unique<scene::ElementParams>(params);
   if (info.category == Category::controller) {
     slot.period_ticks = std::max<std::int64_t>(

@@ -39,13 +39,18 @@ std::int32_t Simulation::Impl::add_input(const std::string& name, const std::str
 }
 
 std::string Simulation::Impl::robot_prefix(int robot) const {
-  return "robots/" + sim::segment(scene.robots[robot].id);
+  return sim::robot_path(scene.robots[robot].id);
 }
-/// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
+std::string Simulation::Impl::scope_prefix(int robot) const {
+  return robot >= 0 ? robot_prefix(robot) : std::string(sim::kWorldScope);
+}
 std::string Simulation::Impl::joint_prefix(int joint) const {
   const auto& jt = scene.joints[static_cast<std::size_t>(joint)];
-  return (jt.robot >= 0 ? robot_prefix(jt.robot) : std::string("world")) + "/joints/" +
-         sim::segment(jt.id);
+  return sim::joint_path(scope_prefix(jt.robot), jt.id);
+}
+std::string Simulation::Impl::axis_prefix(int axis) const {
+  const AxisView& ax = axis_views[static_cast<std::size_t>(axis)];
+  return sim::axis_path(scope_prefix(ax.robot), ax.name);
 }
 
 void Simulation::Impl::register_kernel_signals() {
@@ -62,36 +67,36 @@ void Simulation::Impl::register_kernel_signals() {
     for (const auto& [name, source] : fields) {
       const std::string_view n = name;
       const char* unit = n[0] == 'v' ? "m/s" : n[0] == 'w' ? "rad/s" : n.size() == 1 ? "m" : "rad";
-      add_signal(p + "/" + name, unit, source, body);
+      add_signal(sim::field_path(p, name), unit, source, body);
     }
-    add_signal(p + "/contact_force", "N", sim::Source::body_contact_force, body);
+    add_signal(sim::field_path(p, "contact_force"), "N", sim::Source::body_contact_force, body);
   };
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
     const auto& robot = scene.robots[r];
     if (robot.main_body >= 0) add_body(robot_prefix(static_cast<int>(r)), robot.main_body + 1);
     for (int b : robot.bodies)
-      add_body(robot_prefix(static_cast<int>(r)) + "/solids/" + sim::segment(scene.bodies[b].id),
-               b + 1);
+      add_body(sim::solid_path(robot_prefix(static_cast<int>(r)), scene.bodies[b].id), b + 1);
   }
   for (int b : scene.things)
-    add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
+    add_body(sim::thing_path(scene.bodies[b].id), b + 1);
   // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
   for (std::int32_t body : contacts->belt_bodies()) {
     const auto& b = scene.bodies[body - 1];
-    const std::string p = b.robot >= 0 ? robot_prefix(b.robot) + "/solids/" + sim::segment(b.id)
-                                       : "things/" + sim::segment(b.id);
-    contacts->set_belt_speed_input(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
+    const std::string p =
+        b.robot >= 0 ? sim::solid_path(robot_prefix(b.robot), b.id) : sim::thing_path(b.id);
+    contacts->set_belt_speed_input(
+        body, add_input(sim::field_path(p, "belt_speed"), "m/s", 0.5, b.where));
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a) {
     const AxisView& ax = axis_views[a];
-    const std::string p = (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) +
-                          "/axes/" + sim::segment(ax.name);
     const auto i = static_cast<std::int32_t>(a);
-    add_signal(p + "/pos", ax.linear ? "m" : "rad", sim::Source::axis_position, i);
-    add_signal(p + "/speed", ax.linear ? "m/s" : "rad/s", sim::Source::axis_velocity, i);
-    add_signal(p + "/torque", ax.linear ? "N" : "N*m", sim::Source::axis_force, i);
-    ref_torque_input.push_back(
-        add_input(p + "/ref_torque", ax.linear ? "N" : "N*m", 0.0, scene.joints[ax.joint].where));
+    const std::string p = axis_prefix(i);
+    add_signal(sim::field_path(p, "pos"), ax.linear ? "m" : "rad", sim::Source::axis_position, i);
+    add_signal(sim::field_path(p, "speed"), ax.linear ? "m/s" : "rad/s", sim::Source::axis_velocity,
+               i);
+    add_signal(sim::field_path(p, "torque"), ax.linear ? "N" : "N*m", sim::Source::axis_force, i);
+    ref_torque_input.push_back(add_input(sim::field_path(p, "ref_torque"), ax.linear ? "N" : "N*m",
+                                         0.0, scene.joints[ax.joint].where));
   }
 }
 
