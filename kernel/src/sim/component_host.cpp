@@ -1,5 +1,6 @@
 // Component instances: creation from the plugin registry, and the ConfigureContext through
 // which each declares its signals, inputs, state and schedule.
+#include "common/assert.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -41,7 +42,11 @@ const char* category_folder(Category c) {
 class ConfigureContextImpl final : public ConfigureContext {
  public:
   ConfigureContextImpl(Simulation::Impl& sim, int component_index)
-      : sim_(sim), index_(component_index) {}
+      : sim_(sim), index_(component_index) {
+    S2SIM_ASSERT(
+        component_index >= 0 && static_cast<std::size_t>(component_index) < sim.components.size(),
+        "configure context for a component that does not exist");
+  }
 
   const Params& params() const override { return *slot().params; }
   std::string_view id() const override { return slot().id; }
@@ -134,6 +139,8 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   const SensorSpec* sensor_spec() const override {
     if (slot().sensor < 0) return nullptr;
+    S2SIM_ASSERT(static_cast<std::size_t>(slot().sensor) < sim_.scene.sensors.size(),
+                 "component's scene sensor out of range");
     const scene::Sensor& s = sim_.scene.sensors[static_cast<std::size_t>(slot().sensor)];
     SensorSpec& o = spec_;
     o.kind = s.kind;
@@ -222,6 +229,8 @@ class ConfigureContextImpl final : public ConfigureContext {
     const std::int64_t phase = to_ticks(phase_s, "phase");
     if (period < 1) throw fail("period must be at least one physics step");
     if (phase < 0) throw fail("phase must not be negative");
+    if (static_cast<std::size_t>(stage) >= sim_.stage_order.size())
+      throw fail("unknown stage " + std::to_string(static_cast<int>(stage)));
     sim::ComponentSlot& s = sim_.components[index_];
     s.stage = stage;
     s.period_ticks = period;
@@ -295,8 +304,11 @@ void Simulation::Impl::configure_components() {
                   components[c].label() + " refused its configuration: " + e.what());
     }
   }
-  for (std::size_t c = 0; c < components.size(); ++c)
-    stage_order[static_cast<std::size_t>(components[c].stage)].push_back(static_cast<int>(c));
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    const auto stage = static_cast<std::size_t>(components[c].stage);
+    S2SIM_ASSERT(stage < stage_order.size(), "component stage outside the pipeline");
+    stage_order[stage].push_back(static_cast<int>(c));
+  }
 }
 
 // --- façade ------------------------------------------------------------------------------------

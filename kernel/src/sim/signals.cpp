@@ -1,4 +1,5 @@
 // The signal and input registry: every readable value has a name, a unit and a source.
+#include "common/assert.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -9,6 +10,28 @@ namespace s2sim {
 
 std::size_t Simulation::Impl::add_signal(std::string name, std::string unit, sim::Source source,
                                          std::int32_t index) {
+  // read_signal() indexes the source's buffer unchecked: the entry must point into it.
+  const std::size_t extent = [&]() -> std::size_t {
+    switch (source) {
+      case sim::Source::published:
+        return published.size();
+      case sim::Source::input:
+        return inputs.size();
+      case sim::Source::time:
+      case sim::Source::contact_count:
+        return 1;
+      case sim::Source::axis_position:
+      case sim::Source::axis_velocity:
+      case sim::Source::axis_force:
+        return axis_force_applied.size();
+      default:  // the body sources
+        return poses.size();
+    }
+  }();
+  S2SIM_ASSERT(index >= 0 && static_cast<std::size_t>(index) < extent,
+               "signal index out of its source's buffer");
+  S2SIM_ASSERT(signal_infos.size() == signal_entries.size(),
+               "signal names and entries out of step");
   // Duplicate scene IDs are legal in SimTwo; later ones get a "#n" suffix.
   std::string unique = name;
   for (int n = 2; signal_by_name.count(unique); ++n)
@@ -34,6 +57,8 @@ std::int32_t Simulation::Impl::add_input(const std::string& name, const std::str
   input_infos.push_back({name, unit});
   inputs.push_back(initial);
   inputs_initial.push_back(initial);
+  S2SIM_ASSERT(input_infos.size() == inputs.size() && inputs_initial.size() == inputs.size(),
+               "input names, values and initial values out of step");
   add_signal(name, unit, sim::Source::input, index);
   return index;
 }

@@ -1,11 +1,15 @@
-// Signal paths: one function per path kind.
+// Signal paths (one function per path kind) and the kernel's internal assertion.
 #include "sim/names.hpp"
+#include "common/assert.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 namespace s2sim::sim {
 namespace {
+
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
 
 TEST(Names, OneFunctionPerPathKind) {
   const std::string r = robot_path("arm/left");  // '/' in an ID becomes '_'
@@ -19,6 +23,19 @@ TEST(Names, OneFunctionPerPathKind) {
   EXPECT_EQ(component_path(r, "sensors", "ir/0"), "robots/arm_left/sensors/ir_0");
   EXPECT_EQ(component_path("", "controllers", "pilot"), "controllers/pilot");
   EXPECT_EQ(field_path(axis_path(r, "J1"), "pos"), "robots/arm_left/axes/J1/pos");
+}
+
+TEST(Assert, ThrowsALocatedInternalError) {
+  EXPECT_NO_THROW(S2SIM_ASSERT(1 + 1 == 2, "arithmetic"));
+  try {
+    const int size = 3, index = 5;
+    S2SIM_ASSERT(index < size, "index past the table");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    EXPECT_THAT(e.message(), StartsWith("internal error: index past the table (index < size) at "));
+    EXPECT_THAT(e.message(), HasSubstr("tests/kernel/sim/names_test.cpp:"));
+  }
 }
 
 }  // namespace
