@@ -27,6 +27,8 @@ class ElementParams final : public Params {
   std::string text(std::string_view path, std::string_view fallback) const override;
   Vec3 vec3(std::string_view element_path, Vec3 fallback = {}) const override;
   std::string location() const override;
+  std::string choice(std::string_view path, std::initializer_list<std::string_view> allowed,
+                     std::string_view fallback) const override;
 
   const ParamSource& source() const { return source_; }
 

@@ -26,6 +26,10 @@ class FakeParams : public Params {
   std::string text(std::string_view, std::string_view f) const override { return std::string(f); }
   Vec3 vec3(std::string_view, Vec3) const override { return {0.1, 0.1, 0.1}; }
   std::string location() const override { return "robot.xml: robot/sensors/touch"; }
+  std::string choice(std::string_view, std::initializer_list<std::string_view>,
+                     std::string_view f) const override {
+    return std::string(f);
+  }
 };
 
 class FakeConfigure : public ConfigureContext {
