@@ -343,7 +343,10 @@ struct Settings {
   double control_period_s = 0.04;  ///< script / high-level controller period
   double default_friction = 0.95;
   Vec3 wind_m_s;
-  double erp = 0.4, cfm = 1e-5;  ///< ODE settings, kept for reference
+  /// ODE's ERP: the contact stiffness is erp / (surface softness · 1 ms) (contact_force.cpp,
+  /// docs/models/contact.md). ODE's global CFM is kept for reference only: each surface's
+  /// softness plays its part.
+  double erp = 0.4, cfm = 1e-5;
   bool ir_noise = false;
   /// SimTwo's four invisible wall planes x, y = ±world_wall_distance_m (§4.3 of the spec).
   bool world_walls = true;
