@@ -142,7 +142,7 @@ std::string ElementParams::choice(std::string_view path,
   std::size_t i = 0;
   for (std::string_view a : allowed) {
     if (i > 0) list += i + 1 == allowed.size() ? " or " : ", ";
-    list += "'" + std::string(a) + "'";
+    list.append(1, '\'').append(a).append(1, '\'');
     ++i;
   }
   fail(t, "must be " + list + ", got '" + value + "'");
