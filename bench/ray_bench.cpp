@@ -7,6 +7,7 @@
 //     fraction of that scene's step time; the instantaneous mode too.
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>
+#include <s2sim/math.hpp>
 
 #include <time.h>
 #include <algorithm>
@@ -109,7 +110,7 @@ void rays_per_second(int obstacles, int things, int ticks) {
   for (int i = 0; i < kRaysPerTick; ++i) {
     o[static_cast<std::size_t>(i)] = {-10.8 + 21.6 * u(rng), -10.8 + 21.6 * u(rng),
                                       0.1 + 0.9 * u(rng)};
-    const double a = 2 * 3.141592653589793 * u(rng);
+    const double a = 2 * s2sim::kPi * u(rng);
     d[static_cast<std::size_t>(i)] = {std::cos(a), std::sin(a), -0.1 * u(rng)};
   }
   double best = std::numeric_limits<double>::infinity();
@@ -190,7 +191,7 @@ int main(int argc, char** argv) {
       // The rays alone: the ranger's 768 directions from its mount, through the façade.
       auto sim = s2sim::Simulation::load(base);
       sim->step(1);
-      const double a = 270 * 3.141592653589793 / 180;
+      const double a = 270 * s2sim::kPi / 180;
       std::vector<s2sim::Vec3> dirs;
       for (int i = 0; i < 768; ++i) {
         const double phi = -a / 2 + a * i / 767;

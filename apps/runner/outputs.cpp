@@ -1,6 +1,7 @@
 #include "outputs.hpp"
 
 #include <s2sim/error.hpp>
+#include <s2sim/math.hpp>
 #include <signal_csv.hpp>
 
 #include <cinttypes>
@@ -127,7 +128,7 @@ std::string summary_text(const Simulation& sim, const RunTiming& t) {
     s += title;
     for (const auto& p : r) {
       std::snprintf(line, sizeof line, "  %-20s x %9.4f  y %9.4f  z %9.4f  yaw %8.2f deg\n",
-                    p.name.c_str(), p.x, p.y, p.z, p.yaw * 180.0 / M_PI);
+                    p.name.c_str(), p.x, p.y, p.z, p.yaw * 180.0 / kPi);
       s += line;
     }
   };

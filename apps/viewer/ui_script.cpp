@@ -3,6 +3,7 @@
 #include "windows/windows.hpp"
 
 #include <s2sim/error.hpp>
+#include <s2sim/math.hpp>
 
 #include <cstdio>
 #include <sstream>
@@ -146,8 +147,8 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       std::istringstream args(rest);
       float yaw_deg = 0, pitch_deg = 0, distance_m = 0;
       if (!(args >> yaw_deg >> pitch_deg >> distance_m)) throw bad("camera YAW PITCH DISTANCE");
-      state.camera.yaw_rad = yaw_deg * 3.14159265f / 180;
-      state.camera.pitch_rad = pitch_deg * 3.14159265f / 180;
+      state.camera.yaw_rad = yaw_deg * static_cast<float>(kPi) / 180;
+      state.camera.pitch_rad = pitch_deg * static_cast<float>(kPi) / 180;
       state.camera.distance_m = distance_m;
     } else if (command == "follow") {
       const auto& robots = state.sim->scene().robots;

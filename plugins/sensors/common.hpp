@@ -11,9 +11,6 @@
 
 namespace s2sim::sensors {
 
-constexpr double kPi = 3.141592653589793;
-constexpr double kGravity = 9.81;  ///< m/s², the kernel's gravity (0, 0, -9.81)
-
 /// Rotation of `rot_deg` for a sensor: R = Rx(x)·Ry(y)·Rz(z), the beam along +X.
 Mat3 sensor_rotation_deg(const Vec3& deg);
 /// Rotation about Z.

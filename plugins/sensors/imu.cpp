@@ -70,7 +70,7 @@ void Imu::update(StepContext& ctx) {
   const Vec3 g = rt * tw.angular_rad_s;
   // The differenced acceleration is the mean over the last period, whose direction lags by
   // half a period of rotation: turn it forward by ω·T/2 (exact for a steady rotation).
-  const Vec3 f = rotate(rt * (a + Vec3{0, 0, kGravity}), g, 0.5 * dt);
+  const Vec3 f = rotate(rt * (a + Vec3{0, 0, kGravity_m_s2}), g, 0.5 * dt);
   RandomStream r = ctx.random();
   double* b = ctx.state(bias_);
   const double fs[3] = {f.x, f.y, f.z}, gs[3] = {g.x, g.y, g.z};

@@ -14,13 +14,7 @@ namespace s2sim::sensors {
 void Ranger2D::configure(ConfigureContext& ctx) {
   s_.read(ctx);
   const Params& p = ctx.params();
-  const std::string mode = p.text("scan.mode", "sweep");
-  if (mode == "sweep")
-    sweep_ = true;
-  else if (mode == "instant")
-    sweep_ = false;
-  else
-    fail(p, "scan", "mode", "must be 'sweep' or 'instant', got '" + mode + "'");
+  sweep_ = p.choice("scan.mode", {"sweep", "instant"}, "sweep") == "sweep";
   n_ = std::max(3, s_.spec.beam.rays);
   zig_ = &ziggurat_tables();
   const double a = s_.spec.beam.angle_rad;

@@ -21,7 +21,7 @@
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+using s2sim::kPi;
 
 class Servo final : public s2sim::Component {
  public:

@@ -1,6 +1,7 @@
 #include "windows.hpp"
 
 #include <imgui.h>
+#include <s2sim/math.hpp>
 
 #include <cmath>
 
@@ -31,7 +32,7 @@ void draw_body_window(ViewerState& state) {
     ImGui::Text("mass %.4g kg   file %s", body.mass_kg, body.where.file.c_str());
     ImGui::Separator();
     ImGui::Text("position  x %9.4f  y %9.4f  z %9.4f m", p.position.x, p.position.y, p.position.z);
-    ImGui::Text("yaw %8.2f deg", yaw_of(p.rotation) * 180 / M_PI);
+    ImGui::Text("yaw %8.2f deg", yaw_of(p.rotation) * 180 / kPi);
     ImGui::Text("velocity  x %9.4f  y %9.4f  z %9.4f m/s", v.linear_m_s.x, v.linear_m_s.y,
                 v.linear_m_s.z);
     ImGui::Text("angular   x %9.4f  y %9.4f  z %9.4f rad/s", v.angular_rad_s.x, v.angular_rad_s.y,

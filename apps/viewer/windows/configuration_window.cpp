@@ -1,6 +1,7 @@
 #include "windows.hpp"
 
 #include <imgui.h>
+#include <s2sim/math.hpp>
 
 #include <cmath>
 
@@ -71,9 +72,9 @@ void draw_configuration_window(ViewerState& state) {
     }
     ImGui::DragFloat3("camera target, m", &cam.target_m.x, 0.01f);
     ImGui::DragFloat("camera distance, m", &cam.distance_m, 0.02f, 0.05f, 500.0f);
-    float fov_deg = cam.fov_y_rad * 180 / static_cast<float>(M_PI);
+    float fov_deg = cam.fov_y_rad * 180 / static_cast<float>(kPi);
     if (ImGui::SliderFloat("field of view, deg", &fov_deg, 10, 120))
-      cam.fov_y_rad = fov_deg * static_cast<float>(M_PI) / 180;
+      cam.fov_y_rad = fov_deg * static_cast<float>(kPi) / 180;
   }
 
   if (ImGui::CollapsingHeader("Robots", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -93,7 +94,7 @@ void draw_configuration_window(ViewerState& state) {
         const double values[6] = {p.position.x,
                                   p.position.y,
                                   p.position.z,
-                                  yaw_of(p.rotation) * 180 / M_PI,
+                                  yaw_of(p.rotation) * 180 / kPi,
                                   std::hypot(v.linear_m_s.x, v.linear_m_s.y),
                                   v.angular_rad_s.z};
         for (double value : values) {

@@ -19,7 +19,7 @@ class FclPairs {
   FclPairs& operator=(const FclPairs&) = delete;
 
   /// Contacts of shape a at `pose_a` against shape b at `pose_b` (world poses); writes at
-  /// most 4 points to `out` with the conventions of primitives.hpp and returns the count.
+  /// most 4 points to `out` with the conventions of contact_primitives.hpp and returns the count.
   int collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
               ContactPoint* out);
 

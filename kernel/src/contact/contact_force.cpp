@@ -116,8 +116,9 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    PointState& state) {
   const Vec3& n = point.normal;
   const double m = kin.mass_kg;
-  // Stiffness: the surface's own (ODE's CFM read at the reference step), but never stiffer
-  // than the step can integrate: omega_c = frequency_ratio / h.
+  // Stiffness: the surface's own, k_s = ERP / (CFM · reference step) (ODE's softness read at
+  // the project's ERP), but never stiffer than the step can integrate:
+  // omega_c = frequency_ratio / h.
   const double omega_max = law.frequency_ratio / kin.step_s;
   const double k_surface = law.erp / (std::max(material.softness, 1e-12) * law.reference_step_s);
   const double k = std::min(k_surface, m * omega_max * omega_max);

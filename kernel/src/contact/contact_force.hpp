@@ -39,8 +39,8 @@ struct ForceLawSettings {
   double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
   double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
-  double erp = 0.4;
-  double bristle_ratio = 0.5;  ///< tangential / normal stiffness
+  double erp = 0.4;                    ///< the project's ERP, k_s = erp / (softness · reference)
+  double bristle_ratio = 0.5;          ///< tangential / normal stiffness
 };
 
 /// What persists for one contact point between steps.

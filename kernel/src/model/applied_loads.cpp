@@ -81,7 +81,7 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
                  SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
     const auto& mb = *m_;
     for (const auto& w : mb.weights) {
-      const SimTK::Vec3 force(0, 0, -kGravity * w.mass_kg);
+      const SimTK::Vec3 force(0, 0, -kGravity_m_s2 * w.mass_kg);
       const SimTK::Vec3 com_G =
           mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
       body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);

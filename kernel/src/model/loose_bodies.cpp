@@ -5,8 +5,6 @@
 namespace s2sim::model {
 namespace {
 
-constexpr double kGravity = 9.81;  // m/s², along −Z, as the multibody model's
-
 Quat normalized(const Quat& q) {
   const double n = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
   return {q.w / n, q.x / n, q.y / n, q.z / n};
@@ -47,7 +45,7 @@ void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_
     const Vec3 com_from_origin = r * m.com_body_m;
     const Vec3 torque_com = w.torque_Nm - cross(com_from_origin, w.force_N);
     Vec3 accel = w.force_N / m.mass_kg;
-    if (m.gravity) accel.z -= kGravity;
+    if (m.gravity) accel.z -= kGravity_m_s2;
     // I·dω/dt = τ − ω × (I·ω), in body axes.
     const Mat3 rt = r.transposed();
     const Vec3 omega_b = rt * s.angular_velocity_rad_s;
@@ -100,7 +98,7 @@ double LooseBodies::kinetic_energy_J() const {
 double LooseBodies::potential_energy_J() const {
   double e = 0;
   for (std::size_t i = 0; i < model_.size(); ++i)
-    if (model_[i].gravity) e += model_[i].mass_kg * kGravity * state_[i].com_m.z;
+    if (model_[i].gravity) e += model_[i].mass_kg * kGravity_m_s2 * state_[i].com_m.z;
   return e;
 }
 

@@ -142,6 +142,25 @@ Location ElementParams::where(std::string_view path) const {
   return Location{source_.file, t.element_path, t.attribute};
 }
 
+std::string ElementParams::choice(std::string_view path,
+                                  std::initializer_list<std::string_view> allowed,
+                                  std::string_view fallback) const {
+  const Target t = resolve(path);
+  if (!t.value) return std::string(fallback);
+  std::string value = trim_copy(*t.value);
+  for (std::string_view a : allowed)
+    if (value == a) return value;
+  // "must be 'a'", "must be 'a' or 'b'", "must be 'a', 'b' or 'c'".
+  std::string list;
+  std::size_t i = 0;
+  for (std::string_view a : allowed) {
+    if (i > 0) list += i + 1 == allowed.size() ? " or " : ", ";
+    list.append(1, '\'').append(a).append(1, '\'');
+    ++i;
+  }
+  fail(t, "must be " + list + ", got '" + value + "'");
+}
+
 std::string ElementParams::location() const {
   return Location{source_.file, source_.element.path, ""}.str();
 }

@@ -29,6 +29,8 @@ class ElementParams final : public Params {
   Vec3 vec3(std::string_view element_path, Vec3 fallback = {}) const override;
   std::string location() const override;
   Location where(std::string_view path) const override;
+  std::string choice(std::string_view path, std::initializer_list<std::string_view> allowed,
+                     std::string_view fallback) const override;
 
   const ParamSource& source() const { return source_; }
 

@@ -6,7 +6,6 @@
 
 namespace s2sim::scene {
 
-inline constexpr double kPi = 3.141592653589793;
 constexpr double deg_to_rad(double deg) {
   return deg * kPi / 180.0;
 }

@@ -1,5 +1,6 @@
 // Component instances: creation from the plugin registry, and the ConfigureContext through
 // which each declares its signals, inputs, state and schedule.
+#include "common/assert.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -41,7 +42,11 @@ const char* category_folder(Category c) {
 class ConfigureContextImpl final : public ConfigureContext {
  public:
   ConfigureContextImpl(Simulation::Impl& sim, int component_index)
-      : sim_(sim), index_(component_index) {}
+      : sim_(sim), index_(component_index) {
+    S2SIM_ASSERT(
+        component_index >= 0 && static_cast<std::size_t>(component_index) < sim.components.size(),
+        "configure context for a component that does not exist");
+  }
 
   const Params& params() const override { return *slot().params; }
   std::string_view id() const override { return slot().id; }
@@ -69,12 +74,11 @@ class ConfigureContextImpl final : public ConfigureContext {
     std::vector<std::string> all;
     for (std::size_t r = 0; r < sim_.scene.robots.size(); ++r)
       for (int b : sim_.scene.robots[r].bodies) {
-        all.push_back(sim_.robot_prefix(static_cast<int>(r)) + "/solids/" +
-                      sim::segment(bodies[b].id));
+        all.push_back(sim::solid_path(sim_.robot_prefix(static_cast<int>(r)), bodies[b].id));
         if (all.back() == n) return BodyHandle{b + 1};
       }
     for (int b : sim_.scene.things) {
-      all.push_back("things/" + sim::segment(bodies[b].id));
+      all.push_back(sim::thing_path(bodies[b].id));
       if (all.back() == n) return BodyHandle{b + 1};
     }
     throw fail(unknown("body", n, all));
@@ -102,13 +106,14 @@ class ConfigureContextImpl final : public ConfigureContext {
 
   bool axis_is_linear(AxisHandle a) const override { return sim_.axis_views.at(a.index).linear; }
   std::string axis_prefix(AxisHandle a) const override {
-    const auto& ax = sim_.axis_views.at(a.index);
-    return (ax.robot >= 0 ? sim_.robot_prefix(ax.robot) : std::string("world")) + "/axes/" +
-           sim::segment(ax.name);
+    // The handle comes from the plugin: a bad one is the plugin's error, not an invariant.
+    if (a.index < 0 || static_cast<std::size_t>(a.index) >= sim_.axis_views.size())
+      throw fail("axis handle " + std::to_string(a.index) + " is out of range");
+    return sim_.axis_prefix(a.index);
   }
 
   SignalHandle declare_signal(std::string_view name, std::string_view unit) override {
-    return declare_signal_at(slot().prefix + "/" + std::string(name), unit);
+    return declare_signal_at(sim::field_path(slot().prefix, name), unit);
   }
   SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) override {
     const std::string n(full_name);
@@ -119,7 +124,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     return SignalHandle{index};
   }
   InputHandle declare_input(std::string_view name, std::string_view unit, double initial) override {
-    return declare_input_at(slot().prefix + "/" + std::string(name), unit, initial);
+    return declare_input_at(sim::field_path(slot().prefix, name), unit, initial);
   }
   InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
                                double initial) override {
@@ -134,6 +139,8 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   const SensorSpec* sensor_spec() const override {
     if (slot().sensor < 0) return nullptr;
+    S2SIM_ASSERT(static_cast<std::size_t>(slot().sensor) < sim_.scene.sensors.size(),
+                 "component's scene sensor out of range");
     const scene::Sensor& s = sim_.scene.sensors[static_cast<std::size_t>(slot().sensor)];
     SensorSpec& o = spec_;
     o.kind = s.kind;
@@ -232,6 +239,8 @@ class ConfigureContextImpl final : public ConfigureContext {
     const std::int64_t phase = to_ticks(phase_s, "phase");
     if (period < 1) throw fail("period must be at least one physics step");
     if (phase < 0) throw fail("phase must not be negative");
+    if (static_cast<std::size_t>(stage) >= sim_.stage_order.size())
+      throw fail("unknown stage " + std::to_string(static_cast<int>(stage)));
     sim::ComponentSlot& s = sim_.components[index_];
     s.stage = stage;
     s.period_ticks = period;
@@ -282,8 +291,8 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
   slot.category = info.category;
   slot.stage = default_stage(info.category);
   slot.where = where;
-  slot.prefix = (robot >= 0 ? robot_prefix(robot) + "/" : std::string()) +
-                category_folder(info.category) + "/" + sim::segment(id);
+  slot.prefix = sim::component_path(robot >= 0 ? robot_prefix(robot) : std::string(),
+                                    category_folder(info.category), id);
   slot.params = std::make_unique<scene::ElementParams>(params);
   if (info.category == Category::controller) {
     slot.period_ticks = std::max<std::int64_t>(
@@ -329,8 +338,11 @@ void Simulation::Impl::configure_components() {
       sim::rethrow_from_component(components[c], "configure", ErrorKind::plugin);
     }
   }
-  for (std::size_t c = 0; c < components.size(); ++c)
-    stage_order[static_cast<std::size_t>(components[c].stage)].push_back(static_cast<int>(c));
+  for (std::size_t c = 0; c < components.size(); ++c) {
+    const auto stage = static_cast<std::size_t>(components[c].stage);
+    S2SIM_ASSERT(stage < stage_order.size(), "component stage outside the pipeline");
+    stage_order[stage].push_back(static_cast<int>(c));
+  }
 }
 
 // --- façade ------------------------------------------------------------------------------------

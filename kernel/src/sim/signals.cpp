@@ -1,4 +1,5 @@
 // The signal and input registry: every readable value has a name, a unit and a source.
+#include "common/assert.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -9,6 +10,28 @@ namespace s2sim {
 
 std::size_t Simulation::Impl::add_signal(std::string name, std::string unit, sim::Source source,
                                          std::int32_t index) {
+  // read_signal() indexes the source's buffer unchecked: the entry must point into it.
+  const std::size_t extent = [&]() -> std::size_t {
+    switch (source) {
+      case sim::Source::published:
+        return published.size();
+      case sim::Source::input:
+        return inputs.size();
+      case sim::Source::time:
+      case sim::Source::contact_count:
+        return 1;
+      case sim::Source::axis_position:
+      case sim::Source::axis_velocity:
+      case sim::Source::axis_force:
+        return axis_force_applied.size();
+      default:  // the body sources
+        return poses.size();
+    }
+  }();
+  S2SIM_ASSERT(index >= 0 && static_cast<std::size_t>(index) < extent,
+               "signal index out of its source's buffer");
+  S2SIM_ASSERT(signal_infos.size() == signal_entries.size(),
+               "signal names and entries out of step");
   // Duplicate scene IDs are legal in SimTwo; later ones get a "#n" suffix.
   std::string unique = name;
   for (int n = 2; signal_by_name.count(unique); ++n)
@@ -34,18 +57,25 @@ std::int32_t Simulation::Impl::add_input(const std::string& name, const std::str
   input_infos.push_back({name, unit});
   inputs.push_back(initial);
   inputs_initial.push_back(initial);
+  S2SIM_ASSERT(input_infos.size() == inputs.size() && inputs_initial.size() == inputs.size(),
+               "input names, values and initial values out of step");
   add_signal(name, unit, sim::Source::input, index);
   return index;
 }
 
 std::string Simulation::Impl::robot_prefix(int robot) const {
-  return "robots/" + sim::segment(scene.robots[robot].id);
+  return sim::robot_path(scene.robots[robot].id);
 }
-/// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
+std::string Simulation::Impl::scope_prefix(int robot) const {
+  return robot >= 0 ? robot_prefix(robot) : std::string(sim::kWorldScope);
+}
 std::string Simulation::Impl::joint_prefix(int joint) const {
   const auto& jt = scene.joints[static_cast<std::size_t>(joint)];
-  return (jt.robot >= 0 ? robot_prefix(jt.robot) : std::string("world")) + "/joints/" +
-         sim::segment(jt.id);
+  return sim::joint_path(scope_prefix(jt.robot), jt.id);
+}
+std::string Simulation::Impl::axis_prefix(int axis) const {
+  const AxisView& ax = axis_views[static_cast<std::size_t>(axis)];
+  return sim::axis_path(scope_prefix(ax.robot), ax.name);
 }
 
 void Simulation::Impl::register_kernel_signals() {
@@ -62,39 +92,39 @@ void Simulation::Impl::register_kernel_signals() {
     for (const auto& [name, source] : fields) {
       const std::string_view n = name;
       const char* unit = n[0] == 'v' ? "m/s" : n[0] == 'w' ? "rad/s" : n.size() == 1 ? "m" : "rad";
-      add_signal(p + "/" + name, unit, source, body);
+      add_signal(sim::field_path(p, name), unit, source, body);
     }
-    add_signal(p + "/contact_force", "N", sim::Source::body_contact_force, body);
+    add_signal(sim::field_path(p, "contact_force"), "N", sim::Source::body_contact_force, body);
   };
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
     const auto& robot = scene.robots[r];
     if (robot.main_body >= 0) add_body(robot_prefix(static_cast<int>(r)), robot.main_body + 1);
     for (int b : robot.bodies)
-      add_body(robot_prefix(static_cast<int>(r)) + "/solids/" + sim::segment(scene.bodies[b].id),
-               b + 1);
+      add_body(sim::solid_path(robot_prefix(static_cast<int>(r)), scene.bodies[b].id), b + 1);
   }
   for (int b : scene.things)
-    add_body("things/" + sim::segment(scene.bodies[b].id), b + 1);
+    add_body(sim::thing_path(scene.bodies[b].id), b + 1);
   // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
   // Handed to contact once it exists (it is built after the components, with the multibody).
   for (std::int32_t s = 0; s < shapes->size(); ++s) {
     if (!shapes->surfaces()[static_cast<std::size_t>(s)].belt) continue;
     const std::int32_t body = shapes->bodies()[static_cast<std::size_t>(s)];
     const auto& b = scene.bodies[body - 1];
-    const std::string p = b.robot >= 0 ? robot_prefix(b.robot) + "/solids/" + sim::segment(b.id)
-                                       : "things/" + sim::segment(b.id);
-    belt_speed_inputs.emplace_back(body, add_input(p + "/belt_speed", "m/s", 0.5, b.where));
+    const std::string p =
+        b.robot >= 0 ? sim::solid_path(robot_prefix(b.robot), b.id) : sim::thing_path(b.id);
+    belt_speed_inputs.emplace_back(
+        body, add_input(sim::field_path(p, "belt_speed"), "m/s", 0.5, b.where));
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a) {
     const AxisView& ax = axis_views[a];
-    const std::string p = (ax.robot >= 0 ? robot_prefix(ax.robot) : std::string("world")) +
-                          "/axes/" + sim::segment(ax.name);
     const auto i = static_cast<std::int32_t>(a);
-    add_signal(p + "/pos", ax.linear ? "m" : "rad", sim::Source::axis_position, i);
-    add_signal(p + "/speed", ax.linear ? "m/s" : "rad/s", sim::Source::axis_velocity, i);
-    add_signal(p + "/torque", ax.linear ? "N" : "N*m", sim::Source::axis_force, i);
-    ref_torque_input.push_back(
-        add_input(p + "/ref_torque", ax.linear ? "N" : "N*m", 0.0, scene.joints[ax.joint].where));
+    const std::string p = axis_prefix(i);
+    add_signal(sim::field_path(p, "pos"), ax.linear ? "m" : "rad", sim::Source::axis_position, i);
+    add_signal(sim::field_path(p, "speed"), ax.linear ? "m/s" : "rad/s", sim::Source::axis_velocity,
+               i);
+    add_signal(sim::field_path(p, "torque"), ax.linear ? "N" : "N*m", sim::Source::axis_force, i);
+    ref_torque_input.push_back(add_input(sim::field_path(p, "ref_torque"), ax.linear ? "N" : "N*m",
+                                         0.0, scene.joints[ax.joint].where));
   }
 }
 

@@ -137,9 +137,15 @@ struct Simulation::Impl {
   /// Declares an input or joins an existing one (units must agree).
   std::int32_t add_input(const std::string& name, const std::string& unit, double initial,
                          const Location& where);
+  // Paths of scene objects by index (sim/names.hpp builds them).
+  /// `robots/<robot>`.
   std::string robot_prefix(int robot) const;
+  /// robot_prefix, or `world` for robot -1 (scene-level joints and axes).
+  std::string scope_prefix(int robot) const;
   /// `robots/<robot>/joints/<joint>`, `world/joints/<joint>` for a scene-level joint.
   std::string joint_prefix(int joint) const;
+  /// `robots/<robot>/axes/<axis>`, `world/axes/<axis>` for a scene-level axis.
+  std::string axis_prefix(int axis) const;
   void register_kernel_signals();
   double read_signal(std::size_t i) const;
 

@@ -6,6 +6,13 @@
 
 namespace s2sim {
 
+/// π, to the last bit of a double (the value of M_PI and std::numbers::pi).
+inline constexpr double kPi = 3.141592653589793;
+
+/// The simulator's gravity, m/s², along −Z: 9.81, as SimTwo's (not the 9.80665 of standard
+/// gravity). The multibody model, the loose bodies and the IMU all use this value.
+inline constexpr double kGravity_m_s2 = 9.81;
+
 /// A 3-vector (metres, newtons, radians per second... as the name of the variable says).
 struct Vec3 {
   double x = 0, y = 0, z = 0;

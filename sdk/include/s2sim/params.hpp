@@ -6,6 +6,7 @@
 #include <s2sim/math.hpp>
 
 #include <cstdint>
+#include <initializer_list>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -72,6 +73,15 @@ class Params {
   virtual Location where(std::string_view path) const {
     return Location{"", location(), std::string(path)};
   }
+
+  // Appended in SDK 0.5: new virtual functions go after the existing ones, so that the slots
+  // of the older ones keep their place in the vtable.
+
+  /// A keyword out of `allowed` (whitespace-trimmed, compared exactly), or `fallback` when
+  /// absent: `p.choice("scan.mode", {"sweep", "instant"}, "sweep")`. A present value that is
+  /// not in `allowed` throws naming the attribute and listing the allowed values.
+  virtual std::string choice(std::string_view path, std::initializer_list<std::string_view> allowed,
+                             std::string_view fallback) const = 0;
 };
 
 }  // namespace s2sim

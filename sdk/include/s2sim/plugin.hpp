@@ -2,9 +2,21 @@
 /// \file
 /// The plugin boundary. A plugin is a shared library exporting one C function,
 /// `s2sim_plugin_descriptor_v1`, that returns a C-shaped descriptor: versions, struct sizes,
-/// the plugin's name and its kinds, each with a create and a destroy function. No `std::` type
-/// crosses this boundary; a created component is an `s2sim::Component` built against the same
-/// SDK, which the versions in the descriptor guarantee.
+/// the plugin's name and its kinds, each with a create and a destroy function.
+///
+/// What crosses the boundary, in two layers:
+/// - The descriptor and the kind entries are C: plain integers, `const char*` and function
+///   pointers, no `std::` type, no exception (create() turns one into an error message). The
+///   kernel reads them from any plugin, checks `struct_size`, `kind_entry_size`, the ABI
+///   version and the SDK version, and refuses a mismatch with a message.
+/// - A created component is an `s2sim::Component` and talks to the kernel through C++
+///   interfaces (`Component`, `ConfigureContext`, `StepContext`, `Params`) whose calls pass
+///   `std::string`, `std::string_view`, `std::vector`, `std::initializer_list` and throw
+///   `s2sim::Error`. Their layout is that of the compiler and standard library that built each
+///   side, which no version number captures: a plugin must be built with the same compiler and
+///   standard library (and the same library ABI settings) as the kernel. The version check
+///   guarantees the same SDK headers (vtable order, `detail::WorldView` layout); the toolchain
+///   rule, which the kernel cannot check, guarantees the `std::` types agree.
 ///
 /// Writing a plugin:
 /// \code

@@ -4,6 +4,8 @@
 /// simulation state, so resetting, copying or restoring a simulation reproduces the same
 /// numbers, and one component drawing more numbers never shifts another's.
 
+#include <s2sim/math.hpp>
+
 #include <cmath>
 #include <cstdint>
 
@@ -51,7 +53,7 @@ class RandomStream {
     while (u1 <= 0.0)
       u1 = uniform();
     const double u2 = uniform();
-    return mean + stdev * std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+    return mean + stdev * std::sqrt(-2.0 * std::log(u1)) * std::cos(2 * kPi * u2);
   }
 
  private:

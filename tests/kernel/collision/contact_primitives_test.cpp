@@ -24,7 +24,7 @@ TEST(Primitives, BoxCornersBelowThePlane) {
     EXPECT_EQ(out[i].normal, (Vec3{0, 0, 1}));
   }
   // Tilted 45 degrees about X: one edge down, two corners.
-  const Mat3 r = test::rotation_about({1, 0, 0}, M_PI / 4);
+  const Mat3 r = test::rotation_about({1, 0, 0}, kPi / 4);
   const double reach = (0.2 + 0.3) / std::sqrt(2.0);
   EXPECT_EQ(plane_contacts(s, {{0, 0, reach - 1e-4}, r}, kGround, out), 2);
 }
@@ -35,7 +35,7 @@ TEST(Primitives, WheelTouchesOnItsRimAtRadiusFromTheAxle) {
   s.kind = ShapeKind::cylinder;
   s.radius_m = 0.05;
   s.half_length_m = 0.01;
-  const Pose pose{{0, 0, 0.049}, test::rotation_about({1, 0, 0}, M_PI / 2)};
+  const Pose pose{{0, 0, 0.049}, test::rotation_about({1, 0, 0}, kPi / 2)};
   ContactPoint out[kMaxPointsPerPair];
   const int n = plane_contacts(s, pose, kGround, out);
   ASSERT_EQ(n, 2);  // one per edge of the tread

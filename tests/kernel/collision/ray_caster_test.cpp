@@ -194,7 +194,7 @@ TEST(RayCaster, FollowsMovedAndRotatedBodiesAfterInvalidate) {
   RayCaster rc(table, f.poses.data());
   EXPECT_EQ(rc.cast({1.5, -1, 0.3}, {0, 1, 0}, 10, -1).body.index, 2);
   // Lay the cylinder along X at y = 2: a ray along y meets its side.
-  f.poses[2] = {{1.5, 2, 0.3}, rot_axis({0, 1, 0}, 3.141592653589793 / 2)};
+  f.poses[2] = {{1.5, 2, 0.3}, rot_axis({0, 1, 0}, kPi / 2)};
   rc.invalidate();
   const RayHit h = rc.cast({1.7, -1, 0.3}, {0, 1, 0}, 10, -1);
   ASSERT_TRUE(h.hit);
@@ -288,7 +288,7 @@ TEST(RayCaster, FanCullingAgreesWithBruteForceForRaysSharingAnOrigin) {
     if (fan % 7 == 0) o = poses[1 + static_cast<std::size_t>(fan) % 30].position;
     const int ignore = fan % 3 == 0 ? 1 + fan % 30 : -1;
     for (int i = 0; i < 120; ++i) {
-      const double phi = 2 * 3.141592653589793 * i / 120 + 0.01 * u(rng);
+      const double phi = 2 * kPi * i / 120 + 0.01 * u(rng);
       Vec3 d{std::cos(phi), std::sin(phi), 0.3 * u(rng)};
       if (i % 17 == 0) d = {0, 0, -1};
       const RayHit a = rc.cast(o, d, 6, ignore);
@@ -337,7 +337,7 @@ TEST(RayCaster, FanKeptAcrossTicksAgreesWithBruteForce) {
     rc.invalidate();
     const int ignore = tick % 3 == 0 ? 1 + tick % 12 : -1;
     for (int i = 0; i < 77; ++i) {
-      const double phi = 2 * 3.141592653589793 * ((tick % 10) * 77 + i) / 770;
+      const double phi = 2 * kPi * ((tick % 10) * 77 + i) / 770;
       const Vec3 d{std::cos(phi), std::sin(phi), 0.05 * u(rng)};
       const RayHit a = rc.cast(o, d, 5, ignore);
       const RayHit b = rc.cast_brute_force(o, d, 5, ignore);

@@ -13,7 +13,7 @@ namespace s2sim::contact {
 namespace {
 
 using scene::JointType;
-constexpr double kG = 9.81;
+constexpr double kG = kGravity_m_s2;
 
 /// A multibody model with the contact layer as its substep force.
 struct Runner : test::Runner {
@@ -68,7 +68,7 @@ double slope_acceleration(const scene::Scene& s, const Mat3& slope_rotation) {
 }
 
 TEST(Contact, BlockOnAnInclineHoldsBelowTheFrictionAngle) {
-  const double angle = 20 * M_PI / 180, mu = 0.5;  // tan 20° = 0.36 < 0.5
+  const double angle = 20 * kPi / 180, mu = 0.5;  // tan 20° = 0.36 < 0.5
   const Mat3 r = test::rotation_about({0, 1, 0}, angle);
   scene::Scene s;
   s.settings.world_walls = false;
@@ -85,7 +85,7 @@ TEST(Contact, BlockOnAnInclineHoldsBelowTheFrictionAngle) {
 }
 
 TEST(Contact, BlockOnASteepInclineSlidesAtGTimesSinMinusMuCos) {
-  const double angle = 30 * M_PI / 180, mu = 0.3;
+  const double angle = 30 * kPi / 180, mu = 0.3;
   const Mat3 r = test::rotation_about({0, 1, 0}, angle);
   scene::Scene s;
   s.settings.world_walls = false;
@@ -100,7 +100,7 @@ TEST(Contact, BlockOnASteepInclineSlidesAtGTimesSinMinusMuCos) {
 }
 
 TEST(Contact, SphereRollsDownAnInclineAtFiveSeventhsGSin) {
-  const double angle = 15 * M_PI / 180, radius = 0.05;
+  const double angle = 15 * kPi / 180, radius = 0.05;
   const Mat3 r = test::rotation_about({0, 1, 0}, angle);
   scene::Scene s;
   s.settings.world_walls = false;
@@ -173,7 +173,7 @@ TEST(Contact, DrivenWheelRollsAtRadiusTimesSpinWithinHalfAPercent) {
   scene::Body wheel = test::sphere("wheel", 0.1, radius, {0, 0, axle});
   wheel.geoms[0].shape.type = scene::ShapeType::cylinder;
   wheel.geoms[0].shape.length_m = 0.02;
-  wheel.geoms[0].pose.rotation = test::rotation_about({1, 0, 0}, M_PI / 2);
+  wheel.geoms[0].pose.rotation = test::rotation_about({1, 0, 0}, kPi / 2);
   set_mu(wheel, 1.0);
   s.bodies.push_back(wheel);
   s.joints.push_back(test::joint("rail", JointType::slider, 0, -1, {0, 0, axle}, {1, 0, 0}));
@@ -207,7 +207,7 @@ double push_along_the_axle(scene::FrictionKind kind, double force_N) {
   scene::Body wheel = test::sphere("wheel", 0.1, radius, {0, 0, axle});
   wheel.geoms[0].shape.type = scene::ShapeType::cylinder;
   wheel.geoms[0].shape.length_m = 0.02;
-  wheel.geoms[0].pose.rotation = test::rotation_about({0, 1, 0}, M_PI / 2);  // Z along X
+  wheel.geoms[0].pose.rotation = test::rotation_about({0, 1, 0}, kPi / 2);  // Z along X
   wheel.geoms[0].friction = kind;
   wheel.geoms[0].surface.explicit_surface = true;
   wheel.geoms[0].surface.mu = 1.0;

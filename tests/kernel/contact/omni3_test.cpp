@@ -16,7 +16,7 @@ constexpr double kWheelRadius = 0.03, kCentreDistance = 0.11;
 /// yaw rate w.
 void command(Simulation& sim, double vx, double vy, double w) {
   for (int angle : {0, 120, 240}) {
-    const double a = angle * M_PI / 180;
+    const double a = angle * kPi / 180;
     const double speed =
         (-std::sin(a) * vx + std::cos(a) * vy + kCentreDistance * w) / kWheelRadius;
     sim.set_input("robots/omni3/axes/w" + std::to_string(angle) + "/ref_speed", speed);

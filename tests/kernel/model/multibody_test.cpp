@@ -13,7 +13,7 @@ namespace s2sim::model {
 namespace {
 
 using scene::JointType;
-constexpr double kG = 9.81;
+constexpr double kG = kGravity_m_s2;
 
 using test::Runner;
 
@@ -59,7 +59,7 @@ TEST(Multibody, HingePendulumLargeAnglePeriodWithinTwoTenthsOfAPercent) {
   const double L = 1.0, radius = 0.02, m = 1.0;
   const double inertia_pivot = 0.4 * m * radius * radius + m * L * L;
   for (double amplitude_deg : {10.0, 90.0, 150.0}) {
-    const double a = amplitude_deg * M_PI / 180;
+    const double a = amplitude_deg * kPi / 180;
     const double exact =
         4.0 * std::sqrt(inertia_pivot / (m * kG * L)) * test::elliptic_k(std::sin(a / 2));
     const double period = pendulum_period(a, 1e-3);
@@ -72,7 +72,7 @@ TEST(Multibody, HingePendulumLargeAnglePeriodWithinTwoTenthsOfAPercent) {
 
 TEST(Multibody, SliderUnderGravityFollowsGSinAlpha) {
   // A block on a frictionless rail inclined 30 degrees below the horizontal, along +X.
-  const double alpha = 30 * M_PI / 180;
+  const double alpha = 30 * kPi / 180;
   const Vec3 axis{std::cos(alpha), 0, -std::sin(alpha)};
   scene::Scene s;
   s.bodies.push_back(test::box("block", 2.0, {0.1, 0.1, 0.1}, {0, 0, 5}));
@@ -95,7 +95,7 @@ TEST(Multibody, PassiveDoublePendulumEnergyDriftBelowHalfAPercentOver10s) {
   const Vec3 pivot{0, 0, 2};
   const double Lr = 0.5;
   s.bodies.push_back(test::box("upper", 1.0, {Lr, 0.04, 0.04}, {Lr / 2, 0, 2}));
-  const Mat3 r45 = test::rotation_about({0, 1, 0}, 45 * M_PI / 180);
+  const Mat3 r45 = test::rotation_about({0, 1, 0}, 45 * kPi / 180);
   const Vec3 elbow{Lr, 0, 2};
   s.bodies.push_back(
       test::box("lower", 0.8, {Lr, 0.04, 0.04}, elbow + r45 * Vec3{Lr / 2, 0, 0}, r45));
@@ -157,7 +157,7 @@ TEST(Multibody, HingeStopHoldsAPendulum) {
   s.bodies.push_back(test::sphere("bob", 1.0, 0.02, {1, 0, 2}));
   auto j = test::joint("J", JointType::hinge, 0, -1, {0, 0, 2}, {0, 1, 0});
   // Falling from the horizontal turns the bob positively about +Y; stop it at 45 degrees.
-  j.limits1 = {-M_PI / 2, M_PI / 4, true};
+  j.limits1 = {-kPi / 2, kPi / 4, true};
   s.joints.push_back(j);
   test::add_robot(s, "p");
   Runner r(s);
@@ -166,8 +166,8 @@ TEST(Multibody, HingeStopHoldsAPendulum) {
     r.step();
     max_angle = std::max(max_angle, r.pos[0]);
   }
-  EXPECT_LT(max_angle, M_PI / 4 + 3 * M_PI / 180);  // overshoot of the compliant stop
-  EXPECT_NEAR(r.pos[0], M_PI / 4, 2 * M_PI / 180);  // resting on it
+  EXPECT_LT(max_angle, kPi / 4 + 3 * kPi / 180);  // overshoot of the compliant stop
+  EXPECT_NEAR(r.pos[0], kPi / 4, 2 * kPi / 180);  // resting on it
   EXPECT_LT(std::abs(r.vel[0]), 0.05);
 }
 

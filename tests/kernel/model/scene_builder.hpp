@@ -97,7 +97,7 @@ inline double elliptic_k(double k) {
     b = std::sqrt(a * b);
     a = an;
   }
-  return M_PI / (2 * a);
+  return kPi / (2 * a);
 }
 
 }  // namespace s2sim::test

@@ -132,5 +132,19 @@ TEST(ElementParams, WorksWithoutConstants) {
   EXPECT_EQ(p.location(), "scene.xml: plugin");
 }
 
+TEST(ElementParams, ChoiceIsOneOfTheAllowedKeywords) {
+  const ElementParams p = make(kXml);
+  EXPECT_EQ(p.choice("name", {"def", "abc"}, "def"), "abc");  // trimmed
+  EXPECT_EQ(p.choice("missing", {"a", "b"}, "b"), "b");
+  EXPECT_EQ(p.choice("motor.missing", {"a", "b"}, "a"), "a");
+  Error e = error_of([&] { (void)p.choice("name", {"x", "y", "z"}, "x"); });
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().element, "robot/sensors/ranger2d");
+  EXPECT_EQ(e.where().attribute, "name");
+  EXPECT_EQ(e.message(), "must be 'x', 'y' or 'z', got 'abc'");
+  e = error_of([&] { (void)p.choice("bad", {"no"}, "no"); });
+  EXPECT_EQ(e.message(), "must be 'no', got 'yes'");
+}
+
 }  // namespace
 }  // namespace s2sim::scene

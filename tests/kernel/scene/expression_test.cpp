@@ -18,8 +18,6 @@ namespace {
 
 using ::testing::HasSubstr;
 
-constexpr double kPi = std::numbers::pi;
-
 double eval(std::string_view text) {
   return evaluate(text, ConstantTable{});
 }

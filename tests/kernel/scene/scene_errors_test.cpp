@@ -309,7 +309,7 @@ TEST(SceneWarnings, RobotTilt) {
       << "<scene><robot><rot_deg x='10' z='90'/><body file='bot.xml'/></robot></scene>";
   const Scene s = load_scene(dir);
   EXPECT_TRUE(has_warning(s, "rot_deg x and y are ignored"));
-  EXPECT_NEAR(s.robots.at(0).yaw_rad, 3.141592653589793 / 2, 1e-15);
+  EXPECT_NEAR(s.robots.at(0).yaw_rad, kPi / 2, 1e-15);
 }
 
 }  // namespace

@@ -16,7 +16,6 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using namespace testing;
 
-constexpr double kPi = 3.141592653589793;
 constexpr double kDeg = kPi / 180;
 
 Mat3 Rx(double deg) {

@@ -16,7 +16,7 @@ namespace {
 using ::testing::ElementsAre;
 using namespace testing;
 
-constexpr double kDeg = 3.141592653589793 / 180;
+constexpr double kDeg = kPi / 180;
 
 std::vector<std::string> body_ids(const Scene& s, const Robot& r) {
   std::vector<std::string> ids;

@@ -81,7 +81,7 @@ TEST(Simulation, ActuatorTorqueAndHeldInputReachTheAxis) {
   for (int n = 0; n < 200; ++n) {
     const double q = sim->signal(pos);  // the spring sees this position in the coming tick
     sim->step();
-    EXPECT_DOUBLE_EQ(sim->signal(spring), -2.0 * (q - 10 * M_PI / 180));
+    EXPECT_DOUBLE_EQ(sim->signal(spring), -2.0 * (q - 10 * kPi / 180));
     EXPECT_DOUBLE_EQ(sim->signal(applied), sim->signal(spring) + 0.25);
   }
   EXPECT_GT(std::abs(sim->signal(pos)), 0.05);

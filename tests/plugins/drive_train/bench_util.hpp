@@ -17,7 +17,7 @@ namespace s2sim::test {
 namespace fs = std::filesystem;
 
 inline const fs::path kBench = fs::path(S2SIM_SOURCE_DIR) / "scenes/motor_bench";
-inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kPi = s2sim::kPi;
 
 // Table 2 of the paper (SI).
 inline constexpr double kKs = 0.4908, kTc = 3.558e-4, kB = 1.92e-3, kRa = 7.6, kLa = 4.88e-3;

@@ -15,7 +15,7 @@ class AxisSpring : public Component {
     const Params& p = ctx.params();
     axis_ = ctx.axis(p.text("axis"));
     stiffness_ = p.number("stiffness", Range::positive());
-    zero_rad_ = p.number("zero_deg", 0.0) * 3.141592653589793 / 180.0;
+    zero_rad_ = p.number("zero_deg", 0.0) * kPi / 180.0;
     torque_ = ctx.declare_signal("torque", ctx.axis_is_linear(axis_) ? "N" : "N*m");
   }
   void update(StepContext& ctx) override {

@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr double kG = 9.81;
+constexpr double kG = kGravity_m_s2;
 const fs::path kFixture = fs::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures/jointforce";
 
 SimulationOptions options(std::uint64_t seed = 1) {

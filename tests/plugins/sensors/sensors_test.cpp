@@ -18,7 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr double kPi = 3.141592653589793;
 const fs::path kFixtures = fs::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures";
 
 SimulationOptions options(std::uint64_t seed = 1,
@@ -317,7 +316,7 @@ TEST(Imu, AtRestTheAccelerometerReadsGUpInTheSensorFrame) {
   sim->step(25);
   // rot_deg x = 90: the sensor's +Y is the world's up.
   EXPECT_NEAR(sim->signal("robots/rig/sensors/rest/acc_x"), 0.0, 1e-9);
-  EXPECT_NEAR(sim->signal("robots/rig/sensors/rest/acc_y"), 9.81, 1e-9);
+  EXPECT_NEAR(sim->signal("robots/rig/sensors/rest/acc_y"), kGravity_m_s2, 1e-9);
   EXPECT_NEAR(sim->signal("robots/rig/sensors/rest/acc_z"), 0.0, 1e-9);
   EXPECT_NEAR(sim->signal("robots/rig/sensors/rest/gyro_z"), 0.0, 1e-12);
 }
@@ -326,8 +325,8 @@ TEST(Imu, AtRestWithNoiseReadsGWithinItsBiasAndItsWhiteNoise) {
   auto sim = load("imu", options(3));
   const auto v = sample(*sim, "robots/rig/sensors/rest_noisy/acc_z", 5000);
   const Stats s = stats(v);
-  EXPECT_NEAR(s.mean, 9.81, 4 * 0.05);     // bias drawn N(0, 0.05) at reset
-  EXPECT_NEAR(s.stdev / 0.02, 1.0, 0.05);  // white noise 0.02 m/s²
+  EXPECT_NEAR(s.mean, kGravity_m_s2, 4 * 0.05);  // bias drawn N(0, 0.05) at reset
+  EXPECT_NEAR(s.stdev / 0.02, 1.0, 0.05);        // white noise 0.02 m/s²
   // Another seed draws other biases (all three axes compared).
   auto other = load("imu", options(4));
   sim->reset();
@@ -350,7 +349,7 @@ TEST(Imu, TheBiasRandomWalkHasIncrementsOfBiasWalkTimesRootT) {
   EXPECT_NEAR(s.stdev / sigma, 1.0, 0.05);
   EXPECT_NEAR(s.mean, 0.0, 4 * sigma / std::sqrt(5000.0));
   // The other instrument's axes do not walk.
-  EXPECT_NEAR(sim->signal("robots/rig/sensors/walk/acc_z"), 9.81, 1e-9);
+  EXPECT_NEAR(sim->signal("robots/rig/sensors/walk/acc_z"), kGravity_m_s2, 1e-9);
 }
 
 TEST(Imu, ASpinningBodyReadsItsRateAndTheCentripetalAcceleration) {
@@ -375,7 +374,7 @@ TEST(Imu, ASpinningBodyReadsItsRateAndTheCentripetalAcceleration) {
   const double ax = sim->signal("robots/rig/sensors/tip/acc_x");
   EXPECT_NEAR(-ax / (w * w * r), 1.0, 0.01);
   EXPECT_NEAR(sim->signal("robots/rig/sensors/tip/acc_y"), alpha * r, 0.01 * w * w * r);
-  EXPECT_NEAR(sim->signal("robots/rig/sensors/tip/acc_z"), 9.81, 1e-3);
+  EXPECT_NEAR(sim->signal("robots/rig/sensors/tip/acc_z"), kGravity_m_s2, 1e-3);
   std::printf("IMU on the arm: w = %.4f rad/s, gyro %.4f, -acc_x = %.4f, w^2 r = %.4f (%+.3f %%)\n",
               w, gyro, -ax, w * w * r, 100 * (-ax / (w * w * r) - 1));
 }

@@ -26,6 +26,10 @@ class FakeParams : public Params {
   std::string text(std::string_view, std::string_view f) const override { return std::string(f); }
   Vec3 vec3(std::string_view, Vec3) const override { return {0.1, 0.1, 0.1}; }
   std::string location() const override { return "robot.xml: robot/sensors/touch"; }
+  std::string choice(std::string_view, std::initializer_list<std::string_view>,
+                     std::string_view f) const override {
+    return std::string(f);
+  }
 };
 
 class FakeConfigure : public ConfigureContext {
@@ -158,7 +162,8 @@ TEST(Touch, ABoxOnTheFloorFeelsItsWeightUnderneathAndNothingOnTop) {
       std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/plugins/sensors/fixtures/touch_floor", o);
   sim->run_until(1.0);
   EXPECT_EQ(sim->signal("robots/box/sensors/under/value"), 1.0);
-  EXPECT_NEAR(sim->signal("robots/box/sensors/under/force"), 2 * 9.81, 0.01 * 2 * 9.81);
+  EXPECT_NEAR(sim->signal("robots/box/sensors/under/force"), 2 * kGravity_m_s2,
+              0.01 * 2 * kGravity_m_s2);
   EXPECT_EQ(sim->signal("robots/box/sensors/top/value"), 0.0);
   EXPECT_EQ(sim->signal("robots/box/sensors/top/force"), 0.0);
 }

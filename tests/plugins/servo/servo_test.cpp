@@ -13,7 +13,6 @@ namespace s2sim {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 const fs::path kArm = fs::path(S2SIM_SOURCE_DIR) / "tests/plugins/servo/fixtures/arm";
 
 std::unique_ptr<Simulation> load_arm(double arm_mass = 0.05) {

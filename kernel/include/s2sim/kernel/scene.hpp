@@ -177,8 +177,8 @@ struct Body {
 enum class JointType { hinge, slider, universal, ball, fixed };
 
 struct Limits {
-  double min = -2 * 3.141592653589793;  ///< rad (hinge/universal) or m (slider)
-  double max = 2 * 3.141592653589793;
+  double min = -2 * kPi;  ///< rad (hinge/universal) or m (slider)
+  double max = 2 * kPi;
   bool active = false;  ///< whether the stop engages (SimTwo: only inside (-pi, pi) for hinges)
   // When active, a rotational side that SimTwo's ODE would never reach is ±infinity.
 };
@@ -219,7 +219,7 @@ struct Beam {
   double length_m = 0.8;
   double initial_width_m = 0.01;
   double final_width_m = 0.015;
-  double angle_rad = 30 * 3.141592653589793 / 180;
+  double angle_rad = 30 * kPi / 180;
   int rays = 9;
 };
 struct Noise {
@@ -293,7 +293,10 @@ struct Settings {
   double control_period_s = 0.04;  ///< script / high-level controller period
   double default_friction = 0.95;
   Vec3 wind_m_s;
-  double erp = 0.4, cfm = 1e-5;  ///< ODE settings, kept for reference
+  /// ODE's ERP: the contact stiffness is erp / (surface softness · 1 ms) (contact_force.cpp,
+  /// docs/models/contact.md). ODE's global CFM is kept for reference only: each surface's
+  /// softness plays its part.
+  double erp = 0.4, cfm = 1e-5;
   bool ir_noise = false;
   /// SimTwo's four invisible wall planes x, y = ±world_wall_distance_m (§4.3 of the spec).
   bool world_walls = true;
