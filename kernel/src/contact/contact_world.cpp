@@ -1,6 +1,9 @@
 #include "contact/contact_world.hpp"
 
+#include "sim/state_layout.hpp"
+
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace s2sim::contact {
@@ -243,37 +246,70 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   info_.push_back(info);
 }
 
-void ContactWorld::save(std::vector<double>& out) const {
-  out.push_back(static_cast<double>(memory_.size()));
-  for (const auto& m : memory_) {
-    out.push_back(static_cast<double>(m.key >> 32));
-    out.push_back(static_cast<double>(m.key & 0xffffffffu));
-    out.push_back(m.state.bristle_m.x);
-    out.push_back(m.state.bristle_m.y);
-    out.push_back(m.state.bristle_m.z);
-    out.push_back(m.state.approach_speed_m_s);
-    out.push_back(m.state.local_point_m.x);
-    out.push_back(m.state.local_point_m.y);
-    out.push_back(m.state.local_point_m.z);
-  }
-}
-
-std::size_t ContactWorld::restore(const std::vector<double>& in, std::size_t offset) {
-  const auto count = static_cast<std::size_t>(in.at(offset++));
-  memory_.clear();
-  for (std::size_t i = 0; i < count; ++i) {
-    Memory m;
-    m.key = (static_cast<std::uint64_t>(in.at(offset)) << 32) |
-            static_cast<std::uint64_t>(in.at(offset + 1));
-    m.state.bristle_m = {in.at(offset + 2), in.at(offset + 3), in.at(offset + 4)};
-    m.state.approach_speed_m_s = in.at(offset + 5);
-    m.state.local_point_m = {in.at(offset + 6), in.at(offset + 7), in.at(offset + 8)};
-    offset += 9;
-    memory_.push_back(m);
-  }
-  info_.clear();
-  info_count_ = 0;
-  return offset;
+void ContactWorld::declare_state(sim::StateLayout& layout) {
+  constexpr std::size_t kPer = 8;
+  layout.add_variable(
+      "contact/memory", kPer, [this] { return kPer * memory_.size(); },
+      [this](double* out) {
+        for (const Memory& m : memory_) {
+          const PointState& p = m.state;
+          const double v[kPer] = {std::bit_cast<double>(m.key),
+                                  p.bristle_m.x,
+                                  p.bristle_m.y,
+                                  p.bristle_m.z,
+                                  p.approach_speed_m_s,
+                                  p.local_point_m.x,
+                                  p.local_point_m.y,
+                                  p.local_point_m.z};
+          out = std::copy(v, v + kPer, out);
+        }
+      },
+      [this](const double* in, std::size_t count) {
+        memory_.clear();
+        for (std::size_t k = 0; k < count; k += kPer, in += kPer) {
+          Memory m;
+          m.key = std::bit_cast<std::uint64_t>(in[0]);
+          m.state.bristle_m = {in[1], in[2], in[3]};
+          m.state.approach_speed_m_s = in[4];
+          m.state.local_point_m = {in[5], in[6], in[7]};
+          memory_.push_back(m);
+        }
+      });
+  // The last substep's contacts: what touch sensors and the contact signals read next.
+  constexpr std::size_t kInfo = 12;
+  layout.add_variable(
+      "contact/points", kInfo, [this] { return kInfo * info_.size(); },
+      [this](double* out) {
+        for (const ContactInfo& c : info_) {
+          const double v[kInfo] = {static_cast<double>(c.body_a.index),
+                                   static_cast<double>(c.body_b.index),
+                                   c.point_m.x,
+                                   c.point_m.y,
+                                   c.point_m.z,
+                                   c.normal.x,
+                                   c.normal.y,
+                                   c.normal.z,
+                                   c.force_N.x,
+                                   c.force_N.y,
+                                   c.force_N.z,
+                                   c.depth_m};
+          out = std::copy(v, v + kInfo, out);
+        }
+      },
+      [this](const double* in, std::size_t count) {
+        info_.clear();
+        for (std::size_t k = 0; k < count; k += kInfo, in += kInfo) {
+          ContactInfo c;
+          c.body_a = BodyHandle{static_cast<std::int32_t>(in[0])};
+          c.body_b = BodyHandle{static_cast<std::int32_t>(in[1])};
+          c.point_m = {in[2], in[3], in[4]};
+          c.normal = {in[5], in[6], in[7]};
+          c.force_N = {in[8], in[9], in[10]};
+          c.depth_m = in[11];
+          info_.push_back(c);
+        }
+        info_count_ = static_cast<std::int32_t>(info_.size());
+      });
 }
 
 }  // namespace s2sim::contact

@@ -18,6 +18,10 @@
 #include <cstdint>
 #include <vector>
 
+namespace s2sim::sim {
+class StateLayout;
+}
+
 namespace s2sim::contact {
 
 class ContactWorld final : public model::SubstepForces {
@@ -45,10 +49,11 @@ class ContactWorld final : public model::SubstepForces {
 
   /// Forgets every contact (back to t = 0).
   void reset();
-  /// The contact memory as numbers, and back (snapshots).
-  void save(std::vector<double>& out) const;
-  /// Reads what save() wrote from `in` at `offset`; returns the offset after it.
-  std::size_t restore(const std::vector<double>& in, std::size_t offset);
+  /// Registers the state segments (snapshots), both variable: `contact/memory`, the contact
+  /// points' memory, 8 numbers per point (its key's bits, then its PointState), and
+  /// `contact/points`, the last substep's contacts (what the touch sensors and the contact
+  /// signals read before the next one), 12 numbers per ContactInfo.
+  void declare_state(sim::StateLayout& layout);
 
  private:
   struct Memory {

@@ -1,5 +1,8 @@
 #include "model/loose_bodies.hpp"
 
+#include "sim/state_layout.hpp"
+
+#include <algorithm>
 #include <cmath>
 
 namespace s2sim::model {
@@ -111,23 +114,38 @@ double LooseBodies::checksum() const {
   return sum;
 }
 
-void LooseBodies::save(std::vector<double>& out) const {
-  for (const State& s : state_)
-    out.insert(out.end(),
-               {s.com_m.x, s.com_m.y, s.com_m.z, s.com_velocity_m_s.x, s.com_velocity_m_s.y,
-                s.com_velocity_m_s.z, s.angular_velocity_rad_s.x, s.angular_velocity_rad_s.y,
-                s.angular_velocity_rad_s.z, s.q.w, s.q.x, s.q.y, s.q.z});
-}
-
-std::size_t LooseBodies::restore(const std::vector<double>& in, std::size_t k) {
-  for (State& s : state_) {
-    s.com_m = {in.at(k), in.at(k + 1), in.at(k + 2)};
-    s.com_velocity_m_s = {in.at(k + 3), in.at(k + 4), in.at(k + 5)};
-    s.angular_velocity_rad_s = {in.at(k + 6), in.at(k + 7), in.at(k + 8)};
-    s.q = {in.at(k + 9), in.at(k + 10), in.at(k + 11), in.at(k + 12)};
-    k += 13;
-  }
-  return k;
+void LooseBodies::declare_state(sim::StateLayout& layout) {
+  layout.add(
+      "loose/position", 7 * state_.size(),
+      [this](double* out) {
+        for (const State& s : state_) {
+          const double v[7] = {s.com_m.x, s.com_m.y, s.com_m.z, s.q.w, s.q.x, s.q.y, s.q.z};
+          out = std::copy(v, v + 7, out);
+        }
+      },
+      [this](const double* in, std::size_t) {
+        for (State& s : state_) {
+          s.com_m = {in[0], in[1], in[2]};
+          s.q = {in[3], in[4], in[5], in[6]};
+          in += 7;
+        }
+      });
+  layout.add(
+      "loose/velocity", 6 * state_.size(),
+      [this](double* out) {
+        for (const State& s : state_) {
+          const Vec3 &v = s.com_velocity_m_s, &w = s.angular_velocity_rad_s;
+          const double x[6] = {v.x, v.y, v.z, w.x, w.y, w.z};
+          out = std::copy(x, x + 6, out);
+        }
+      },
+      [this](const double* in, std::size_t) {
+        for (State& s : state_) {
+          s.com_velocity_m_s = {in[0], in[1], in[2]};
+          s.angular_velocity_rad_s = {in[3], in[4], in[5]};
+          in += 6;
+        }
+      });
 }
 
 bool LooseBodies::place(int kernel_index, const Pose& pose) {

@@ -12,6 +12,10 @@
 
 #include <vector>
 
+namespace s2sim::sim {
+class StateLayout;
+}
+
 namespace s2sim::model {
 
 class LooseBodies {
@@ -46,8 +50,10 @@ class LooseBodies {
   /// false when that body is not one of these.
   bool place(int kernel_index, const Pose& pose);
 
-  void save(std::vector<double>& out) const;
-  std::size_t restore(const std::vector<double>& in, std::size_t offset);
+  /// Registers the state segments `loose/position` (per body its centre of mass and
+  /// orientation quaternion w, x, y, z: 7 numbers) and `loose/velocity` (its centre of mass's
+  /// velocity and its angular velocity: 6 numbers), in the order the bodies were added.
+  void declare_state(sim::StateLayout& layout);
 
  private:
   struct Model {
@@ -63,8 +69,8 @@ class LooseBodies {
     Vec3 com_m, com_velocity_m_s, angular_velocity_rad_s;
     Quat q;
   };
-  std::vector<Model> model_;
-  std::vector<State> state_;
+  std::vector<Model> model_;  // built at load
+  std::vector<State> state_;  // what a snapshot holds
 };
 
 }  // namespace s2sim::model

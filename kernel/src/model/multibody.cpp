@@ -2,6 +2,8 @@
 // arrays (the constructor is in multibody_build.cpp, the integrator in integrator.cpp).
 #include "model/multibody_impl.hpp"
 
+#include "sim/state_layout.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -169,68 +171,100 @@ double Multibody::potential_energy_J() const {
   return energy;
 }
 
-std::vector<double> Multibody::save() const {
-  const SimTK::State& s = impl_->state();
-  std::vector<double> out;
-  out.push_back(static_cast<double>(impl_->ticks));
-  out.push_back(impl_->half_kick_pending ? 1.0 : 0.0);
-  for (const SimTK::Vector* v : {&s.getQ(), &s.getU(), &s.getZ()})
-    for (int i = 0; i < v->size(); ++i)
-      out.push_back((*v)[i]);
-  const Impl& m = *impl_;
-  m.loose.save(out);
-  // The M^-1 columns kept across steps decide what the next steps compute: part of the state.
-  out.insert(out.end(), m.axis_mobility.begin(), m.axis_mobility.end());
-  for (std::size_t a = 0; a < m.column_valid.size(); ++a) {
-    out.push_back(m.column_valid[a]);
-    if (!m.column_valid[a]) continue;
-    for (const SimTK::Vector* v : {&m.minv_column[a], &m.loop_unit_force[a]})
-      for (int i = 0; i < v->size(); ++i)
-        out.push_back((*v)[i]);
-  }
-  out.insert(out.end(), m.columns_q.begin(), m.columns_q.end());
-  out.insert(out.end(), m.column_root_quat.begin(), m.column_root_quat.end());
-  // The last reactions: what a joint sensor reads before the next step.
-  for (const Wrench& w : m.joint_reactions)
-    for (const Vec3* v : {&w.torque_Nm, &w.force_N})
-      out.insert(out.end(), {v->x, v->y, v->z});
-  return out;
+namespace {
+
+/// A segment over a SimTK::Vector of the current state (q, u or z), written in place.
+void add_state_vector(sim::StateLayout& layout, const char* name, Multibody::Impl& m,
+                      const SimTK::Vector& (SimTK::State::*get)() const,
+                      SimTK::Vector& (SimTK::State::*upd)()) {
+  layout.add(
+      name, static_cast<std::size_t>((m.current.*get)().size()),
+      [&m, get](double* out) {
+        const SimTK::Vector& v = (m.current.*get)();
+        for (int i = 0; i < v.size(); ++i)
+          out[i] = v[i];
+      },
+      [&m, upd](const double* in, std::size_t) {
+        SimTK::Vector& v = (m.current.*upd)();
+        for (int i = 0; i < v.size(); ++i)
+          v[i] = in[i];
+      });
 }
 
-void Multibody::restore(const std::vector<double>& saved) {
-  Impl& m = *impl_;
-  SimTK::State s = m.initial_state;
-  std::size_t k = 0;
-  m.ticks = static_cast<std::int64_t>(saved.at(k++));
-  m.half_kick_pending = saved.at(k++) != 0.0;
-  for (SimTK::Vector* v : {&s.updQ(), &s.updU(), &s.updZ()})
-    for (int i = 0; i < v->size(); ++i)
-      (*v)[i] = saved.at(k++);
-  k = m.loose.restore(saved, k);
-  for (double& w : m.axis_mobility)
-    w = saved.at(k++);
-  for (std::size_t a = 0; a < m.column_valid.size(); ++a) {
-    m.column_valid[a] = saved.at(k++) != 0.0;
-    if (!m.column_valid[a]) continue;
-    for (SimTK::Vector* v : {&m.minv_column[a], &m.loop_unit_force[a]})
-      for (int i = 0; i < v->size(); ++i)
-        (*v)[i] = saved.at(k++);
+/// Calls f(double&) on every number of the M^-1 column cache, in the segment's order.
+template <class M, class F>
+void for_each_column_number(M& m, F&& f) {
+  for (auto& valid : m.column_valid) {
+    double v = valid;
+    f(v);
+    valid = static_cast<char>(v != 0.0);
   }
-  for (double& q : m.columns_q)
-    q = saved.at(k++);
-  for (double& q : m.column_root_quat)
-    q = saved.at(k++);
-  for (Wrench& w : m.joint_reactions)
-    for (Vec3* v : {&w.torque_Nm, &w.force_N}) {
-      v->x = saved.at(k++);
-      v->y = saved.at(k++);
-      v->z = saved.at(k++);
-    }
+  for (auto* columns : {&m.minv_column, &m.loop_unit_force})
+    for (auto& column : *columns)
+      for (int i = 0; i < column.size(); ++i)
+        f(column[i]);
+  for (auto* values : {&m.columns_q, &m.column_root_quat, &m.axis_mobility})
+    for (auto& x : *values)
+      f(x);
+}
+
+}  // namespace
+
+void Multibody::declare_state(sim::StateLayout& layout) {
+  Impl& m = *impl_;
+  layout.add(
+      "multibody/time", 2,
+      [&m](double* out) {
+        out[0] = static_cast<double>(m.ticks);
+        out[1] = m.half_kick_pending ? 1.0 : 0.0;
+      },
+      [&m](const double* in, std::size_t) {
+        m.ticks = static_cast<std::int64_t>(in[0]);
+        m.half_kick_pending = in[1] != 0.0;
+      });
+  add_state_vector(layout, "multibody/q", m, &SimTK::State::getQ, &SimTK::State::updQ);
+  add_state_vector(layout, "multibody/u", m, &SimTK::State::getU, &SimTK::State::updU);
+  add_state_vector(layout, "multibody/z", m, &SimTK::State::getZ, &SimTK::State::updZ);
+  // The M^-1 columns kept across steps decide what the next steps compute (which axes slide,
+  // the implicit solve's columns, reused until q moves by 1e-7): part of the state.
+  std::size_t column_numbers = 0;
+  for_each_column_number(m, [&](double&) { ++column_numbers; });
+  layout.add(
+      "multibody/columns", column_numbers,
+      [&m](double* out) { for_each_column_number(m, [&](double& x) { *out++ = x; }); },
+      [&m](const double* in, std::size_t) {
+        for_each_column_number(m, [&](double& x) { x = *in++; });
+      });
+  // The last reactions: what a joint sensor reads before the next step.
+  layout.add(
+      "multibody/reactions", 6 * m.joint_reactions.size(),
+      [&m](double* out) {
+        for (const Wrench& w : m.joint_reactions)
+          for (const Vec3* v : {&w.torque_Nm, &w.force_N})
+            for (double x : {v->x, v->y, v->z})
+              *out++ = x;
+      },
+      [&m](const double* in, std::size_t) {
+        for (Wrench& w : m.joint_reactions)
+          for (Vec3* v : {&w.torque_Nm, &w.force_N}) {
+            *v = {in[0], in[1], in[2]};
+            in += 3;
+          }
+      });
+  m.loose.declare_state(layout);
+}
+
+void Multibody::restored() {
+  Impl& m = *impl_;
   m.bodies_fresh = false;
   m.substep = 0;
-  s.setTime(time_s());
-  m.current = s;
-  m.system.realize(m.current, SimTK::Stage::Velocity);
+  m.current.setTime(time_s());
+  try {
+    m.system.realize(m.current, SimTK::Stage::Velocity);
+  } catch (const std::exception& e) {  // e.g. a zero quaternion: a NaN inertia
+    throw Error(ErrorKind::usage,
+                std::string("the snapshot's multibody state is not a valid one: ") + e.what());
+  }
 }
 
 bool Multibody::place_free_body(int body, const Pose& pose) {

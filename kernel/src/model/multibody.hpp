@@ -12,6 +12,10 @@
 #include <string>
 #include <vector>
 
+namespace s2sim::sim {
+class StateLayout;
+}
+
 namespace s2sim::model {
 
 /// One degree of freedom of a joint.
@@ -144,9 +148,15 @@ class Multibody {
   /// Gravitational potential energy relative to z = 0, J.
   double potential_energy_J() const;
 
-  /// The integrator state as plain numbers (t, q, u, z): copy it to snapshot a run.
-  std::vector<double> save() const;
-  void restore(const std::vector<double>& saved);
+  /// Registers the model's state segments (snapshots; docs/scheduling.md, "Snapshots"):
+  /// `multibody/time` (ticks, pending half kick), `multibody/q`, `multibody/u`, `multibody/z`,
+  /// `multibody/columns` (the M^-1 column cache: validity flags, columns, loop axes' unit
+  /// forces, the q and root quaternions they were computed at, axis mobilities),
+  /// `multibody/reactions` (6 per scene joint), then the loose bodies' segments. After the
+  /// layout restored them, call restored().
+  void declare_state(sim::StateLayout& layout);
+  /// Makes the restored segments the current state (time, realized; mid-tick caches dropped).
+  void restored();
 
   /// Moves a body that hangs freely from the world (a loose body, or a Free mobilizer on the
   /// world: the root body of a robot with everything jointed to it) to `pose`, at rest.

@@ -46,7 +46,6 @@ inline SimTK::Transform to_simtk(const Pose& p) {
 constexpr double kGravity = 9.81;
 
 /// How an axis's value is realised.
-/// How an axis's value is realised.
 struct AxisImpl {
   // Tree joint: a mobilizer coordinate.
   SimTK::MobilizedBodyIndex mobod;
@@ -60,7 +59,14 @@ struct AxisImpl {
   SimTK::Vec3 anchor_in_body1;    // slider force application point
 };
 
+/// Multibody's data in three groups: the model (built at load, then only read), the state (what
+/// a snapshot holds: every member of that group is reached by one of the segments that
+/// Multibody::declare_state registers, multibody.cpp) and the scratch (preallocated buffers,
+/// written and read within a tick, so that stepping does not allocate: never needed to
+/// continue a run). The per-tick loads the kernel writes before every tick sit between
+/// (sim/step.cpp clears them first: not state either).
 struct Multibody::Impl {
+  // === Model: built at load (multibody_build.cpp), then only read ===============================
   SimTK::MultibodySystem system;
   SimTK::SimbodyMatterSubsystem matter{system};
   SimTK::GeneralForceSubsystem forces{system};
@@ -73,9 +79,8 @@ struct Multibody::Impl {
   };
   std::vector<Weight> weights;
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
-  LooseBodies loose;               // bodies with no joint, integrated outside Simbody
-  std::vector<Pose> initial_pose;  // kernel body -> pose at load
-  std::vector<std::string> body_names;  // kernel body -> "'id' (robot 'r')", for errors
+  std::vector<Pose> initial_pose;                        // kernel body -> pose at load
+  std::vector<std::string> body_names;  // kernel body -> "'id' of robot 'r'", for errors
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
   std::vector<std::string> warnings;
@@ -86,34 +91,75 @@ struct Multibody::Impl {
     double stiffness = 0, damping = 0;
   };
   std::vector<Stop> stops;
-  std::vector<Wrench> wrenches;
-  std::vector<double> axis_forces;
-  std::vector<double> axis_friction;
-  // Velocity-level Coulomb friction on tree axes (preallocated: stepping must not allocate).
-  std::vector<int> axis_u;            // per tree axis, its index in u (-1: loop axis)
-  std::vector<double> axis_mobility;  // per axis, its (M^-1)_aa at its last solve (0: none)
-  std::vector<char> sliding;          // per axis: Coulomb friction as a plain force
-  // Per axis: g, the generalized force of a unit load on the axis (tree axis: ±e_u; loop axis:
-  // the torque or force pair on its bodies through Jᵀ), and M^-1·g, of the implicit axis solve
-  // (axis_columns.cpp). A column is reused while the configuration stays
-  // within 1e-7 of the one it was computed at (a robot at rest): M depends on q only.
-  std::vector<SimTK::Vector> minv_column;
-  std::vector<SimTK::Vector> loop_unit_force;  // g of the loop axes (empty for tree axes)
-  std::vector<char> column_valid;
-  std::vector<double> columns_q;    // the q the valid columns were computed at
+  std::vector<int> axis_u;          // per tree axis, its index in u (-1: loop axis)
   std::vector<char> q_shapes_mass;  // per q: whether M depends on it (axis_columns.cpp)
   struct Root {
     int q0, u0;  // a free root's quaternion and angular velocity indices
   };
   std::vector<Root> roots;
-  std::vector<int> axis_root;            // per axis: its tree's free root (-1: none)
-  std::vector<double> column_root_quat;  // per axis: its root's orientation for its column
-  SimTK::Vector_<SimTK::SpatialVec> unit_body_forces;  // scratch for the loop axes' g
-  // Axis drives (axis_drives.cpp): the components' velocity-dependent axis forces for the tick
-  // (written through the SDK), and this substep's rows of the implicit solve: the drives with
-  // damping and the loop axes' regularised Coulomb friction.
+  std::vector<int> axis_root;  // per axis: its tree's free root (-1: none)
+  // Joint reactions (request_joint_reactions): per scene joint, the mobilizer realising it
+  // (invalid for a loop-closing joint) and whether its child is body1.
+  struct JointReaction {
+    SimTK::MobilizedBodyIndex mobod;
+    bool child_is_body1 = true;
+    int body1 = 0;  // kernel index
+  };
+  std::vector<JointReaction> joint_reaction_source;
+  bool reactions_wanted = false;       // set at load by the components that read them
+  bool contact_wrenches_used = false;  // substep_wrenches are written every substep (contact)
+  SimTK::State initial_state;
+  std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
+  // q' = N(q)·u by hand when every mobilizer is Free or has q' = u: Simbody's multiplyByN goes
+  // through its state digest for what is a copy plus one quaternion rate per free body.
+  struct FreeCoordinates {
+    int q, u;  // first indices: quaternion then position; angular then linear velocity
+  };
+  std::vector<FreeCoordinates> free_coordinates;
+  std::vector<std::pair<int, int>> direct_coordinates;  // (q, u) of mobilizers with q' = u
+  bool own_n = true;
+  bool has_constraints = false;
+  double tick_s = 1e-3;
+  int substeps = 1;
+
+  // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
+  // multibody/time
+  std::int64_t ticks = 0;
+  bool half_kick_pending = true;
+  // multibody/q, multibody/u, multibody/z: the Simbody state's variables (its time follows
+  // from ticks; its cache is rebuilt by realize).
+  SimTK::State current;
+  // multibody/columns. Per axis: g, the generalized force of a unit load on the axis (tree axis:
+  // ±e_u; loop axis: the torque or force pair on its bodies through Jᵀ), and M^-1·g, of the
+  // implicit axis solve (axis_columns.cpp). A column is reused while the configuration stays
+  // within 1e-7 of the one it was computed at (a robot at rest): M depends on q only.
+  std::vector<char> column_valid;
+  std::vector<SimTK::Vector> minv_column;
+  std::vector<SimTK::Vector> loop_unit_force;  // g of the loop axes (empty for tree axes)
+  std::vector<double> columns_q;               // the q the valid columns were computed at
+  std::vector<double> column_root_quat;        // per axis: its root's orientation for its column
+  std::vector<double> axis_mobility;  // per axis, its (M^-1)_aa at its last solve (0: none)
+  // multibody/reactions: world frame, at the current state (what a joint sensor reads next).
+  std::vector<Wrench> joint_reactions;
+  // loose/position, loose/velocity: bodies with no joint, integrated outside Simbody (their
+  // model, built at load, is LooseBodies' too).
+  LooseBodies loose;
+
+  // === Per-tick loads: written by the kernel before every tick (sim/step.cpp clears them) =======
+  std::vector<Wrench> wrenches;
+  std::vector<double> axis_forces;
+  std::vector<double> axis_friction;
+  // Axis drives (implicit_axes.cpp): the components' velocity-dependent axis forces for the tick
+  // (written through the SDK).
   std::vector<AxisDrive> drives;
   std::int32_t drive_count = 0;
+
+  // === Scratch: preallocated (stepping must not allocate), meaningful within a tick only =======
+  // Velocity-level Coulomb friction on tree axes.
+  std::vector<char> sliding;  // per axis: Coulomb friction as a plain force
+  SimTK::Vector_<SimTK::SpatialVec> unit_body_forces;  // scratch for the loop axes' g
+  // This substep's rows of the implicit solve: the drives with damping and the loop axes'
+  // regularised Coulomb friction.
   struct DriveRow {
     int axis;
     double force, damping, rate0, low, high;  // f(v) = clamp(force − damping·(v − rate0))
@@ -130,45 +176,19 @@ struct Multibody::Impl {
   std::vector<double> explicit_drive;       // per axis: the drives without damping, clamped
   std::vector<double> rate0;                // per axis: its rate at the tick's first substep
   std::vector<double> drive_sum;            // per axis: Σ over the tick's substeps of drive forces
-  std::vector<double> drive_applied;        // per axis: their mean over the last tick
+  std::vector<double> drive_applied;        // per axis: their mean over the last tick (an output:
+                                            // the kernel's axis_force_applied segment keeps it)
   std::vector<double> row_matrix, row_rhs;  // rows x rows, rows
   int substep = 0;                          // index of the current substep in the tick
   bool bodies_fresh = false;                // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
-  bool contact_wrenches_used = false;  // substep_wrenches are written every substep (contact)
   std::vector<Pose> substep_poses;
   std::vector<Twist> substep_twists;
   std::vector<Wrench> substep_wrenches;
-  // Joint reactions (request_joint_reactions): per scene joint, the mobilizer realising it
-  // (invalid for a loop-closing joint) and whether its child is body1.
-  struct JointReaction {
-    SimTK::MobilizedBodyIndex mobod;
-    bool child_is_body1 = true;
-    int body1 = 0;  // kernel index
-  };
-  std::vector<JointReaction> joint_reaction_source;
-  std::vector<Wrench> joint_reactions;               // world frame, at the current state
   std::vector<Wrench> joint_reactions_in_body1;      // body1's frame, as computed
   SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
-  bool reactions_wanted = false;
-  SimTK::State initial_state;
-  SimTK::State current;
-  SimTK::Vector udot, qdot;  // preallocated: stepping must not allocate
-  bool half_kick_pending = true;
+  SimTK::Vector udot, qdot;
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
-  std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
-  // q' = N(q)·u by hand when every mobilizer is Free or has q' = u: Simbody's multiplyByN goes
-  // through its state digest for what is a copy plus one quaternion rate per free body.
-  struct FreeCoordinates {
-    int q, u;  // first indices: quaternion then position; angular then linear velocity
-  };
-  std::vector<FreeCoordinates> free_coordinates;
-  std::vector<std::pair<int, int>> direct_coordinates;  // (q, u) of mobilizers with q' = u
-  bool own_n = true;
-  bool has_constraints = false;
-  double tick_s = 1e-3;
-  int substeps = 1;
-  std::int64_t ticks = 0;
 
   const SimTK::State& state() const { return current; }
   const SimTK::MobilizedBody& mobod(int body) const {
@@ -209,7 +229,7 @@ double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x)
 /// Marks the coordinates M does not depend on (a root's translation, a symmetric wheel's
 /// angle): columns stay valid while only those change. After the initial state is built.
 void find_mass_matrix_coordinates(Multibody::Impl& m);
-/// Forgets every column (reset, restore of an older snapshot format).
+/// Forgets every column (reset).
 void clear_columns(Multibody::Impl& m);
 
 /// Axis drives (implicit_axes.cpp). Before the accelerations: the rows of this substep and

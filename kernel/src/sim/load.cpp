@@ -130,6 +130,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.kernel = m.ray_caster.get();
   m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
+  m.declare_state();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));
 }

@@ -6,7 +6,7 @@
 /// - signals.cpp: the signal and input registry and the façade's signal/input calls;
 /// - component_host.cpp: component instances and the ConfigureContext they configure through;
 /// - step.cpp: what happens in a tick, in order; reset;
-/// - snapshot.cpp: save, restore and placing bodies;
+/// - snapshot.cpp: the state layout, save, restore and placing bodies;
 /// - simulation.cpp: the remaining façade calls.
 
 #include <s2sim/kernel/simulation.hpp>
@@ -17,6 +17,7 @@
 #include "plugin/plugin_loader.hpp"
 #include "scene/element_params.hpp"
 #include "sim/stage_profile.hpp"
+#include "sim/state_layout.hpp"
 
 #include <array>
 #include <cstdint>
@@ -131,6 +132,9 @@ struct Simulation::Impl {
   // Per-stage timing of the tick pipeline (Simulation::set_profiling); null when off.
   std::unique_ptr<sim::StageProfile> profile;
 
+  // What a snapshot holds: every subsystem's state segments (snapshot.cpp), declared at load.
+  sim::StateLayout layout;
+
   // --- registration (signals.cpp) --------------------------------------------------------------
   std::size_t add_signal(std::string name, std::string unit, sim::Source source,
                          std::int32_t index);
@@ -154,6 +158,11 @@ struct Simulation::Impl {
                      const std::string& id, int robot, const scene::ParamSource& params,
                      const Location& where, std::optional<Category> required);
   void configure_components();
+
+  // --- snapshots (snapshot.cpp) ----------------------------------------------------------------
+  /// Registers the state segments of the multibody, the contact layer and the buffers above;
+  /// at the end of load.
+  void declare_state();
 
   // --- stepping (step.cpp) ---------------------------------------------------------------------
   /// The buffers the components read, from the multibody's state after a tick.

@@ -1,46 +1,80 @@
-// Snapshots (save and restore the whole run) and placing free bodies.
+// Snapshots (the state layout's segments, save and restore the whole run) and placing free
+// bodies.
 #include "sim/simulation_impl.hpp"
 
+#include <bit>
+#include <cmath>
+#include <type_traits>
+
 namespace s2sim {
+
+namespace {
+
+std::vector<sim::StateLayout::Entry> entries_of(const Simulation::Snapshot& s) {
+  std::vector<sim::StateLayout::Entry> out;
+  out.reserve(s.segments.size());
+  for (const auto& seg : s.segments)
+    out.push_back({seg.name, seg.size, seg.unit});
+  return out;
+}
+
+/// A segment over one of the façade's buffers (their sizes are fixed at load).
+template <class T>
+void add_buffer(sim::StateLayout& layout, const char* name, std::vector<T>& buffer) {
+  layout.add(
+      name, buffer.size(),
+      [&buffer](double* out) {
+        for (std::size_t i = 0; i < buffer.size(); ++i)
+          if constexpr (std::is_same_v<T, double>)
+            out[i] = buffer[i];
+          else
+            out[i] = std::bit_cast<double>(buffer[i]);  // random streams: their bits
+      },
+      [&buffer](const double* in, std::size_t) {
+        for (std::size_t i = 0; i < buffer.size(); ++i)
+          if constexpr (std::is_same_v<T, double>)
+            buffer[i] = in[i];
+          else
+            buffer[i] = std::bit_cast<T>(in[i]);
+      });
+}
+
+}  // namespace
+
+void Simulation::Impl::declare_state() {
+  multibody->declare_state(layout);
+  contacts->declare_state(layout);
+  // Written in place: the WorldView points into these buffers.
+  add_buffer(layout, "components/state", state);
+  add_buffer(layout, "inputs", inputs);
+  add_buffer(layout, "published", published);
+  add_buffer(layout, "axis_force_applied", axis_force_applied);
+  add_buffer(layout, "random", random);
+}
+
+Simulation::Snapshot::Range Simulation::Snapshot::find(std::string_view name) const {
+  const auto ranges = sim::StateLayout::locate(entries_of(*this), values);
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    if (segments[i].name == name) return {ranges[i].offset, ranges[i].size};
+  throw Error(ErrorKind::usage, "the snapshot has no segment '" + std::string(name) + "' (" +
+                                    sim::StateLayout::describe(entries_of(*this)) + ")");
+}
 
 Simulation::Snapshot Simulation::save() const {
   const Impl& m = *impl_;
   Snapshot s;
-  s.values = m.multibody->save();
-  auto append = [&](const std::vector<double>& v) {
-    s.values.push_back(static_cast<double>(v.size()));
-    s.values.insert(s.values.end(), v.begin(), v.end());
-  };
-  append(m.inputs);
-  append(m.published);
-  append(m.state);
-  append(m.axis_force_applied);
-  s.random = m.random;
-  m.contacts->save(s.contacts);
+  s.layout = m.layout.id();
+  for (const auto& e : m.layout.entries())
+    s.segments.push_back({e.name, e.size, e.unit});
+  m.layout.save(s.values);
   return s;
 }
 
 void Simulation::restore(const Snapshot& snapshot) {
   Impl& m = *impl_;
-  // The tail holds four sized blocks; walk them from the back to find the multibody part.
-  const auto& v = snapshot.values;
-  std::vector<std::vector<double>*> blocks = {&m.inputs, &m.published, &m.state,
-                                              &m.axis_force_applied};
-  std::size_t multibody_size = v.size();
-  for (auto it = blocks.rbegin(); it != blocks.rend(); ++it)
-    multibody_size -= (*it)->size() + 1;
-  m.multibody->restore(
-      std::vector<double>(v.begin(), v.begin() + static_cast<long>(multibody_size)));
-  std::size_t k = multibody_size;
-  for (auto* b : blocks) {
-    const auto n = static_cast<std::size_t>(v.at(k++));
-    if (n != b->size()) throw Error(ErrorKind::usage, "snapshot from another simulation");
-    std::copy(v.begin() + static_cast<long>(k), v.begin() + static_cast<long>(k + n), b->begin());
-    k += n;
-  }
-  m.random = snapshot.random;
-  m.contacts->restore(snapshot.contacts, 0);
-  m.world.contacts = m.contacts->contacts();
+  m.layout.restore(snapshot.layout, entries_of(snapshot), snapshot.values);
+  m.multibody->restored();
+  m.world.contacts = m.contacts->contacts();  // the buffer may have grown
   m.tick = static_cast<std::int64_t>(std::llround(m.multibody->time_s() / m.tick_s));
   m.refresh();
 }

@@ -2,6 +2,7 @@
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
+#include "sim/state_layout.hpp"
 
 #include <gtest/gtest.h>
 
@@ -295,11 +296,15 @@ TEST(Multibody, SaveAndRestoreContinueBitForBit) {
   Runner r(s);
   for (int n = 0; n < 300; ++n)
     r.step();
-  const auto saved = r.mb.save();
+  sim::StateLayout layout;
+  r.mb.declare_state(layout);
+  std::vector<double> saved;
+  layout.save(saved);
   for (int n = 0; n < 500; ++n)
     r.step();
   const auto first = r.pos;
-  r.mb.restore(saved);
+  layout.restore(layout.id(), layout.entries(), saved);
+  r.mb.restored();
   for (int n = 0; n < 500; ++n)
     r.step();
   EXPECT_EQ(r.pos, first);

@@ -7,6 +7,7 @@
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -123,13 +124,32 @@ class Simulation {
   double kinetic_energy_J() const;
   double potential_energy_J() const;
 
-  /// A copy of the whole simulation state; restoring it continues exactly as from there.
+  /// A copy of the whole simulation state; restoring it continues exactly as from there. At
+  /// load, every subsystem declares its state as named segments (`multibody/q`,
+  /// `contact/memory`, `inputs`, ...: docs/scheduling.md, "Snapshots"); a snapshot holds
+  /// them one after another in `values`, with the layout's id.
   struct Snapshot {
-    std::vector<double> values;
-    std::vector<std::uint64_t> random;
-    std::vector<double> contacts;  ///< the contact points' memory (friction, impacts)
+    /// A segment of the layout: `size` numbers, or `variable`: a count of numbers (a multiple
+    /// of `unit`) first, then those numbers.
+    struct Segment {
+      static constexpr std::size_t variable = static_cast<std::size_t>(-1);
+      std::string name;
+      std::size_t size = 0;
+      std::size_t unit = 1;
+    };
+    struct Range {
+      std::size_t offset = 0, size = 0;
+    };
+    std::uint64_t layout = 0;       ///< hash of the segment names and sizes
+    std::vector<Segment> segments;  ///< the layout, to name what differs from another one
+    std::vector<double> values;     ///< the segments, in order
+    /// Where segment `name` lies in `values` (a variable one: after its count). Throws
+    /// s2sim::Error (usage) for a name the layout does not have.
+    Range find(std::string_view name) const;
   };
   Snapshot save() const;
+  /// Throws s2sim::Error (usage), changing nothing, for a snapshot of another simulation (a
+  /// different layout: the message names the first segment that differs) or a malformed one.
   void restore(const Snapshot& snapshot);
 
   /// Moves a body that hangs freely from the world (a thing, or a robot's root body, which
