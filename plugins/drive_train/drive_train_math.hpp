@@ -3,12 +3,14 @@
 /// The drive train's numerics as pure functions (docs/models/dc-motor.md), shared by the
 /// components and tested directly.
 
+#include <s2sim/math.hpp>
+
 #include <algorithm>
 #include <cmath>
 
 namespace s2sim::drive_train {
 
-inline constexpr double kPi = 3.14159265358979323846;
+using s2sim::kPi;  // the SDK's one value
 
 /// The armature current over one physics step: its value at the end of the step and its mean
 /// over the step (what makes the torque impulse and the energy V·∫i dt exact).

@@ -42,8 +42,8 @@ inline SimTK::Transform to_simtk(const Pose& p) {
   return SimTK::Transform(to_simtk(p.rotation), to_simtk(p.position));
 }
 
-/// Standard gravity, m/s², along −Z.
-constexpr double kGravity = 9.81;
+/// Gravity, m/s², along −Z: the SDK's one value.
+constexpr double kGravity = kGravity_m_s2;
 
 /// How an axis's value is realised.
 struct AxisImpl {
