@@ -29,9 +29,8 @@ class Servo final : public s2sim::Component {
     const s2sim::Params& p = ctx.params();
     axis_ = ctx.axis(p.text("axis"));
     if (ctx.axis_is_linear(axis_))
-      throw s2sim::Error(s2sim::ErrorKind::scene, p.location() +
-                                                      "@axis: a servo needs a rotational axis, '" +
-                                                      p.text("axis") + "' is a slider");
+      throw s2sim::Error(s2sim::ErrorKind::scene, p.where("axis"),
+                         "a servo needs a rotational axis, '" + p.text("axis") + "' is a slider");
     // Defaults: a Dynamixel AX-12 at 12 V (1.5 N·m stall torque, 114 rpm no-load speed,
     // 300° range).
     kp_ = p.number("kp", 8.0, s2sim::Range::non_negative());
@@ -41,10 +40,9 @@ class Servo final : public s2sim::Component {
     min_ = p.number("min_deg", -150.0) * kPi / 180;
     max_ = p.number("max_deg", 150.0) * kPi / 180;
     if (!(min_ <= max_))
-      throw s2sim::Error(s2sim::ErrorKind::scene, p.location() +
-                                                      "@max_deg: must be >= min_deg, got " +
-                                                      std::to_string(max_ * 180 / kPi) + " < " +
-                                                      std::to_string(min_ * 180 / kPi));
+      throw s2sim::Error(s2sim::ErrorKind::scene, p.where("max_deg"),
+                         "must be >= min_deg, got " + std::to_string(max_ * 180 / kPi) + " < " +
+                             std::to_string(min_ * 180 / kPi));
     const double period_ms = p.number("period", ctx.tick_s() * 1000.0, s2sim::Range::positive());
     period_ticks_ = std::max<long long>(1, std::llround(period_ms / 1000.0 / ctx.tick_s()));
     const std::string at = ctx.axis_prefix(axis_) + "/";
