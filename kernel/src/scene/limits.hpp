@@ -15,6 +15,8 @@ inline constexpr double kMaxPhysicsStep_s = 1.0;
 /// A solid's or shell's size or radius, m (10 km): beyond it the narrow phase loses its
 /// precision and FCL/libccd may not terminate.
 inline constexpr double kMaxLength_m = 1e4;
+/// Nesting of XML elements (SimTwo's scenes nest a dozen deep; the parsers recurse).
+inline constexpr std::int64_t kMaxXmlDepth = 256;
 /// Copies one track element makes with `<repeat times>`.
 inline constexpr std::int64_t kMaxTrackRepeats = 10000;
 /// Segments of one track arc ((stop − start) / step).

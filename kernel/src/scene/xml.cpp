@@ -4,6 +4,8 @@
 
 #include "scene/xml.hpp"
 
+#include "scene/limits.hpp"
+
 #include <boost/property_tree/detail/rapidxml.hpp>
 #include <boost/property_tree/ptree.hpp>
 #include <boost/property_tree/xml_parser.hpp>
@@ -72,6 +74,51 @@ void check_well_formed(const std::string& text, const std::string& display_name)
   }
 }
 
+/// Refuses elements nested deeper than limits::kMaxXmlDepth before any recursive parser sees
+/// them (40 000 levels overflowed the stack): a linear scan of the tags, skipping comments,
+/// CDATA, processing instructions and declarations, quotes respected inside tags.
+void check_nesting_depth(const std::string& text, const std::string& display_name) {
+  std::int64_t depth = 0;
+  auto skip_to = [&](std::size_t from, const char* end) {
+    const auto at = text.find(end, from);
+    return at == std::string::npos ? text.size() : at + std::char_traits<char>::length(end);
+  };
+  for (std::size_t i = text.find('<'); i < text.size(); i = text.find('<', i)) {
+    if (text.compare(i, 4, "<!--") == 0) {
+      i = skip_to(i + 4, "-->");
+    } else if (text.compare(i, 9, "<![CDATA[") == 0) {
+      i = skip_to(i + 9, "]]>");
+    } else if (text.compare(i, 2, "<?") == 0) {
+      i = skip_to(i + 2, "?>");
+    } else if (text.compare(i, 2, "<!") == 0) {
+      i = skip_to(i + 2, ">");
+    } else if (text.compare(i, 2, "</") == 0) {
+      --depth;
+      i = skip_to(i + 2, ">");
+    } else {
+      char quote = 0;
+      std::size_t j = i + 1;
+      for (; j < text.size(); ++j) {
+        const char c = text[j];
+        if (quote) {
+          if (c == quote) quote = 0;
+        } else if (c == '"' || c == '\'') {
+          quote = c;
+        } else if (c == '>') {
+          break;
+        }
+      }
+      if (j < text.size() && text[j - 1] != '/' && ++depth > limits::kMaxXmlDepth) {
+        const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(i), '\n');
+        throw Error(
+            ErrorKind::scene, Location{display_name + ":" + std::to_string(line), "", ""},
+            "elements nested deeper than " + std::to_string(limits::kMaxXmlDepth) + " levels");
+      }
+      i = j;
+    }
+  }
+}
+
 }  // namespace
 
 Element parse_xml(std::string text, const std::string& display_name) {
@@ -84,6 +131,7 @@ Element parse_xml(std::string text, const std::string& display_name) {
   const auto breaks = std::count(text.begin(), text.begin() + first_tag, '\n');
   text = std::string(static_cast<std::size_t>(breaks), '\n') + text.substr(first_tag);
 
+  check_nesting_depth(text, display_name);
   check_well_formed(text, display_name);
   std::istringstream in(text);
   pt::ptree tree;

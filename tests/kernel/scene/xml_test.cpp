@@ -63,6 +63,33 @@ TEST(Xml, SyntaxErrorNamesFileAndLine) {
   }
 }
 
+// Issue 16: 40 000 nested elements overflowed the stack of the runner and the viewer (the
+// parsers recurse). Deeper than 256 levels is a located scene error; 256 itself still parses,
+// and comments, CDATA, quoted '>' and self-closing tags do not count as levels.
+TEST(Xml, NestingBeyondTheLimitIsALocatedErrorNotACrash) {
+  std::string deep = "<?xml version='1.0'?>\n<scene>\n";
+  for (int i = 0; i < 40000; ++i)
+    deep += "<a>";
+  for (int i = 0; i < 40000; ++i)
+    deep += "</a>";
+  deep += "</scene>";
+  try {
+    parse_xml(deep, "scene.xml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::scene);
+    EXPECT_EQ(e.where().file, "scene.xml:3");
+    EXPECT_THAT(e.message(), HasSubstr("nested deeper than 256 levels"));
+  }
+  std::string fine = "<scene>";
+  for (int i = 1; i < 256; ++i)
+    fine += "<a t='>'><!-- <b> --><![CDATA[<c>]]><d/>";
+  for (int i = 1; i < 256; ++i)
+    fine += "</a>";
+  fine += "</scene>";
+  EXPECT_NO_THROW(parse_xml(fine, "fine.xml"));
+}
+
 TEST(Xml, EmptyFileIsAnError) {
   EXPECT_THROW(parse_xml("  \n ", "x.xml"), Error);
   EXPECT_THROW(read_xml_file("/nonexistent/file.xml", "file.xml"), Error);
