@@ -170,6 +170,8 @@ struct Simulation::Impl {
   void reset();
   /// One tick: the scheduled stages, then the physics.
   void step_once();
+  /// Throws (runtime) naming the body or axis when a component applied a non-finite load.
+  void check_loads_finite() const;
 };
 
 }  // namespace s2sim

@@ -124,6 +124,7 @@ void Simulation::Impl::step_once() {
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
+  check_loads_finite();
   sim::physics_tick(*multibody, contacts.get(), profile.get());
   // What the axes carried over the tick: the plain forces and the drives' implicit values.
   const double* drive = multibody->drive_force_applied();
@@ -133,6 +134,42 @@ void Simulation::Impl::step_once() {
   sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
   refresh();
   world.contacts = contacts->contacts();  // the buffer may have grown
+}
+
+void Simulation::Impl::check_loads_finite() const {
+  // One sum per tick: a NaN or an infinity anywhere poisons it. Only then look for where.
+  const Wrench* wrenches = multibody->applied_wrenches();
+  const double* axis_force = multibody->applied_axis_forces();
+  const double* axis_friction = multibody->applied_axis_friction();
+  const AxisDrive* drives = multibody->axis_drives();
+  const std::int32_t drive_count = *multibody->axis_drive_count();
+  double sum = 0;
+  for (std::size_t b = 0; b < poses.size(); ++b)
+    sum += wrenches[b].force_N.x + wrenches[b].force_N.y + wrenches[b].force_N.z +
+           wrenches[b].torque_Nm.x + wrenches[b].torque_Nm.y + wrenches[b].torque_Nm.z;
+  for (std::size_t a = 0; a < axis_views.size(); ++a)
+    sum += axis_force[a] + axis_friction[a];
+  for (std::int32_t d = 0; d < drive_count; ++d)  // the bounds may be infinite, not NaN
+    sum += drives[d].force + drives[d].damping +
+           (drives[d].min_force <= drives[d].max_force ? 0.0 : NAN);
+  if (std::isfinite(sum)) return;
+  std::string what;
+  for (std::size_t b = 0; b < poses.size() && what.empty(); ++b) {
+    const Wrench& w = wrenches[b];
+    if (!std::isfinite(w.force_N.x + w.force_N.y + w.force_N.z + w.torque_Nm.x + w.torque_Nm.y +
+                       w.torque_Nm.z))
+      what = "a non-finite force or torque on body " + multibody->body_name(static_cast<int>(b));
+  }
+  for (std::size_t a = 0; a < axis_views.size() && what.empty(); ++a)
+    if (!std::isfinite(axis_force[a] + axis_friction[a]))
+      what = "a non-finite force or friction on axis '" + axis_views[a].name + "'";
+  for (std::int32_t d = 0; d < drive_count && what.empty(); ++d)
+    if (!std::isfinite(drives[d].force + drives[d].damping) ||
+        !(drives[d].min_force <= drives[d].max_force))
+      what = "a non-finite or inverted drive on axis '" + axis_views[drives[d].axis].name + "'";
+  throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
+                                      " s a component applied " + what +
+                                      " (the components acting on it ran in this tick)");
 }
 
 void Simulation::Impl::refresh() {

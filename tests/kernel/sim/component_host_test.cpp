@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -64,6 +65,25 @@ TEST(ComponentHost, ExceptionsFromUpdateNameTheComponentAndAreRuntimeErrors) {
     EXPECT_EQ(x.kind(), ErrorKind::runtime) << mode;
     EXPECT_THAT(x.message(), HasSubstr("controllers/villain (kind 'test_hostile')")) << mode;
   }
+}
+
+// ../shared/repro R08 (NaN force): a component's NaN load surfaced as a divergence blamed on
+// the body, or as exit 1. It is refused before the physics, naming the body it was applied to.
+TEST(ComponentHost, ANonFiniteLoadFromAComponentIsARuntimeErrorNamingTheBody) {
+  SimulationOptions o;
+  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "hostile"};
+  auto sim =
+      Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile_body", o);
+  try {
+    sim->step(100);
+    FAIL() << "the NaN torque went unnoticed";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    EXPECT_THAT(e.message(), HasSubstr("a component applied a non-finite force or torque on body "
+                                       "'box' (a thing)"));
+  }
+  for (int b = 0; b < sim->body_count(); ++b)  // the state itself never took the NaN
+    EXPECT_TRUE(std::isfinite(sim->body_pose(b).position.z));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // a std::exception or something that is not an exception at all. Built like a third party's.
 #include <s2sim/sdk.hpp>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -18,16 +19,19 @@ class Hostile : public Component {
       throw Error(ErrorKind::scene, "hostile: the parameter 'mode' is not to my liking");
     if (mode_ == "configure_std") throw std::runtime_error("hostile: a std::runtime_error");
     if (mode_ == "configure_int") throw 42;
+    if (mode_ == "nan_force") body_ = ctx.body(ctx.params().text("solid"));
   }
   void update(StepContext& ctx) override {
     if (ctx.tick() < 3) return;
     if (mode_ == "update_error") throw Error(ErrorKind::runtime, "hostile: failed in update");
     if (mode_ == "update_std") throw std::runtime_error("hostile: a std::runtime_error in update");
     if (mode_ == "update_int") throw 7;
+    if (mode_ == "nan_force") ctx.apply_torque(body_, Vec3{0, 0, std::nan("")});
   }
 
  private:
   std::string mode_;
+  BodyHandle body_;
 };
 
 }  // namespace
