@@ -98,7 +98,8 @@ class AppliedLoads : public SimTK::Force::Custom::Implementation {
                         body_forces, mobility_forces);
       }
     // The axis drives (motors, viscous friction, the loop axes' regularised Coulomb friction)
-    // at their values for this substep; solve_drives makes them implicit after the kick.
+    // at their values for this substep; solve_axes (implicit_axes.cpp)
+    // makes them implicit after the kick.
     for (const auto& row : mb.rows)
       if (row.applied != 0.0)
         apply_axis_load(mb, state, static_cast<std::size_t>(row.axis), row.applied, body_forces,

@@ -218,9 +218,11 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
     m.next_row[i] = m.first_row[a];
     m.first_row[a] = i;
   }
+  bool friction = false;
   for (std::size_t a = 0; a < m.axes.size(); ++a)
     if (m.axis_friction[a] > 0.0 && !m.axes[a].loop && !m.sliding[a]) {
       m.friction_bound[a] = m.axis_friction[a];
+      friction = true;
       if (m.first_row[a] < 0) m.solve_list.push_back(static_cast<int>(a));
     }
   if (m.solve_list.empty()) return;
@@ -254,10 +256,6 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       row.applied = f;
     }
   }
-  bool friction = false;
-  for (int a : m.solve_list)
-    friction = friction || m.friction_bound[a] > 0;
-
   // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves.
   if (bounded || friction) {
     const int sweeps = m.solve_list.size() == 1 ? 1 : 16;
@@ -265,7 +263,7 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       bool changed = false;
       for (int a : m.solve_list) {
         const auto axis = static_cast<std::size_t>(a);
-        const double w = axis_dot(m, axis, m.minv_column[a]);
+        const double w = m.axis_mobility[a];  // g·M^-1·g, kept with its column
         if (!(w > 0)) continue;
         const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
         if (delta == 0.0) continue;
