@@ -372,6 +372,14 @@ class ConfigureContext {
   /// (docs/models/multibody.md). A slider or a loop-closing axis does not carry it (a
   /// load-time warning says so). Throws for a negative or non-finite value.
   virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
+
+  // --- warnings (SDK 0.6 addition, appended) ---
+
+  /// A load-time warning about the component's input that it tolerates (SimTwo accepts it),
+  /// located by the kernel at the component's element and listed with the scene's warnings
+  /// (the runner prints them, the viewer's log shows them). For input that would change
+  /// physics silently, throw instead.
+  virtual void warn(std::string_view message) = 0;
 };
 
 /// Base of every plugin component.
