@@ -1,5 +1,6 @@
 // s2sim-run: the headless runner. Loads a scene, holds the --set inputs, steps it for
 // --duration seconds, logs and summarises.
+#include "crash_report.hpp"
 #include "options.hpp"
 #include "outputs.hpp"
 #include "simulation_options.hpp"
@@ -90,7 +91,7 @@ int run(const s2sim::runner::Options& o) {
     std::ofstream out(o.summary_file, std::ios::binary);
     out << runner::summary_json(*sim, timing, o.summary_timing);
     out.close();  // flushes: a write error (full disk) only shows after this
-    if (!out) throw Error(ErrorKind::usage, "--summary: cannot write '" + o.summary_file + "'");
+    if (!out) throw runner::OutputError("--summary: cannot write '" + o.summary_file + "'");
   }
   return 0;
 }
@@ -98,6 +99,7 @@ int run(const s2sim::runner::Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  s2sim::runner::install_crash_report();
   try {
     const auto options = s2sim::runner::parse_options(argc, argv);
     if (options.help) {
@@ -113,6 +115,9 @@ int main(int argc, char** argv) {
   } catch (const s2sim::Error& e) {
     std::fprintf(stderr, "s2sim-run: error: %s\n", e.what());
     return s2sim::exit_code(e.kind());
+  } catch (const s2sim::runner::OutputError& e) {
+    std::fprintf(stderr, "s2sim-run: error: %s\n", e.what());
+    return s2sim::runner::kExitOutputFailed;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "s2sim-run: internal error: %s\n", e.what());
     return 1;

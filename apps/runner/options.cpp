@@ -58,7 +58,8 @@ Options:
   --version, --help
 
 Exit codes: 0 ok, 1 internal error, 2 bad scene, 3 plugin error, 4 bad usage
-(unknown signal or input, bad option), 5 the simulation failed (non-finite state).
+(unknown signal or input, bad option), 5 the simulation failed (non-finite state),
+6 --log or --summary could not be written, 7 a fatal signal (the component is named).
 )";
 }
 

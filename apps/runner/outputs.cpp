@@ -93,8 +93,7 @@ void CsvLog::close() {
   const bool failed = std::ferror(out_) != 0;
   const bool close_failed = std::fclose(out_) != 0;  // the final flush happens here
   out_ = nullptr;
-  if (failed || close_failed)
-    throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
+  if (failed || close_failed) throw OutputError("--log: writing '" + path_ + "' failed");
 }
 
 void CsvLog::write_row(const Simulation& sim) {
@@ -112,7 +111,9 @@ void CsvLog::write_row(const Simulation& sim) {
                     " s; --log keeps the rows before it");
   }
   apps::write_csv_row(out_, sim.time_s(), row_);
-  if (std::ferror(out_)) throw Error(ErrorKind::runtime, "--log: writing '" + path_ + "' failed");
+  // One write per row: the rows stay whole in the file whatever happens to the process next.
+  if (std::fflush(out_) != 0 || std::ferror(out_))
+    throw OutputError("--log: writing '" + path_ + "' failed");
 }
 
 std::string summary_text(const Simulation& sim, const RunTiming& t) {

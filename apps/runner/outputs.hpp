@@ -5,10 +5,21 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace s2sim::runner {
+
+/// Exit codes of the runner beyond s2sim::exit_code()'s (docs/reliability.md).
+inline constexpr int kExitOutputFailed = 6;     ///< --log or --summary could not be written
+inline constexpr int kExitComponentCrashed = 7;  ///< a fatal signal (crash_report.hpp)
+
+/// An output file could not be written (a full disk, a lost mount): not the simulation's
+/// failure, so not exit 5.
+struct OutputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// A CSV file with a header `name [unit]` and one row per logged tick, in the format of
 /// apps/common/signal_csv.hpp. Rows go through a reused buffer: no allocation per row. The first
@@ -20,9 +31,10 @@ class CsvLog {
   ~CsvLog();
   CsvLog(const CsvLog&) = delete;
   CsvLog& operator=(const CsvLog&) = delete;
+  /// Writes one row and hands it to the system: a crash later (crash_report.hpp) leaves every
+  /// complete row in the file. Throws OutputError when it cannot be written.
   void write_row(const Simulation& sim);
-  /// Flushes and closes the file. Throws s2sim::Error (runtime) when the last rows could not
-  /// be written (a full disk shows up here on short runs, not in write_row).
+  /// Closes the file. Throws OutputError when the last rows could not be written.
   void close();
 
  private:

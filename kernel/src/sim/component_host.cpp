@@ -1,6 +1,7 @@
 // Component instances: creation from the plugin registry, and the ConfigureContext through
 // which each declares its signals, inputs, state and schedule.
 #include "common/assert.hpp"
+#include "sim/running_component.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -303,6 +304,7 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
         1, static_cast<std::int64_t>(std::llround(scene.settings.control_period_s / tick_s)));
   }
   slot.library = info.library.string();
+  slot.crash_label = "component '" + slot.prefix + "' (kind '" + kind + "') from " + slot.library;
   slot.component = registry.create(kind);
   components.push_back(std::move(slot));
 }
@@ -337,6 +339,7 @@ void Simulation::Impl::configure_components() {
   for (std::size_t c = 0; c < components.size(); ++c) {
     ConfigureContextImpl ctx(*this, static_cast<int>(c));
     try {
+      const sim::RunningComponent running(components[c].crash_label.c_str());
       components[c].component->configure(ctx);
     } catch (...) {
       sim::rethrow_from_component(components[c], "configure", ErrorKind::plugin);

@@ -1,3 +1,4 @@
+#include "sim/running_component.hpp"
 #include "sim/simulation_impl.hpp"
 
 namespace s2sim {
@@ -14,6 +15,10 @@ int exit_code(ErrorKind kind) {
       return 5;
   }
   return 1;
+}
+
+const char* running_component() noexcept {
+  return sim::g_running_component.load(std::memory_order_relaxed);
 }
 
 Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

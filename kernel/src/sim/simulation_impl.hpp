@@ -76,6 +76,9 @@ struct ComponentSlot {
   int sensor = -1;      // index into scene.sensors when made for a scene sensor element
   std::string library;  // the plugin file it came from, for messages
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
+  /// "component '<prefix>' (kind '<kind>') from <library>", made once at load: what a
+  /// fatal-signal handler prints (running_component.hpp).
+  std::string crash_label;
 };
 
 /// Inside a catch block around a call into a component (`call`: "configure", "update"...):

@@ -10,6 +10,7 @@
 // A motor's torque is computed in `actuate` (the dc_motor component), contact forces in
 // `collide` (contact::ContactWorld), sensor readings in `sense` of the next tick, from the
 // state this tick ends with.
+#include "sim/running_component.hpp"
 #include "sim/step.hpp"
 
 #include "sim/simulation_impl.hpp"
@@ -116,6 +117,7 @@ void Simulation::Impl::step_once() {
       if (since < 0 || since % slot.period_ticks != 0) continue;
       StepContext ctx(&world, c, slot.period_ticks);
       try {  // free unless something is thrown
+        const sim::RunningComponent running(slot.crash_label.c_str());
         slot.component->update(ctx);
       } catch (...) {
         sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
@@ -194,6 +196,7 @@ void Simulation::Impl::reset() {
   for (std::size_t c = 0; c < components.size(); ++c) {
     StepContext ctx(&world, static_cast<std::int32_t>(c), components[c].period_ticks);
     try {
+      const sim::RunningComponent running(components[c].crash_label.c_str());
       components[c].component->initialize(ctx);
     } catch (...) {
       sim::rethrow_from_component(components[c], "initialize", ErrorKind::runtime);

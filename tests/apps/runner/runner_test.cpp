@@ -2,6 +2,8 @@
 // scenes written to a temp folder; the tests check exit codes, messages, the CSV log and the
 // JSON summary. Nothing here depends on ground contact (bodies still fall through the floor).
 
+#include "common/edited_copy.hpp"
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -449,12 +451,33 @@ TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
   SKIP_WITHOUT_SHARED_SCENES();
   if (!fs::exists("/dev/full")) GTEST_SKIP() << "no /dev/full to simulate a full disk";
   // A short log fits in the stdio buffer: only the final flush fails.
+  // Exit 6 for both: neither is a failed simulation (5) nor bad usage (4).
   const Result log = run({motor(), "--quiet", "--duration", "0.001", "--log", "/dev/full"});
-  EXPECT_EQ(log.status, 5);
+  EXPECT_EQ(log.status, 6);
   EXPECT_THAT(log.err, HasSubstr("/dev/full"));
   const Result summary = run({motor(), "--quiet", "--duration", "0.001", "--summary", "/dev/full"});
-  EXPECT_EQ(summary.status, 4);
+  EXPECT_EQ(summary.status, 6);
   EXPECT_THAT(summary.err, HasSubstr("/dev/full"));
+}
+
+// Issue 16: a crash inside a plugin's code is named (component, kind, plugin), exits 7, and the
+// log keeps every complete row. The hostile controller raises SIGSEGV in its update at 40 ms
+// (controllers run every 40 ms, from tick 0; it acts from tick 3), after the row of t = 40 ms.
+TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) {
+  const fs::path scene =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                        "scene.xml", "MODE", "update_segv");
+  const Result r = run({scene.string(), "--quiet", "--duration", "1", "--log", "crash.csv",
+                        "--plugin-path", std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+  EXPECT_EQ(r.status, 7) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("fatal signal SIGSEGV"));
+  EXPECT_THAT(r.err, HasSubstr("in component 'controllers/villain' (kind 'test_hostile') from "));
+  EXPECT_THAT(r.err, HasSubstr("libs2sim_test_hostile_plugin.so"));
+  const Csv csv = read_csv(dir_ / "crash.csv");
+  ASSERT_EQ(csv.rows.size(), 41u);  // t = 0, 1, ..., 40 ms
+  for (const auto& row : csv.rows)
+    EXPECT_EQ(row.size(), csv.header.size());
+  EXPECT_EQ(csv.rows.back().front(), "0.040000");
 }
 
 }  // namespace

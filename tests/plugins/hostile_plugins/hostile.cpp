@@ -1,9 +1,10 @@
 // A plugin that misbehaves on purpose (issue 16, ../shared/repro R07, R08): it throws from
 // configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
-// a std::exception or something that is not an exception at all. Built like a third party's.
+// a std::exception or something that is not an exception at all, or crashes (SIGSEGV). Built like a third party's.
 #include <s2sim/sdk.hpp>
 
 #include <cmath>
+#include <csignal>
 #include <stdexcept>
 #include <string>
 
@@ -27,6 +28,7 @@ class Hostile : public Component {
     if (mode_ == "update_std") throw std::runtime_error("hostile: a std::runtime_error in update");
     if (mode_ == "update_int") throw 7;
     if (mode_ == "nan_force") ctx.apply_torque(body_, Vec3{0, 0, std::nan("")});
+    if (mode_ == "update_segv") std::raise(SIGSEGV);  // a crash, without undefined behaviour
   }
 
  private:

@@ -168,4 +168,10 @@ class Simulation {
 /// Process exit code for an error kind (0 ok, 2 scene, 3 plugin, 4 usage, 5 runtime).
 int exit_code(ErrorKind kind);
 
+/// The component whose code runs now (its configure, initialize or update), as
+/// "component '<path>' (kind '<kind>') from <plugin file>", or nullptr when the kernel's own
+/// code runs. Async-signal-safe (one atomic load): for a fatal-signal handler to say which
+/// plugin crashed (s2sim-run does, docs/reliability.md).
+const char* running_component() noexcept;
+
 }  // namespace s2sim

@@ -1,0 +1,13 @@
+#pragma once
+/// \file
+/// What s2sim-run does on a fatal signal (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT): it says
+/// which component's code was running (s2sim::running_component(): the plugin and kind) or
+/// that the kernel's was, and exits with kExitComponentCrashed (7). The CSV log already holds
+/// every complete row (CsvLog writes each row through), so nothing else needs flushing.
+
+namespace s2sim::runner {
+
+/// Installs the handlers; call once at start.
+void install_crash_report();
+
+}  // namespace s2sim::runner
