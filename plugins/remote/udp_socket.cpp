@@ -38,6 +38,10 @@ void UdpSocket::bind(const std::string& address, int port, bool allow_non_local,
     throw Error(ErrorKind::plugin, where,
                 std::string("cannot open a UDP socket: ") + std::strerror(errno));
   ::fcntl(fd_, F_SETFL, ::fcntl(fd_, F_GETFL) | O_NONBLOCK);
+  // Datagrams wait here between two control periods: room for a burst (best effort, the
+  // system caps it at net.core.rmem_max; what overflows is dropped and counted by the system).
+  const int receive_buffer_bytes = 4 << 20;
+  ::setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &receive_buffer_bytes, sizeof receive_buffer_bytes);
   if (::bind(fd_, reinterpret_cast<const sockaddr*>(&local), sizeof local) != 0)
     throw Error(
         ErrorKind::plugin, where,
