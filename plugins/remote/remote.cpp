@@ -10,6 +10,7 @@
 // published signals (kernel memory).
 #define S2SIM_REMOTE_NO_CLIENT
 #include "include/s2sim_remote.h"
+#include "kinds.hpp"
 #include "served_set.hpp"
 #include "udp_socket.hpp"
 
@@ -245,6 +246,8 @@ class Remote final : public Component {
 
 }  // namespace
 
-}  // namespace s2sim::links
+s2sim_kind_entry remote_kind() {
+  return S2SIM_KIND("remote", Category::controller, Remote);
+}
 
-S2SIM_PLUGIN("links", S2SIM_KIND("remote", s2sim::Category::controller, s2sim::links::Remote));
+}  // namespace s2sim::links
