@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Balances scenes/cartpole from outside the simulation, through the remote protocol in
+"""Balances scenes/cartpole_remote from outside the simulation, through the remote protocol in
 lock-step (docs/remote.md). Start the simulation, then this client:
 
-    ./build/bin/s2sim-run scenes/cartpole --duration 10 --define remote_port=9808 --log sim.csv &
+    ./build/bin/s2sim-run scenes/cartpole_remote --duration 10 --define remote_port=9808 --log sim.csv &
     PYTHONPATH=build/python /usr/bin/python3 python/examples/cartpole_remote.py \
         --port 9808 --duration 10 --log client.csv
 

@@ -93,8 +93,8 @@ def test_options_seed_physics_step_defines():
     assert lifted.signal("robots/nxt/z") > 0.9
     fine = s2sim.Simulation(NXT, physics_step=5e-4)
     assert fine.tick_s == pytest.approx(5e-4)
-    a, b = s2sim.Simulation(CARTPOLE, seed=1, defines={"remote_wait_s": 0.01}), None
-    del a, b
+    tilted = s2sim.Simulation(CARTPOLE, defines={"tilt_deg": 10.0})
+    assert tilted.signal("robots/cartpole/solids/pole/pitch") == pytest.approx(0.17453292519943295)
 
 
 def test_errors_are_python_exceptions_with_the_location():
@@ -118,7 +118,7 @@ def test_errors_are_python_exceptions_with_the_location():
     with pytest.raises(s2sim.UsageError):
         sim.step(-1)
     with pytest.raises(s2sim.UsageError):  # a layout of another scene
-        sim.restore(s2sim.Simulation(CARTPOLE, defines={"remote_wait_s": 0.01}).save())
+        sim.restore(s2sim.Simulation(CARTPOLE).save())
 
 
 def test_a_located_scene_error_names_file_element_attribute(tmp_path):

@@ -19,7 +19,7 @@ from s2sim import remote
 
 SOURCE = os.environ.get("S2SIM_SOURCE_DIR", os.getcwd())
 BIN = os.environ.get("S2SIM_BIN_DIR", os.path.join(SOURCE, "build", "bin"))
-CARTPOLE = os.path.join(SOURCE, "scenes", "cartpole")
+CARTPOLE = os.path.join(SOURCE, "scenes", "cartpole_remote")
 REALTIME = os.path.join(os.path.dirname(__file__), "fixtures", "realtime")
 FORCE = "robots/cartpole/axes/slide/ref_torque"
 LINK = "controllers/link/"
