@@ -57,6 +57,8 @@ class Serial final : public Component {
     if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0)
       throw Error(ErrorKind::plugin, p.where("kind"),
                   std::string("cannot open a pseudo-terminal: ") + std::strerror(errno));
+    // Never block the simulation on a line nobody reads (posix_openpt may ignore O_NONBLOCK).
+    ::fcntl(master_, F_SETFL, ::fcntl(master_, F_GETFL) | O_NONBLOCK);
     path_ = ::ptsname(master_);
     // Our own end of the device stays open: the master then never reads a hang-up, and the
     // line is raw (no echo of our writes, no line editing) whoever opens it later.

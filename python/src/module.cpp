@@ -13,6 +13,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <memory>
 #include <optional>
@@ -26,6 +27,32 @@ namespace py = pybind11;
 namespace s2sim::python {
 
 namespace {
+
+/// Plugin folders found next to the package (set by s2sim/__init__.py): build/plugins in the
+/// build tree, <prefix>/lib/s2sim/plugins when installed. The kernel's own default looks next
+/// to the executable, which for Python is the interpreter's folder.
+std::vector<std::filesystem::path>& package_plugin_dirs() {
+  static std::vector<std::filesystem::path> dirs;
+  return dirs;
+}
+
+/// The search path of a Simulation given no plugin_path: S2SIM_PLUGIN_PATH's folders, then the
+/// package's; empty (the kernel's default) when there are none.
+std::vector<std::filesystem::path> default_plugin_path() {
+  std::vector<std::filesystem::path> out;
+  if (const char* env = std::getenv("S2SIM_PLUGIN_PATH")) {
+    const std::string value = env;
+    for (std::size_t start = 0; start <= value.size();) {
+      std::size_t end = value.find(':', start);
+      if (end == std::string::npos) end = value.size();
+      if (end > start) out.emplace_back(value.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  for (const auto& dir : package_plugin_dirs())
+    out.push_back(dir);
+  return out;
+}
 
 /// A snapshot as Python sees it: opaque, restorable into the simulation it came from.
 struct PySnapshot {
@@ -45,7 +72,7 @@ class PySimulation {
     options.seed = seed;
     options.physics_step_s = physics_step_s;
     options.substeps = substeps;
-    options.plugin_path = plugin_path;
+    options.plugin_path = plugin_path.empty() ? default_plugin_path() : plugin_path;
     for (const auto& [name, value] : defines)
       options.constants.emplace_back(name, value);
     {
@@ -164,6 +191,10 @@ PYBIND11_MODULE(_s2sim, m) {
   m.doc() = "S2Sim's simulation façade (docs/python.md).";
   m.attr("sdk_version") = kSdkVersionString;
   register_errors(m);
+  m.def(
+      "_set_package_plugin_dirs",
+      [](const std::vector<std::filesystem::path>& dirs) { package_plugin_dirs() = dirs; },
+      "Called by s2sim/__init__.py with the plugin folders next to the package.");
 
   py::class_<PySnapshot>(m, "Snapshot",
                          "The whole state of a simulation (Simulation.save()); restore it into "
