@@ -9,7 +9,8 @@
 2. Remote lock-step round trip: scenes/cartpole_remote stepped in a thread of this process,
    the pure-Python client in the main thread, one INPUTS request and its SIGNALS reply per
    20 ms control period, against stepping the same periods with no link. Loopback UDP.
-Best of 5 repeats each; prints JSON.
+   OBSERVE requests time the protocol's round trip alone (answered without stepping).
+Best of 9 repeats each (the least disturbed by the rest of the machine); prints JSON.
 """
 
 import argparse
@@ -27,7 +28,7 @@ CARTPOLE = os.path.join(ROOT, "scenes", "cartpole")
 CARTPOLE_REMOTE = os.path.join(ROOT, "scenes", "cartpole_remote")
 
 
-def best(fn, repeats=5):
+def best(fn, repeats=9):
     return min(fn() for _ in range(repeats))
 
 
@@ -56,7 +57,14 @@ def bindings(ticks):
             sim.signals("robots/cartpole/axes/*/pos")
         return time.perf_counter() - t
 
+    def empty_calls():  # step(0): the call alone, GIL release included
+        t = time.perf_counter()
+        for _ in range(ticks):
+            sim.step(0)
+        return time.perf_counter() - t
+
     out = {"ticks": ticks,
+           "py_us_per_step0_call": 1e6 * best(empty_calls) / ticks,
            "py_us_per_step1_call": 1e6 * best(one_by_one) / ticks,
            "py_us_per_tick_in_one_call": 1e6 * best(at_once) / ticks,
            "py_us_per_set_step1_signals": 1e6 * best(with_read) / ticks}
@@ -98,11 +106,25 @@ def remote_round_trip(periods):
             plain.signals("robots/cartpole/axes/slide/*")
         return (time.perf_counter() - t) / periods
 
+    def observe_round_trips():  # the protocol alone: OBSERVE is answered without stepping
+        sim.reset()
+        runner = threading.Thread(target=sim.step, args=(period_ticks,))
+        runner.start()
+        with remote.Client(port=port) as link:
+            link.hello()
+            t = time.perf_counter()
+            for _ in range(periods):
+                link.observe()
+            elapsed = time.perf_counter() - t
+            link.send([0.0])
+        runner.join()
+        return elapsed / periods
+
     with_link, without = best(linked), best(unlinked)
     return {"periods": periods, "period_ticks": period_ticks,
+            "us_observe_round_trip": 1e6 * best(observe_round_trips),
             "us_per_period_lockstep": 1e6 * with_link,
-            "us_per_period_bindings_no_link": 1e6 * without,
-            "us_round_trip_overhead": 1e6 * (with_link - without)}
+            "us_per_period_bindings_no_link": 1e6 * without}
 
 
 def main():
