@@ -217,3 +217,29 @@ int main(int argc, char** argv) {
     assert out.returncode == 0, out.stdout + out.stderr
     n, t, x = out.stdout.split()
     assert float(t) == pytest.approx(0.06) and float(x) > 0
+
+
+def test_robot_level_link_serves_the_whole_robot_by_default(tmp_path):
+    """Placed in a robot file, the link serves robots/<robot>/*: the kernel's signals and
+    inputs, and the drive train's (configured before the controller plugins, SDK 0.6), but not
+    its own counters."""
+    robot = open(os.path.join(SOURCE, "scenes", "cartpole", "cartpole.xml")).read()
+    robot = robot.replace("</robot>", "  <plugin kind='remote' id='link' port='0' announce='0'/>\n</robot>")
+    (tmp_path / "cartpole.xml").write_text(robot)
+    (tmp_path / "scene.xml").write_text(
+        "<scene><s2sim><control period_ms='20'/></s2sim><robot><ID name='cartpole'/>"
+        "<body file='cartpole.xml'/></robot></scene>")
+    sim = s2sim.Simulation(str(tmp_path))
+    prefix = "robots/cartpole/controllers/link/"
+    with remote.Client(port=int(sim.signal(prefix + "port")), timeout=2.0) as link:
+        link.socket.sendto(remote.pack(remote.HELLO, 1), link.address)
+        sim.step(20)
+        _, payload = link._wait(remote.DESCRIBE, 1, 2.0)
+    info = remote.Description(payload.decode())
+    robot_inputs = [n for n in sim.list_inputs() if n.startswith("robots/cartpole/")]
+    assert info.inputs == robot_inputs
+    assert "robots/cartpole/axes/slide/ref_voltage" in info.inputs  # the drive train's
+    assert "robots/cartpole/axes/slide/current" in info.signals
+    assert "robots/cartpole/solids/pole/pitch" in info.signals
+    assert not any(s.startswith(prefix) for s in info.signals)
+    assert all(s.startswith("robots/cartpole/") for s in info.signals)
