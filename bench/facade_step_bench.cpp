@@ -33,9 +33,9 @@ int main(int argc, char** argv) {
       best_one = std::min(best_one, std::chrono::duration<double>(t1 - t0).count());
       best_many = std::min(best_many, std::chrono::duration<double>(t3 - t2).count());
     }
-    std::printf("{\"ticks\": %ld, \"us_per_step1_call\": %.4f, \"us_per_tick_in_one_call\": %.4f}\n",
-                ticks, 1e6 * best_one / static_cast<double>(ticks),
-                1e6 * best_many / static_cast<double>(ticks));
+    std::printf(
+        "{\"ticks\": %ld, \"us_per_step1_call\": %.4f, \"us_per_tick_in_one_call\": %.4f}\n", ticks,
+        1e6 * best_one / static_cast<double>(ticks), 1e6 * best_many / static_cast<double>(ticks));
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
