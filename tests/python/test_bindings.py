@@ -159,5 +159,6 @@ def test_the_gil_is_released_while_stepping():
     thread.join()
     assert end - start > 0.1, "the step is too short to tell"
     inside = [t for t in stamps if start + 0.02 < t < end - 0.02]
-    # Held through the step, the GIL would let the thread run only before and after it.
-    assert len(inside) > 0.25 * (end - start - 0.04) / 0.001
+    # Held through the step, the GIL would let the thread run only before and after it: none
+    # inside. Released, it wakes about every millisecond (fewer on a loaded machine).
+    assert len(inside) >= 5, (len(inside), end - start)

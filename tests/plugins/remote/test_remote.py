@@ -98,8 +98,12 @@ def run_cartpole_once(tmp_path, tag):
         [os.path.join(BIN, "s2sim-run"), CARTPOLE, "--duration", "4", "--define",
          "remote_port=0", "--log", str(sim_log), "--signals", "robots/cartpole/*", "--quiet"],
         stderr=subprocess.PIPE, text=True)
-    line = runner.stderr.readline()
-    port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
+    port = None
+    for _ in range(100):  # the announce line, after any warning
+        line = runner.stderr.readline()
+        port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
+        if port or not line:
+            break
     assert port, line
     client = subprocess.run(
         [sys.executable, os.path.join(SOURCE, "python", "examples", "cartpole_remote.py"),
