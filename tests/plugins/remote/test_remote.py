@@ -247,3 +247,19 @@ def test_robot_level_link_serves_the_whole_robot_by_default(tmp_path):
     assert "robots/cartpole/solids/pole/pitch" in info.signals
     assert not any(s.startswith(prefix) for s in info.signals)
     assert all(s.startswith("robots/cartpole/") for s in info.signals)
+
+
+def test_the_python_client_is_one_standalone_file(tmp_path):
+    """remote.py alone, without the package or any third-party module, drives the link."""
+    import shutil
+
+    shutil.copy(remote.__file__, tmp_path / "remote.py")
+    sim = lockstep_sim()
+    runner = in_thread(sim.step, 2 * 20)
+    code = ("import sys, remote; c = remote.Client(port=int(sys.argv[1])); d = c.hello(); "
+            "t, y = c.step([2.0]); c.send([0.0]); print(d.mode, t, len(y))")
+    out = subprocess.run([sys.executable, "-E", "-s", "-c", code, str(int(sim.signal(LINK + "port")))],
+                         cwd=str(tmp_path), capture_output=True, text=True, timeout=30)
+    runner.join(10)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.split() == ["lockstep", "0.02", "4"]
