@@ -60,11 +60,13 @@ class Remote final : public Component {
     // period is known once the schedule is (initialize()).
     rx_.assign(S2SIM_REMOTE_MAX_DATAGRAM + 1, 0);
     signals_packet_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 * (1 + served_.signals.size()), 0);
-    build_description(1.0);  // the size check, with a period as long as any
-    if (describe_.size() > S2SIM_REMOTE_MAX_DATAGRAM || signals_packet_.size() > rx_.size())
+    build_description(-0.12345678901234567);  // the size check, with a period as long as any
+    const std::size_t largest = std::max({describe_.size(), signals_packet_.size(),
+                                          S2SIM_REMOTE_HEADER_SIZE + 8 * served_.inputs.size()});
+    if (largest > S2SIM_REMOTE_MAX_DATAGRAM)
       throw Error(ErrorKind::scene, p.where("signals"),
-                  "the served names do not fit in one datagram (" +
-                      std::to_string(describe_.size()) + " bytes > " +
+                  "the served inputs and signals do not fit in one datagram (" +
+                      std::to_string(largest) + " bytes > " +
                       std::to_string(S2SIM_REMOTE_MAX_DATAGRAM) +
                       "): narrow them with inputs='...' and signals='...' patterns");
     if (p.boolean("announce", true))

@@ -20,7 +20,7 @@ struct ServedSet {
   /// Reads the `inputs` and `signals` attributes (space-separated globs, in order, duplicates
   /// once); by default everything of the owning robot (`robots/<robot>/*`), or of the scene
   /// (`*`) for a scene-level link. Must run before the link declares its own signals, so that
-  /// they are not served. An attribute that matches nothing is a located error.
+  /// they are not served. A glob written in the scene that matches nothing is a located error.
   void configure(ConfigureContext& ctx) {
     const Params& p = ctx.params();
     const std::string fallback =
@@ -43,7 +43,7 @@ struct ServedSet {
     std::vector<NamedUnit> out;
     for (std::string g; globs >> g;) {
       const std::vector<NamedUnit> found = lookup(g);
-      if (found.empty())
+      if (found.empty() && p.has(attribute))  // the default may find nothing (no inputs)
         throw Error(ErrorKind::scene, p.where(attribute),
                     std::string("'") + g + "' matches no " +
                         (std::string(attribute) == "inputs" ? "input" : "signal") +

@@ -263,3 +263,18 @@ def test_the_python_client_is_one_standalone_file(tmp_path):
     runner.join(10)
     assert out.returncode == 0, out.stderr
     assert out.stdout.split() == ["lockstep", "0.02", "4"]
+
+
+def test_a_scene_too_large_for_one_datagram_is_refused_with_advice(tmp_path):
+    # 400 things with long names: 13 signals each, about 220 kB of DESCRIBE text.
+    things = "".join(
+        "<cuboid><ID value='a_thing_with_a_rather_long_name_%03d'/><mass value='1'/>"
+        "<size x='0.1' y='0.1' z='0.1'/><pos x='%d' y='0' z='0.05'/></cuboid>" % (i, i)
+        for i in range(400))
+    (tmp_path / "things.xml").write_text("<things>%s</things>" % things)
+    (tmp_path / "scene.xml").write_text(
+        "<scene><things file='things.xml'/><plugin kind='remote' port='0' announce='0'/></scene>")
+    with pytest.raises(s2sim.SceneError) as e:
+        s2sim.Simulation(str(tmp_path))
+    assert e.value.attribute == "signals" and "do not fit in one datagram" in e.value.message
+    assert "narrow them" in e.value.message
