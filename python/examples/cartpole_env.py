@@ -57,7 +57,7 @@ class CartPoleEnv:
         self.steps = 0
 
     def _observe(self):
-        return np.array([self.sim.signal(n) for n in OBSERVED])
+        return self.sim.signals(OBSERVED)  # one call, in OBSERVED's order
 
     def reset(self, seed=None, options=None):
         if seed is not None:

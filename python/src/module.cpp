@@ -120,7 +120,23 @@ class PySimulation {
     return matches_.emplace(pattern, std::move(found)).first->second;
   }
 
-  py::array_t<double> signals(const std::string& pattern) {
+  /// The indices of several patterns, one after another (cached under their joined text).
+  const std::vector<std::size_t>& match(const std::vector<std::string>& patterns) {
+    std::string key = "\n";  // no single pattern starts with a newline
+    for (const auto& p : patterns)
+      key += p + "\n";
+    auto it = matches_.find(key);
+    if (it != matches_.end()) return it->second;
+    std::vector<std::size_t> all;
+    for (const auto& p : patterns) {
+      const auto& found = match(p);
+      all.insert(all.end(), found.begin(), found.end());
+    }
+    return matches_.emplace(key, std::move(all)).first->second;
+  }
+
+  template <class Patterns>
+  py::array_t<double> signals(const Patterns& pattern) {
     const auto& indices = match(pattern);
     py::array_t<double> out(static_cast<py::ssize_t>(indices.size()));
     auto view = out.mutable_unchecked<1>();
@@ -246,9 +262,11 @@ PYBIND11_MODULE(_s2sim, m) {
       .def(
           "signal", [](PySimulation& s, const std::string& name) { return s.sim().signal(name); },
           py::arg("name"), "The current value of a signal by name.")
-      .def("signals", &PySimulation::signals, py::arg("pattern"),
+      .def("signals", &PySimulation::signals<std::string>, py::arg("pattern"),
            "The values of the signals matching a glob (* any run, ? one character), in "
            "list_signals() order, as a NumPy array.")
+      .def("signals", &PySimulation::signals<std::vector<std::string>>, py::arg("patterns"),
+           "The values for a list of names or globs, in the list's order, as one NumPy array.")
       .def("signal_names", &PySimulation::signal_names, py::arg("pattern") = "*",
            "The names signals(pattern) returns values of, in order.")
       .def(

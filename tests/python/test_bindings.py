@@ -46,6 +46,9 @@ def test_inputs_drive_the_robot_and_signals_read_it():
         "robots/nxt/axes/right/speed", "robots/nxt/axes/left/speed"] or len(values) == 2
     assert values.shape == (len(sim.signal_names("robots/nxt/axes/*/speed")),)
     assert sim.unit("robots/nxt/x") == "m"
+    listed = sim.signals(["robots/nxt/y", "robots/nxt/axes/*/speed", "time"])  # in list order
+    assert listed[0] == sim.signal("robots/nxt/y") and listed[-1] == sim.time
+    assert list(listed[1:-1]) == list(values)
 
 
 def test_body_poses():
@@ -113,6 +116,8 @@ def test_errors_are_python_exceptions_with_the_location():
         sim.set_input(RIGHT, float("nan"))
     with pytest.raises(s2sim.UsageError):
         sim.signals("nothing/matches/*")
+    with pytest.raises(s2sim.UsageError):
+        sim.signals(["time", "robots/nxt/nope"])
     with pytest.raises(s2sim.UsageError):
         sim.body_pose("robots/nobody")
     with pytest.raises(s2sim.UsageError):
