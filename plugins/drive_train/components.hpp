@@ -21,6 +21,17 @@ inline std::string keyword(const Params& p, std::string_view path, std::string_v
   return s;
 }
 
+/// Whether the kernel says the scene follows SimTwo's control semantics (the `semantics`
+/// attribute it sets on every drive-train element, docs/format.md §6): SimTwo's PID law and
+/// current slew limit become the defaults.
+inline bool simtwo_semantics(const Params& p) {
+  const std::string s = keyword(p, "semantics", "s2sim");
+  if (s != "simtwo" && s != "s2sim")
+    throw Error(ErrorKind::scene, p.where("semantics"),
+                "must be 'simtwo' or 's2sim', got '" + s + "'");
+  return s == "simtwo";
+}
+
 /// A scene error located at the attribute `path` of the component's element.
 inline Error bad_value(const Params& p, std::string_view path, const std::string& message) {
   return Error(ErrorKind::scene, p.where(path), message);
@@ -38,6 +49,7 @@ class DcMotor final : public Component {
   bool active_ = true, simple_ = false, simtwo_back_emf_ = false;
   double R_ = 1, L_ = 0, K_ = 0, vmax_ = 24, imax_ = 4, N_ = 1;
   double bv_ = 0, fc_ = 0, spring_k_ = 0, zero_pos_ = 0;
+  double slew_A_per_tick_ = 0;  ///< |Δi| per physics step; 0 = none
   InputHandle ref_voltage_;
   SignalHandle voltage_, current_, back_emf_, motor_torque_, power_, energy_sig_;
   StateHandle current_state_, energy_;

@@ -28,6 +28,11 @@ void DcMotor::configure(ConfigureContext& ctx) {
     throw bad_value(p, "motor.backemf",
                     "must be 'physical' or 'simtwo', got '" + p.text("motor.backemf") + "'");
   simtwo_back_emf_ = back_emf == "simtwo";
+  // SimTwo limits the current's change per physics step whatever the step (quirk 12): under
+  // SimTwo semantics by default, anywhere with `<motor slew>`.
+  slew_A_per_tick_ = p.number("motor.slew",
+                              simtwo_semantics(p) ? d::kMotorSlewSimTwo : d::kMotorSlewS2Sim,
+                              Range::non_negative());
   if (simple_ && active_) R_ = p.number("motor.ri", Range::positive());  // i = V/R
   bv_ = p.number("friction.bv", d::kFrictionBv, Range::non_negative());
   fc_ = p.number("friction.fc", d::kFrictionFc, Range::non_negative());
@@ -82,6 +87,15 @@ void DcMotor::update(StepContext& ctx) {
     e = de_dw * w;
     step = advance_current(i, v, e, R_, L_, imax_, simple_, dt);
   }
+  // The slew limit is a box around the last step's current: it bounds the drive as the
+  // current limit does, so the implicit solve keeps it.
+  double i_min = -imax_, i_max = imax_;
+  if (slew_A_per_tick_ > 0) {
+    i_min = std::max(i_min, i - slew_A_per_tick_);
+    i_max = std::min(i_max, i + slew_A_per_tick_);
+    step.end = std::clamp(step.end, i_min, i_max);
+    step.mean = std::clamp(step.mean, i_min, i_max);
+  }
   i = step.end;
   const double motor_torque = N_ * K_ * step.mean;
   const double power = v * step.mean;
@@ -92,9 +106,8 @@ void DcMotor::update(StepContext& ctx) {
   // without ringing on any inertia, docs/models/dc-motor.md). The spring stays an explicit
   // force: the leapfrog keeps its energy exactly, an implicit spring would bleed it.
   if (active_) {
-    const double torque_limit = N_ * K_ * imax_;
     ctx.apply_axis_drive(axis_, N_ * K_ * step.unlimited_mean, -N_ * K_ * step.dmean_de * de_dw,
-                         -torque_limit, torque_limit);
+                         N_ * K_ * i_min, N_ * K_ * i_max);
   }
   if (bv_ > 0) ctx.apply_axis_drive(axis_, -bv_ * w, bv_);
   if (spring_k_ > 0) ctx.apply_axis_force(axis_, -spring_k_ * (q - zero_pos_));

@@ -17,6 +17,8 @@ inline constexpr double kMotorImax = 4;     ///< A
 inline constexpr bool kMotorActive = true;
 inline constexpr bool kMotorSimple = false;
 inline constexpr const char* kMotorBackEmf = "physical";  ///< S2Sim: or `simtwo`
+/// A per physics step (S2Sim's `slew`; 0 = none): SimTwo's limit under SimTwo semantics.
+inline constexpr double kMotorSlewSimTwo = 0.5, kMotorSlewS2Sim = 0;
 // <gear>
 inline constexpr double kGearRatio = 10;
 inline constexpr double kGearKe = 0.05, kGearBe = 0.01, kGearKe2 = 0, kGearKv2 = 0;  ///< unused
@@ -43,6 +45,8 @@ inline constexpr double kControllerKi = 0, kControllerKd = 0;
 /// a scene means, so S2Sim uses 10 ms for joints as for wheels.
 inline constexpr double kControllerPeriodMs = 10;
 inline constexpr bool kControllerActive = false;
-inline constexpr const char* kControllerLaw = "textbook";  ///< S2Sim: or `simtwo`
+/// S2Sim's `law`: `textbook` under S2Sim semantics, `simtwo` under SimTwo's.
+inline constexpr const char* kControllerLaw = "textbook";
+inline constexpr const char* kControllerLawSimTwo = "simtwo";
 
 }  // namespace s2sim::drive_train::defaults

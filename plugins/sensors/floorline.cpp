@@ -11,21 +11,22 @@ namespace s2sim::sensors {
 void FloorLine::configure(ConfigureContext& ctx) {
   s_.read(ctx);
   s_.schedule(ctx);
-  const Params& p = ctx.params();
   side_ = std::max(1, static_cast<int>(std::lround(std::sqrt(s_.spec.beam.rays))));
   pitch_ = s_.spec.beam.final_width_m / 2;
   const std::vector<FloorPolygon> polys = ctx.floor_polygons();
   std::set<std::string> known;
   for (const auto& poly : polys)
     known.insert(poly.tag);
+  // SimTwo accepts a tag no polygon carries (one shipped project has one): the sensor then
+  // never sees that tag. A warning, not an error, so such a scene loads as in SimTwo.
   for (const auto& tag : s_.spec.tags) {
     if (known.count(tag)) continue;
     std::string have;
     for (const auto& k : known)
       have += (have.empty() ? "" : ", ") + ("'" + k + "'");
-    fail(p, "tag", "value",
-         "no track polygon has the tag '" + tag + "' (" +
-             (have.empty() ? std::string("the scene has no track") : "tags: " + have) + ")");
+    ctx.warn("no track polygon has the tag '" + tag + "' (" +
+             (have.empty() ? std::string("the scene has no track") : "tags: " + have) +
+             "): it reads 0 for that tag");
   }
   poly_start_.push_back(0);
   for (const auto& poly : polys) {

@@ -114,6 +114,9 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
     }
   };
   bool any = false;
+  // A scene with an <s2sim> element is written for S2Sim: its gains are tuned for S2Sim's
+  // control law unless it says otherwise.
+  s.control_semantics = ControlSemantics::s2sim;
   for (const Element& c : el.children) {
     if (c.name == "physics") {
       positive(c, "step_ms", s.physics_step_s, 1e-3);
@@ -132,6 +135,14 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
       any = true;
     } else if (c.name == "control") {
       positive(c, "period_ms", s.control_period_s, 1e-3);
+      if (r.has(c, "semantics")) {
+        const std::string semantics = r.text(c, "semantics", "");
+        if (semantics == "simtwo") {
+          s.control_semantics = ControlSemantics::simtwo;
+        } else if (semantics != "s2sim") {
+          r.fail(c, "semantics", "must be 'simtwo' or 's2sim', got '" + semantics + "'");
+        }
+      }
       any = true;
     } else if (c.name == "friction") {
       positive(c, "default", s.default_friction, 1);

@@ -215,6 +215,10 @@ class ConfigureContextImpl final : public ConfigureContext {
     return sim_.scene.bodies[static_cast<std::size_t>(b.index - 1)].id;
   }
 
+  void warn(std::string_view message) override {
+    sim_.warnings.push_back(slot().where.str() + ": " + slot().label() + ": " +
+                            std::string(message));
+  }
   void add_axis_inertia(AxisHandle a, double inertia) override {
     if (a.index < 0 || a.index >= static_cast<std::int32_t>(sim_.axis_inertia.size()))
       throw fail("add_axis_inertia: invalid axis handle");

@@ -34,7 +34,10 @@ scene::ParamSource drive_train_params(const scene::Scene& scene, const DriveAxis
                   {"linear", flag(axis.linear)},
                   {"wheel", flag(jt.from_wheels)},
                   {"wrap", flag(wrap)},
-                  {"control_period", num(scene.settings.control_period_s * 1000.0)}};
+                  {"control_period", num(scene.settings.control_period_s * 1000.0)},
+                  {"semantics", scene.settings.control_semantics == scene::ControlSemantics::simtwo
+                                    ? "simtwo"
+                                    : "s2sim"}};
   e.attribute_paths.clear();
   return p;
 }

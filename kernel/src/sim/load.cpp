@@ -52,7 +52,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
 
   // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
   // drive train of every axis (sim/drive_train_components.hpp), then the <plugin> controllers:
-  // configured last, they can address every input and signal of the scene (SDK 0.6,
+  // configured last, they can address every input and signal of the scene (SDK 0.7,
   // ConfigureContext::signal_names; a remote link serves a whole robot). Order within a stage
   // is unchanged for the others; controllers keep their scene order among themselves.
   const bool needs_plugins =

@@ -148,7 +148,7 @@ struct NamedUnit {
 
 /// Reads any signal of the simulation (a body's pose field, an axis position, an input, a
 /// component's published value...) from `update()`: the kernel's reader and the signal's
-/// index, resolved once by `ConfigureContext::signal_reader` (SDK 0.6). Read it with
+/// index, resolved once by `ConfigureContext::signal_reader` (SDK 0.7). Read it with
 /// `StepContext::signal(reader)`.
 struct SignalReader {
   double (*read)(const void* kernel, std::int32_t index) = nullptr;
@@ -289,7 +289,7 @@ class StepContext {
   /// `ConfigureContext::published_signal`): how a controller reads a sensor. Sensors run
   /// first in a tick, so a controller sees the readings of the same tick.
   double signal(SignalHandle s) const { return w_->signals[s.index]; }
-  /// The current value of any signal (SDK 0.6): kernel signals such as a body's `x` read the
+  /// The current value of any signal (SDK 0.7): kernel signals such as a body's `x` read the
   /// state at the start of this tick, published and input values as they stand now.
   double signal(const SignalReader& r) const { return r.read(r.kernel, r.index); }
   /// The component's state block.
@@ -392,7 +392,15 @@ class ConfigureContext {
   /// load-time warning says so). Throws for a negative or non-finite value.
   virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
 
-  // --- every signal and input by name (SDK 0.6 additions, appended) ---
+  // --- warnings (SDK 0.6 addition, appended) ---
+
+  /// A load-time warning about the component's input that it tolerates (SimTwo accepts it),
+  /// located by the kernel at the component's element and listed with the scene's warnings
+  /// (the runner prints them, the viewer's log shows them). For input that would change
+  /// physics silently, throw instead.
+  virtual void warn(std::string_view message) = 0;
+
+  // --- every signal and input by name (SDK 0.7 additions, appended) ---
   // For links to programs outside the simulation (the `remote` and `serial` controllers),
   // which serve a robot's or the scene's signals and inputs as a whole. A `<plugin>` of
   // category controller is configured after every other component (sensors, other plugins,

@@ -207,6 +207,21 @@ std::filesystem::path temp_scene(const std::string& name, const std::string& rob
 const char* kTwoSolids =
     "<solids><cuboid><ID value='A'/></cuboid><cuboid><ID value='B'/></cuboid></solids>";
 
+TEST(SceneErrors, ControlSemanticsIsSimTwoOrS2Sim) {
+  const auto semantics = [](const std::string& name, const std::string& value) {
+    return temp_scene(name, kTwoSolids,
+                      "<s2sim><control semantics='" + value + "'/></s2sim>");
+  };
+  EXPECT_EQ(load_scene(semantics("sem_simtwo", "simtwo")).settings.control_semantics,
+            ControlSemantics::simtwo);
+  EXPECT_EQ(load_scene(semantics("sem_s2sim", "s2sim")).settings.control_semantics,
+            ControlSemantics::s2sim);
+  const Error e = load_error(semantics("sem_bad", "ode"));
+  EXPECT_EQ(e.where().element, "scene/s2sim/control");
+  EXPECT_EQ(e.where().attribute, "semantics");
+  EXPECT_THAT(e.message(), HasSubstr("'ode'"));
+}
+
 TEST(SceneErrors, ZeroJointAxis) {
   const Error e = load_error(temp_scene(
       "zero_axis", std::string(kTwoSolids) +

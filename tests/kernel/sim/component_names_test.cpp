@@ -1,4 +1,4 @@
-// SDK 0.6 (kernel/src/sim/component_host.cpp, load.cpp): a controller finds every signal and
+// SDK 0.7 (kernel/src/sim/component_host.cpp, load.cpp): a controller finds every signal and
 // input by name — the kernel's, the drive train's — reads any signal in update() and sets an
 // existing input; unknown names are plugin errors with suggestions.
 #include <s2sim/kernel/simulation.hpp>

@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
 
 def test_robot_level_link_serves_the_whole_robot_by_default(tmp_path):
     """Placed in a robot file, the link serves robots/<robot>/*: the kernel's signals and
-    inputs, and the drive train's (configured before the controller plugins, SDK 0.6), but not
+    inputs, and the drive train's (configured before the controller plugins, SDK 0.7), but not
     its own counters."""
     robot = open(os.path.join(SOURCE, "scenes", "cartpole", "cartpole.xml")).read()
     robot = robot.replace("</robot>", "  <plugin kind='remote' id='link' port='0' announce='0'/>\n</robot>")

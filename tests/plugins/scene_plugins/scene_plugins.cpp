@@ -102,7 +102,7 @@ class BodyPush : public Component {
   Vec3 force_, point_;
 };
 
-// SDK 0.6: finds signals and inputs by name. Publishes how many signals match `signals`, the
+// SDK 0.7: finds signals and inputs by name. Publishes how many signals match `signals`, the
 // values of `time` and of `read` as it reads them, and sets the existing input `input` to
 // `value` (never declaring it).
 class NameReader : public Component {

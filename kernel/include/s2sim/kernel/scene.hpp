@@ -287,6 +287,12 @@ struct Robot {
 };
 
 /// Project settings (§10.1) with S2Sim's own.
+/// Whose control semantics a scene's motor controllers and motors follow (docs/format.md §6):
+/// SimTwo's PID law (integral and derivative over the physics step) and its 0.5 A-per-step
+/// current slew limit, for which SimTwo files' gains are tuned, or S2Sim's textbook discrete
+/// PID at the controller period and no slew limit.
+enum class ControlSemantics { simtwo, s2sim };
+
 struct Settings {
   double physics_step_s = 1e-3;
   int substeps = 1;                ///< physics substeps per tick
@@ -301,6 +307,9 @@ struct Settings {
   /// SimTwo's four invisible wall planes x, y = ±world_wall_distance_m (§4.3 of the spec).
   bool world_walls = true;
   double world_wall_distance_m = 12;
+  /// SimTwo's for a SimTwo file (no `<s2sim>` element), S2Sim's once the scene has an
+  /// `<s2sim>` element; `<s2sim><control semantics>` says it explicitly.
+  ControlSemantics control_semantics = ControlSemantics::simtwo;
   std::string source;  ///< which file the values came from ("defaults" when none)
 };
 
