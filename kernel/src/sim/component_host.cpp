@@ -252,6 +252,37 @@ class ConfigureContextImpl final : public ConfigureContext {
     s.phase_ticks = phase;
   }
 
+  std::vector<NamedUnit> signal_names(std::string_view pattern) const override {
+    std::vector<NamedUnit> out;
+    for (const auto& info : sim_.signal_infos)
+      if (sim::glob_match(pattern, info.name)) out.push_back({info.name, info.unit});
+    return out;
+  }
+  std::vector<NamedUnit> input_names(std::string_view pattern) const override {
+    std::vector<NamedUnit> out;
+    for (const auto& info : sim_.input_infos)
+      if (sim::glob_match(pattern, info.name)) out.push_back({info.name, info.unit});
+    return out;
+  }
+  InputHandle input(std::string_view full_name) override {
+    auto it = sim_.input_by_name.find(std::string(full_name));
+    if (it != sim_.input_by_name.end()) return InputHandle{static_cast<std::int32_t>(it->second)};
+    std::vector<std::string> names;
+    for (const auto& info : sim_.input_infos)
+      names.push_back(info.name);
+    throw fail(unknown("input", std::string(full_name), names));
+  }
+  SignalReader signal_reader(std::string_view full_name) const override {
+    auto it = sim_.signal_by_name.find(std::string(full_name));
+    if (it != sim_.signal_by_name.end())
+      return SignalReader{&Simulation::Impl::read_signal_callback, &sim_,
+                          static_cast<std::int32_t>(it->second)};
+    std::vector<std::string> names;
+    for (const auto& info : sim_.signal_infos)
+      names.push_back(info.name);
+    throw fail(unknown("signal", std::string(full_name), names));
+  }
+
  private:
   sim::ComponentSlot& slot() const { return sim_.components[index_]; }
   Error fail(const std::string& message) const {

@@ -51,7 +51,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.register_kernel_signals();
 
   // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
-  // drive train of every axis (sim/drive_train_components.hpp).
+  // drive train of every axis (sim/drive_train_components.hpp), then the <plugin> controllers:
+  // configured last, they can address every input and signal of the scene (SDK 0.7,
+  // ConfigureContext::signal_names; a remote link serves a whole robot). Order within a stage
+  // is unchanged for the others; controllers keep their scene order among themselves.
   const bool needs_plugins =
       !m.scene.sensors.empty() || !m.scene.plugins.empty() || !m.axis_views.empty();
   std::optional<plugin::PluginRegistry> registry;
@@ -68,8 +71,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
                     Category::sensor);
     m.components.back().sensor = static_cast<int>(&sensor - m.scene.sensors.data());
   }
+  auto is_controller = [&](const scene::PluginInstance& p) {
+    return registry->has(p.kind) && registry->find(p.kind).category == Category::controller;
+  };
   for (const auto& p : m.scene.plugins)
-    m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+    if (!is_controller(p))
+      m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
   std::vector<sim::DriveAxis> drive_axes;
   for (const auto& ax : m.topology.axes)
     drive_axes.push_back({ax.name,
@@ -93,6 +100,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
     m.components.back().prefix = c.prefix;
   }
+  for (const auto& p : m.scene.plugins)
+    if (is_controller(p))
+      m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
   m.configure_components();
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.topology, m.axis_inertia, m.tick_s,

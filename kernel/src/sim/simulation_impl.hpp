@@ -155,6 +155,10 @@ struct Simulation::Impl {
   std::string axis_prefix(int axis) const;
   void register_kernel_signals();
   double read_signal(std::size_t i) const;
+  /// SignalReader::read for components (SDK 0.7): `kernel` is this Impl.
+  static double read_signal_callback(const void* kernel, std::int32_t index) {
+    return static_cast<const Impl*>(kernel)->read_signal(static_cast<std::size_t>(index));
+  }
 
   // --- components (component_host.cpp) ---------------------------------------------------------
   void add_component(plugin::PluginRegistry& registry, const std::string& kind,

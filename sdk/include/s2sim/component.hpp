@@ -140,6 +140,22 @@ struct AxisDrive {
   double min_force = 0, max_force = 0;
 };
 
+/// A signal's or input's full name and unit (ConfigureContext::signal_names, input_names).
+struct NamedUnit {
+  std::string name;
+  std::string unit;
+};
+
+/// Reads any signal of the simulation (a body's pose field, an axis position, an input, a
+/// component's published value...) from `update()`: the kernel's reader and the signal's
+/// index, resolved once by `ConfigureContext::signal_reader` (SDK 0.7). Read it with
+/// `StepContext::signal(reader)`.
+struct SignalReader {
+  double (*read)(const void* kernel, std::int32_t index) = nullptr;
+  const void* kernel = nullptr;
+  std::int32_t index = -1;
+};
+
 namespace detail {
 /// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
 /// through `StepContext`. Its layout is part of the plugin ABI.
@@ -273,6 +289,9 @@ class StepContext {
   /// `ConfigureContext::published_signal`): how a controller reads a sensor. Sensors run
   /// first in a tick, so a controller sees the readings of the same tick.
   double signal(SignalHandle s) const { return w_->signals[s.index]; }
+  /// The current value of any signal (SDK 0.7): kernel signals such as a body's `x` read the
+  /// state at the start of this tick, published and input values as they stand now.
+  double signal(const SignalReader& r) const { return r.read(r.kernel, r.index); }
   /// The component's state block.
   double* state(StateHandle h) { return w_->state + h.offset; }
   /// The component's own random stream.
@@ -380,6 +399,24 @@ class ConfigureContext {
   /// (the runner prints them, the viewer's log shows them). For input that would change
   /// physics silently, throw instead.
   virtual void warn(std::string_view message) = 0;
+
+  // --- every signal and input by name (SDK 0.7 additions, appended) ---
+  // For links to programs outside the simulation (the `remote` and `serial` controllers),
+  // which serve a robot's or the scene's signals and inputs as a whole. A `<plugin>` of
+  // category controller is configured after every other component (sensors, other plugins,
+  // the drive train), so it sees all of them.
+
+  /// Every signal declared so far whose full name matches the glob `pattern` (`*` any run of
+  /// characters, `?` one), in declaration order: the kernel's (time, bodies, axes), inputs,
+  /// and the published signals of the components configured before this one.
+  virtual std::vector<NamedUnit> signal_names(std::string_view pattern) const = 0;
+  /// Every input declared so far whose full name matches the glob `pattern`.
+  virtual std::vector<NamedUnit> input_names(std::string_view pattern) const = 0;
+  /// An input that exists already, by full name, to set with `StepContext::set_input` (unlike
+  /// `declare_input_at`, it never creates one). Throws naming close names when unknown.
+  virtual InputHandle input(std::string_view full_name) = 0;
+  /// A reader of any signal by full name. Throws naming close names when unknown.
+  virtual SignalReader signal_reader(std::string_view full_name) const = 0;
 };
 
 /// Base of every plugin component.

@@ -102,6 +102,41 @@ class BodyPush : public Component {
   Vec3 force_, point_;
 };
 
+// SDK 0.7: finds signals and inputs by name. Publishes how many signals match `signals`, the
+// values of `time` and of `read` as it reads them, and sets the existing input `input` to
+// `value` (never declaring it).
+class NameReader : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    matched_count_ = static_cast<double>(ctx.signal_names(p.text("signals")).size());
+    inputs_matched_ = static_cast<double>(ctx.input_names(p.text("signals")).size());
+    time_ = ctx.signal_reader("time");
+    read_ = ctx.signal_reader(p.text("read"));
+    input_ = ctx.input(p.text("input"));
+    value_ = p.number("value");
+    matched_ = ctx.declare_signal("matched", "1");
+    matched_inputs_ = ctx.declare_signal("matched_inputs", "1");
+    time_read_ = ctx.declare_signal("time_read", "s");
+    value_read_ = ctx.declare_signal("value_read", "1");
+  }
+  void initialize(StepContext& ctx) override {
+    ctx.publish(matched_, matched_count_);
+    ctx.publish(matched_inputs_, inputs_matched_);
+  }
+  void update(StepContext& ctx) override {
+    ctx.publish(time_read_, ctx.signal(time_));
+    ctx.publish(value_read_, ctx.signal(read_));
+    ctx.set_input(input_, value_);
+  }
+
+ private:
+  double matched_count_ = 0, inputs_matched_ = 0, value_ = 0;
+  SignalReader time_, read_;
+  InputHandle input_;
+  SignalHandle matched_, matched_inputs_, time_read_, value_read_;
+};
+
 }  // namespace
 
 S2SIM_PLUGIN("s2sim_test_scene_plugins",
@@ -110,4 +145,5 @@ S2SIM_PLUGIN("s2sim_test_scene_plugins",
              S2SIM_KIND("test_echo_actuator", Category::actuator, Echo),
              S2SIM_KIND("test_echo_sensor", Category::sensor, Echo),
              S2SIM_KIND("test_noise", Category::sensor, Noise),
-             S2SIM_KIND("test_body_push", Category::body, BodyPush))
+             S2SIM_KIND("test_body_push", Category::body, BodyPush),
+             S2SIM_KIND("test_name_reader", Category::controller, NameReader))

@@ -64,6 +64,10 @@ class FakeConfigure : public ConfigureContext {
   BodyHandle joint_body(JointHandle, int) const override { return {}; }
   void add_axis_inertia(AxisHandle, double) override {}
   void warn(std::string_view) override {}
+  std::vector<NamedUnit> signal_names(std::string_view) const override { return {}; }
+  std::vector<NamedUnit> input_names(std::string_view) const override { return {}; }
+  InputHandle input(std::string_view) override { return {}; }
+  SignalReader signal_reader(std::string_view) const override { return {}; }
 };
 
 struct World {

@@ -1,0 +1,198 @@
+// The `serial` controller: a pseudo-terminal carrying a robot's (or the scene's) inputs and
+// signals as text lines, so that firmware written for a serial port talks to the simulated
+// robot (docs/remote.md, "Serial link"). Real time only, as a serial line is: every control
+// period the link reads the complete lines that arrived and writes one line of signals.
+//
+//   simulation -> device, every period:  S <time> <signal 1> ... <signal m>\n
+//   device -> simulation:                 I <input 1> ... <input n>\n     (sets the inputs)
+//                                         ?\n                             (asks for the names)
+//   simulation -> device, after "?":      # s2sim-serial 1\n # input <name> <unit>\n ...
+//                                         # signal <name> <unit>\n # end\n
+//
+// Numbers are C-locale decimal (%.17g: doubles round-trip). A malformed line (not exactly n
+// finite numbers, unknown command, longer than 4096 bytes) is dropped and counted. As for the
+// remote link, a device that stops sending for timeout_s (wall clock) leaves the inputs zeroed.
+// The link's bookkeeping stays in members (see remote.cpp: connection, not world state).
+#include "kinds.hpp"
+#include "served_set.hpp"
+
+#include <s2sim/sdk.hpp>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <termios.h>
+#include <unistd.h>
+
+namespace s2sim::links {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr std::size_t kMaxLine = 4096;
+
+class Serial final : public Component {
+ public:
+  ~Serial() override {
+    if (!link_path_.empty()) ::unlink(link_path_.c_str());
+    if (device_ >= 0) ::close(device_);
+    if (master_ >= 0) ::close(master_);
+  }
+
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    served_.configure(ctx);
+    timeout_s_ = p.number("timeout_s", 0.5, Range::positive());
+    if (p.has("period_s"))
+      ctx.set_schedule(Stage::control, p.number("period_s", Range::positive()));
+
+    master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK);
+    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0)
+      throw Error(ErrorKind::plugin, p.where("kind"),
+                  std::string("cannot open a pseudo-terminal: ") + std::strerror(errno));
+    // Never block the simulation on a line nobody reads (posix_openpt may ignore O_NONBLOCK).
+    ::fcntl(master_, F_SETFL, ::fcntl(master_, F_GETFL) | O_NONBLOCK);
+    path_ = ::ptsname(master_);
+    // Our own end of the device stays open: the master then never reads a hang-up, and the
+    // line is raw (no echo of our writes, no line editing) whoever opens it later.
+    device_ = ::open(path_.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK);
+    termios raw{};
+    if (device_ < 0 || ::tcgetattr(device_, &raw) != 0)
+      throw Error(ErrorKind::plugin, p.where("kind"),
+                  "cannot open " + path_ + ": " + std::strerror(errno));
+    ::cfmakeraw(&raw);
+    ::tcsetattr(device_, TCSANOW, &raw);
+    if (p.has("link")) {  // a fixed name for the device, as socat's link=
+      link_path_ = p.text("link");
+      ::unlink(link_path_.c_str());
+      if (::symlink(path_.c_str(), link_path_.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        link_path_.clear();
+        throw Error(ErrorKind::scene, p.where("link"), "cannot create the link: " + why);
+      }
+    }
+    pty_ = ctx.declare_signal("pty", "1");
+    received_ = ctx.declare_signal("received", "1");
+    dropped_ = ctx.declare_signal("dropped", "1");
+    link_ = ctx.declare_signal("link", "1");
+    timeouts_ = ctx.declare_signal("timeouts", "1");
+
+    line_.assign(kMaxLine + 1, '\0');
+    out_.assign(32 + 26 * (1 + served_.signals.size()), '\0');
+    values_.assign(served_.inputs.size(), 0.0);
+    description_ = "# s2sim-serial 1\n";
+    for (const auto& in : served_.inputs)
+      description_ += "# input " + in.name + " " + in.unit + "\n";
+    for (const auto& s : served_.signals)
+      description_ += "# signal " + s.name + " " + s.unit + "\n";
+    description_ += "# end\n";
+    if (p.boolean("announce", true))
+      std::fprintf(stderr, "s2sim serial: %s serves %zu inputs and %zu signals on %s%s%s\n",
+                   std::string(ctx.signal_prefix()).c_str(), served_.inputs.size(),
+                   served_.signals.size(), path_.c_str(), link_path_.empty() ? "" : " = ",
+                   link_path_.c_str());
+  }
+
+  void initialize(StepContext& ctx) override {
+    // /dev/pts/<n>: the number is the published part of the path.
+    ctx.publish(pty_, std::strtod(path_.c_str() + path_.rfind('/') + 1, nullptr));
+  }
+
+  void update(StepContext& ctx) override {
+    const Clock::time_point now = Clock::now();
+    char chunk[1024];
+    for (;;) {
+      const ssize_t got = ::read(master_, chunk, sizeof chunk);
+      if (got <= 0) break;
+      for (ssize_t i = 0; i < got; ++i)
+        take(ctx, chunk[i], now);
+    }
+    if (inputs_seen_ && std::chrono::duration<double>(now - last_inputs_).count() > timeout_s_) {
+      for (const InputHandle in : served_.input_handles)
+        ctx.set_input(in, 0.0);
+      ctx.publish(link_, 0.0);
+      ctx.publish(timeouts_, ctx.signal(timeouts_) + 1.0);
+      inputs_seen_ = false;
+    }
+    int n = std::snprintf(out_.data(), out_.size(), "S %.17g", ctx.time_s());
+    for (const SignalReader& r : served_.readers)
+      n += std::snprintf(out_.data() + n, out_.size() - static_cast<std::size_t>(n), " %.17g",
+                         ctx.signal(r));
+    out_[static_cast<std::size_t>(n)] = '\n';
+    write_all(out_.data(), static_cast<std::size_t>(n) + 1);
+  }
+
+ private:
+  void take(StepContext& ctx, char c, Clock::time_point now) {
+    if (c == '\r') return;
+    if (c != '\n') {
+      if (length_ < kMaxLine) line_[length_] = c;
+      ++length_;  // past kMaxLine: the line is too long, dropped at its end
+      return;
+    }
+    if (length_ > kMaxLine || !parse(ctx, now)) count(ctx, dropped_);
+    length_ = 0;
+  }
+
+  bool parse(StepContext& ctx, Clock::time_point now) {
+    line_[length_] = '\0';
+    const char* s = line_.data();
+    if (length_ == 0) return false;
+    if (length_ == 1 && s[0] == '?') {
+      write_all(description_.data(), description_.size());
+      count(ctx, received_);
+      return true;
+    }
+    if (s[0] != 'I' || (length_ > 1 && s[1] != ' ')) return false;
+    const char* at = s + 1;
+    for (double& v : values_) {
+      char* end = nullptr;
+      v = std::strtod(at, &end);
+      if (end == at || !std::isfinite(v)) return false;
+      at = end;
+    }
+    while (*at == ' ' || *at == '\t')
+      ++at;
+    if (*at != '\0') return false;  // more numbers than inputs, or garbage
+    for (std::size_t i = 0; i < values_.size(); ++i)
+      ctx.set_input(served_.input_handles[i], values_[i]);
+    inputs_seen_ = true;
+    last_inputs_ = now;
+    ctx.publish(link_, 1.0);
+    count(ctx, received_);
+    return true;
+  }
+
+  void write_all(const char* data, std::size_t size) {
+    // Best effort: nobody reading and the terminal's buffer full means the line is lost, as
+    // on a real serial line.
+    (void)::write(master_, data, size);
+  }
+  static void count(StepContext& ctx, SignalHandle h) { ctx.publish(h, ctx.signal(h) + 1.0); }
+
+  ServedSet served_;
+  double timeout_s_ = 0.5;
+  int master_ = -1, device_ = -1;
+  std::string path_, link_path_, description_;
+  SignalHandle pty_, received_, dropped_, link_, timeouts_;
+  std::vector<char> line_, out_;
+  std::vector<double> values_;
+  std::size_t length_ = 0;
+  bool inputs_seen_ = false;
+  Clock::time_point last_inputs_{};
+};
+
+}  // namespace
+
+s2sim_kind_entry serial_kind() {
+  return S2SIM_KIND("serial", Category::controller, Serial);
+}
+
+}  // namespace s2sim::links

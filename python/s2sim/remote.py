@@ -1,0 +1,168 @@
+"""Client of S2Sim's ``remote`` controller (docs/remote.md), in pure Python.
+
+No compiled code and no dependency beyond the standard library: copy this file to any machine
+that can reach the simulation. Protocol version 1: a 16-byte little-endian header (magic
+``S2SR``, version, type, sequence number, payload length) and a payload of little-endian doubles.
+
+Lock-step (the simulation waits for each request)::
+
+    with Client(port=9808) as link:
+        link.hello()                     # names, units, mode
+        t, y = link.observe()            # signals now, without advancing
+        t, y = link.step([force])        # inputs applied, one control period later
+
+Real-time (the simulation never waits)::
+
+    link.send([force])                   # applied at the next control period
+    t, y = link.receive()                # the newest signals the simulation sent
+"""
+
+import socket
+import struct
+
+MAGIC = b"S2SR"
+VERSION = 1
+HEADER = struct.Struct("<4sHHII")  # magic, version, type, sequence, payload length
+HEADER_SIZE = HEADER.size  # 16
+DEFAULT_PORT = 9808
+MAX_DATAGRAM = 65507
+
+HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS = 1, 2, 3, 4, 5
+
+
+class RemoteError(RuntimeError):
+    """The simulation did not answer in time, or answered something unexpected."""
+
+
+def pack(msg_type, sequence, payload=b""):
+    """One datagram: the header, then the payload bytes."""
+    return HEADER.pack(MAGIC, VERSION, msg_type, sequence & 0xFFFFFFFF, len(payload)) + payload
+
+
+def pack_doubles(values):
+    return struct.pack("<%dd" % len(values), *values)
+
+
+def unpack(datagram):
+    """(type, sequence, payload) of a well-formed datagram, else None."""
+    if len(datagram) < HEADER_SIZE:
+        return None
+    magic, version, msg_type, sequence, length = HEADER.unpack_from(datagram)
+    if magic != MAGIC or version != VERSION or length != len(datagram) - HEADER_SIZE:
+        return None
+    return msg_type, sequence, datagram[HEADER_SIZE:]
+
+
+class Description:
+    """What a DESCRIBE reply says: the mode, the period and the served names and units."""
+
+    def __init__(self, text):
+        self.mode = None
+        self.period = None
+        self.inputs, self.input_units = [], []
+        self.signals, self.signal_units = [], []
+        for line in text.splitlines():
+            words = line.split(" ")
+            if words[0] == "mode":
+                self.mode = words[1]
+            elif words[0] == "period":
+                self.period = None if words[1] == "control" else float(words[1])
+            elif words[0] == "input":
+                self.inputs.append(words[1])
+                self.input_units.append(words[2] if len(words) > 2 else "")
+            elif words[0] == "signal":
+                self.signals.append(words[1])
+                self.signal_units.append(words[2] if len(words) > 2 else "")
+
+    def __repr__(self):
+        return "Description(mode=%r, inputs=%r, signals=%r)" % (self.mode, self.inputs, self.signals)
+
+
+class Client:
+    """A UDP client of one ``remote`` controller at ``host``:``port``."""
+
+    def __init__(self, port=DEFAULT_PORT, host="127.0.0.1", timeout=5.0):
+        self.address = (host, port)
+        self.timeout = timeout
+        self.sequence = 0
+        self.description = None
+        self.socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+
+    def close(self):
+        self.socket.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def _request(self, msg_type, payload=b""):
+        self.sequence += 1
+        self.socket.sendto(pack(msg_type, self.sequence, payload), self.address)
+        return self.sequence
+
+    def _wait(self, want_type, sequence, timeout):
+        self.socket.settimeout(self.timeout if timeout is None else timeout)
+        while True:
+            try:
+                datagram = self.socket.recv(MAX_DATAGRAM + 1)
+            except socket.timeout:
+                raise RemoteError("no reply from %s:%d within %.3g s" %
+                                  (self.address + (self.socket.gettimeout(),))) from None
+            message = unpack(datagram)
+            if message is None:
+                continue
+            msg_type, seq, payload = message
+            if msg_type == want_type and (sequence is None or seq == sequence):
+                return seq, payload
+
+    @staticmethod
+    def _signals(payload):
+        values = struct.unpack("<%dd" % (len(payload) // 8), payload)
+        return values[0], list(values[1:])
+
+    def hello(self, timeout=None):
+        """Announces this client; returns the Description (also kept in .description)."""
+        seq = self._request(HELLO)
+        _, payload = self._wait(DESCRIBE, seq, timeout)
+        self.description = Description(payload.decode("utf-8"))
+        return self.description
+
+    def observe(self, timeout=None):
+        """(time [s], signal values) now, without advancing the simulation."""
+        seq = self._request(OBSERVE)
+        return self._signals(self._wait(SIGNALS, seq, timeout)[1])
+
+    def send(self, inputs):
+        """Sends input values (one per served input, in order); returns the sequence number."""
+        return self._request(INPUTS, pack_doubles([float(v) for v in inputs]))
+
+    def step(self, inputs, timeout=None, retries=0):
+        """Lock-step: applies the inputs and returns (time, signals) one control period later.
+        With retries > 0 a lost request or reply is sent again with the same sequence number
+        (the simulation answers it without advancing twice)."""
+        payload = pack_doubles([float(v) for v in inputs])
+        seq = self._request(INPUTS, payload)
+        for attempt in range(retries + 1):
+            try:
+                return self._signals(self._wait(SIGNALS, seq, timeout)[1])
+            except RemoteError:
+                if attempt == retries:
+                    raise
+                self.socket.sendto(pack(INPUTS, seq, payload), self.address)
+
+    def receive(self, timeout=None):
+        """Real-time: the newest SIGNALS datagram waiting (or the next one to come)."""
+        _, payload = self._wait(SIGNALS, None, timeout)
+        self.socket.setblocking(False)
+        try:  # drain: keep only the newest
+            while True:
+                message = unpack(self.socket.recv(MAX_DATAGRAM + 1))
+                if message and message[0] == SIGNALS:
+                    payload = message[2]
+        except (BlockingIOError, socket.timeout):
+            pass
+        finally:
+            self.socket.setblocking(True)
+        return self._signals(payload)

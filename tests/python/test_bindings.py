@@ -1,0 +1,169 @@
+"""The s2sim Python bindings (python/src/module.cpp) on scenes/nxt and scenes/cartpole."""
+
+import os
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import s2sim
+
+SOURCE = os.environ.get("S2SIM_SOURCE_DIR", os.getcwd())
+NXT = os.path.join(SOURCE, "scenes", "nxt")
+CARTPOLE = os.path.join(SOURCE, "scenes", "cartpole")
+RIGHT, LEFT = "robots/nxt/axes/right/ref_voltage", "robots/nxt/axes/left/ref_voltage"
+
+
+def drive(sim, volts=6.0):
+    sim.set_input(RIGHT, volts)
+    sim.set_input(LEFT, -volts)
+
+
+def test_load_step_and_time():
+    sim = s2sim.Simulation(NXT, seed=1)
+    assert sim.time == 0.0 and sim.tick == 0
+    assert sim.tick_s == pytest.approx(1e-3)
+    sim.step(250)
+    assert sim.tick == 250 and sim.time == pytest.approx(0.25)
+    sim.run_until(1.0)
+    assert sim.time == pytest.approx(1.0)
+    sim.step()  # n defaults to one tick
+    assert sim.tick == 1001
+
+
+def test_inputs_drive_the_robot_and_signals_read_it():
+    sim = s2sim.Simulation(NXT)
+    assert RIGHT in sim.list_inputs() and "robots/nxt/x" in sim.list_signals()
+    drive(sim)
+    assert sim.input(RIGHT) == 6.0
+    sim.run_until(1.0)
+    x = sim.signal("robots/nxt/x")
+    assert x > 0.1  # it drove forward
+    values = sim.signals("robots/nxt/axes/*/speed")
+    assert isinstance(values, np.ndarray) and values.dtype == np.float64
+    assert sim.signal_names("robots/nxt/axes/*/speed") == [
+        "robots/nxt/axes/right/speed", "robots/nxt/axes/left/speed"] or len(values) == 2
+    assert values.shape == (len(sim.signal_names("robots/nxt/axes/*/speed")),)
+    assert sim.unit("robots/nxt/x") == "m"
+    listed = sim.signals(["robots/nxt/y", "robots/nxt/axes/*/speed", "time"])  # in list order
+    assert listed[0] == sim.signal("robots/nxt/y") and listed[-1] == sim.time
+    assert list(listed[1:-1]) == list(values)
+
+
+def test_body_poses():
+    sim = s2sim.Simulation(NXT)
+    names = sim.body_names()
+    assert names[0] == "world" and any(n.startswith("robots/nxt/solids/") for n in names)
+    drive(sim)
+    sim.run_until(0.5)
+    position, rotation = sim.body_pose("robots/nxt")
+    assert position.shape == (3,) and rotation.shape == (3, 3)
+    assert position[0] == pytest.approx(sim.signal("robots/nxt/x"))
+    assert np.allclose(rotation @ rotation.T, np.eye(3), atol=1e-9)
+    linear, angular = sim.body_twist("robots/nxt")
+    assert linear[0] == pytest.approx(sim.signal("robots/nxt/vx"))
+    p1, _ = sim.body_pose(names.index(names[1]))  # by index too
+    assert p1.shape == (3,)
+
+
+def test_save_restore_and_reset_repeat_the_run():
+    sim = s2sim.Simulation(NXT, seed=7)
+    drive(sim)
+    sim.run_until(0.3)
+    snap = sim.save()
+    assert snap.time == pytest.approx(0.3) and snap.values.size > 0
+    sim.step(500)
+    after = sim.signals("robots/nxt/*")
+    sim.restore(snap)
+    assert sim.time == pytest.approx(0.3)
+    sim.step(500)
+    assert np.array_equal(after, sim.signals("robots/nxt/*"))
+
+    sim.reset()
+    assert sim.time == 0.0
+    drive(sim)  # reset puts inputs back to their initial values
+    sim.run_until(0.8)
+    first = sim.signals("*")
+    again = s2sim.Simulation(NXT, seed=7)
+    drive(again)
+    again.run_until(0.8)
+    assert np.array_equal(first, again.signals("*"))
+
+
+def test_options_seed_physics_step_defines():
+    lifted = s2sim.Simulation(NXT, defines={"lift": 1.0})
+    assert lifted.signal("robots/nxt/z") > 0.9
+    fine = s2sim.Simulation(NXT, physics_step=5e-4)
+    assert fine.tick_s == pytest.approx(5e-4)
+    tilted = s2sim.Simulation(CARTPOLE, defines={"tilt_deg": 10.0})
+    assert tilted.signal("robots/cartpole/solids/pole/pitch") == pytest.approx(0.17453292519943295)
+
+
+def test_errors_are_python_exceptions_with_the_location():
+    with pytest.raises(s2sim.SceneError) as e:
+        s2sim.Simulation(os.path.join(SOURCE, "scenes", "no_such_scene"))
+    assert e.value.kind == "scene" and "not found" in str(e.value)
+    assert isinstance(e.value, s2sim.Error) and isinstance(e.value, RuntimeError)
+
+    sim = s2sim.Simulation(NXT)
+    with pytest.raises(s2sim.UsageError) as e:
+        sim.signal("robots/nxt/xx")
+    assert "did you mean" in e.value.message and e.value.kind == "usage"
+    with pytest.raises(s2sim.UsageError):
+        sim.set_input("robots/nxt/axes/right/ref_voltag", 1.0)
+    with pytest.raises(s2sim.UsageError):
+        sim.set_input(RIGHT, float("nan"))
+    with pytest.raises(s2sim.UsageError):
+        sim.signals("nothing/matches/*")
+    with pytest.raises(s2sim.UsageError):
+        sim.signals(["time", "robots/nxt/nope"])
+    with pytest.raises(s2sim.UsageError):
+        sim.body_pose("robots/nobody")
+    with pytest.raises(s2sim.UsageError):
+        sim.step(-1)
+    with pytest.raises(s2sim.UsageError):  # a layout of another scene
+        sim.restore(s2sim.Simulation(CARTPOLE).save())
+
+
+def test_a_located_scene_error_names_file_element_attribute(tmp_path):
+    scene = tmp_path / "scene.xml"
+    scene.write_text("<scene><s2sim><physics step_ms='-1'/></s2sim></scene>")
+    with pytest.raises(s2sim.SceneError) as e:
+        s2sim.Simulation(str(tmp_path))
+    assert e.value.file.endswith("scene.xml") and e.value.attribute == "step_ms"
+    assert str(e.value).startswith(e.value.file)
+
+
+def test_a_plugin_error_is_a_plugin_error(tmp_path):
+    (tmp_path / "scene.xml").write_text(
+        "<scene><plugin kind='no_such_kind'/></scene>")
+    with pytest.raises(s2sim.PluginError) as e:
+        s2sim.Simulation(str(tmp_path))
+    assert "no_such_kind" in str(e.value)
+
+
+def test_the_gil_is_released_while_stepping():
+    sim = s2sim.Simulation(NXT)
+    drive(sim)
+    stamps = []
+    stop = threading.Event()
+
+    def tick():  # wakes up every millisecond; needs the GIL each time
+        while not stop.is_set():
+            stamps.append(time.perf_counter())
+            time.sleep(0.001)
+
+    thread = threading.Thread(target=tick)
+    thread.start()
+    time.sleep(0.01)
+    start = time.perf_counter()
+    sim.step(20000)
+    end = time.perf_counter()
+    stop.set()
+    thread.join()
+    assert end - start > 0.1, "the step is too short to tell"
+    inside = [t for t in stamps if start + 0.02 < t < end - 0.02]
+    # Held through the step, the GIL would let the thread run only before and after it: none
+    # inside. Released, it wakes about every millisecond (fewer on a loaded machine).
+    assert len(inside) >= 5, (len(inside), end - start)
