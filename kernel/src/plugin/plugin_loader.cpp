@@ -86,7 +86,9 @@ bool is_inside(const fs::path& inner, const fs::path& outer) {
 fs::path kernel_binary() {
   std::error_code ec;
   fs::path here = boost::dll::this_line_location(ec);
-  if (ec) here = boost::dll::program_location(ec);
+  // For the executable itself dladdr gives argv[0] as typed ("s2sim-run" found on PATH): then
+  // the executable's own path from /proc.
+  if (ec || !here.is_absolute()) here = boost::dll::program_location(ec);
   return ec ? fs::path() : here;
 }
 
