@@ -12,6 +12,7 @@ packages=(
   libmujoco-dev libode-dev
   xvfb xauth
   gnuplot-nox
+  python3
 )
 
 missing=()
