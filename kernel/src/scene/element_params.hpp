@@ -40,7 +40,7 @@ class ElementParams final : public Params {
   /// Whether a getter (has() included) asked for attribute `attribute` of `element` (the
   /// component's element or one of its children), present or not.
   bool asked(const Element* element, const std::string& attribute) const {
-    return asked_.count({element, attribute}) != 0;
+    return asked_.count({element->path, attribute}) != 0;
   }
   /// The attribute names asked for on `element`, present or not: what a misspelt attribute
   /// was probably meant to be.
@@ -64,10 +64,10 @@ class ElementParams final : public Params {
   void check(const Target& t, double v, const Range& range) const;
 
   ParamSource source_;
-  ConstantTable empty_;
-  /// Every (element, attribute) a getter resolved, to warn about attributes nobody reads.
-  mutable std::set<std::pair<const Element*, std::string>>
-      asked_;  ///< used when the source has no constants
+  ConstantTable empty_;  ///< used when the source has no constants
+  /// Every (element path, attribute) a getter resolved, to warn about attributes nobody
+  /// reads. Paths, not pointers: an ElementParams may be moved after a getter ran.
+  mutable std::set<std::pair<std::string, std::string>> asked_;
 };
 
 }  // namespace s2sim::scene
