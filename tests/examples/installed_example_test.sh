@@ -71,6 +71,16 @@ step "the embedding program"
 if [ "$mode" = install ]; then
   step "every scene of scenes/ with the installed s2sim-run, the build tree present"
   [ -d "$build/plugins" ] || fail "the build tree's plugins are missing"
+  # The folders it searches: its own prefix's, never the build tree's.
+  mkdir -p "$tmp/unknown"
+  printf '<?xml version="1.0"?>\n<scene>\n  <plugin kind="no_such_kind"/>\n</scene>\n' \
+    > "$tmp/unknown/scene.xml"
+  status=0
+  "$prefix/bin/s2sim-run" "$tmp/unknown" --quiet 2> "$tmp/search.err" || status=$?
+  [ "$status" = 3 ] || fail "an unknown kind: exit $status, not 3"
+  grep -q "^  $prefix/lib/s2sim/plugins\$" "$tmp/search.err" ||
+    { cat "$tmp/search.err"; fail "the installed runner does not search its prefix"; }
+  if grep -q "$build" "$tmp/search.err"; then cat "$tmp/search.err"; fail "it searches the build tree"; fi
   for scene in "$src"/scenes/*/; do
     "$prefix/bin/s2sim-run" "$scene" --duration 0.05 > /dev/null 2> "$tmp/scene.err" ||
       { cat "$tmp/scene.err"; fail "$scene"; }
