@@ -12,7 +12,7 @@ packages=(
   libmujoco-dev libode-dev
   xvfb xauth
   gnuplot-nox
-  pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed
+  python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed
 )
 
 missing=()

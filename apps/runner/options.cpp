@@ -51,7 +51,10 @@ Options:
   --define NAME=VALUE  a constant defined before scene.xml is read
   --physics-step S     override the physics step (seconds)
   --substeps N         override the physics substeps per step
-  --plugin-path DIR    search DIR for plugins (repeatable; replaces the default path)
+  --plugin-path DIR    search DIR for plugins before the default folders (repeatable;
+                       the first library on the path that provides a kind wins)
+  --no-default-plugin-path
+                       search only the --plugin-path folders
   --list-signals       print every signal with its unit and exit
   --list-inputs        print every input with its unit and exit
   --quiet              no progress bar, no summary on the terminal
@@ -122,6 +125,8 @@ Options parse_options(int argc, char** argv) {
       o.substeps = static_cast<int>(n);
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value());
+    } else if (a == "--no-default-plugin-path") {
+      o.default_plugin_path = false;
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (a == "--list-signals") {

@@ -24,7 +24,8 @@ struct Options {
   std::vector<std::pair<std::string, double>> constants;  ///< --define
   std::optional<double> physics_step_s;
   std::optional<int> substeps;
-  std::vector<std::string> plugin_path;
+  std::vector<std::string> plugin_path;  ///< searched before the default folders
+  bool default_plugin_path = true;       ///< false: --no-default-plugin-path
   bool quiet = false;
   bool list_signals = false;
   bool list_inputs = false;

@@ -42,7 +42,7 @@ const char* usage_text() {
   --physics-step S         physics step, seconds    --substeps N
   --define NAME=VALUE      constant set before scene.xml is read
   --set INPUT=VALUE        hold an input at a value
-  --plugin-path DIR        plugin folder (repeatable)
+  --plugin-path DIR        plugin folder searched first (repeatable)
   --size WxH               window size in pixels (1280x720)
   --speed X                times real time, 0.1 to 1000; 0 = as fast as possible (1)
   --paused                 start paused

@@ -1,5 +1,7 @@
 #include "plugin/plugin_loader.hpp"
 
+#include "sim/names.hpp"
+
 #include <s2sim/error.hpp>
 #include <s2sim/version.hpp>
 
@@ -9,6 +11,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <set>
 #include <system_error>
 #include <utility>
@@ -57,6 +60,36 @@ std::string load_failure(const std::string& what) {
 bool is_plugin_file_name(const std::string& name) {
   return name.size() >= 6 && name.rfind("lib", 0) == 0 &&
          name.compare(name.size() - 3, 3, ".so") == 0;
+}
+
+// A file that is a shared library by its name or its ELF header but is not named lib*.so:
+// the scan skips it, and says so (a silently ignored library costs its author an hour).
+bool looks_like_a_library(const fs::path& file) {
+  const std::string name = file.filename().string();
+  const bool so_name = (name.size() > 3 && name.compare(name.size() - 3, 3, ".so") == 0) ||
+                       name.find(".so.") != std::string::npos;
+  if (so_name) return true;
+  char magic[4] = {};
+  std::ifstream in(file, std::ios::binary);
+  return in.read(magic, sizeof magic) && magic[0] == '\x7f' && magic[1] == 'E' && magic[2] == 'L' &&
+         magic[3] == 'F';
+}
+
+// Whether `inner` lies inside the folder `outer` (both resolved).
+bool is_inside(const fs::path& inner, const fs::path& outer) {
+  const fs::path rel = identity(inner).lexically_relative(identity(outer));
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+// The file holding this code: the executable when the kernel is linked statically, the shared
+// library (libs2sim.so) when it is linked dynamically. Its prefix holds the plugins.
+fs::path kernel_binary() {
+  std::error_code ec;
+  fs::path here = boost::dll::this_line_location(ec);
+  // For the executable itself dladdr gives argv[0] as typed ("s2sim-run" found on PATH): then
+  // the executable's own path from /proc.
+  if (ec || !here.is_absolute()) here = boost::dll::program_location(ec);
+  return ec ? fs::path() : here;
 }
 
 }  // namespace
@@ -175,7 +208,7 @@ struct PluginRegistry::Impl {
   }
 
   // Registers a validated library's kinds; throws, registering none, when another library
-  // already provides one of them.
+  // already provides one of them (an explicit load_library asks for exactly this file).
   void commit(Candidate c) {
     for (const Kind& k : c.kinds) {
       auto it = kinds.find(k.info.name);
@@ -194,6 +227,28 @@ struct PluginRegistry::Impl {
     libraries.emplace(identity(c.loaded->file), c.loaded);
   }
 
+  // The scan's rule: the first library on the search path that provides a kind wins; a later
+  // one's copy of that kind is skipped with a warning naming both files, its other kinds are
+  // registered (a stale copy of a plugin must not stop every run).
+  void commit_first_wins(Candidate c) {
+    std::vector<Kind> fresh;
+    for (Kind& k : c.kinds) {
+      auto it = kinds.find(k.info.name);
+      if (it == kinds.end()) {
+        fresh.push_back(std::move(k));
+        continue;
+      }
+      const KindInfo& first = it->second.info;
+      warnings.push_back(c.loaded->file.string() + ": kind '" + k.info.name + "' of plugin '" +
+                         k.info.plugin_name + "' ignored: plugin '" + first.plugin_name + "' (" +
+                         first.library.string() +
+                         ") provides it and comes first on the search path");
+    }
+    c.kinds = std::move(fresh);
+    if (c.kinds.empty()) return;  // nothing of its own: not kept loaded
+    commit(std::move(c));
+  }
+
   void load(const fs::path& file) {
     if (libraries.count(identity(file)) != 0) return;  // already loaded: reuse it
     commit(validate(file));
@@ -201,19 +256,25 @@ struct PluginRegistry::Impl {
 
   void scan() {
     if (scanned) return;
-    // Rebuilt on every attempt: a scan that threw (duplicate kinds) is retried by the next
-    // query and must not report its warnings twice.
     warnings.clear();
     for (const fs::path& folder : search_path) {
       std::error_code ec;
       std::vector<fs::path> files;
+      std::vector<fs::path> misnamed;
       for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
         std::error_code type_ec;
-        if (is_plugin_file_name(it->path().filename().string()) && it->is_regular_file(type_ec)) {
+        if (!it->is_regular_file(type_ec)) continue;
+        if (is_plugin_file_name(it->path().filename().string())) {
           files.push_back(it->path());
+        } else if (looks_like_a_library(it->path())) {
+          misnamed.push_back(it->path());
         }
       }
       std::sort(files.begin(), files.end());
+      std::sort(misnamed.begin(), misnamed.end());
+      for (const fs::path& file : misnamed)
+        warnings.push_back(file.string() +
+                           ": ignored: a plugin library's file name must be lib<name>.so");
       for (const fs::path& file : files) {
         if (libraries.count(identity(file)) != 0) continue;
         Candidate c;
@@ -224,10 +285,27 @@ struct PluginRegistry::Impl {
           warnings.push_back(e.what());
           continue;
         }
-        commit(std::move(c));  // two plugins claiming one kind: ambiguous, so it throws
+        commit_first_wins(std::move(c));
       }
     }
     scanned = true;
+  }
+
+  // " (did you mean 'a' or 'b'?)" for the registered kinds close to `kind`, "" if none is.
+  std::string did_you_mean(const std::string& kind) const {
+    std::vector<std::string> names;
+    for (const auto& entry : kinds)
+      names.push_back(entry.first);
+    // A kind within a third of its length in edits (at least 2): a typo, not another word.
+    const std::size_t allowed = std::max<std::size_t>(2, kind.size() / 3);
+    std::vector<std::string> close;
+    for (const std::string& name : sim::closest_names(kind, names, 3))
+      if (sim::edit_distance(kind, name) <= allowed) close.push_back(name);
+    if (close.empty()) return "";
+    std::string s = " (did you mean ";
+    for (std::size_t i = 0; i < close.size(); ++i)
+      s += (i == 0 ? "'" : i + 1 == close.size() ? " or '" : ", '") + close[i] + "'";
+    return s + "?)";
   }
 
   std::string describe_search() const {
@@ -258,15 +336,21 @@ std::vector<fs::path> PluginRegistry::default_search_path() {
       start = end + 1;
     }
   }
-  std::error_code ec;
-  fs::path exe = boost::dll::program_location(ec);
-  if (!ec) {
-    fs::path dir = exe.parent_path();
-    candidates.push_back((dir / ".." / "plugins").lexically_normal());
+  // The kernel's own prefix: <prefix>/bin/s2sim-run or <prefix>/lib/libs2sim.so both reach
+  // <prefix>/lib/s2sim/plugins; the build tree's bin/ and lib/ reach build/plugins.
+  const fs::path binary = kernel_binary();
+  if (!binary.empty()) {
+    const fs::path dir = binary.parent_path();
     candidates.push_back((dir / ".." / "lib" / "s2sim" / "plugins").lexically_normal());
+    candidates.push_back((dir / ".." / "plugins").lexically_normal());
   }
 #ifdef S2SIM_BUILD_PLUGIN_DIR
-  candidates.emplace_back(S2SIM_BUILD_PLUGIN_DIR);
+  // The build tree's plugin folder only for a binary that is itself in the build tree (a test
+  // or a module built elsewhere in it); an installed binary never looks there.
+  const fs::path build_plugins(S2SIM_BUILD_PLUGIN_DIR);
+  if (!binary.empty() && is_inside(binary, build_plugins.parent_path())) {
+    candidates.push_back(build_plugins);
+  }
 #endif
 
   std::vector<fs::path> result;
@@ -276,6 +360,21 @@ std::vector<fs::path> PluginRegistry::default_search_path() {
     if (!fs::is_directory(c, dir_ec)) continue;
     if (seen.insert(identity(c)).second) result.push_back(c);
   }
+  return result;
+}
+
+std::vector<fs::path> PluginRegistry::search_path(const std::vector<fs::path>& first,
+                                                  bool with_defaults) {
+  std::vector<fs::path> result;
+  std::set<fs::path> seen;
+  auto add = [&](const fs::path& p) {
+    if (seen.insert(identity(p)).second) result.push_back(p);
+  };
+  for (const fs::path& p : first)
+    add(p);
+  if (with_defaults)
+    for (const fs::path& p : default_search_path())
+      add(p);
   return result;
 }
 
@@ -292,8 +391,8 @@ const KindInfo& PluginRegistry::find(const std::string& kind) {
   impl_->scan();
   auto it = impl_->kinds.find(kind);
   if (it == impl_->kinds.end()) {
-    throw Error(ErrorKind::plugin,
-                "no plugin provides kind '" + kind + "'; " + impl_->describe_search());
+    throw Error(ErrorKind::plugin, "no plugin provides kind '" + kind + "'" +
+                                       impl_->did_you_mean(kind) + "; " + impl_->describe_search());
   }
   return it->second.info;
 }

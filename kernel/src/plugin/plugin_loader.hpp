@@ -57,14 +57,22 @@ struct KindInfo {
 /// Scans folders for plugin libraries (`lib*.so`), loading each only to read its
 /// descriptor, and creates components by kind name. Every refusal throws `s2sim::Error` of kind
 /// `plugin` whose message names the library file and the reason: no descriptor symbol, ABI or
-/// SDK version mismatch, struct-size mismatch, two plugins claiming one kind, unknown kind, a
-/// factory that fails.
+/// SDK version mismatch, struct-size mismatch, a kind already provided (explicit load only),
+/// unknown kind (with the close kind names), a factory that fails. While scanning, a refused
+/// library, a library not named lib*.so and a kind that an earlier library on the path
+/// already provides (the first wins) are skipped with a warning.
 class PluginRegistry {
  public:
   /// The default search path: every folder of the environment variable S2SIM_PLUGIN_PATH
-  /// (':'-separated), then `<exe dir>/../plugins` and `<exe dir>/../lib/s2sim/plugins`, then
-  /// the build tree's plugin folder compiled in.
+  /// (':'-separated), then the kernel's own prefix: `<dir>/../lib/s2sim/plugins` and
+  /// `<dir>/../plugins`, where `<dir>` holds the binary the kernel is in (the executable, or
+  /// libs2sim.so); the build tree's plugin folder only for a binary inside the build tree.
+  /// Missing folders and repeats are left out.
   static std::vector<std::filesystem::path> default_search_path();
+  /// `first` (e.g. `--plugin-path` folders), then default_search_path() unless
+  /// `with_defaults` is false; repeats left out.
+  static std::vector<std::filesystem::path> search_path(
+      const std::vector<std::filesystem::path>& first, bool with_defaults = true);
 
   explicit PluginRegistry(std::vector<std::filesystem::path> search_path = default_search_path());
 
@@ -80,7 +88,7 @@ class PluginRegistry {
   /// Creates a component of `kind`. Throws when the kind is unknown or its factory fails.
   ComponentPtr create(const std::string& kind);
 
-  /// Libraries that were skipped while scanning, with the reason (shown by `s2sim-run --plugins`).
+  /// Files and kinds skipped while scanning, with the reason (the runner prints them).
   /// Does not scan by itself: empty until the first `find`/`has`/`create`/`kinds`.
   const std::vector<std::string>& scan_warnings() const;
   /// Every registered kind.

@@ -45,6 +45,7 @@ ElementParams::Target ElementParams::resolve(std::string_view path) const {
   t.element = find_element(dot == std::string_view::npos ? std::string_view{} : path.substr(0, dot),
                            &t.element_path);
   if (!t.element) return t;
+  asked_.emplace(t.element->path, t.attribute);
   const auto& attributes = t.element->attributes;
   for (std::size_t i = 0; i < attributes.size(); ++i)
     if (attributes[i].first == t.attribute) {
@@ -159,6 +160,14 @@ std::string ElementParams::choice(std::string_view path,
     ++i;
   }
   fail(t, "must be " + list + ", got '" + value + "'");
+}
+
+std::vector<std::string> ElementParams::asked_on(const Element* element) const {
+  std::vector<std::string> names;
+  for (auto it = asked_.lower_bound({element->path, std::string()});
+       it != asked_.end() && it->first == element->path; ++it)
+    names.push_back(it->second);
+  return names;
 }
 
 std::string ElementParams::location() const {

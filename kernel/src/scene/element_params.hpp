@@ -8,8 +8,11 @@
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/params.hpp>
 
+#include <set>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 namespace s2sim::scene {
 
@@ -34,6 +37,15 @@ class ElementParams final : public Params {
 
   const ParamSource& source() const { return source_; }
 
+  /// Whether a getter (has() included) asked for attribute `attribute` of `element` (the
+  /// component's element or one of its children), present or not.
+  bool asked(const Element* element, const std::string& attribute) const {
+    return asked_.count({element->path, attribute}) != 0;
+  }
+  /// The attribute names asked for on `element`, present or not: what a misspelt attribute
+  /// was probably meant to be.
+  std::vector<std::string> asked_on(const Element* element) const;
+
  private:
   /// An attribute path resolved: its element (nullptr when absent), the path that element
   /// has or would have, and the attribute name.
@@ -53,6 +65,9 @@ class ElementParams final : public Params {
 
   ParamSource source_;
   ConstantTable empty_;  ///< used when the source has no constants
+  /// Every (element path, attribute) a getter resolved, to warn about attributes nobody
+  /// reads. Paths, not pointers: an ElementParams may be moved after a getter ran.
+  mutable std::set<std::pair<std::string, std::string>> asked_;
 };
 
 }  // namespace s2sim::scene

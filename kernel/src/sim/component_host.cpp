@@ -383,6 +383,47 @@ void Simulation::Impl::configure_components() {
   }
 }
 
+namespace {
+
+// The unread attributes of `element` and its children, as located warnings.
+void collect_unread(const scene::ElementParams& params, const scene::Element& element, bool is_root,
+                    const std::string& kind, std::vector<std::string>& out) {
+  for (std::size_t i = 0; i < element.attributes.size(); ++i) {
+    const std::string& name = element.attributes[i].first;
+    if (is_root && (name == "kind" || name == "id")) continue;  // the loader's
+    if (params.asked(&element, name)) continue;
+    const std::string& at = element.attribute_paths.size() == element.attributes.size()
+                                ? element.attribute_paths[i]
+                                : element.path;
+    std::string message = Location{params.source().file, at, name}.str() +
+                          ": attribute ignored: kind '" + kind + "' does not read it";
+    // Names the component asked for here and did not find: the misspelling's likely target.
+    std::vector<std::string> missing;
+    for (const std::string& asked : params.asked_on(&element))
+      if (element.attribute(asked) == nullptr) missing.push_back(asked);
+    const std::size_t allowed = std::max<std::size_t>(2, name.size() / 3);
+    std::vector<std::string> close;
+    for (const std::string& c : sim::closest_names(name, missing, 2))
+      if (sim::edit_distance(name, c) <= allowed) close.push_back("'" + c + "'");
+    if (!close.empty()) {
+      message += "; did you mean " + close[0];
+      if (close.size() > 1) message += " or " + close[1];
+      message += "?";
+    }
+    out.push_back(std::move(message));
+  }
+  for (const auto& child : element.children)
+    collect_unread(params, child, false, kind, out);
+}
+
+}  // namespace
+
+void Simulation::Impl::warn_unread_plugin_attributes() {
+  for (const auto& slot : components)
+    if (slot.plugin_element && slot.params)
+      collect_unread(*slot.params, slot.params->source().element, true, slot.kind, warnings);
+}
+
 // --- façade ------------------------------------------------------------------------------------
 
 }  // namespace s2sim

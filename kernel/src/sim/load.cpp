@@ -59,8 +59,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
       !m.scene.sensors.empty() || !m.scene.plugins.empty() || !m.axis_views.empty();
   std::optional<plugin::PluginRegistry> registry;
   if (needs_plugins)
-    registry.emplace(options.plugin_path.empty() ? plugin::PluginRegistry::default_search_path()
-                                                 : options.plugin_path);
+    registry.emplace(
+        plugin::PluginRegistry::search_path(options.plugin_path, options.default_plugin_path));
   for (const auto& sensor : m.scene.sensors) {
     if (!registry->has(sensor.kind)) {
       m.warnings.push_back(sensor.where.str() + ": no plugin provides the sensor kind '" +
@@ -74,9 +74,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   auto is_controller = [&](const scene::PluginInstance& p) {
     return registry->has(p.kind) && registry->find(p.kind).category == Category::controller;
   };
-  for (const auto& p : m.scene.plugins)
-    if (!is_controller(p))
-      m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+  for (const auto& p : m.scene.plugins) {
+    if (is_controller(p)) continue;
+    m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+    m.components.back().plugin_element = true;
+  }
   std::vector<sim::DriveAxis> drive_axes;
   for (const auto& ax : m.topology.axes)
     drive_axes.push_back({ax.name,
@@ -100,10 +102,17 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
     m.components.back().prefix = c.prefix;
   }
-  for (const auto& p : m.scene.plugins)
-    if (is_controller(p))
-      m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+  // Controllers after the drive train: they may look its signals and inputs up by name.
+  for (const auto& p : m.scene.plugins) {
+    if (!is_controller(p)) continue;
+    m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
+    m.components.back().plugin_element = true;
+  }
+  if (registry)
+    for (const auto& w : registry->scan_warnings())
+      m.warnings.push_back("plugin search: " + w);
   m.configure_components();
+  m.warn_unread_plugin_attributes();
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.topology, m.axis_inertia, m.tick_s,
                                                    m.scene.settings.substeps);

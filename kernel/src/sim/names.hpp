@@ -47,6 +47,9 @@ std::string field_path(std::string_view prefix, std::string_view field);
 /// Glob match: `*` matches any run of characters (including '/'), `?` exactly one.
 bool glob_match(std::string_view pattern, std::string_view text);
 
+/// Levenshtein distance: the edits (insert, delete, replace) that turn `a` into `b`.
+std::size_t edit_distance(std::string_view a, std::string_view b);
+
 /// Up to `count` names closest to `wanted` (edit distance), for error messages.
 std::vector<std::string> closest_names(std::string_view wanted,
                                        const std::vector<std::string>& names,

@@ -73,8 +73,9 @@ struct ComponentSlot {
   std::int64_t phase_ticks = 0;
   std::unique_ptr<scene::ElementParams> params;
   Location where;
-  int sensor = -1;      // index into scene.sensors when made for a scene sensor element
-  std::string library;  // the plugin file it came from, for messages
+  int sensor = -1;              // index into scene.sensors when made for a scene sensor element
+  bool plugin_element = false;  // made for a <plugin> element: its unread attributes warn
+  std::string library;          // the plugin file it came from, for messages
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
   /// "component '<prefix>' (kind '<kind>') from <library>", made once at load: what a
   /// fatal-signal handler prints (running_component.hpp).
@@ -165,6 +166,9 @@ struct Simulation::Impl {
                      const std::string& id, int robot, const scene::ParamSource& params,
                      const Location& where, std::optional<Category> required);
   void configure_components();
+  /// After configure: a warning for every attribute of a `<plugin>` element (or of its
+  /// children) that its component never asked for, a misspelling most of the time.
+  void warn_unread_plugin_attributes();
 
   // --- snapshots (snapshot.cpp) ----------------------------------------------------------------
   /// Registers the state segments of the multibody, the contact layer and the buffers above;

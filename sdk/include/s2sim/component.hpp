@@ -428,7 +428,7 @@ class Component {
   virtual void configure(ConfigureContext& ctx) = 0;
   /// Sets the state declared in configure() to its starting values (after `initial`s are
   /// applied). Called before the first tick and at every reset.
-  virtual void initialize(StepContext& ctx) {}
+  virtual void initialize(StepContext& /*ctx*/) {}
   /// One update on a tick of the component's schedule. Must not allocate or throw.
   virtual void update(StepContext& ctx) = 0;
 };

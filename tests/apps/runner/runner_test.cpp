@@ -480,4 +480,88 @@ TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) 
   EXPECT_EQ(csv.rows.back().front(), "0.040000");
 }
 
+// --- Plugin search (issue 13) ----------------------------------------------------------------
+
+const fs::path kDefaultScene = fs::path(S2SIM_SOURCE_DIR) / "scenes/default";
+const fs::path kScenePlugins = fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene";
+
+TEST_F(Runner, VersionIsTheProjectVersion) {
+  const Result r = run({"--version"});
+  EXPECT_EQ(r.status, 0);
+  EXPECT_EQ(r.out.rfind("s2sim-run " S2SIM_PROJECT_VERSION " (SDK " S2SIM_PROJECT_VERSION ",", 0),
+            0u)
+      << r.out;
+}
+
+TEST_F(Runner, PluginPathAddsToTheDefaultFolders) {
+  // A scene with joints needs the drive train from the default folder, found although
+  // --plugin-path names another folder.
+  const fs::path empty = dir_ / "empty_plugins";
+  fs::create_directories(empty);
+  const Result r =
+      run({kDefaultScene.string(), "--duration", "0.01", "--plugin-path", empty.string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  // Only the folders named: the drive train is missing.
+  const Result only = run({kDefaultScene.string(), "--duration", "0.01", "--plugin-path",
+                           empty.string(), "--no-default-plugin-path"});
+  EXPECT_EQ(only.status, 3);
+  EXPECT_THAT(only.err, AllOf(HasSubstr("drive-train kind"), HasSubstr(empty.string())));
+}
+
+TEST_F(Runner, DuplicateKindFirstOnThePathWinsWithAWarningNamingBoth) {
+  // A stale copy of the drive train (a real copy, not a link to the same file) first on the
+  // path: it wins, the build's is skipped, the run goes on (it used to refuse every scene).
+  const fs::path stale = dir_ / "stale";
+  fs::create_directories(stale);
+  const fs::path build_copy = fs::path(S2SIM_PLUGIN_DIR) / "libdrive_train.so";
+  fs::copy_file(build_copy, stale / "libdrive_train.so");
+  const Result r =
+      run({kDefaultScene.string(), "--duration", "0.01", "--plugin-path", stale.string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, AllOf(HasSubstr("warning: plugin search: " + build_copy.string() +
+                                     ": kind 'dc_motor' of plugin 'drive_train' ignored"),
+                           HasSubstr((stale / "libdrive_train.so").string()),
+                           HasSubstr("comes first on the search path")));
+}
+
+TEST_F(Runner, LibraryNotNamedLibSoIsNamedInAWarning) {
+  const fs::path odd = dir_ / "odd";
+  fs::create_directories(odd);
+  fs::copy_file(fs::path(S2SIM_PLUGIN_DIR) / "libservo.so", odd / "servo.so");
+  const Result r =
+      run({kDefaultScene.string(), "--duration", "0.01", "--plugin-path", odd.string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warning: plugin search: " + (odd / "servo.so").string() +
+                               ": ignored: a plugin library's file name must be lib<name>.so"));
+}
+
+TEST_F(Runner, UnknownPluginAttributeWarnsWithDidYouMean) {
+  // `valeu` has a default (`value`, 1): without the warning the misspelling goes unseen.
+  write_file(dir_ / "plugged/scene.xml",
+             "<?xml version=\"1.0\"?>\n<scene>\n"
+             "  <plugin kind='test_reference_controller' id='w' input='sheet/A1' valeu='2'>\n"
+             "    <extra flag='1'/>\n"
+             "  </plugin>\n</scene>\n");
+  const Result r = run(
+      {(dir_ / "plugged").string(), "--duration", "0.1", "--plugin-path", kScenePlugins.string()});
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warning: scene.xml: scene/plugin@valeu: attribute ignored: kind "
+                               "'test_reference_controller' does not read it; did you mean "
+                               "'value'?"));
+  // A child's attribute nobody reads is named too; read attributes are not.
+  EXPECT_THAT(r.err, HasSubstr("scene/plugin/extra@flag: attribute ignored"));
+  EXPECT_THAT(r.err, Not(HasSubstr("@input")));
+}
+
+TEST_F(Runner, MisspeltKindGetsADidYouMean) {
+  write_file(dir_ / "plugged/scene.xml",
+             "<?xml version=\"1.0\"?>\n<scene>\n"
+             "  <plugin kind='test_reference_controler' input='sheet/A1'/>\n</scene>\n");
+  const Result r =
+      run({(dir_ / "plugged").string(), "--quiet", "--plugin-path", kScenePlugins.string()});
+  EXPECT_EQ(r.status, 3);
+  EXPECT_THAT(r.err, HasSubstr("no plugin provides kind 'test_reference_controler' (did you "
+                               "mean 'test_reference_controller'?)"));
+}
+
 }  // namespace

@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -203,15 +204,46 @@ TEST(PluginLoader, ScanOfMixedFolderRegistersGoodAndWarnsAboutBad) {
                     HasSubstr("plugin ABI version")));
 }
 
-TEST(PluginLoader, ScanWithDuplicateKindsAcrossFoldersThrowsNamingBoth) {
+TEST(PluginLoader, ScanWithDuplicateKindsAcrossFoldersFirstWinsWithAWarningNamingBoth) {
+  // A stale copy of a plugin later on the path must not stop every run (issue 13).
   PluginRegistry registry({folder("good"), folder("duplicate_kind")});
-  const std::string message = plugin_error([&] { registry.has("test_counter"); });
-  EXPECT_THAT(message, AllOf(HasSubstr(library("good").string()),
-                             HasSubstr(library("duplicate_kind").string()),
-                             HasSubstr("kind 'test_counter'")));
-  // Still ambiguous on the next query: the scan does not pretend to have succeeded.
-  EXPECT_THAT(plugin_error([&] { registry.find("test_counter"); }),
-              HasSubstr("kind 'test_counter'"));
+  ASSERT_TRUE(registry.has("test_counter"));
+  EXPECT_EQ(registry.find("test_counter").library, library("good"));
+  EXPECT_EQ(registry.find("test_counter").plugin_name, "test_good");
+  ASSERT_EQ(registry.scan_warnings().size(), 1u);
+  EXPECT_THAT(
+      registry.scan_warnings()[0],
+      AllOf(HasSubstr(library("good").string()), HasSubstr(library("duplicate_kind").string()),
+            HasSubstr("kind 'test_counter'"), HasSubstr("comes first")));
+
+  // The other order: the other library wins.
+  PluginRegistry reversed({folder("duplicate_kind"), folder("good")});
+  EXPECT_EQ(reversed.find("test_counter").library, library("duplicate_kind"));
+  EXPECT_EQ(reversed.find("test_counter").plugin_name, "test_duplicate");
+  // The later library's other kinds are registered: only the duplicate is skipped.
+  EXPECT_TRUE(reversed.has("test_throwing_factory"));
+  EXPECT_EQ(reversed.find("test_throwing_factory").library, library("good"));
+}
+
+TEST(PluginLoader, LibraryNotNamedLibSoIsSkippedWithAWarningSayingWhy) {
+  // test-plugins/misnamed/misnamed.so is a valid plugin under a name the scan does not load.
+  PluginRegistry registry({folder("misnamed")});
+  EXPECT_FALSE(registry.has("test_misnamed_counter"));
+  ASSERT_EQ(registry.scan_warnings().size(), 1u);
+  EXPECT_THAT(registry.scan_warnings()[0],
+              AllOf(HasSubstr((folder("misnamed") / "misnamed.so").string()), HasSubstr("ignored"),
+                    HasSubstr("lib<name>.so")));
+  EXPECT_THAT(plugin_error([&] { registry.find("test_misnamed_counter"); }),
+              HasSubstr("misnamed.so: ignored"));
+}
+
+TEST(PluginLoader, UnknownKindSuggestsTheCloseKinds) {
+  PluginRegistry registry({folder("good")});
+  EXPECT_THAT(plugin_error([&] { registry.find("test_countr"); }),
+              AllOf(HasSubstr("no plugin provides kind 'test_countr'"),
+                    HasSubstr("did you mean 'test_counter'?")));
+  // Nothing close: no suggestion.
+  EXPECT_THAT(plugin_error([&] { registry.find("warp_drive"); }), Not(HasSubstr("did you mean")));
 }
 
 TEST(PluginLoader, UnknownKindListsFoldersSearchedAndWarnings) {
@@ -321,6 +353,20 @@ TEST(PluginLoader, DefaultSearchPathWithoutEnvironmentHasNoTestFolders) {
   for (const fs::path& p : PluginRegistry::default_search_path()) {
     EXPECT_THAT(p.string(), Not(HasSubstr(S2SIM_TEST_PLUGIN_DIR)));
   }
+}
+
+TEST(PluginLoader, SearchPathPutsTheGivenFoldersFirstThenTheDefaults) {
+  ScopedEnv env("S2SIM_PLUGIN_PATH", folder("mixed").string());
+  const std::vector<fs::path> path = PluginRegistry::search_path({folder("good"), folder("mixed")});
+  ASSERT_GE(path.size(), 2u);
+  EXPECT_EQ(path[0], folder("good"));
+  EXPECT_EQ(path[1], folder("mixed"));  // listed once, where it first comes
+  EXPECT_EQ(std::count(path.begin(), path.end(), folder("mixed")), 1);
+  // This test binary lies in the build tree: the build's plugin folder is a default.
+  EXPECT_NE(std::find(path.begin(), path.end(), fs::path(S2SIM_PLUGIN_DIR)), path.end());
+  // Without the defaults, only the folders given.
+  EXPECT_EQ(PluginRegistry::search_path({folder("good")}, false),
+            std::vector<fs::path>{folder("good")});
 }
 
 }  // namespace

@@ -352,6 +352,7 @@ TEST(DriveTrain, MissingPluginIsAPluginErrorNamingTheAxisAndTheKind) {
   fs::create_directories(empty);
   SimulationOptions o;
   o.plugin_path = {empty};
+  o.default_plugin_path = false;  // only the empty folder
   try {
     Simulation::load(kBench, o);
     FAIL() << "loaded without the drive-train plugin";

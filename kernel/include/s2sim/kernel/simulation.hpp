@@ -23,8 +23,12 @@ struct SimulationOptions {
   std::uint64_t seed = 1;  ///< seeds every component's random stream
   std::optional<double> physics_step_s;
   std::optional<int> substeps;
-  /// Plugin folders; empty = PluginRegistry::default_search_path().
+  /// Plugin folders searched first, before the default ones (S2SIM_PLUGIN_PATH, then the
+  /// plugin folder of the kernel's own prefix: docs/plugins.md). When two libraries provide
+  /// one kind, the first on the path wins (a load warning names both).
   std::vector<std::filesystem::path> plugin_path;
+  /// false: search `plugin_path` only.
+  bool default_plugin_path = true;
   /// Constants defined before scene.xml is read (as `--define`).
   std::vector<std::pair<std::string, double>> constants;
 };
