@@ -16,6 +16,10 @@ SimulationOptions simulation_options(const CommandLine& o) {
   so.constants = o.constants;
   for (const auto& p : o.plugin_path)
     so.plugin_path.emplace_back(p);
+  if constexpr (requires { o.script_mode; }) {  // the runner's SimTwo script options
+    so.script_mode = o.script_mode;
+    if (!o.script_file.empty()) so.script_file = o.script_file;
+  }
   return so;
 }
 

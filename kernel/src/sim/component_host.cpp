@@ -225,6 +225,11 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.axis_inertia[static_cast<std::size_t>(a.index)] += inertia;
   }
 
+  void warn(std::string_view message) override {
+    sim_.warnings.push_back(slot().prefix + ": " + std::string(message));
+  }
+  std::uint64_t seed() const override { return sim_.options.seed; }
+
   void set_schedule(Stage stage, double period_s, double phase_s) override {
     auto to_ticks = [&](double t, const char* what) {
       const double ticks = t / sim_.tick_s;

@@ -93,6 +93,14 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
     m.components.back().prefix = c.prefix;
   }
+  // The SimTwo script last: it reads the signals the sensors and the drive train publish.
+  if (const auto script = m.script_instance()) {
+    if (!registry)
+      registry.emplace(options.plugin_path.empty() ? plugin::PluginRegistry::default_search_path()
+                                                   : options.plugin_path);
+    m.add_component(*registry, script->kind, script->id, -1, script->params, script->where,
+                    std::nullopt);
+  }
   m.configure_components();
 
   m.multibody = std::make_unique<model::Multibody>(m.scene, m.topology, m.axis_inertia, m.tick_s,
@@ -130,6 +138,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.kernel = m.ray_caster.get();
   m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
+  m.pending_places.reserve(m.poses.size());
+  m.world.placer = &m;
+  m.world.request_place = &Simulation::Impl::request_place;
   m.declare_state();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

@@ -175,6 +175,10 @@ struct WorldView {
   AxisDrive* axis_drives = nullptr;
   std::int32_t* axis_drive_count = nullptr;
   std::int32_t axis_drive_capacity = 0;
+  /// Re-placements asked for during the tick (SDK 0.6, ABI 5): the kernel moves the body
+  /// after the stage that asked, before the physics (`StepContext::request_place`).
+  const void* placer = nullptr;
+  void (*request_place)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
 };
 }  // namespace detail
 
@@ -262,6 +266,15 @@ class StepContext {
   /// physics step: constraint and drive loads together (what an F/T cell in the joint reads).
   /// The joint must have been looked up with `ConfigureContext::joint()`.
   const Wrench& joint_reaction(JointHandle j) const { return w_->joint_reaction[j.index]; }
+
+  /// Asks the kernel to move a body that hangs freely from the world (a thing, or a robot's
+  /// root body, which carries its whole robot) to `pose` in the world frame, at rest, once the
+  /// current stage has run (SDK 0.6): SimTwo's `SetRobotPos`, `SetThingPos`. A body jointed
+  /// to something else cannot be placed: the kernel then stops with a runtime error naming it.
+  /// Does not allocate.
+  void request_place(BodyHandle b, const Pose& pose) {
+    w_->request_place(w_->placer, b.index, pose);
+  }
 
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }
@@ -372,6 +385,15 @@ class ConfigureContext {
   /// (docs/models/multibody.md). A slider or a loop-closing axis does not carry it (a
   /// load-time warning says so). Throws for a negative or non-finite value.
   virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
+
+  // --- SDK 0.6 additions, appended ---
+
+  /// A load-time warning, shown with the scene's other warnings (the runner prints them, the
+  /// viewer lists them), prefixed with the component's signal prefix.
+  virtual void warn(std::string_view message) = 0;
+  /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
+  /// not own (a compiled script's RTL random numbers).
+  virtual std::uint64_t seed() const = 0;
 };
 
 /// Base of every plugin component.
