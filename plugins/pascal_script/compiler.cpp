@@ -1,8 +1,10 @@
-// Compilation of a SimTwo script with Free Pascal, and the compile cache. The user's file is
-// included unchanged ({$I}), so the compiler's messages carry its own line numbers.
+// Compilation of a SimTwo script with Free Pascal, and the compile cache. The wrapper includes
+// ({$I}) a copy of the user's file that differs only on its routines' begin lines
+// (zero_locals.hpp), under the same name: the compiler's messages carry the user's lines.
 #include "compiler.hpp"
 
 #include "host_ids.hpp"
+#include "zero_locals.hpp"
 
 #include <unistd.h>
 #include <array>
@@ -103,7 +105,7 @@ std::string wrapper_text(const std::filesystem::path& script, const std::string&
       "{$mode delphi}{$H+}\n"
       "uses SysUtils, Classes, Math, s2simtwo;\n"
       "{$I '" +
-      script.string() + "'}\n";
+      script.filename().string() + "'}\n";
   if (!declares_initialize(script_text))  // SimTwo compiles it and fails at the first run
     w += "procedure Initialize;\nbegin\n  raise Exception.Create('Unknown procedure: "
          "Initialize');\nend;\n";
@@ -160,7 +162,9 @@ CompileResult compile_script(const std::filesystem::path& script,
     result.output = "the Free Pascal compiler '" + settings.compiler + "' cannot be run";
     return result;
   }
-  const std::string text = read_file(script);
+  // The generated copy the wrapper includes: the user's text with its locals zeroed on the
+  // begin lines (zero_locals.hpp), under the user's file name, so messages name it.
+  const std::string text = zero_locals(read_file(script));
   const std::string support = support_unit_text();
   const std::string wrapper = wrapper_text(script, text);
   const std::string key = hash_hex(text + '\0' + support + '\0' + wrapper + '\0' + version);
@@ -183,6 +187,7 @@ CompileResult compile_script(const std::filesystem::path& script,
   {
     std::ofstream(build / "s2simtwo.pas", std::ios::binary) << support;
     std::ofstream(build / "s2script.pas", std::ios::binary) << wrapper;
+    std::ofstream(build / script.filename(), std::ios::binary) << text;
   }
   const std::string command = shell_quote(settings.compiler) + " -Mdelphi -gl -O1 -vewn -Fu" +
                               shell_quote(build.string()) + " -FE" + shell_quote(build.string()) +

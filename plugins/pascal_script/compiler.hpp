@@ -36,7 +36,8 @@ struct CompileResult {
 
 /// The support unit's text (pascal/s2simtwo.pas with the host function numbers filled in).
 std::string support_unit_text();
-/// The library wrapper that includes `script` (absolute), unchanged.
+/// The library wrapper that includes the script by its file name (the generated copy next to
+/// it; its text decides whether Initialize must be supplied).
 std::string wrapper_text(const std::filesystem::path& script, const std::string& script_text);
 
 /// Compiles `script` unless the cache has it. Never throws for a compile error: the caller

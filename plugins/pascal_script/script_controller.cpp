@@ -248,7 +248,8 @@ void ScriptController::configure(ConfigureContext& ctx) {
     Sheet::Cell& cell = sheet_initial_.set(row, col, p.text(ck + "text", ""));
     if (cell.input < 0) {
       cell.input = static_cast<int>(sheet_inputs_.size());
-      sheet_inputs_.push_back(ctx.declare_input_at("sheet/" + cell_name(row, col), "1", 0.0));
+      sheet_inputs_.push_back(ctx.declare_input_at(
+          "sheet/" + cell_name(row, col), cell.kind == Sheet::Kind::button ? "button" : "1", 0.0));
     }
     sheet_initial_values_.resize(sheet_inputs_.size());
     sheet_initial_values_[static_cast<std::size_t>(cell.input)] = cell.value;
@@ -407,6 +408,11 @@ void ScriptController::report_error(const std::string& routine, const std::strin
       where = f;
   }
   if (where.empty()) where = any;
+  // The line table names the compiled copy: show the user's file, same line.
+  if (const auto at = where.find("/" + file + ":"); at != std::string::npos) {
+    const auto space = where.rfind(' ', at);
+    where = where.substr(0, space + 1) + script_.string() + where.substr(at + 1 + file.size());
+  }
   last_error_ = "run-time error in " + routine + ": " + parts.front() +
                 (where.empty() ? std::string() : " (" + where + ")");
   std::fprintf(stderr, "script %s: %s; the script is stopped\n", script_.string().c_str(),

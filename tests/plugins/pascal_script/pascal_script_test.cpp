@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -246,6 +248,16 @@ TEST_F(PascalScript, RunTimeErrorStopsTheScriptNotTheSimulation) {
   }
 }
 
+TEST_F(PascalScript, LocalsAndResultsStartAtZeroAsInPascalScript) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "zero_locals.pas");
+  o.sheet_cells = {{1, 1, "-1"}};
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
+  sim->run_until(0.2);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 0);
+  EXPECT_EQ(sig(*sim, "sheet/A1"), 0);
+}
+
 TEST_F(PascalScript, SameSceneScriptSeedAndInputsGiveIdenticalRuns) {
   SKIP_WITHOUT_SHARED("RobotFactoryLite");
   auto run = [&] {
@@ -337,6 +349,27 @@ TEST_F(PascalScript, SerialPortOnAPseudoTerminalIsByteExact) {
   sim->run_until(0.2);
   EXPECT_EQ(read_all(), "echo:" + bytes);
   ::close(master);
+}
+
+TEST_F(PascalScript, RunnerWritesIdenticalCsvLogsForTheSameSceneScriptSeedAndInputs) {
+  SKIP_WITHOUT_SHARED("RobotFactoryLite");
+  const fs::path dir =
+      fs::temp_directory_path() / ("s2sim-pascal-csv-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  auto run = [&](const std::string& name) {
+    const std::string cmd = std::string(S2SIM_BIN_DIR) + "/s2sim-run " +
+                            shared("RobotFactoryLite").string() +
+                            " --duration 2 --quiet --seed 7 --set keyboard/38=1 --press 2,3@0.3 "
+                            "--log " +
+                            (dir / name).string() + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    std::ifstream in(dir / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string a = run("a.csv"), b = run("b.csv");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_TRUE(a == b) << "the two CSV logs differ";
+  fs::remove_all(dir);
 }
 
 TEST_F(PascalScript, RunnerPressAndSheetOptionsAreValidated) {
