@@ -342,6 +342,7 @@ void ScriptController::initialize(StepContext& ctx) {
 
 void ScriptController::update(StepContext& ctx) {
   double* s = ctx.state(state_);
+  if (!available_) return;  // no compiler: the scene runs without its controller
   // The script tick, before the script: encoders counted over the period, references zeroed
   // (§1.3 steps 1-2; the position reference is kept).
   std::size_t k = 3;
@@ -354,7 +355,7 @@ void ScriptController::update(StepContext& ctx) {
       }
       ++k;
     }
-  if (!available_ || s[1] != 0) return;
+  if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
   ctx_ = &ctx;
   std::string error;
   bool ok = true;

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -389,11 +390,16 @@ class ConfigureContext {
   // --- SDK 0.6 additions, appended ---
 
   /// A load-time warning, shown with the scene's other warnings (the runner prints them, the
-  /// viewer lists them), prefixed with the component's signal prefix.
-  virtual void warn(std::string_view message) = 0;
+  /// viewer lists them), prefixed with the component's signal prefix. (Not pure, so that
+  /// ConfigureContext implementations outside the kernel, test fakes, keep compiling: theirs
+  /// go to stderr.)
+  virtual void warn(std::string_view message) {
+    std::fprintf(stderr, "warning: %.*s: %.*s\n", static_cast<int>(signal_prefix().size()),
+                 signal_prefix().data(), static_cast<int>(message.size()), message.data());
+  }
   /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
-  /// not own (a compiled script's RTL random numbers).
-  virtual std::uint64_t seed() const = 0;
+  /// not own (a compiled script's RTL random numbers); 1 outside the kernel.
+  virtual std::uint64_t seed() const { return 1; }
 };
 
 /// Base of every plugin component.

@@ -248,6 +248,25 @@ TEST_F(PascalScript, RunTimeErrorStopsTheScriptNotTheSimulation) {
   }
 }
 
+TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
+  o.sheet_cells = {{1, 1, "0"}, {2, 1, "0"}};
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
+  ::testing::internal::CaptureStderr();
+  sim->run_until(0.5);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 1);
+  sim->reset();  // a fresh copy of the library: globals zeroed, Initialize at the first tick
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 0);
+  EXPECT_EQ(sig(*sim, "sheet/A1"), 0);
+  sim->run_until(0.1);
+  EXPECT_EQ(sig(*sim, "controllers/script/calls"), 2);
+  EXPECT_EQ(sig(*sim, "sheet/A1"), 2);
+  sim->run_until(0.5);
+  EXPECT_EQ(sig(*sim, "controllers/script/calls"), 3);
+  (void)::testing::internal::GetCapturedStderr();
+}
+
 TEST_F(PascalScript, LocalsAndResultsStartAtZeroAsInPascalScript) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "zero_locals.pas");
