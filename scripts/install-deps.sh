@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian packages S2Sim builds against. Idempotent: only missing packages are
-# installed, and nothing is downloaded when everything is present.
+# installed, and nothing is downloaded when everything is present. fpc (Free Pascal) compiles
+# SimTwo projects' control.pas scripts (docs/scripting.md); binutils' addr2line names the line
+# of a script's run-time error.
 set -euo pipefail
 
 packages=(
@@ -13,6 +15,7 @@ packages=(
   xvfb xauth
   gnuplot-nox
   python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed
+  fpc binutils
 )
 
 missing=()

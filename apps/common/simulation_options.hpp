@@ -18,6 +18,10 @@ SimulationOptions simulation_options(const CommandLine& o) {
   for (const auto& p : o.plugin_path)
     so.plugin_path.emplace_back(p);
   if constexpr (requires { o.default_plugin_path; }) so.default_plugin_path = o.default_plugin_path;
+  if constexpr (requires { o.script_mode; }) {  // the runner's SimTwo script options
+    so.script_mode = o.script_mode;
+    if (!o.script_file.empty()) so.script_file = o.script_file;
+  }
   return so;
 }
 

@@ -31,7 +31,16 @@ double seconds_since(Clock::time_point start) {
 
 int run(const s2sim::runner::Options& o) {
   using namespace s2sim;
-  auto sim = Simulation::load(o.scene, apps::simulation_options(o));
+  SimulationOptions options = apps::simulation_options(o);
+  for (const auto& c : o.sheet_values) {  // as if Global.S2Sheet had them
+    char text[40];
+    std::snprintf(text, sizeof text, "%.17g", c.value);
+    options.sheet_cells.push_back({c.row, c.col, text});
+  }
+  if (!o.sheet_values.empty() && options.script_mode == ScriptMode::off)
+    throw Error(ErrorKind::usage,
+                "--sheet sets cells of the SimTwo script's sheet: not with --no-script");
+  auto sim = Simulation::load(o.scene, options);
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -48,6 +57,41 @@ int run(const s2sim::runner::Options& o) {
   }
   for (const auto& [name, value] : o.inputs)
     sim->set_input(name, value);
+  for (const auto& c : o.sheet_values) {
+    bool found = false;
+    const std::string name = "sheet/" + runner::cell_name(c.row, c.col);
+    for (std::size_t i = 0; i < sim->input_count() && !found; ++i)
+      found = sim->input_info(i).name == name;
+    if (!found)
+      throw Error(ErrorKind::usage,
+                  "--sheet " + std::to_string(c.row) + "," + std::to_string(c.col) +
+                      ": no SimTwo script runs, so there is no sheet (the project's control "
+                      "block is not \"Script\": add --run-script, or --script FILE)");
+  }
+  // The SimTwo sheet: a cell's number is the input sheet/<cell>; a button's is its clicks.
+  auto sheet_input = [&](int row, int col, const char* option) {
+    const std::string name = "sheet/" + runner::cell_name(row, col);
+    bool found = false;
+    for (std::size_t i = 0; i < sim->input_count() && !found; ++i)
+      found = sim->input_info(i).name == name;
+    if (!found)
+      throw Error(ErrorKind::usage, std::string(option) + " " + std::to_string(row) + "," +
+                                        std::to_string(col) + ": the sheet has no cell " +
+                                        runner::cell_name(row, col) +
+                                        " (cells come from the project's Global.S2Sheet)");
+    return sim->input_index(name);
+  };
+  std::vector<std::pair<std::int64_t, std::size_t>> presses;  // (tick, input), in time order
+  for (const auto& p : o.presses)
+    presses.emplace_back(std::llround(p.time_s / sim->tick_s()),
+                         sheet_input(p.row, p.col, "--press"));
+  std::stable_sort(presses.begin(), presses.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t next_press = 0;
+  auto apply_presses = [&] {
+    for (; next_press < presses.size() && presses[next_press].first <= sim->tick(); ++next_press)
+      sim->set_input(presses[next_press].second, sim->input(presses[next_press].second) + 1);
+  };
 
   // llround() of a value beyond int64 is undefined (LLONG_MIN on x86): refuse an endless
   // duration and clamp the log period (a huge one legitimately means "the first row only").
@@ -71,7 +115,10 @@ int run(const s2sim::runner::Options& o) {
   const std::int64_t chunk = log ? log_every : std::max<std::int64_t>(1, total_ticks / 1000);
   std::int64_t done = 0;
   while (done < total_ticks) {
-    const std::int64_t n = std::min(chunk, total_ticks - done);
+    apply_presses();
+    std::int64_t n = std::min(chunk, total_ticks - done);
+    if (next_press < presses.size())
+      n = std::max<std::int64_t>(1, std::min(n, presses[next_press].first - sim->tick()));
     sim->step(n);
     done += n;
     if (log && done % log_every == 0) log->write_row(*sim);

@@ -30,6 +30,22 @@ std::pair<std::string, double> parse_assignment(std::string_view option, const s
   return {text.substr(0, eq), parse_number(option, text.substr(eq + 1))};
 }
 
+/// "R,C" with 1-based integers (SimTwo's sheet rows and columns).
+std::pair<int, int> parse_cell(std::string_view option, const std::string& text) {
+  const auto comma = text.find(',');
+  auto integer = [&](const std::string& part) {
+    char* end = nullptr;
+    const long v = std::strtol(part.c_str(), &end, 10);
+    if (part.empty() || end != part.c_str() + part.size() || v < 1 || v > 100000)
+      throw usage_error(std::string(option) + ": '" + text +
+                        "' is not ROW,COLUMN with integers from 1 (SimTwo's sheet numbering)");
+    return static_cast<int>(v);
+  };
+  if (comma == std::string::npos)
+    throw usage_error(std::string(option) + ": expected ROW,COLUMN, got '" + text + "'");
+  return {integer(text.substr(0, comma)), integer(text.substr(comma + 1))};
+}
+
 }  // namespace
 
 const char* usage_text() {
@@ -55,6 +71,13 @@ Options:
                        the first library on the path that provides a kind wins)
   --no-default-plugin-path
                        search only the --plugin-path folders
+  --script FILE        run this SimTwo script instead of the one the project names
+  --run-script         run the project's script even when its control block is not
+                       "Script" (SimTwo's Run)
+  --no-script          do not run the project's script
+  --press R,C[@S]...   click the sheet button at row R, column C (1-based) at S seconds
+                       (default 0), e.g. --press 11,3@0.5
+  --sheet R,C=VALUE... set the number of sheet cell (R, C) before the first step
   --list-signals       print every signal with its unit and exit
   --list-inputs        print every input with its unit and exit
   --quiet              no progress bar, no summary on the terminal
@@ -127,6 +150,35 @@ Options parse_options(int argc, char** argv) {
       o.plugin_path.push_back(value());
     } else if (a == "--no-default-plugin-path") {
       o.default_plugin_path = false;
+    } else if (a == "--script") {
+      o.script_file = value();
+    } else if (a == "--run-script") {
+      o.script_mode = ScriptMode::always;
+    } else if (a == "--no-script") {
+      o.script_mode = ScriptMode::off;
+    } else if (a == "--press") {
+      std::vector<std::string> presses;
+      values(presses);
+      for (const auto& p : presses) {
+        const auto at = p.find('@');
+        const auto [row, col] = parse_cell(a, p.substr(0, at));
+        double t = 0;
+        if (at != std::string::npos) {
+          t = parse_number(a, p.substr(at + 1));
+          if (t < 0) throw usage_error("--press: the time in '" + p + "' must not be negative");
+        }
+        o.presses.push_back({row, col, t});
+      }
+    } else if (a == "--sheet") {
+      std::vector<std::string> cells;
+      values(cells);
+      for (const auto& c : cells) {
+        const auto eq = c.find('=');
+        if (eq == std::string::npos)
+          throw usage_error("--sheet: expected ROW,COLUMN=VALUE, got '" + c + "'");
+        const auto [row, col] = parse_cell(a, c.substr(0, eq));
+        o.sheet_values.push_back({row, col, parse_number(a, c.substr(eq + 1))});
+      }
     } else if (a == "--quiet") {
       o.quiet = true;
     } else if (a == "--list-signals") {
@@ -146,6 +198,10 @@ Options parse_options(int argc, char** argv) {
     }
   }
   if (o.scene.empty() && !o.help && !o.version) throw usage_error("no scene given");
+  if (o.script_mode == ScriptMode::off && !o.script_file.empty())
+    throw usage_error("--script and --no-script contradict each other");
+  if (!o.script_file.empty() && o.script_mode == ScriptMode::control_block)
+    o.script_mode = ScriptMode::always;
   // Both only shape the CSV: without --log they would be silently ignored (and a misspelt
   // --signals pattern never reported).
   if (o.log_file.empty() && !o.help && !o.version) {

@@ -2,6 +2,8 @@
 /// \file
 /// Command line of s2sim-run.
 
+#include <s2sim/kernel/simulation.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,12 +28,35 @@ struct Options {
   std::optional<int> substeps;
   std::vector<std::string> plugin_path;  ///< searched before the default folders
   bool default_plugin_path = true;       ///< false: --no-default-plugin-path
+  /// The project's SimTwo script: as its control block says (default), --run-script, --no-script.
+  ScriptMode script_mode = ScriptMode::control_block;
+  std::string script_file;  ///< --script FILE
+  /// --press R,C[@SECONDS]: a click on sheet button (row, column) at a time (default 0).
+  struct Press {
+    int row = 0, col = 0;
+    double time_s = 0;
+  };
+  std::vector<Press> presses;
+  /// --sheet R,C=VALUE: a sheet cell's number before the first step.
+  struct SheetValue {
+    int row = 0, col = 0;
+    double value = 0;
+  };
+  std::vector<SheetValue> sheet_values;
   bool quiet = false;
   bool list_signals = false;
   bool list_inputs = false;
   bool help = false;
   bool version = false;
 };
+
+/// SimTwo's sheet cell (row, column), 1-based, as the input's name: `B3` for (3, 2).
+inline std::string cell_name(int row, int col) {
+  std::string letters;
+  for (int c = col; c > 0; c = (c - 1) / 26)
+    letters.insert(letters.begin(), static_cast<char>('A' + (c - 1) % 26));
+  return letters + std::to_string(row);
+}
 
 /// Parses argv. Throws s2sim::Error (kind usage) with a message naming the bad argument.
 Options parse_options(int argc, char** argv);

@@ -159,6 +159,7 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
                 "expected a <scene> file, found <" + root.name + ">");
   const Reader r(display, g);
 
+  const Element* s2sim_script = nullptr;
   for (const Element& el : root.children) {
     const std::string& n = el.name;
     if (n == "defines") {
@@ -188,10 +189,12 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
       load_plugin(ctx, r, el, -1);
     } else if (n == "s2sim") {
       apply_s2sim_settings(r, el, scene.settings);
+      if (const Element* script = el.child("script")) s2sim_script = script;
     } else {
       ctx.warn(r.at(el), "unknown scene element <" + n + "> ignored");
     }
   }
+  load_script_and_sheet(ctx, r, s2sim_script);
   return scene;
 }
 

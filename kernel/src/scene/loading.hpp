@@ -34,6 +34,11 @@ struct LoadContext {
   void warn(const Location& where, const std::string& message);
 };
 
+using IniSection = std::map<std::string, std::string>;
+/// The keys of `[section]` of an ini file, or of the whole file when it has no such section;
+/// nullopt when the file cannot be read.
+std::optional<IniSection> read_ini(const std::filesystem::path& file, const std::string& section);
+
 /// `<defines>`: `<const>` sets, `<arg>` defines when absent, anything else is ignored.
 void apply_defines(const Element& defines, const Reader& reader, ConstantTable& table);
 
@@ -105,5 +110,8 @@ void load_sensors_file(LoadContext& ctx, const std::filesystem::path& file,
 Settings load_settings(const std::filesystem::path& folder);
 /// `<s2sim>` overrides of scene.xml.
 void apply_s2sim_settings(const Reader& reader, const Element& el, Settings& settings);
+/// The project's script (ScriptRef) and sheet (`Global.S2Sheet`); `s2sim_script` is the
+/// `<s2sim><script file>` element when the scene has one (scene/script.cpp).
+void load_script_and_sheet(LoadContext& ctx, const Reader& reader, const Element* s2sim_script);
 
 }  // namespace s2sim::scene::detail

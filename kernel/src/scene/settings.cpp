@@ -11,11 +11,7 @@
 #include <map>
 
 namespace s2sim::scene::detail {
-namespace {
 
-using IniSection = std::map<std::string, std::string>;
-
-/// The keys of `[section]`, or of the whole file when it has no such section.
 std::optional<IniSection> read_ini(const std::filesystem::path& file, const std::string& section) {
   std::ifstream in(file);
   if (!in) return std::nullopt;
@@ -39,6 +35,8 @@ std::optional<IniSection> read_ini(const std::filesystem::path& file, const std:
   }
   return has_section ? wanted : all;
 }
+
+namespace {
 
 /// A Delphi-written float: '.' or (in a Portuguese locale) ',' as decimal separator.
 std::optional<double> parse_ini_number(std::string text) {

@@ -230,6 +230,8 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.axis_inertia[static_cast<std::size_t>(a.index)] += inertia;
   }
 
+  std::uint64_t seed() const override { return sim_.options.seed; }
+
   void set_schedule(Stage stage, double period_s, double phase_s) override {
     auto to_ticks = [&](double t, const char* what) {
       const double ticks = t / sim_.tick_s;

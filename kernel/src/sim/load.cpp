@@ -108,6 +108,14 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
     m.components.back().plugin_element = true;
   }
+  // The SimTwo script last: it reads the signals the sensors and the drive train publish.
+  if (const auto script = m.script_instance()) {
+    if (!registry)
+      registry.emplace(
+          plugin::PluginRegistry::search_path(options.plugin_path, options.default_plugin_path));
+    m.add_component(*registry, script->kind, script->id, -1, script->params, script->where,
+                    std::nullopt);
+  }
   if (registry)
     for (const auto& w : registry->scan_warnings())
       m.warnings.push_back("plugin search: " + w);
@@ -149,6 +157,9 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.kernel = m.ray_caster.get();
   m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
+  m.pending_places.reserve(m.poses.size());
+  m.world.placer = &m;
+  m.world.request_place = &Simulation::Impl::request_place;
   m.declare_state();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

@@ -130,6 +130,12 @@ struct Simulation::Impl {
   std::vector<sim::ComponentSlot> components;
   std::array<std::vector<int>, 4> stage_order;
 
+  /// Re-placements components asked for in the current stage (StepContext::request_place),
+  /// applied once the stage has run (step.cpp); reserved at load, one per body.
+  std::vector<std::pair<std::int32_t, Pose>> pending_places;
+  static void request_place(const void* impl, std::int32_t body, const Pose& pose);
+  void apply_pending_places();
+
   // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
   std::unique_ptr<collision::RayCaster> ray_caster;
 
@@ -169,6 +175,10 @@ struct Simulation::Impl {
   /// After configure: a warning for every attribute of a `<plugin>` element (or of its
   /// children) that its component never asked for, a misspelling most of the time.
   void warn_unread_plugin_attributes();
+  /// The `pascal_script` controller for the project's script, when `options` ask for it
+  /// (script_attach.cpp): its element carries SimTwo's index tables (robots, solids, axes,
+  /// sensors, things), the sheet and the scene constants.
+  std::optional<scene::PluginInstance> script_instance() const;
 
   // --- snapshots (snapshot.cpp) ----------------------------------------------------------------
   /// Registers the state segments of the multibody, the contact layer and the buffers above;

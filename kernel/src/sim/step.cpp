@@ -123,6 +123,7 @@ void Simulation::Impl::step_once() {
         sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
       }
     }
+    if (!pending_places.empty()) apply_pending_places();
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
@@ -136,6 +137,33 @@ void Simulation::Impl::step_once() {
   sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
   refresh();
   world.contacts = contacts->contacts();  // the buffer may have grown
+}
+
+void Simulation::Impl::request_place(const void* impl, std::int32_t body, const Pose& pose) {
+  auto& m = *const_cast<Simulation::Impl*>(static_cast<const Simulation::Impl*>(impl));
+  // Within the reserve (one per body) a request does not allocate; a later one replaces.
+  for (auto& [b, p] : m.pending_places)
+    if (b == body) {
+      p = pose;
+      return;
+    }
+  m.pending_places.emplace_back(body, pose);
+}
+
+void Simulation::Impl::apply_pending_places() {
+  for (const auto& [body, pose] : pending_places) {
+    const auto& bodies = scene.bodies;
+    if (!multibody->place_free_body(body, pose))
+      throw Error(ErrorKind::runtime,
+                  "a component asked to place body " +
+                      (body > 0 && body <= static_cast<int>(bodies.size())
+                           ? "'" + bodies[static_cast<std::size_t>(body - 1)].id + "'"
+                           : "index " + std::to_string(body)) +
+                      ", which is not free on the world (only a thing or a robot's root body "
+                      "can be placed)");
+  }
+  pending_places.clear();
+  refresh();
 }
 
 void Simulation::Impl::check_loads_finite() const {
@@ -183,6 +211,7 @@ void Simulation::Impl::refresh() {
 
 void Simulation::Impl::reset() {
   tick = 0;
+  pending_places.clear();
   multibody->reset();
   contacts->reset();
   // Copy in place: the WorldView points into these buffers.

@@ -191,6 +191,10 @@ struct WorldView {
   AxisDrive* axis_drives = nullptr;
   std::int32_t* axis_drive_count = nullptr;
   std::int32_t axis_drive_capacity = 0;
+  /// Re-placements asked for during the tick (SDK 0.8, ABI 5): the kernel moves the body
+  /// after the stage that asked, before the physics (`StepContext::request_place`).
+  const void* placer = nullptr;
+  void (*request_place)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
 };
 }  // namespace detail
 
@@ -278,6 +282,15 @@ class StepContext {
   /// physics step: constraint and drive loads together (what an F/T cell in the joint reads).
   /// The joint must have been looked up with `ConfigureContext::joint()`.
   const Wrench& joint_reaction(JointHandle j) const { return w_->joint_reaction[j.index]; }
+
+  /// Asks the kernel to move a body that hangs freely from the world (a thing, or a robot's
+  /// root body, which carries its whole robot) to `pose` in the world frame, at rest, once the
+  /// current stage has run (SDK 0.8): SimTwo's `SetRobotPos`, `SetThingPos`. A body jointed
+  /// to something else cannot be placed: the kernel then stops with a runtime error naming it.
+  /// Does not allocate.
+  void request_place(BodyHandle b, const Pose& pose) {
+    w_->request_place(w_->placer, b.index, pose);
+  }
 
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }
@@ -417,6 +430,12 @@ class ConfigureContext {
   virtual InputHandle input(std::string_view full_name) = 0;
   /// A reader of any signal by full name. Throws naming close names when unknown.
   virtual SignalReader signal_reader(std::string_view full_name) const = 0;
+
+  // --- the run's seed (SDK 0.8 addition, appended) ---
+
+  /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
+  /// not own (a compiled script's RTL random numbers); 1 outside the kernel.
+  virtual std::uint64_t seed() const { return 1; }
 };
 
 /// Base of every plugin component.

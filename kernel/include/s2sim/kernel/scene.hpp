@@ -313,6 +313,23 @@ struct Settings {
   std::string source;  ///< which file the values came from ("defaults" when none)
 };
 
+/// The project's SimTwo script (`control.pas`), found as SimTwo finds it
+/// (docs/scripting.md): `<s2sim><script file>`, else `config_Editor.ini` `[Editor]`
+/// `LastProjectName`, else the same key of `SimTwo.ini`, else `control.pas` when it exists.
+struct ScriptRef {
+  std::filesystem::path file;  ///< absolute
+  std::string found_by;        ///< where the name came from, for messages
+  /// SimTwo's control block at start is "Script" (`RGControlBlock_ItemIndex` = 1 in
+  /// `config_Params.ini`, else `SimTwo.ini`), or the scene names its script with `<s2sim>`.
+  bool runs_at_start = false;
+};
+
+/// A cell of SimTwo's sheet as `Global.S2Sheet` stores it: 1-based row and column, the text.
+struct SheetCell {
+  int row = 0, col = 0;
+  std::string text;
+};
+
 struct Scene {
   std::filesystem::path folder;  ///< absolute
   std::filesystem::path file;    ///< the scene.xml, absolute
@@ -326,6 +343,8 @@ struct Scene {
   std::vector<TrackPolygon> tracks;
   std::vector<PluginInstance> plugins;
   ConstantTable globals;
+  std::optional<ScriptRef> script;    ///< the project's script, if it has one
+  std::vector<SheetCell> sheet;       ///< `Global.S2Sheet`'s cells in file order
   std::vector<std::string> warnings;  ///< tolerated oddities (missing files, unknown tags)
 };
 

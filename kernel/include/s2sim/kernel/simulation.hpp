@@ -18,6 +18,13 @@
 
 namespace s2sim {
 
+/// Whether the project's SimTwo script (`control.pas`) runs (docs/scripting.md).
+enum class ScriptMode {
+  off,            ///< physics only (the library's default: tests and benchmarks)
+  control_block,  ///< as SimTwo starts: when its control block is "Script" (the runner's default)
+  always,         ///< whenever the project has a script, as SimTwo's Run
+};
+
 /// How to load a simulation. Unset optionals keep the scene's settings.
 struct SimulationOptions {
   std::uint64_t seed = 1;  ///< seeds every component's random stream
@@ -31,6 +38,14 @@ struct SimulationOptions {
   bool default_plugin_path = true;
   /// Constants defined before scene.xml is read (as `--define`).
   std::vector<std::pair<std::string, double>> constants;
+  /// The project's script: when it runs, and a file to use instead of the one the project
+  /// names (relative to the scene folder or absolute; runs whatever `script_mode` says unless
+  /// that is `off`). The script is compiled into the `pascal_script` controller plugin.
+  ScriptMode script_mode = ScriptMode::off;
+  std::optional<std::filesystem::path> script_file;
+  /// Sheet cells set before the start, over `Global.S2Sheet`'s (the runner's --sheet): each
+  /// becomes an input `sheet/<cell>` even when the file lacks it.
+  std::vector<scene::SheetCell> sheet_cells;
 };
 
 /// A named value with its unit, e.g. `robots/r/axes/left/speed` in `rad/s`.

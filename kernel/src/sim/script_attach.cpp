@@ -1,0 +1,161 @@
+// The SimTwo script's controller (docs/scripting.md): a scene-level `pascal_script` component
+// whose element carries what a SimTwo script indexes by number, in SimTwo's order
+// (simtwo-script-api.md §2), as flat attributes the plugin reads through Params:
+//   file, found_by, robots, things, obstacles, global_sensors, cells, constants
+//   robot_<R>_id, _main (body path), _origin_x/y/z, _offset_x/y/z, _yaw, _solids, _axes, _sensors
+//   robot_<R>_solid_<i>_id / _body, robot_<R>_axis_<i> (axis path, '' for Fixed/Ball),
+//   robot_<R>_axis_<i>_joint, robot_<R>_sensor_<i>_id / _kind / _prefix
+//   thing_<T>_id / _body / _r / _g / _b / _a, obstacle_<T>_id / _x / _y / _z
+//   global_sensor_<i>_id / _kind / _prefix, cell_<k>_r / _c / _text, constant_<k>_name / _value
+#include "sim/names.hpp"
+#include "sim/simulation_impl.hpp"
+
+#include <cstdio>
+
+namespace s2sim {
+namespace {
+
+std::string number(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
+  if (options.script_mode == ScriptMode::off) return std::nullopt;
+  std::filesystem::path file;
+  std::string found_by;
+  if (options.script_file) {
+    file = options.script_file->is_absolute() ? *options.script_file
+                                              : scene.folder / *options.script_file;
+    found_by = "the --script option";
+    if (!std::filesystem::exists(file))
+      throw Error(ErrorKind::usage, "script file '" + file.string() + "' not found");
+  } else if (scene.script &&
+             (options.script_mode == ScriptMode::always || scene.script->runs_at_start)) {
+    file = scene.script->file;
+    found_by = scene.script->found_by;
+  } else {
+    return std::nullopt;
+  }
+
+  scene::Element el;
+  el.name = "script";
+  el.path = "s2sim/script";
+  auto set = [&](std::string key, std::string value) {
+    el.attributes.emplace_back(std::move(key), std::move(value));
+  };
+  set("file", file.string());
+  set("found_by", found_by);
+  set("period_s", number(scene.settings.control_period_s));
+
+  set("robots", std::to_string(scene.robots.size()));
+  for (std::size_t r = 0; r < scene.robots.size(); ++r) {
+    const scene::Robot& robot = scene.robots[r];
+    const std::string rp = robot_prefix(static_cast<int>(r));
+    const std::string k = "robot_" + std::to_string(r) + "_";
+    set(k + "id", robot.id);
+    set(k + "main",
+        robot.main_body >= 0
+            ? sim::solid_path(rp, scene.bodies[static_cast<std::size_t>(robot.main_body)].id)
+            : std::string());
+    set(k + "origin_x", number(robot.origin_m.x));
+    set(k + "origin_y", number(robot.origin_m.y));
+    set(k + "origin_z", number(robot.origin_m.z));
+    set(k + "offset_x", number(robot.offset_m.x));
+    set(k + "offset_y", number(robot.offset_m.y));
+    set(k + "offset_z", number(robot.offset_m.z));
+    set(k + "yaw", number(robot.yaw_rad));
+    set(k + "solids", std::to_string(robot.bodies.size()));
+    for (std::size_t i = 0; i < robot.bodies.size(); ++i) {
+      const scene::Body& b = scene.bodies[static_cast<std::size_t>(robot.bodies[i])];
+      set(k + "solid_" + std::to_string(i) + "_id", b.id);
+      set(k + "solid_" + std::to_string(i) + "_body", sim::solid_path(rp, b.id));
+    }
+    // SimTwo's axis list: one per joint axis in joint order, Fixed and Ball joints included,
+    // a Universal joint's axis 2 before its axis 1 (quirk of §2).
+    std::vector<std::pair<std::string, std::string>> axes;  // (axis path, joint id)
+    for (int j : robot.joints) {
+      const scene::Joint& joint = scene.joints[static_cast<std::size_t>(j)];
+      std::string first, second;
+      for (std::size_t a = 0; a < topology.axes.size(); ++a) {
+        if (topology.axes[a].joint != j) continue;
+        (topology.axes[a].which == 0 ? first : second) = axis_prefix(static_cast<int>(a));
+      }
+      if (joint.type == scene::JointType::universal) axes.emplace_back(second, joint.id);
+      axes.emplace_back(first, joint.id);
+    }
+    set(k + "axes", std::to_string(axes.size()));
+    for (std::size_t i = 0; i < axes.size(); ++i) {
+      set(k + "axis_" + std::to_string(i), axes[i].first);
+      set(k + "axis_" + std::to_string(i) + "_joint", axes[i].second);
+    }
+    set(k + "sensors", std::to_string(robot.sensors.size()));
+    for (std::size_t i = 0; i < robot.sensors.size(); ++i) {
+      const scene::Sensor& s = scene.sensors[static_cast<std::size_t>(robot.sensors[i])];
+      const std::string sk = k + "sensor_" + std::to_string(i) + "_";
+      set(sk + "id", s.id);
+      set(sk + "kind", s.kind);
+      set(sk + "prefix", sim::component_path(rp, "sensors", s.id));
+    }
+  }
+  // The world's sensor list: each robot's sensors, then the scene-level ones, in load order.
+  std::size_t g = 0;
+  for (const scene::Sensor& s : scene.sensors) {
+    const std::string sk = "global_sensor_" + std::to_string(g++) + "_";
+    set(sk + "id", s.id);
+    set(sk + "kind", s.kind);
+    set(sk + "prefix",
+        sim::component_path(s.robot >= 0 ? robot_prefix(s.robot) : std::string(), "sensors", s.id));
+  }
+  set("global_sensors", std::to_string(g));
+  set("things", std::to_string(scene.things.size()));
+  for (std::size_t t = 0; t < scene.things.size(); ++t) {
+    const scene::Body& b = scene.bodies[static_cast<std::size_t>(scene.things[t])];
+    const std::string tk = "thing_" + std::to_string(t) + "_";
+    set(tk + "id", b.id);
+    set(tk + "body", sim::thing_path(b.id));
+    const scene::Color c = b.geoms.empty() ? scene::Color{} : b.geoms[0].visual.color;
+    set(tk + "r", number(c.r));
+    set(tk + "g", number(c.g));
+    set(tk + "b", number(c.b));
+    set(tk + "a", number(c.a));
+  }
+  set("obstacles", std::to_string(scene.obstacles.size()));
+  for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
+    const scene::Geom& ob = scene.obstacles[o];
+    const std::string ok = "obstacle_" + std::to_string(o) + "_";
+    set(ok + "id", ob.id);
+    set(ok + "x", number(ob.pose.position.x));
+    set(ok + "y", number(ob.pose.position.y));
+    set(ok + "z", number(ob.pose.position.z));
+  }
+  // The file's cells, then the caller's (later ones win in the plugin's sheet).
+  std::vector<scene::SheetCell> cells = scene.sheet;
+  cells.insert(cells.end(), options.sheet_cells.begin(), options.sheet_cells.end());
+  set("cells", std::to_string(cells.size()));
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const std::string ck = "cell_" + std::to_string(i) + "_";
+    set(ck + "r", std::to_string(cells[i].row));
+    set(ck + "c", std::to_string(cells[i].col));
+    set(ck + "text", cells[i].text);
+  }
+  const auto& constants = scene.globals.entries();
+  set("constants", std::to_string(constants.size()));
+  for (std::size_t i = 0; i < constants.size(); ++i) {
+    set("constant_" + std::to_string(i) + "_name", constants[i].first);
+    set("constant_" + std::to_string(i) + "_value", number(constants[i].second));
+  }
+
+  scene::PluginInstance p;
+  p.kind = "pascal_script";
+  p.id = "script";
+  p.robot = -1;
+  p.where = Location{found_by, "", ""};
+  p.params = scene::ParamSource{std::move(el), found_by, std::make_shared<scene::ConstantTable>()};
+  return p;
+}
+
+}  // namespace s2sim

@@ -1,0 +1,487 @@
+// The host functions a compiled SimTwo script calls (simtwo-script-api.md §3): dispatched by
+// number from the support unit's table; each either returns its value (numbers, a text or a
+// vector of numbers kept for the script to copy) or leaves an error the script raises.
+#include "script_controller.hpp"
+
+namespace s2sim::pascal {
+
+// --- the host functions ---------------------------------------------------------------------
+
+void ScriptController::fail(const std::string& message) {
+  throw Error(ErrorKind::runtime, message);
+}
+
+void ScriptController::not_provided(HostFn fn, const char* why) {
+  fail(std::string(kHostFnNames[static_cast<int>(fn)]) + " is not provided by S2Sim" +
+       (why && *why ? std::string(": ") + why : std::string()));
+}
+
+namespace {
+std::string index_error(double n) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "List index (%.0f) out of bounds", n);
+  return buf;
+}
+}  // namespace
+
+RobotRef& ScriptController::robot(double r) {
+  if (r < 0 || r >= static_cast<double>(robots_.size())) fail(index_error(r));
+  return robots_[static_cast<std::size_t>(r)];
+}
+AxisRef& ScriptController::axis(double r, double i) {
+  RobotRef& rb = robot(r);
+  if (i < 0 || i >= static_cast<double>(rb.axes.size())) fail(index_error(i));
+  return rb.axes[static_cast<std::size_t>(i)];
+}
+SolidRef& ScriptController::solid(double r, double i) {
+  RobotRef& rb = robot(r);
+  if (i < 0 || i >= static_cast<double>(rb.solids.size())) fail(index_error(i));
+  return rb.solids[static_cast<std::size_t>(i)];
+}
+SensorRef& ScriptController::global_sensor(double i) {
+  if (i < 0 || i >= static_cast<double>(sensors_.size())) fail(index_error(i));
+  return sensors_[static_cast<std::size_t>(i)];
+}
+SensorRef& ScriptController::robot_sensor(double r, double i) {
+  RobotRef& rb = robot(r);
+  if (i < 0 || i >= static_cast<double>(rb.sensors.size()) ||
+      rb.sensors[static_cast<std::size_t>(i)] < 0)
+    fail(index_error(i));
+  return sensors_[static_cast<std::size_t>(rb.sensors[static_cast<std::size_t>(i)])];
+}
+ThingRef& ScriptController::thing(double t) {
+  if (t < 0 || t >= static_cast<double>(things_.size())) fail(index_error(t));
+  return things_[static_cast<std::size_t>(t)];
+}
+
+double ScriptController::sensor_value(const SensorRef& s, bool substitute) {
+  // SimTwo's GetSensorVal is -1 for the kinds that never flag "has a measure" (§3.2, Q7).
+  if (substitute && (s.kind == "ranger2d" || s.kind == "beacon" || s.kind == "imu" ||
+                     s.kind == "IR" || s.kind == "spraygun"))
+    return -1;
+  if (s.value.index < 0) return substitute ? -1 : 0;
+  return ctx_->signal(s.value);
+}
+
+void ScriptController::sensor_values(const SensorRef& s) {
+  numbers_.clear();
+  if (!s.rays.empty()) {
+    for (const auto& ray : s.rays)
+      numbers_.push_back(ctx_->signal(ray));
+  } else {
+    numbers_.push_back(sensor_value(s, false));
+  }
+}
+
+double ScriptController::host_call(void* host, std::int32_t fn, const double* args,
+                                   std::int32_t nargs, const char* text, std::int32_t text_len,
+                                   const char* text2, std::int32_t text2_len) {
+  auto* self = static_cast<ScriptController*>(host);
+  self->pending_error_.clear();
+  try {
+    if (fn < 0 || fn >= static_cast<int>(HostFn::count) || !self->ctx_)
+      throw Error(ErrorKind::runtime, "invalid host call");
+    return self->call(
+        static_cast<HostFn>(fn), args, nargs,
+        text ? std::string(text, static_cast<std::size_t>(text_len)) : std::string(),
+        text2 ? std::string(text2, static_cast<std::size_t>(text2_len)) : std::string());
+  } catch (const Error& e) {
+    self->pending_error_ = e.message();
+  } catch (const std::exception& e) {
+    self->pending_error_ = e.what();
+  }
+  return 0;
+}
+
+std::int32_t ScriptController::host_result(void* host, std::int32_t kind, const void** data) {
+  auto* self = static_cast<ScriptController*>(host);
+  switch (kind) {
+    case 0:
+      *data = self->text_result_.data();
+      return static_cast<std::int32_t>(self->text_result_.size());
+    case 1:
+      *data = self->numbers_.data();
+      return static_cast<std::int32_t>(self->numbers_.size());
+    default:
+      *data = self->pending_error_.data();
+      return static_cast<std::int32_t>(self->pending_error_.size());
+  }
+}
+
+double ScriptController::call(HostFn fn, const double* a, int n, const std::string& s,
+                              const std::string& s2) {
+  StepContext& ctx = *ctx_;
+  auto need = [&](int count) {
+    if (n < count) fail(std::string(kHostFnNames[static_cast<int>(fn)]) + ": missing arguments");
+  };
+  auto drive = [&](double r, double i) -> AxisRef& {
+    AxisRef& ax = axis(r, i);
+    if (ax.path.empty())
+      fail("axis " + std::to_string(static_cast<int>(i)) + " of robot " +
+           std::to_string(static_cast<int>(r)) + " is a Fixed or Ball joint");
+    return ax;
+  };
+  auto pose_of = [&](BodyHandle b) -> const Pose& { return ctx.body_pose(b); };
+  auto point = [&](const Vec3& v) {
+    numbers_.assign({v.x, v.y, v.z});
+    return 0.0;
+  };
+  switch (fn) {
+    case HostFn::WriteLn:
+      std::fprintf(stderr, "script: %s\n", s.c_str());
+      output_.push_back(s);
+      if (output_.size() > 100) output_.pop_front();
+      return 0;
+    case HostFn::KeyPressed: {
+      need(1);
+      for (std::size_t k = 0; k < std::size(kKeyCodes); ++k)
+        if (kKeyCodes[k] == static_cast<int>(a[0])) return ctx.input(keys_[k]) != 0 ? 1 : 0;
+      return 0;  // a key the viewer cannot press is never held
+    }
+    case HostFn::ScriptPeriod:
+      return period_s_;
+    case HostFn::GetSceneConstant: {
+      need(1);
+      for (const auto& [name, value] : constants_) {
+        if (name.size() != s.size()) continue;
+        bool same = true;
+        for (std::size_t i = 0; i < s.size() && same; ++i)
+          same = std::toupper(static_cast<unsigned char>(name[i])) ==
+                 std::toupper(static_cast<unsigned char>(s[i]));
+        if (same) return value;
+      }
+      return a[0];
+    }
+    case HostFn::SetRCValue: {
+      need(2);
+      const int r = static_cast<int>(a[0]), c = static_cast<int>(a[1]);
+      if (r <= 0 || c <= 0) return 0;
+      Sheet::Cell& cell = sheet_.set(r, c, s);
+      if (cell.input >= 0 && cell.kind != Sheet::Kind::button)
+        ctx.set_input(sheet_inputs_[static_cast<std::size_t>(cell.input)], cell.value);
+      else if (cell.input >= 0 && cell.kind == Sheet::Kind::button && cell.text != s)
+        ctx.set_input(sheet_inputs_[static_cast<std::size_t>(cell.input)], 0);
+      return 0;
+    }
+    case HostFn::GetRCValue: {
+      need(2);
+      Sheet::Cell* cell = sheet_.find(static_cast<int>(a[0]), static_cast<int>(a[1]));
+      if (!cell) return 0;
+      if (cell->input >= 0) return ctx.input(sheet_inputs_[static_cast<std::size_t>(cell->input)]);
+      return cell->value;
+    }
+    case HostFn::GetRCText: {
+      need(2);
+      const int r = static_cast<int>(a[0]), c = static_cast<int>(a[1]);
+      text_result_.clear();
+      if (r == 0 || c == 0) {  // the fixed headers show their numbers (Q8)
+        text_result_ = std::to_string(r == 0 ? c : r);
+        return 0;
+      }
+      Sheet::Cell* cell = sheet_.find(r, c);
+      if (!cell) return 0;
+      text_result_ = cell->kind == Sheet::Kind::button
+                         ? cell->text.substr(cell->text.find('[') + 1,
+                                             cell->text.rfind(']') - cell->text.find('[') - 1)
+                         : cell->text;
+      if (cell->input >= 0 && cell->kind == Sheet::Kind::text) {
+        // Set from outside (--sheet, --set, the viewer): the number is the truth.
+        const double v = ctx.input(sheet_inputs_[static_cast<std::size_t>(cell->input)]);
+        if (v != cell->value) {
+          char buf[40];
+          std::snprintf(buf, sizeof buf, "%.15g", v);
+          text_result_ = buf;
+        }
+      }
+      return 0;
+    }
+    case HostFn::RCButtonPressed: {
+      need(2);
+      Sheet::Cell* cell = sheet_.find(static_cast<int>(a[0]), static_cast<int>(a[1]));
+      if (!cell || cell->kind != Sheet::Kind::button || cell->input < 0) return 0;
+      const InputHandle h = sheet_inputs_[static_cast<std::size_t>(cell->input)];
+      if (ctx.input(h) <= 0) return 0;
+      ctx.set_input(h, 0);  // the latch: clicked at least once since the last query
+      return 1;
+    }
+    case HostFn::ClearButtons:
+      for (const auto& [rc, cell] : sheet_.cells())
+        if (cell.kind == Sheet::Kind::button && cell.input >= 0)
+          ctx.set_input(sheet_inputs_[static_cast<std::size_t>(cell.input)], 0);
+      return 0;
+    case HostFn::RefreshSheets:
+      return 0;  // formulas are not evaluated (docs/scripting.md): nothing to recalculate
+    case HostFn::GetRobotIndex:
+      for (std::size_t r = 0; r < robots_.size(); ++r)
+        if (robots_[r].id == s) return static_cast<double>(r);
+      return -1;
+    case HostFn::GetSolidIndex: {
+      need(1);
+      const RobotRef& rb = robot(a[0]);
+      for (std::size_t i = 0; i < rb.solids.size(); ++i)
+        if (rb.solids[i].id == s) return static_cast<double>(i);
+      return -1;
+    }
+    case HostFn::GetSensorIndex: {
+      need(1);
+      const RobotRef& rb = robot(a[0]);
+      for (std::size_t i = 0; i < rb.sensors.size(); ++i)
+        if (rb.sensors[i] >= 0 && sensors_[static_cast<std::size_t>(rb.sensors[i])].id == s)
+          return static_cast<double>(i);
+      return -1;
+    }
+    case HostFn::GetAxisIndex: {
+      need(2);
+      const RobotRef& rb = robot(a[0]);
+      (void)rb;
+      not_provided(fn, "look axes up by their index in joint order");
+    }
+    case HostFn::GetGlobalSensorIndex:
+      for (std::size_t i = 0; i < sensors_.size(); ++i)
+        if (sensors_[i].id == s) return static_cast<double>(i);
+      return -1;
+    case HostFn::GetThingIndex:
+      for (std::size_t i = 0; i < things_.size(); ++i)
+        if (things_[i].id == s) return static_cast<double>(i);
+      return -1;
+    case HostFn::GetThingsCount:
+      return static_cast<double>(things_.size());
+    case HostFn::SetAxisVoltageRef:
+      need(3);
+      ctx.set_input(drive(a[0], a[1]).ref_voltage, a[2]);
+      return 0;
+    case HostFn::SetAxisSpeedRef:
+      need(3);
+      ctx.set_input(drive(a[0], a[1]).ref_speed, a[2]);
+      return 0;
+    case HostFn::SetAxisPosRef:
+      need(3);
+      ctx.set_input(drive(a[0], a[1]).ref_pos, a[2]);
+      return 0;
+    case HostFn::SetAxisTorqueRef:
+      need(3);
+      ctx.set_input(drive(a[0], a[1]).ref_torque, a[2]);
+      return 0;
+    case HostFn::GetAxisPosRef:
+      need(2);
+      return ctx.input(drive(a[0], a[1]).ref_pos);
+    case HostFn::GetAxisSpeedRef:
+      need(2);
+      return ctx.input(drive(a[0], a[1]).ref_speed);
+    case HostFn::GetAxisOdo: {
+      need(2);
+      AxisRef& ax = drive(a[0], a[1]);
+      if (ax.encoder.index < 0) fail("axis " + ax.path + " has no encoder");
+      // The ticks counted during the last script period (state: the count at the last tick).
+      std::size_t k = 3;
+      for (const auto& rb : robots_)
+        for (const auto& other : rb.axes) {
+          if (&other == &ax) return ctx.signal(ax.encoder) - ctx.state(state_)[k];
+          ++k;
+        }
+      return 0;
+    }
+    case HostFn::GetAxisPos: {
+      need(2);
+      const AxisRef& ax = axis(a[0], a[1]);
+      if (ax.path.empty()) return 0;
+      const double q = ctx.axis_position(ax.axis);
+      if (ax.linear) return q;
+      // SimTwo's (ODE's) hinge angle lies in (-pi, pi] (Q2).
+      double w = std::remainder(q, 2 * kPi);
+      if (w <= -kPi) w += 2 * kPi;
+      return w;
+    }
+    case HostFn::GetAxisSpeed: {
+      need(2);
+      const AxisRef& ax = axis(a[0], a[1]);
+      return ax.path.empty() ? 0 : ctx.axis_velocity(ax.axis);
+    }
+    case HostFn::GetAxisI: {
+      need(2);
+      const AxisRef& ax = drive(a[0], a[1]);
+      if (ax.current.index < 0) fail("axis " + ax.path + " has no motor");
+      return ctx.signal(ax.current);
+    }
+    case HostFn::GetAxisU: {
+      need(2);
+      const AxisRef& ax = drive(a[0], a[1]);
+      if (ax.voltage.index < 0) fail("axis " + ax.path + " has no motor");
+      return ctx.signal(ax.voltage);
+    }
+    case HostFn::GetAxisTorque:
+      not_provided(fn, "read the axis torque signal from a log instead");
+    case HostFn::SetMotorActive:
+      need(3);
+      (void)drive(a[0], a[1]);
+      if (a[2] == 0) not_provided(fn, "a motor cannot be switched off at run time yet");
+      return 0;  // motors are active as the scene declares them
+    case HostFn::IsMotorActive:
+      need(2);
+      (void)drive(a[0], a[1]);
+      return 1;
+    case HostFn::SetMotorControllerState:
+      need(3);
+      ctx.set_input(drive(a[0], a[1]).controller_active, a[2] != 0 ? 1 : 0);
+      return 0;
+    case HostFn::GetMotorControllerState:
+      need(2);
+      return ctx.input(drive(a[0], a[1]).controller_active);
+    case HostFn::GetMotorPars:
+    case HostFn::SetMotorPars:
+      not_provided(fn, "motor parameters are fixed at load");
+    case HostFn::GetSensorVal:
+      need(2);
+      return sensor_value(robot_sensor(a[0], a[1]), true);
+    case HostFn::GetSensorValues:
+      need(2);
+      sensor_values(robot_sensor(a[0], a[1]));
+      return static_cast<double>(numbers_.size()) * 65536 + 1;
+    case HostFn::SetSensorVin: {
+      need(3);
+      SensorRef& sn = robot_sensor(a[0], a[1]);
+      if (sn.vin.index >= 0) ctx.set_input(sn.vin, a[2]);
+      return 0;
+    }
+    case HostFn::GetGlobalSensorVal:
+      need(1);
+      return sensor_value(global_sensor(a[0]), false);
+    case HostFn::GetGlobalSensorValues:
+      need(1);
+      sensor_values(global_sensor(a[0]));
+      return static_cast<double>(numbers_.size()) * 65536 + 1;
+    case HostFn::SetRobotPos: {
+      need(5);
+      RobotRef& rb = robot(a[0]);
+      if (!rb.main.valid()) fail("robot '" + rb.id + "' has no main body");
+      // SimTwo's re-placement (§3.3, Q4): offsets to the file coordinates, yaw about the main
+      // body's file position; the file rotation is the load rotation without the scene's yaw.
+      Pose pose;
+      pose.position = rb.origin + Vec3{a[1], a[2], a[3]};
+      pose.rotation = rot_z(a[4]) * (rot_z(-rb.yaw) * rb.main_load_pose.rotation);
+      ctx.request_place(rb.main, pose);
+      return 0;
+    }
+    case HostFn::GetRobotX:
+      need(1);
+      return pose_of(robot(a[0]).main).position.x;
+    case HostFn::GetRobotY:
+      need(1);
+      return pose_of(robot(a[0]).main).position.y;
+    case HostFn::GetRobotTheta: {
+      need(1);
+      const Mat3& R = pose_of(robot(a[0]).main).rotation;
+      return std::atan2(R.m[1][0], R.m[0][0]);
+    }
+    case HostFn::GetRobotVx:
+      need(1);
+      return ctx.body_twist(robot(a[0]).main).linear_m_s.x;
+    case HostFn::GetRobotVy:
+      need(1);
+      return ctx.body_twist(robot(a[0]).main).linear_m_s.y;
+    case HostFn::GetRobotW:
+      need(1);
+      return ctx.body_twist(robot(a[0]).main).angular_rad_s.z;
+    case HostFn::GetSolidPos:
+      need(2);
+      return point(pose_of(solid(a[0], a[1]).body).position);
+    case HostFn::GetSolidTheta: {
+      need(2);
+      const Mat3& R = pose_of(solid(a[0], a[1]).body).rotation;
+      return std::atan2(R.m[1][0], R.m[0][0]);
+    }
+    case HostFn::GetSolidRotMat: {
+      need(2);
+      const Mat3& R = pose_of(solid(a[0], a[1]).body).rotation;
+      numbers_.clear();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          numbers_.push_back(R.m[r][c]);
+      return 3 * 65536 + 3;
+    }
+    case HostFn::GetSolidLinearVel:
+      need(2);
+      return point(ctx.body_twist(solid(a[0], a[1]).body).linear_m_s);
+    case HostFn::SetSolidPos:
+    case HostFn::SetSolidRotationMat:
+    case HostFn::SetSolidLinearVel:
+    case HostFn::SetSolidAngularVel:
+      not_provided(fn,
+                   "one body of a jointed robot cannot be teleported; SetRobotPos moves a robot");
+    case HostFn::SetSolidColor:
+      need(5);
+      (void)solid(a[0], a[1]);
+      not_provided(fn, "colours are fixed at load");
+    case HostFn::SetShellTag: {
+      need(2);
+      RobotRef& rb = robot(a[0]);
+      if (a[1] < 0) fail(index_error(a[1]));
+      const auto i = static_cast<std::size_t>(a[1]);
+      if (rb.shell_tags.size() <= i) rb.shell_tags.resize(i + 1);
+      rb.shell_tags[i] = s;
+      return 0;
+    }
+    case HostFn::GetShellTag: {
+      need(2);
+      RobotRef& rb = robot(a[0]);
+      const auto i = static_cast<std::size_t>(a[1] < 0 ? 0 : a[1]);
+      text_result_ = i < rb.shell_tags.size() ? rb.shell_tags[i] : std::string();
+      return 0;
+    }
+    case HostFn::SetThingPos: {
+      need(4);
+      ThingRef& th = thing(a[0]);
+      Pose pose = pose_of(th.body);
+      pose.position = {a[1], a[2], a[3]};
+      ctx.request_place(th.body, pose);
+      return 0;
+    }
+    case HostFn::GetThingPos:
+      need(1);
+      return point(pose_of(thing(a[0]).body).position);
+    case HostFn::GetThingColor: {
+      need(1);
+      const ThingRef& th = thing(a[0]);
+      numbers_.clear();
+      for (double v : th.rgba)
+        numbers_.push_back(std::round(v * 255));
+      return 0;
+    }
+    case HostFn::GetObstaclePos:
+      need(1);
+      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
+      return point(obstacles_[static_cast<std::size_t>(a[0])]);
+    case HostFn::AddOBstacleBox:
+    case HostFn::ClearObstacles:
+      not_provided(fn, "obstacles are fixed at load");
+    case HostFn::ChartSeriesSetCount:
+    case HostFn::ChartSeriesSetColor:
+    case HostFn::ChartSeriesClear:
+    case HostFn::ChartSeriesAddXY:
+      not_provided(fn, "the viewer's chart plots signals; log them with --log");
+    case HostFn::AddTrailNode:
+    case HostFn::ClearTrail:
+      not_provided(fn, "the viewer draws no trails yet");
+    case HostFn::WriteUDPData:
+      need(1);
+      udp_.send(s, static_cast<int>(a[0]), s2);
+      return 0;
+    case HostFn::ReadUDPData:
+      text_result_ = udp_.receive();
+      return 0;
+    case HostFn::WriteComPort:
+      serial_.write(s);
+      return 0;
+    case HostFn::ReadComPort:
+      text_result_ = serial_.read();
+      return 0;
+    case HostFn::HUDText:
+      hud_ = s;
+      return 0;
+    case HostFn::count:
+      break;
+  }
+  fail("invalid host call");
+}
+
+}  // namespace s2sim::pascal

@@ -1,0 +1,91 @@
+#include "io_ports.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <termios.h>
+#include <unistd.h>
+#include <cerrno>
+#include <cstring>
+
+namespace s2sim::pascal {
+
+UdpPort::~UdpPort() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool UdpPort::open(int port) {
+  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) return false;
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_ANY);
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return false;
+  bound_port_ = port;
+  return true;
+}
+
+void UdpPort::send(const std::string& ip, int port, const std::string& data) {
+  if (fd_ < 0) return;
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(static_cast<std::uint16_t>(port));
+  if (::inet_pton(AF_INET, ip.c_str(), &to.sin_addr) != 1) return;
+  (void)::sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+}
+
+std::string UdpPort::receive() {
+  std::string all;
+  if (fd_ < 0 || bound_port_ == 0) return all;
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
+    if (n < 0) break;
+    all.append(buf, static_cast<std::size_t>(n));
+  }
+  return all;
+}
+
+SerialPort::~SerialPort() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool SerialPort::open(const std::string& device, std::string& error) {
+  fd_ = ::open(device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) {
+    error = std::strerror(errno);
+    return false;
+  }
+  termios t{};
+  if (::tcgetattr(fd_, &t) == 0) {
+    ::cfmakeraw(&t);
+    ::tcsetattr(fd_, TCSANOW, &t);
+  }
+  return true;
+}
+
+void SerialPort::write(const std::string& data) {
+  if (fd_ < 0) return;
+  std::size_t done = 0;
+  while (done < data.size()) {
+    const ssize_t n = ::write(fd_, data.data() + done, data.size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+std::string SerialPort::read() {
+  std::string all;
+  if (fd_ < 0) return all;
+  char buf[4096];
+  for (;;) {
+    const ssize_t n = ::read(fd_, buf, sizeof buf);
+    if (n <= 0) break;
+    all.append(buf, static_cast<std::size_t>(n));
+  }
+  return all;
+}
+
+}  // namespace s2sim::pascal

@@ -1,0 +1,41 @@
+#pragma once
+/// \file
+/// The script's UDP socket and serial port (simtwo-script-api.md §3.7). UDP: one socket bound
+/// to the listening port (SimTwo's 9808 by default, S2SIM_UDP_PORT to change it); a datagram
+/// per WriteUDPData, ReadUDPData drains everything received. Serial: the tty or pseudo-terminal
+/// named by S2SIM_COM_PORT, raw 8N1; without one the port is closed, as in SimTwo: writes do
+/// nothing and reads return ''.
+
+#include <string>
+
+namespace s2sim::pascal {
+
+class UdpPort {
+ public:
+  ~UdpPort();
+  /// Binds to `port` on all interfaces; false (socket then send-only) when that fails.
+  bool open(int port);
+  void send(const std::string& ip, int port, const std::string& data);
+  /// All bytes received since the last call, datagrams concatenated.
+  std::string receive();
+  int bound_port() const { return bound_port_; }
+
+ private:
+  int fd_ = -1;
+  int bound_port_ = 0;
+};
+
+class SerialPort {
+ public:
+  ~SerialPort();
+  /// Opens `device` raw and non-blocking; false with `error` set when it cannot.
+  bool open(const std::string& device, std::string& error);
+  bool is_open() const { return fd_ >= 0; }
+  void write(const std::string& data);
+  std::string read();
+
+ private:
+  int fd_ = -1;
+};
+
+}  // namespace s2sim::pascal

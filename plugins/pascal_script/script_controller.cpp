@@ -1,0 +1,296 @@
+// The `pascal_script` controller: a SimTwo project's `control.pas`, compiled with Free Pascal
+// (compiler.cpp), loaded (script_library.cpp) and called as SimTwo calls it: references
+// zeroed and encoders counted at every script tick, `Initialize` then `Control` at the first,
+// `Control` at the later ones, every script period from T − dt (simtwo-script-api.md §1.3).
+// The host functions the support unit forwards here are in host_calls.cpp.
+#include "script_controller.hpp"
+
+namespace s2sim::pascal {
+
+void ScriptController::configure(ConfigureContext& ctx) {
+  const Params& p = ctx.params();
+  script_ = p.text("file");
+  seed_ = ctx.seed();
+  period_s_ = 0;
+  const double dt = ctx.tick_s();
+  // The controller period the kernel gave every controller: the scene's script period.
+  // SimTwo's first call comes at T - dt, then every T (§1.3).
+  period_s_ = p.number("period_s", 0.0);
+  (void)dt;
+
+  const auto robot_count = p.integer("robots");
+  for (std::int64_t r = 0; r < robot_count; ++r) {
+    const std::string k = "robot_" + std::to_string(r) + "_";
+    RobotRef robot;
+    robot.id = p.text(k + "id");
+    const std::string main = p.text(k + "main", "");
+    if (!main.empty()) robot.main = ctx.body(main);
+    robot.origin = {p.number(k + "origin_x"), p.number(k + "origin_y"), p.number(k + "origin_z")};
+    robot.offset = {p.number(k + "offset_x"), p.number(k + "offset_y"), p.number(k + "offset_z")};
+    robot.yaw = p.number(k + "yaw");
+    for (std::int64_t i = 0, n = p.integer(k + "solids"); i < n; ++i) {
+      const std::string sk = k + "solid_" + std::to_string(i) + "_";
+      robot.solids.push_back({p.text(sk + "id"), ctx.body(p.text(sk + "body"))});
+    }
+    for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
+      AxisRef a;
+      a.path = p.text(k + "axis_" + std::to_string(i), "");
+      if (!a.path.empty()) {
+        a.axis = ctx.axis(a.path);
+        a.linear = ctx.axis_is_linear(a.axis);
+        const char* u = a.linear ? "m" : "rad";
+        a.ref_voltage = ctx.declare_input_at(a.path + "/ref_voltage", "V", 0.0);
+        a.ref_speed = ctx.declare_input_at(a.path + "/ref_speed", a.linear ? "m/s" : "rad/s", 0.0);
+        a.ref_pos = ctx.declare_input_at(a.path + "/ref_pos", u, 0.0);
+        a.ref_torque = ctx.declare_input_at(a.path + "/ref_torque", a.linear ? "N" : "N*m", 0.0);
+        try {
+          a.controller_active = ctx.declare_input_at(a.path + "/controller_active", "1", 0.0);
+          a.encoder = ctx.published_signal(a.path + "/encoder");
+          a.current = ctx.published_signal(a.path + "/current");
+          a.voltage = ctx.published_signal(a.path + "/voltage");
+        } catch (const Error&) {
+          // an axis without a drive train (loop-closing): GetAxisOdo/I/U raise if asked
+        }
+      }
+      robot.axes.push_back(a);
+    }
+    const auto sensor_count = p.integer(k + "sensors");
+    for (std::int64_t i = 0; i < sensor_count; ++i)
+      robot.sensors.push_back(-1);  // filled below from the global list
+    robots_.push_back(std::move(robot));
+  }
+  for (std::int64_t g = 0, n = p.integer("global_sensors"); g < n; ++g) {
+    const std::string sk = "global_sensor_" + std::to_string(g) + "_";
+    SensorRef s;
+    s.id = p.text(sk + "id");
+    s.kind = p.text(sk + "kind");
+    s.prefix = p.text(sk + "prefix");
+    try {
+      s.value = ctx.published_signal(s.prefix + "/value");
+    } catch (const Error&) {
+    }
+    if (s.kind == "ranger2d") {
+      for (int k = 0;; ++k) {
+        try {
+          s.rays.push_back(ctx.published_signal(s.prefix + "/ray/" + std::to_string(k)));
+        } catch (const Error&) {
+          break;
+        }
+      }
+    }
+    if (s.kind == "solenoid") s.vin = ctx.declare_input_at(s.prefix + "/vin", "1", 0.0);
+    sensors_.push_back(std::move(s));
+  }
+  // A robot's sensor i is the global sensor with its prefix (the robot's come in its order).
+  for (auto& robot : robots_) {
+    int next = 0;
+    const std::string prefix = "robots/" + robot.id + "/sensors/";
+    for (std::size_t g = 0; g < sensors_.size() && next < static_cast<int>(robot.sensors.size());
+         ++g)
+      if (sensors_[g].prefix.rfind(prefix, 0) == 0)
+        robot.sensors[static_cast<std::size_t>(next++)] = static_cast<int>(g);
+  }
+  for (std::int64_t t = 0, n = p.integer("things"); t < n; ++t) {
+    const std::string tk = "thing_" + std::to_string(t) + "_";
+    ThingRef th;
+    th.id = p.text(tk + "id");
+    th.body = ctx.body(p.text(tk + "body"));
+    th.rgba[0] = p.number(tk + "r");
+    th.rgba[1] = p.number(tk + "g");
+    th.rgba[2] = p.number(tk + "b");
+    th.rgba[3] = p.number(tk + "a");
+    things_.push_back(th);
+  }
+  for (std::int64_t o = 0, n = p.integer("obstacles"); o < n; ++o) {
+    const std::string ok = "obstacle_" + std::to_string(o) + "_";
+    obstacle_ids_.push_back(p.text(ok + "id", ""));
+    obstacles_.push_back({p.number(ok + "x"), p.number(ok + "y"), p.number(ok + "z")});
+  }
+  for (std::int64_t i = 0, n = p.integer("constants"); i < n; ++i)
+    constants_.emplace_back(p.text("constant_" + std::to_string(i) + "_name"),
+                            p.number("constant_" + std::to_string(i) + "_value"));
+  // The sheet: every cell of Global.S2Sheet is an input sheet/<cell> holding its number (a
+  // button: its click count).
+  for (std::int64_t i = 0, n = p.integer("cells"); i < n; ++i) {
+    const std::string ck = "cell_" + std::to_string(i) + "_";
+    const int row = static_cast<int>(p.integer(ck + "r"));
+    const int col = static_cast<int>(p.integer(ck + "c"));
+    Sheet::Cell& cell = sheet_initial_.set(row, col, p.text(ck + "text", ""));
+    if (cell.input < 0) {
+      cell.input = static_cast<int>(sheet_inputs_.size());
+      sheet_inputs_.push_back(ctx.declare_input_at(
+          "sheet/" + cell_name(row, col), cell.kind == Sheet::Kind::button ? "button" : "1", 0.0));
+    }
+    sheet_initial_values_.resize(sheet_inputs_.size());
+    sheet_initial_values_[static_cast<std::size_t>(cell.input)] = cell.value;
+  }
+  for (int code : kKeyCodes)
+    keys_.push_back(ctx.declare_input_at("keyboard/" + std::to_string(code), "1", 0.0));
+
+  std::size_t axis_count = 0;
+  for (const auto& r : robots_)
+    axis_count += r.axes.size();
+  state_ = ctx.declare_state("script", static_cast<int>(3 + axis_count), 0.0);
+  sig_compiled_ = ctx.declare_signal("compiled", "1");
+  sig_error_ = ctx.declare_signal("error", "1");
+  sig_calls_ = ctx.declare_signal("calls", "1");
+
+  // Compile (or find in the cache). A compile error refuses the scene, located.
+  const CompileResult compiled = compile_script(script_, CompilerSettings::from_environment());
+  switch (compiled.status) {
+    case CompileResult::Status::compiler_missing:
+      ctx.warn(compiled.output + " (install fpc: scripts/install-deps.sh); the script '" +
+               script_.string() + "' does not run");
+      available_ = false;
+      break;
+    case CompileResult::Status::failed: {
+      if (compiled.errors.empty())
+        throw Error(ErrorKind::scene, Location{script_.string(), "", ""},
+                    "the script does not compile:\n" + compiled.output);
+      const CompileMessage& first = compiled.errors.front();
+      std::string message = first.file + ":" + std::to_string(first.line) + ":" +
+                            std::to_string(first.column) + ": " + first.text;
+      for (std::size_t i = 1; i < compiled.errors.size(); ++i)
+        message += "\n" + compiled.errors[i].file + ":" + std::to_string(compiled.errors[i].line) +
+                   ":" + std::to_string(compiled.errors[i].column) + ": " + compiled.errors[i].text;
+      throw Error(ErrorKind::scene, message);
+    }
+    case CompileResult::Status::ok:
+      available_ = true;
+      library_path_ = compiled.library;
+      compiled_ = compiled.compiled ? 1 : 0;
+      break;
+  }
+  if (period_s_ <= 0) period_s_ = 0.04;
+  const double ticks = std::round(period_s_ / ctx.tick_s());
+  ctx.set_schedule(Stage::control, ticks * ctx.tick_s(), (ticks - 1) * ctx.tick_s());
+
+  int udp_port = 9808;
+  if (const char* env = std::getenv("S2SIM_UDP_PORT"); env && *env) udp_port = std::atoi(env);
+  if (!udp_.open(udp_port))
+    ctx.warn("cannot listen on UDP port " + std::to_string(udp_port) +
+             " (in use?); ReadUDPData returns '' and WriteUDPData sends from another port");
+  if (const char* com = std::getenv("S2SIM_COM_PORT"); com && *com) {
+    std::string why;
+    if (!serial_.open(com, why))
+      ctx.warn("cannot open the serial port " + std::string(com) + ": " + why);
+  }
+  numbers_.reserve(kMaxNumbers);
+}
+
+void ScriptController::load_library() {
+  HostTable table;
+  table.host = this;
+  table.call = &ScriptController::host_call;
+  table.result = &ScriptController::host_result;
+  library_.load(library_path_, table, static_cast<std::int32_t>(seed_ & 0x7fffffff));
+}
+
+void ScriptController::initialize(StepContext& ctx) {
+  if (!loaded_poses_) {
+    for (auto& r : robots_)
+      if (r.main.valid()) r.main_load_pose = ctx.body_pose(r.main);
+    loaded_poses_ = true;
+  }
+  sheet_ = sheet_initial_;  // texts as loaded; the numbers are the inputs sheet/<cell>
+  for (std::size_t i = 0; i < sheet_inputs_.size(); ++i)
+    ctx.set_input(sheet_inputs_[i], sheet_initial_values_[i]);
+  output_.clear();
+  hud_.clear();
+  // Fresh script globals at every reset, as a new compile in SimTwo.
+  if (available_) {
+    try {
+      load_library();
+    } catch (const std::exception& e) {
+      throw Error(ErrorKind::plugin, std::string("script '") + script_.string() + "': " + e.what());
+    }
+  }
+  ctx.publish(sig_compiled_, compiled_);
+  ctx.publish(sig_error_, 0);
+  ctx.publish(sig_calls_, 0);
+}
+
+void ScriptController::update(StepContext& ctx) {
+  double* s = ctx.state(state_);
+  if (!available_) return;  // no compiler: the scene runs without its controller
+  // The script tick, before the script: encoders counted over the period, references zeroed
+  // (§1.3 steps 1-2; the position reference is kept).
+  std::size_t k = 3;
+  for (auto& robot : robots_)
+    for (auto& a : robot.axes) {
+      if (!a.path.empty()) {
+        ctx.set_input(a.ref_voltage, 0);
+        ctx.set_input(a.ref_speed, 0);
+        ctx.set_input(a.ref_torque, 0);
+      }
+      ++k;
+    }
+  if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
+  ctx_ = &ctx;
+  std::string error;
+  bool ok = true;
+  const bool first = s[0] == 0;
+  if (first) {
+    s[0] = 1;
+    ok = library_.run(0, ctx.time_s(), error);
+    if (!ok) report_error("Initialize", error);
+  }
+  if (ok) {
+    ok = library_.run(1, ctx.time_s(), error);
+    if (!ok) report_error("Control", error);
+  }
+  ctx_ = nullptr;
+  // Encoder counts of this tick, for the next period's deltas.
+  k = 3;
+  for (auto& robot : robots_)
+    for (auto& a : robot.axes) {
+      if (a.encoder.index >= 0) s[k] = ctx.signal(a.encoder);
+      ++k;
+    }
+  s[2] += 1;
+  ctx.publish(sig_calls_, s[2]);
+  if (!ok) {
+    s[1] = 1;  // SimTwo switches the control block to None: no further calls
+    ctx.publish(sig_error_, 1);
+  }
+}
+
+void ScriptController::report_error(const std::string& routine, const std::string& message) {
+  // "EClass: text |  $addr |  $addr ...": the raising address, then its callers. Name the first
+  // frame in the user's file (fpc -gl line table), else the first one known.
+  std::vector<std::string> parts;
+  for (std::size_t from = 0;;) {
+    const auto bar = message.find(" |", from);
+    parts.push_back(message.substr(from, bar == std::string::npos ? bar : bar - from));
+    if (bar == std::string::npos) break;
+    from = bar + 2;
+  }
+  std::string where, any;
+  const std::string file = script_.filename().string();
+  for (std::size_t i = 1; i < parts.size() && where.empty(); ++i) {
+    const auto dollar = parts[i].find('$');
+    if (dollar == std::string::npos) continue;
+    const std::string f = library_.describe(
+        static_cast<std::uintptr_t>(std::strtoull(parts[i].c_str() + dollar + 1, nullptr, 16)));
+    if (f.empty()) continue;
+    if (any.empty()) any = f;
+    if (f.find("/" + file + ":") != std::string::npos ||
+        f.find(" " + file + ":") != std::string::npos)
+      where = f;
+  }
+  if (where.empty()) where = any;
+  // The line table names the compiled copy: show the user's file, same line.
+  if (const auto at = where.find("/" + file + ":"); at != std::string::npos) {
+    const auto space = where.rfind(' ', at);
+    where = where.substr(0, space + 1) + script_.string() + where.substr(at + 1 + file.size());
+  }
+  last_error_ = "run-time error in " + routine + ": " + parts.front() +
+                (where.empty() ? std::string() : " (" + where + ")");
+  std::fprintf(stderr, "script %s: %s; the script is stopped\n", script_.string().c_str(),
+               last_error_.c_str());
+}
+
+}  // namespace s2sim::pascal
+
+S2SIM_PLUGIN("pascal_script", S2SIM_KIND("pascal_script", s2sim::Category::controller,
+                                         s2sim::pascal::ScriptController));

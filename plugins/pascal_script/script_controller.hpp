@@ -1,0 +1,140 @@
+#pragma once
+/// \file
+/// The `pascal_script` controller (docs/scripting.md): the model it resolves at load (SimTwo's
+/// index tables), the compiled script it calls, and the host functions the script calls back.
+/// script_controller.cpp: load, schedule, calls and errors; host_calls.cpp: the host functions.
+#include "compiler.hpp"
+#include "host_ids.hpp"
+#include "io_ports.hpp"
+#include "script_library.hpp"
+#include "sheet.hpp"
+
+#include <s2sim/sdk.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace s2sim::pascal {
+
+inline constexpr int kMaxNumbers = 4096;  // a host function's numeric result (ranger rays...)
+
+/// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
+inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
+
+struct AxisRef {
+  std::string path;  // empty for a Fixed or Ball joint (SimTwo gives it an index too)
+  AxisHandle axis;
+  bool linear = false;
+  InputHandle ref_voltage, ref_speed, ref_pos, ref_torque, controller_active;
+  SignalHandle encoder{-1}, current{-1}, voltage{-1};
+};
+
+struct SensorRef {
+  std::string id, kind, prefix;
+  SignalHandle value{-1};
+  std::vector<SignalHandle> rays;  // a ranger's rays; empty otherwise
+  InputHandle vin{-1};
+};
+
+struct SolidRef {
+  std::string id;
+  BodyHandle body;
+};
+
+struct RobotRef {
+  std::string id;
+  BodyHandle main;
+  Vec3 origin, offset;
+  double yaw = 0;
+  Pose main_load_pose;  // read at the first initialize()
+  std::vector<SolidRef> solids;
+  std::vector<AxisRef> axes;
+  std::vector<int> sensors;  // indices into global sensors
+  std::vector<std::string> shell_tags;
+};
+
+struct ThingRef {
+  std::string id;
+  BodyHandle body;
+  double rgba[4] = {0, 0, 0, 0};
+};
+
+/// Rotation about world Z.
+inline Mat3 rot_z(double a) {
+  const double c = std::cos(a), s = std::sin(a);
+  return Mat3{{{c, -s, 0}, {s, c, 0}, {0, 0, 1}}};
+}
+
+class ScriptController final : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+  // The host table's entries (static trampolines to the object).
+  static double host_call(void* host, std::int32_t fn, const double* args, std::int32_t nargs,
+                          const char* text, std::int32_t text_len, const char* text2,
+                          std::int32_t text2_len);
+  static std::int32_t host_result(void* host, std::int32_t kind, const void** data);
+
+ private:
+  double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
+  [[noreturn]] void fail(const std::string& message);
+  [[noreturn]] void not_provided(HostFn fn, const char* why);
+  RobotRef& robot(double r);
+  AxisRef& axis(double r, double i);
+  SensorRef& robot_sensor(double r, double i);
+  SensorRef& global_sensor(double i);
+  SolidRef& solid(double r, double i);
+  ThingRef& thing(double t);
+  double sensor_value(const SensorRef& s, bool substitute);
+  void sensor_values(const SensorRef& s);
+  void load_library();
+  void report_error(const std::string& routine, const std::string& message);
+
+  // The model, from configure().
+  std::filesystem::path script_;
+  std::filesystem::path library_path_;
+  bool available_ = false;  // compiled and loadable
+  double period_s_ = 0.04;
+  std::uint64_t seed_ = 1;
+  std::vector<RobotRef> robots_;
+  std::vector<SensorRef> sensors_;  // SimTwo's global list
+  std::vector<ThingRef> things_;
+  std::vector<Vec3> obstacles_;
+  std::vector<std::string> obstacle_ids_;
+  std::vector<std::pair<std::string, double>> constants_;
+  std::vector<InputHandle> sheet_inputs_;
+  std::vector<double> sheet_initial_values_;  // the inputs' values at reset
+  std::vector<std::pair<int, std::string>> key_inputs_;
+  std::vector<InputHandle> keys_;
+  Sheet sheet_;
+  Sheet sheet_initial_;
+  std::vector<std::pair<std::string, InputHandle>> sheet_input_names_;
+  StateHandle state_;  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count
+  SignalHandle sig_compiled_, sig_error_, sig_calls_;
+  double compiled_ = 0;
+  bool loaded_poses_ = false;
+
+  // Run-time state outside the kernel (docs/scripting.md, "State"): the script's own globals,
+  // the texts it wrote, its ports.
+  ScriptLibrary library_;
+  StepContext* ctx_ = nullptr;  // during a call
+  std::string pending_error_;
+  std::string last_error_;  // the run-time error that stopped the script
+  std::string text_result_;
+  std::vector<double> numbers_;
+  std::deque<std::string> output_;  // WriteLn, the last 100 lines
+  std::string hud_;
+  UdpPort udp_;
+  SerialPort serial_;
+  bool warned_unavailable_ = false;
+};
+
+}  // namespace s2sim::pascal
