@@ -5,6 +5,7 @@
 #include <stb/stb_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace s2sim::viewer {
@@ -238,17 +239,22 @@ Mat4 Renderer::floor_shadow_projection() const {
   return m;
 }
 
-void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, int width_px,
-                    int height_px, const RenderSettings& settings) {
+void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
+                    int framebuffer_height_px, const RenderSettings& settings) {
+  const int width_px = std::max(1, static_cast<int>(std::lround(view.width)));
+  const int height_px = std::max(1, static_cast<int>(std::lround(view.height)));
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glEnable(GL_CULL_FACE);
-  glViewport(0, 0, width_px, height_px);
   glClearColor(settings.clear_color[0], settings.clear_color[1], settings.clear_color[2], 1);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  // OpenGL counts rows from the bottom.
+  glViewport(static_cast<int>(std::lround(view.x)),
+             framebuffer_height_px - static_cast<int>(std::lround(view.y)) - height_px, width_px,
+             height_px);
   const Mat4 view_projection =
-      camera.projection(static_cast<float>(width_px) / std::max(1, height_px)) * camera.view();
+      camera.projection(static_cast<float>(width_px) / height_px) * camera.view();
   const Vec3f eye = camera.eye_m();
 
   // The floor: a plane at z = 0, lit as a horizontal surface.

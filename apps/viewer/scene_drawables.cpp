@@ -215,6 +215,26 @@ const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int 
   return items_;
 }
 
+bool SceneDrawables::bounds(const scene::Scene& scene, int robot, Vec3f& lo, Vec3f& hi) const {
+  lo = {1e30f, 1e30f, 1e30f};
+  hi = {-1e30f, -1e30f, -1e30f};
+  bool any = false;
+  for (const auto& d : drawables_) {
+    using K = Drawable::Kind;
+    if (d.kind != K::solid && d.kind != K::shell && d.kind != K::obstacle) continue;
+    if (robot >= 0 && (d.body <= 0 || scene.bodies[d.body - 1].robot != robot)) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3f p = d.item.model.transform_point({corner & 1 ? d.box_max.x : d.box_min.x,
+                                                    corner & 2 ? d.box_max.y : d.box_min.y,
+                                                    corner & 4 ? d.box_max.z : d.box_min.z});
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+      any = true;
+    }
+  }
+  return any;
+}
+
 int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const {
   int best = -1;
   float best_t = std::numeric_limits<float>::max();

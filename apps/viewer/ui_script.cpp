@@ -1,10 +1,12 @@
 #include "ui_script.hpp"
 
+#include "windows/panels.hpp"
 #include "windows/windows.hpp"
 
 #include <s2sim/error.hpp>
 #include <s2sim/math.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <sstream>
 
@@ -88,11 +90,29 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         std::printf("camera %.4f %.4f %.4f %.4f %.4f %.4f\n", state.camera.yaw_rad,
                     state.camera.pitch_rad, state.camera.distance_m, state.camera.target_m.x,
                     state.camera.target_m.y, state.camera.target_m.z);
+      else if (rest == "layout" || rest == "scene-box")
+        state.end_of_frame_prints.push_back(rest);
+      else if (rest == "rtf")
+        std::printf("rtf %s\n", state.run_status_text.c_str());
+      else if (rest == "clock")
+        std::printf(
+            "clock %.9f %.9f\n", state.sim->time_s(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+                .count());
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
       else
-        throw bad("print time, tick, camera, body ID, signal NAME or editor-error");
+        throw bad(
+            "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME or "
+            "editor-error");
       std::fflush(stdout);
+    } else if (command == "frame") {
+      state.frame_request = true;
+    } else if (command == "reset-layout") {
+      reset_layout(state);
+    } else if (command == "pace") {
+      if (rest != "wall" && rest != "fixed") throw bad("pace wall or pace fixed");
+      state.scripted_wall_pacing = rest == "wall";
     } else if (command == "chart-add") {
       for (std::size_t i : state.sim->match_signals(rest))
         if (state.sim->signal_info(i).name != "time") state.chart.add_signal(i);
@@ -150,6 +170,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.camera.yaw_rad = yaw_deg * static_cast<float>(kPi) / 180;
       state.camera.pitch_rad = pitch_deg * static_cast<float>(kPi) / 180;
       state.camera.distance_m = distance_m;
+      state.frame_request = false;  // a camera set by the script wins over the start framing
     } else if (command == "follow") {
       const auto& robots = state.sim->scene().robots;
       state.camera.follow_robot = -1;

@@ -8,13 +8,7 @@
 namespace s2sim::viewer {
 
 void draw_configuration_window(ViewerState& state) {
-  if (!state.windows.configuration) return;
-  ImGui::SetNextWindowPos(ImVec2(10, 170), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Configuration", &state.windows.configuration)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   Simulation& sim = *state.sim;
   const scene::Settings& settings = sim.scene().settings;
 
@@ -105,7 +99,6 @@ void draw_configuration_window(ViewerState& state) {
       ImGui::EndTable();
     }
   }
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer
