@@ -317,7 +317,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     for (const auto& item : items) {
       // Only what stands above the floor casts a shadow on it.
       if (!item.casts_shadow || item.color[3] < 0.5f || item.model.at(2, 3) < 0) continue;
-      shadow.mesh = item.mesh;
+      shadow.mesh = item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh;
       draw_item(shadow, flatten * item.model);
     }
     glDepthMask(GL_TRUE);
@@ -325,6 +325,22 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     glDisable(GL_STENCIL_TEST);
   }
   glEnable(GL_CULL_FACE);
+
+  // Pixels per metre at one metre from the eye: an item's size on screen is its largest scale
+  // times this over its distance.
+  const float pixels_per_m_at_1m = height_px / (2 * std::tan(camera.fov_y_rad / 2));
+  auto coarse_enough = [&](const DrawItem& item) {
+    if (item.coarse_mesh < 0) return false;
+    const Mat4& m = item.model;
+    float scale2 = 0;
+    for (int c = 0; c < 3; ++c)
+      scale2 = std::max(
+          scale2, m.at(0, c) * m.at(0, c) + m.at(1, c) * m.at(1, c) + m.at(2, c) * m.at(2, c));
+    const Vec3f centre{m.at(0, 3), m.at(1, 3), m.at(2, 3)};
+    const float distance2 = std::max(1e-6f, dot(centre - eye, centre - eye));
+    // Under about 24 pixels across, 12 segments look as round as 32.
+    return scale2 * pixels_per_m_at_1m * pixels_per_m_at_1m < 12.0f * 12.0f * distance2;
+  };
 
   transparent_.clear();
   for (const auto& item : items) {
@@ -334,7 +350,13 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     }
     // Open meshes and flat polygons must show both faces.
     if (item.two_sided) glDisable(GL_CULL_FACE);
-    draw_item(item, item.model);
+    if (coarse_enough(item)) {
+      DrawItem coarse = item;
+      coarse.mesh = item.coarse_mesh;
+      draw_item(coarse, item.model);
+    } else {
+      draw_item(item, item.model);
+    }
     if (item.two_sided) glEnable(GL_CULL_FACE);
   }
   // Transparent items back to front, without writing depth, so they blend over each other.

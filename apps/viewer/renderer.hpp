@@ -18,7 +18,10 @@ namespace s2sim::viewer {
 /// One thing to draw this frame.
 struct DrawItem {
   int mesh = 0;  ///< from Renderer::upload
-  Mat4 model;    ///< mesh to world, scale included
+  /// A coarser tessellation of the same shape (spheres, cylinders), drawn when the item is
+  /// small on screen and for its shadow; -1 = none.
+  int coarse_mesh = -1;
+  Mat4 model;  ///< mesh to world, scale included
   float color[4] = {0.5f, 0.5f, 0.5f, 1};
   unsigned texture = 0;  ///< from Renderer::texture, 0 = none
   float texture_scale = 1;

@@ -51,6 +51,10 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     box_ = renderer.upload(unit_box());
     cylinder_ = renderer.upload(unit_cylinder());
     sphere_ = renderer.upload(unit_sphere());
+    // Coarse versions for what is small on screen and for shadows (llvmpipe transforms
+    // vertices on one thread: a pile of 50 spheres was 100 000 triangles a frame).
+    cylinder_coarse_ = renderer.upload(unit_cylinder(12));
+    sphere_coarse_ = renderer.upload(unit_sphere(6, 12));
   }
   std::map<std::pair<std::filesystem::path, double>, std::pair<int, std::pair<Vec3f, Vec3f>>>
       loaded_meshes;
@@ -63,6 +67,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
         break;
       case scene::ShapeType::cylinder: {
         d.item.mesh = cylinder_;
+        d.item.coarse_mesh = cylinder_coarse_;
         const auto r = static_cast<float>(s.radius_m);
         d.local = d.local * scale_matrix({r, r, static_cast<float>(s.length_m)});
         d.box_min = {-1, -1, -0.5f};
@@ -71,6 +76,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       }
       case scene::ShapeType::sphere: {
         d.item.mesh = sphere_;
+        d.item.coarse_mesh = sphere_coarse_;
         const auto r = static_cast<float>(s.radius_m);
         d.local = d.local * scale_matrix({r, r, r});
         d.box_min = {-1, -1, -1};

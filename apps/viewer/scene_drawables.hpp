@@ -50,7 +50,7 @@ class SceneDrawables {
  private:
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame
-  int box_ = -1, cylinder_ = -1, sphere_ = -1;
+  int box_ = -1, cylinder_ = -1, sphere_ = -1, cylinder_coarse_ = -1, sphere_coarse_ = -1;
 };
 
 }  // namespace s2sim::viewer
