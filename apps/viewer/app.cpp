@@ -251,9 +251,11 @@ class App {
       }
     }
     const int r = state_.camera.follow_robot;
-    if (r != followed_robot_ && r >= 0 && drawables_.bounds(scene, r, lo, hi))
+    if (r != followed_robot_ && r >= 0 && !state_.camera_set_by_script &&
+        drawables_.bounds(scene, r, lo, hi))
       state_.camera.frame_box(lo, hi, view_aspect(), 0.5f);  // room to see where it goes
     followed_robot_ = r;
+    state_.camera_set_by_script = false;
     if (r < 0) return;
     const int body = scene.robots[r].main_body;
     if (body >= 0) state_.camera.target_m = to_f(state_.sim->body_pose(body + 1).position);

@@ -171,6 +171,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.camera.pitch_rad = pitch_deg * static_cast<float>(kPi) / 180;
       state.camera.distance_m = distance_m;
       state.frame_request = false;  // a camera set by the script wins over the start framing
+      state.camera_set_by_script = true;
     } else if (command == "follow") {
       const auto& robots = state.sim->scene().robots;
       state.camera.follow_robot = -1;

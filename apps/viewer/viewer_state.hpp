@@ -90,6 +90,9 @@ struct ViewerState {
   bool quit = false;
   /// Frame the whole scene at the start of the next frame (start, the F key, `frame`).
   bool frame_request = true;
+  /// Set when a script placed the camera this frame: it wins over the framing that starts
+  /// with following a robot.
+  bool camera_set_by_script = false;
   /// `print layout` / `print scene-box`: printed at the end of the frame, once the windows
   /// are placed and the camera has moved.
   std::vector<std::string> end_of_frame_prints;

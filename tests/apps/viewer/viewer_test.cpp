@@ -271,7 +271,7 @@ TEST_F(Viewer, PauseStepAndResetButtonsDriveTheSimulatedTime) {
 // reads the simulated time and the viewer's steady clock 60 frames apart and the factor the
 // Run window shows at the end.
 TEST_F(Viewer, RunWindowRealTimeFactorIsSimulatedOverWallTime) {
-  for (const char* speed : {"1", "2"}) {
+  for (const char* speed : {"1", "0.5"}) {
     const Result r =
         view((kSource / "scenes/default").string(),
              {"--do", "pace wall", "--do", std::string("speed ") + speed, "--do", "wait 30", "--do",
