@@ -36,7 +36,8 @@ shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
 # Sheet as tabs of the bottom row, the 3-D view framed in the rest.
 shot viewer-layout "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --set robots/nxt/axes/left/ref_voltage=-6 --show-window log --show-window sheet \
-  --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "run-until 2"
+  --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
+  --do "wait 2" --do "show chart" --do "run-until 2"
 
 # The scene editor after a typing mistake: the error and its line, the scene still running.
 cp -r "$default" "$tmp/editor"

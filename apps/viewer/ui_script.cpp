@@ -120,6 +120,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.chart_view.csv_file = rest;
     } else if (command == "show" || command == "hide") {
       if (!set_window(state.windows, rest, command == "show")) throw bad("unknown window");
+      if (command == "show") bring_to_front(state, rest);
     } else if (command == "select") {
       state.selected_body = find_body(state, rest);
       if (state.selected_body < 0) throw bad("no body with that ID");
@@ -178,6 +179,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       for (std::size_t r = 0; r < robots.size(); ++r)
         if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
       if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
+      state.frame_request = false;  // following frames the robot, not the whole scene
     } else if (command == "screenshot") {
       screenshot_file = rest;
       return;

@@ -135,6 +135,11 @@ void register_layout_settings(ViewerState& state) {
   ImGui::GetCurrentContext()->SettingsHandlers.push_back(handler);
 }
 
+void bring_to_front(ViewerState& state, const std::string& name) {
+  for (std::size_t i = 0; i < std::size(kPanels); ++i)
+    if (name == kPanels[i].name) state.panels_open_last_frame[i] = false;  // as if just opened
+}
+
 void reset_layout(ViewerState& state) {
   state.layout = LayoutFractions{};
   state.windows = WindowFlags{};

@@ -10,6 +10,8 @@ namespace s2sim::viewer {
 /// Saves and restores the layout (column sizes, open panels) in the ImGui ini file. Call once
 /// after ImGui::CreateContext, before the first frame.
 void register_layout_settings(ViewerState& state);
+/// Brings the panel NAME (as `show` names it) to the front of its tab group next frame.
+void bring_to_front(ViewerState& state, const std::string& name);
 /// The default layout: default column sizes, only the Run window open.
 void reset_layout(ViewerState& state);
 /// Computes this frame's rectangles (state.layout_rects) for the window size; after NewFrame.
