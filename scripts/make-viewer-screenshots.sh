@@ -32,6 +32,10 @@ shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
   --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
 shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
+# Trails, names, axes and scale bar (issue 15): the NXT turning a small circle for 4 s.
+shot viewer-trail "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=3 --show-window configuration \
+  --do "overlay trails on" --do "overlay labels on" --do "run-until 4" --do "frame" --do "wait 1"
 # The default layout (issue 15): the Run window and the Log on the left, the Chart and the
 # Sheet as tabs of the bottom row, the 3-D view framed in the rest.
 shot viewer-layout "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \

@@ -9,6 +9,7 @@
 #include "viewer_state.hpp"
 #include "windows/panels.hpp"
 #include "windows/windows.hpp"
+#include "windows/world_overlay.hpp"
 #include "world_input.hpp"
 
 #include <GLFW/glfw3.h>
@@ -162,6 +163,7 @@ class App {
       state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
                          fixed_pacing);
       drawables_.update(*state_.sim);
+      record_trails(state_);
       frame_camera();
 
       // The 3-D view in framebuffer pixels (they differ from ImGui's on a HiDPI screen).
@@ -171,6 +173,7 @@ class App {
                      state_.camera,
                      {world.x * scale, world.y * scale, world.width * scale, world.height * scale},
                      height, state_.render);
+      draw_world_overlay(state_);
       draw_windows();
       ImGui::Render();
       for (const std::string& what : state_.end_of_frame_prints)

@@ -7,6 +7,7 @@
 #include <s2sim/math.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -92,7 +93,20 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
                     state.camera.target_m.y, state.camera.target_m.z);
       else if (rest == "layout" || rest == "scene-box")
         state.end_of_frame_prints.push_back(rest);
-      else if (rest == "rtf")
+      else if (rest.rfind("trail ", 0) == 0) {
+        const auto& robots = state.sim->scene().robots;
+        std::size_t r = 0;
+        while (r < robots.size() && robots[r].id != rest.substr(6))
+          ++r;
+        if (r == robots.size()) throw bad("no robot with that ID");
+        const std::size_t n = state.trails.count(r, state.overlay.trail_length_s);
+        double length_m = 0;
+        for (std::size_t i = 1; i < n; ++i) {
+          const Vec3f d = state.trails.point(r, n, i) - state.trails.point(r, n, i - 1);
+          length_m += std::sqrt(dot(d, d));
+        }
+        std::printf("trail %s %zu %.4f\n", rest.substr(6).c_str(), n, length_m);
+      } else if (rest == "rtf")
         std::printf("rtf %s\n", state.run_status_text.c_str());
       else if (rest == "clock")
         std::printf(
@@ -106,6 +120,18 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
             "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME or "
             "editor-error");
       std::fflush(stdout);
+    } else if (command == "overlay") {
+      std::istringstream args(rest);
+      std::string what, on_off;
+      if (!(args >> what >> on_off) || (on_off != "on" && on_off != "off"))
+        throw bad("overlay trails|labels|axes|scale-bar on|off");
+      bool* flag = what == "trails"      ? &state.overlay.trails
+                   : what == "labels"    ? &state.overlay.labels
+                   : what == "axes"      ? &state.overlay.axes
+                   : what == "scale-bar" ? &state.overlay.scale_bar
+                                         : nullptr;
+      if (flag == nullptr) throw bad("overlay trails|labels|axes|scale-bar on|off");
+      *flag = on_off == "on";
     } else if (command == "frame") {
       state.frame_request = true;
     } else if (command == "reset-layout") {

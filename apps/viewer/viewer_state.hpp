@@ -11,6 +11,7 @@
 #include "renderer.hpp"
 #include "run_control.hpp"
 #include "scene_drawables.hpp"
+#include "trails.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 
@@ -54,6 +55,15 @@ struct ChartView {
   std::string status;
 };
 
+/// The world view's overlay (windows/world_overlay.cpp).
+struct OverlaySettings {
+  bool trails = false;
+  float trail_length_s = 20;  ///< simulated seconds of trail shown
+  bool axes = true;
+  bool labels = false;
+  bool scale_bar = true;
+};
+
 struct WindowFlags {
   bool run = true;
   bool configuration = false;
@@ -78,6 +88,8 @@ struct ViewerState {
   TiledLayout layout_rects;  ///< this frame's rectangles, the 3-D view's included
   std::array<bool, 16> panels_open_last_frame{};  ///< a panel opened since brings its tab up
   RenderSettings render;
+  OverlaySettings overlay;
+  Trails trails;
   bool show_beams = true;
   bool show_joints = true;
   int selected_body = -1;          ///< simulation body index, -1 = none

@@ -55,6 +55,16 @@ void draw_configuration_window(ViewerState& state) {
     ImGui::Checkbox("sensor beams", &state.show_beams);
     ImGui::SameLine();
     ImGui::Checkbox("joint markers", &state.show_joints);
+    ImGui::Checkbox("trails", &state.overlay.trails);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120);
+    ImGui::SliderFloat("trail, s", &state.overlay.trail_length_s, 1, 120, "%.0f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::Checkbox("names", &state.overlay.labels);
+    ImGui::SameLine();
+    ImGui::Checkbox("axes", &state.overlay.axes);
+    ImGui::SameLine();
+    ImGui::Checkbox("scale bar", &state.overlay.scale_bar);
     Camera& cam = state.camera;
     const auto& robots = sim.scene().robots;
     const char* following = cam.follow_robot >= 0 ? robots[cam.follow_robot].id.c_str() : "nothing";

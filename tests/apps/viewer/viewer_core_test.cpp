@@ -6,6 +6,7 @@
 #include <mesh_data.hpp>
 #include <run_control.hpp>
 #include <simtwo_camera.hpp>
+#include <trails.hpp>
 
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>
@@ -194,6 +195,28 @@ TEST(SimTwoCamera, ReadsTheProjectsSavedEyeAndTarget) {
   std::ofstream(dir / "config_Viewer.ini") << "GLDummyCamPos_PositionX=left\n";
   EXPECT_TRUE(read_simtwo_camera(dir)) << "a bad file falls back to SimTwo.ini";
   std::filesystem::remove_all(dir);
+}
+
+// Issue 15: a robot's trail keeps its recent path, skips standing still, starts anew on a
+// reset and overwrites its oldest points when full.
+TEST(Trails, KeepTheRecentPathOfEachRobot) {
+  Trails trails;
+  trails.reset(2);
+  for (int i = 0; i <= 100; ++i)
+    trails.add(0, i * 0.1, {i * 0.01f, 0, 0});  // 1 cm every 0.1 s for 10 s
+  trails.add(0, 10.1, {1.0f, 0.001f, 0});       // under 5 mm: not a new point
+  EXPECT_EQ(trails.count(0, 100), 101u);
+  EXPECT_EQ(trails.count(0, 2.0), 21u) << "the last 2 s";
+  const std::size_t n = trails.count(0, 2.0);
+  EXPECT_FLOAT_EQ(trails.point(0, n, 0).x, 0.8f);
+  EXPECT_FLOAT_EQ(trails.point(0, n, n - 1).x, 1.0f);
+  EXPECT_EQ(trails.count(1, 100), 0u) << "the other robot did not move";
+  trails.add(0, 0.0, {5, 5, 0});  // the simulation was reset
+  EXPECT_EQ(trails.count(0, 100), 1u);
+  for (std::size_t i = 1; i <= Trails::capacity + 10; ++i)
+    trails.add(1, i * 0.01, {i * 0.01f, 0, 0});
+  EXPECT_EQ(trails.count(1, 1e9), Trails::capacity);
+  EXPECT_FLOAT_EQ(trails.point(1, Trails::capacity, 0).x, 0.11f) << "the oldest overwritten";
 }
 
 // Issue 15: the tiled layout never lets the panels take more than half the window, and they

@@ -472,6 +472,26 @@ TEST_F(Viewer, SheetCellsAreInputsThatControllersReadAndWrite) {
   EXPECT_NE(r.out.find("signal sensors/button/seen 1\n"), std::string::npos) << r.out;
 }
 
+// Issue 15: the NXT driving a curve leaves a trail as long as the path its body travelled,
+// drawn over the view (the screenshot is kept in the test's folder for a look).
+TEST_F(Viewer, TrailFollowsTheRobotsPath) {
+  const Result r = view(robot_scene().string(),
+                        {"--set", "robots/nxt/axes/right/ref_voltage=6", "--set",
+                         "robots/nxt/axes/left/ref_voltage=3", "--do", "overlay trails on", "--do",
+                         "overlay labels on", "--do", "run-until 3", "--do", "print trail nxt",
+                         "--do", "screenshot " + (dir_ / "trail.png").string()});
+  ASSERT_EQ(r.status, 0) << r.err;
+  unsigned points = 0;
+  double length_m = 0;
+  const auto at = r.out.find("trail nxt ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at, "trail nxt %u %lf", &points, &length_m), 2);
+  EXPECT_GT(points, 20u) << r.out;
+  // Driving a curve at these voltages the body moves some decimetres in 3 s.
+  EXPECT_GT(length_m, 0.1) << r.out;
+  EXPECT_LT(length_m, 10.0) << r.out;
+}
+
 /// Every shipped scene: scenes/* and the shared SimTwo projects next to the checkout.
 std::vector<fs::path> shipped_scenes() {
   std::vector<fs::path> scenes;
