@@ -112,6 +112,10 @@ class App {
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
     register_layout_settings(state_);
+    // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
+    // layout, only larger (the columns' rows are measured from the font).
+    ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
+    ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
     renderer_.init();
     install(load_simulation(options));
     state_.run.held_inputs = options.inputs;

@@ -65,6 +65,8 @@ void draw_configuration_window(ViewerState& state) {
     ImGui::Checkbox("axes", &state.overlay.axes);
     ImGui::SameLine();
     ImGui::Checkbox("scale bar", &state.overlay.scale_bar);
+    ImGui::SetNextItemWidth(120);
+    ImGui::SliderFloat("font scale", &ImGui::GetIO().FontGlobalScale, 0.5f, 4.0f, "%.2f");
     Camera& cam = state.camera;
     const auto& robots = sim.scene().robots;
     const char* following = cam.follow_robot >= 0 ? robots[cam.follow_robot].id.c_str() : "nothing";

@@ -553,45 +553,51 @@ TEST_F(Viewer, EveryShippedSceneStartsFramedAndFReframes) {
 // overlap, stays in the window, and the 3-D view keeps at least half of it. The screenshot is
 // kept in the test's folder for a look.
 TEST_F(Viewer, WithAllPanelsOpenNoPanelOverlapsAndTheViewKeepsHalfTheWindow) {
-  std::vector<std::string> args;
-  for (const char* w : {"configuration", "body", "log", "chart", "sheet", "editor"})
-    args.insert(args.end(), {"--show-window", w});
-  args.insert(args.end(), {"--do", "wait 3", "--do", "print layout", "--do",
-                           "screenshot " + (dir_ / "all-panels.png").string()});
-  const Result r = view((kSource / "scenes/default").string(), args);
-  ASSERT_EQ(r.status, 0) << r.err;
-  std::map<std::string, Box> rects;
-  std::istringstream out(r.out);
-  for (std::string line; std::getline(out, line);) {
-    char name[64] = {};
-    Box b;
-    if (std::sscanf(line.c_str(), "layout %63s %lf %lf %lf %lf", name, &b.x0, &b.y0, &b.x1,
-                    &b.y1) == 5) {
-      b.x1 += b.x0;
-      b.y1 += b.y0;
-      rects[name] = b;
-    }
-  }
-  for (const char* expected : {"run", "left", "bottom", "menu", "world", "window"})
-    ASSERT_TRUE(rects.count(expected)) << expected << " not placed:\n" << r.out;
-  const Box window = rects.at("window");
-  rects.erase("window");
-  const double eps = 0.5;  // ImGui rounds positions to whole pixels
-  for (const auto& [a, ra] : rects) {
-    EXPECT_GE(ra.x0, -eps) << a;
-    EXPECT_GE(ra.y0, -eps) << a;
-    EXPECT_LE(ra.x1, window.x1 + eps) << a;
-    EXPECT_LE(ra.y1, window.y1 + eps) << a;
-    for (const auto& [b, rb] : rects)
-      if (a < b) {
-        const double w = std::min(ra.x1, rb.x1) - std::max(ra.x0, rb.x0);
-        const double h = std::min(ra.y1, rb.y1) - std::max(ra.y0, rb.y0);
-        EXPECT_FALSE(w > eps && h > eps) << a << " overlaps " << b << "\n" << r.out;
+  for (const char* font_scale : {"1", "2"}) {  // 2: a HiDPI screen's text
+    std::vector<std::string> args{"--font-scale", font_scale};
+    for (const char* w : {"configuration", "body", "log", "chart", "sheet", "editor"})
+      args.insert(args.end(), {"--show-window", w});
+    args.insert(
+        args.end(),
+        {"--do", "wait 3", "--do", "print layout", "--do",
+         "screenshot " + (dir_ / ("all-panels-" + std::string(font_scale) + ".png")).string()});
+    const Result r = view((kSource / "scenes/default").string(), args);
+    ASSERT_EQ(r.status, 0) << r.err;
+    std::map<std::string, Box> rects;
+    std::istringstream out(r.out);
+    for (std::string line; std::getline(out, line);) {
+      char name[64] = {};
+      Box b;
+      if (std::sscanf(line.c_str(), "layout %63s %lf %lf %lf %lf", name, &b.x0, &b.y0, &b.x1,
+                      &b.y1) == 5) {
+        b.x1 += b.x0;
+        b.y1 += b.y0;
+        rects[name] = b;
       }
+    }
+    for (const char* expected : {"run", "left", "bottom", "menu", "world", "window"})
+      ASSERT_TRUE(rects.count(expected)) << expected << " not placed:\n" << r.out;
+    const Box window = rects.at("window");
+    rects.erase("window");
+    const double eps = 0.5;  // ImGui rounds positions to whole pixels
+    for (const auto& [a, ra] : rects) {
+      EXPECT_GE(ra.x0, -eps) << a;
+      EXPECT_GE(ra.y0, -eps) << a;
+      EXPECT_LE(ra.x1, window.x1 + eps) << a;
+      EXPECT_LE(ra.y1, window.y1 + eps) << a;
+      for (const auto& [b, rb] : rects)
+        if (a < b) {
+          const double w = std::min(ra.x1, rb.x1) - std::max(ra.x0, rb.x0);
+          const double h = std::min(ra.y1, rb.y1) - std::max(ra.y0, rb.y0);
+          EXPECT_FALSE(w > eps && h > eps) << a << " overlaps " << b << "\n" << r.out;
+        }
+    }
+    const Box& world = rects.at("world");
+    EXPECT_GE((world.x1 - world.x0) * (world.y1 - world.y0), 0.5 * window.x1 * window.y1) << r.out;
+    EXPECT_TRUE(fs::exists(dir_ / ("all-panels-" + std::string(font_scale) + ".png")));
+    // The menu bar grows with the font.
+    EXPECT_GT(rects.at("menu").y1, std::string(font_scale) == "2" ? 30 : 10) << r.out;
   }
-  const Box& world = rects.at("world");
-  EXPECT_GE((world.x1 - world.x0) * (world.y1 - world.y0), 0.5 * window.x1 * window.y1) << r.out;
-  EXPECT_TRUE(fs::exists(dir_ / "all-panels.png"));
 }
 
 TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
