@@ -32,6 +32,16 @@ shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
   --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
 shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
+# Trails, names, axes and scale bar (issue 15): the NXT turning a small circle for 4 s.
+shot viewer-trail "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=3 --show-window configuration \
+  --do "overlay trails on" --do "overlay labels on" --do "run-until 4" --do "frame" --do "wait 1"
+# The default layout (issue 15): the Run window and the Log on the left, the Chart and the
+# Sheet as tabs of the bottom row, the 3-D view framed in the rest.
+shot viewer-layout "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
+  --set robots/nxt/axes/left/ref_voltage=-6 --show-window log --show-window sheet \
+  --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
+  --do "wait 2" --do "show chart" --do "run-until 2"
 
 # The scene editor after a typing mistake: the error and its line, the scene still running.
 cp -r "$default" "$tmp/editor"
@@ -45,6 +55,11 @@ if [ -d "$plugins" ]; then
   sed -i "s#</scene>#  <plugin kind='test_reference_controller' id='writer' input='sheet/A1' value='0.5' period_ms='40'/>\n  <plugin kind='test_echo_sensor' id='gain' input='sheet/B2'/>\n  <plugin kind='test_echo_sensor' id='offset' input='sheet/B3'/>\n  <plugin kind='test_echo_sensor' id='start' input='sheet/C1' unit='button'/>\n</scene>#" "$tmp/sheet/scene.xml"
   shot viewer-sheet "$tmp/sheet" --plugin-path "$plugins" --plugin-path "$build/plugins" --show-window sheet \
     --do "sheet-set B2 1.25" --do "sheet-set B3 -0.1" --do "run-until 1"
+fi
+
+# A SimTwo project with its author's saved camera (config_Viewer.ini, config_Params.ini).
+if [ -d "$shared/Manipulator6DoF" ]; then
+  shot viewer-simtwo-camera "$shared/Manipulator6DoF" --show-window log --do "run-until 0.5"
 fi
 
 if [ -d "$shared/base" ]; then

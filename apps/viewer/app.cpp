@@ -4,9 +4,12 @@
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
 #include "screenshot.hpp"
+#include "simtwo_camera.hpp"
 #include "ui_script.hpp"
 #include "viewer_state.hpp"
+#include "windows/panels.hpp"
 #include "windows/windows.hpp"
+#include "windows/world_overlay.hpp"
 #include "world_input.hpp"
 
 #include <GLFW/glfw3.h>
@@ -21,6 +24,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -58,12 +64,27 @@ struct Window {
   }
 };
 
+/// The user's layout file: $XDG_CONFIG_HOME/s2sim/s2sim-view.ini (~/.config/... by default),
+/// or the working directory's s2sim-view.ini when neither variable is set.
+std::string user_ini_file() {
+  namespace fs = std::filesystem;
+  fs::path dir;
+  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg)
+    dir = fs::path(xdg) / "s2sim";
+  else if (const char* home = std::getenv("HOME"); home && *home)
+    dir = fs::path(home) / ".config" / "s2sim";
+  std::error_code ignored;  // without the folder the layout is simply not saved
+  if (!dir.empty()) fs::create_directories(dir, ignored);
+  return (dir / "s2sim-view.ini").string();
+}
+
 struct ImGuiContextGuard {
   explicit ImGuiContextGuard(GLFWwindow* window, bool save_layout) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     // Scripted runs must not depend on (or leave) a saved window layout.
-    ImGui::GetIO().IniFilename = save_layout ? "s2sim-view.ini" : nullptr;
+    static const std::string ini_file = user_ini_file();
+    ImGui::GetIO().IniFilename = save_layout ? ini_file.c_str() : nullptr;
     ImGui::StyleColorsDark();
     ImGui::GetStyle().Alpha = 0.95f;
     ImGui_ImplGlfw_InitForOpenGL(window, true);
@@ -90,6 +111,11 @@ class App {
                                           "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
+    register_layout_settings(state_);
+    // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
+    // layout, only larger (the columns' rows are measured from the font).
+    ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
+    ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
     renderer_.init();
     install(load_simulation(options));
     state_.run.held_inputs = options.inputs;
@@ -101,7 +127,10 @@ class App {
       state_.chart.record(*state_.sim);
       state_.windows.chart = state_.windows.chart || !options.hide_ui;
     }
-    frame_camera_on_scene();
+    // Framed in the first frame, once the layout (which needs the font) gives the view's shape;
+    // a SimTwo project opens with its author's saved camera instead.
+    state_.frame_request = true;
+    start_camera_ = read_simtwo_camera(state_.sim->scene().folder);
   }
 
   int run() {
@@ -129,17 +158,31 @@ class App {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
-      input_.update(state_, drawables_);
-      state_.run.advance(*state_.sim, scripted ? fixed_frame_s : wall_dt_s, state_.chart, scripted);
-      follow_robot();
-
       int width = 0, height = 0;
       glfwGetFramebufferSize(window_, &width, &height);
+      const ImVec2 display = ImGui::GetIO().DisplaySize;
+      update_layout(state_, display.x, display.y);
+      input_.update(state_, drawables_);
+      const bool fixed_pacing = scripted && !state_.scripted_wall_pacing;
+      state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
+                         fixed_pacing);
       drawables_.update(*state_.sim);
+      record_trails(state_);
+      frame_camera();
+
+      // The 3-D view in framebuffer pixels (they differ from ImGui's on a HiDPI screen).
+      const float scale = display.x > 0 ? static_cast<float>(width) / display.x : 1;
+      const Rect& world = state_.layout_rects.world;
       renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints, state_.selected_body),
-                     state_.camera, width, height, state_.render);
+                     state_.camera,
+                     {world.x * scale, world.y * scale, world.width * scale, world.height * scale},
+                     height, state_.render);
+      draw_world_overlay(state_);
       draw_windows();
       ImGui::Render();
+      for (const std::string& what : state_.end_of_frame_prints)
+        what == "layout" ? print_layout(state_) : print_scene_box();
+      state_.end_of_frame_prints.clear();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
       ++frames;
@@ -150,7 +193,7 @@ class App {
         const std::string error = save_screenshot(screenshot_file, width, height);
         if (!error.empty()) throw Error(ErrorKind::usage, "--screenshot: " + error);
       }
-      if (last_frame && o.print_projections) print_projections(width, height);
+      if (last_frame && o.print_projections) print_projections();
       glfwSwapBuffers(window_);
       if (last_frame) break;
       if (!o.no_frame_cap && !scripted) cap_frame_rate(now);
@@ -182,41 +225,76 @@ class App {
     load_editor_files(state_);
   }
 
-  /// Looks at the middle of the scene's bodies from a distance that shows them all.
-  void frame_camera_on_scene() {
-    const auto& scene = state_.sim->scene();
-    Vec3 lo{1e30, 1e30, 1e30}, hi{-1e30, -1e30, -1e30};
-    auto extend = [&](const Vec3& p) {
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    };
-    for (const auto& b : scene.bodies)
-      extend(b.pose.position);
-    for (const auto& g : scene.obstacles)
-      extend(g.pose.position);
-    if (lo.x > hi.x) return;
-    const Vec3 centre = (lo + hi) * 0.5;
-    state_.camera.target_m = to_f(centre);
-    const double extent = std::max(0.5, norm(hi - lo));
-    state_.camera.distance_m = static_cast<float>(
-        std::clamp(extent * 0.35 / std::tan(state_.camera.fov_y_rad / 2), 1.0, 200.0));
+  /// The view's width over its height.
+  float view_aspect() const {
+    const Rect& view = state_.layout_rects.world;
+    return view.width / std::max(1.0f, view.height);
   }
 
-  void follow_robot() {
+  /// Frames the whole scene when asked (start, F, `frame`); when a robot is followed, keeps
+  /// the camera on it, framing the robot when the following starts.
+  void frame_camera() {
+    Vec3f lo, hi;
+    const auto& scene = state_.sim->scene();
+    if (state_.frame_request) {
+      state_.frame_request = false;
+      state_.camera.follow_robot = -1;
+      followed_robot_ = -1;
+      if (start_camera_) {
+        // The author's view, moved back along its line of sight if the scene does not fit.
+        state_.camera.look_from(start_camera_->eye_m, start_camera_->target_m);
+        const float saved_distance_m = state_.camera.distance_m;
+        if (drawables_.bounds(scene, -1, lo, hi))
+          state_.camera.back_off_to_fit(lo, hi, view_aspect());
+        char moved[64] = "";
+        if (state_.camera.distance_m > saved_distance_m)
+          std::snprintf(moved, sizeof moved, ", moved back from %.2f to %.2f m to show it all",
+                        saved_distance_m, state_.camera.distance_m);
+        state_.log_message("camera: the project's saved camera (" + start_camera_->source + ")" +
+                           moved + "; F frames the whole scene");
+        start_camera_.reset();
+      } else if (drawables_.bounds(scene, -1, lo, hi)) {
+        state_.camera.frame_box(lo, hi, view_aspect());
+      }
+    }
     const int r = state_.camera.follow_robot;
+    if (r != followed_robot_ && r >= 0 && !state_.camera_set_by_script &&
+        drawables_.bounds(scene, r, lo, hi))
+      state_.camera.frame_box(lo, hi, view_aspect(), 0.5f);  // room to see where it goes
+    followed_robot_ = r;
+    state_.camera_set_by_script = false;
     if (r < 0) return;
-    const int body = state_.sim->scene().robots[r].main_body;
+    const int body = scene.robots[r].main_body;
     if (body >= 0) state_.camera.target_m = to_f(state_.sim->body_pose(body + 1).position);
   }
 
+  /// Where the scene's bounding box (the one F frames) lands in the window, in pixels, and the
+  /// 3-D view's rectangle (`print scene-box`, tests).
+  void print_scene_box() {
+    Vec3f lo, hi;
+    if (!drawables_.bounds(state_.sim->scene(), -1, lo, hi)) {
+      std::printf("scene-box none\n");
+      return;
+    }
+    const Rect& view = state_.layout_rects.world;
+    const Mat4 vp = state_.camera.projection(view_aspect()) * state_.camera.view();
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec4f h = vp * Vec4f{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y,
+                                 corner & 4 ? hi.z : lo.z, 1};
+      const float w = h.w > 0 ? h.w : 1e-6f;  // behind the eye: far outside
+      const float px = view.x + (h.x / w * 0.5f + 0.5f) * view.width;
+      const float py = view.y + (0.5f - h.y / w * 0.5f) * view.height;
+      x0 = std::min(x0, px), x1 = std::max(x1, px), y0 = std::min(y0, py), y1 = std::max(y1, py);
+    }
+    std::printf("scene-box %.1f %.1f %.1f %.1f view %.1f %.1f %.1f %.1f size %.3f %.3f %.3f\n", x0,
+                y0, x1, y1, view.x, view.y, view.width, view.height, hi.x - lo.x, hi.y - lo.y,
+                hi.z - lo.z);
+    std::fflush(stdout);
+  }
+
   void draw_windows() {
-    draw_run_window(state_);
-    draw_configuration_window(state_);
-    draw_chart_window(state_);
-    draw_sheet_window(state_);
-    draw_scene_editor_window(state_);
-    draw_log_window(state_);
-    draw_body_window(state_);
+    draw_panels(state_);
     // A scripted click on a button that was not drawn this frame is an error in the script.
     if (!state_.scripted_clicks.empty()) {
       const std::string label = state_.scripted_clicks.front();
@@ -227,16 +305,16 @@ class App {
 
   /// Prints where each robot's main body and its shadow land on screen, with its colour
   /// (tests check the screenshot's pixels there).
-  void print_projections(int width, int height) {
+  void print_projections() {
     const auto& scene = state_.sim->scene();
-    const Mat4 vp = state_.camera.projection(static_cast<float>(width) / std::max(1, height)) *
-                    state_.camera.view();
+    const Rect& view = state_.layout_rects.world;
+    const Mat4 vp = state_.camera.projection(view_aspect()) * state_.camera.view();
     const Vec3f light = renderer_.light_direction();
     auto project = [&](const Vec3f& p, const char* what, const std::string& id,
                        const scene::Color* c) {
       const Vec4f h = vp * Vec4f{p.x, p.y, p.z, 1};
-      const double px = (h.x / h.w * 0.5 + 0.5) * width;
-      const double py = (0.5 - h.y / h.w * 0.5) * height;
+      const double px = view.x + (h.x / h.w * 0.5 + 0.5) * view.width;
+      const double py = view.y + (0.5 - h.y / h.w * 0.5) * view.height;
       if (c)
         std::printf("%s %s %.1f %.1f %.3f %.3f %.3f\n", what, id.c_str(), px, py, c->r, c->g, c->b);
       else
@@ -286,6 +364,8 @@ class App {
   SceneDrawables drawables_;
   UiScript script_;
   WorldInput input_;
+  int followed_robot_ = -1;                  ///< the robot followed last frame, -1 = none
+  std::optional<SavedCamera> start_camera_;  ///< a SimTwo project's camera, until first used
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "camera.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace s2sim::viewer {
 
@@ -19,6 +20,57 @@ Mat4 Camera::projection(float aspect) const {
   // precision.
   return perspective(fov_y_rad, aspect, std::max(0.01f, distance_m * 0.01f),
                      std::max(100.0f, distance_m * 50));
+}
+
+void Camera::look_from(const Vec3f& eye, const Vec3f& target) {
+  const Vec3f d = eye - target;
+  target_m = target;
+  distance_m = std::clamp(std::sqrt(dot(d, d)), 0.05f, 500.0f);
+  pitch_rad =
+      std::clamp(std::asin(std::clamp(d.z / std::sqrt(dot(d, d)), -1.0f, 1.0f)), -1.55f, 1.55f);
+  yaw_rad = std::atan2(d.y, d.x);
+}
+
+namespace {
+/// Whether the box's corners all project inside the central `fill` of the view.
+bool box_fits(const Camera& camera, const Vec3f& lo_m, const Vec3f& hi_m, float aspect,
+              float fill) {
+  const Mat4 vp = camera.projection(aspect) * camera.view();
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec4f h = vp * Vec4f{corner & 1 ? hi_m.x : lo_m.x, corner & 2 ? hi_m.y : lo_m.y,
+                               corner & 4 ? hi_m.z : lo_m.z, 1};
+    if (h.w <= 0 || std::abs(h.x / h.w) > fill || std::abs(h.y / h.w) > fill) return false;
+  }
+  return true;
+}
+}  // namespace
+
+void Camera::back_off_to_fit(const Vec3f& lo_m, const Vec3f& hi_m, float aspect, float fill) {
+  if (box_fits(*this, lo_m, hi_m, aspect, fill)) return;
+  float near_m = distance_m, far_m = 500;
+  distance_m = far_m;
+  if (!box_fits(*this, lo_m, hi_m, aspect, fill)) return;
+  for (int i = 0; i < 40; ++i) {
+    distance_m = std::sqrt(near_m * far_m);
+    (box_fits(*this, lo_m, hi_m, aspect, fill) ? far_m : near_m) = distance_m;
+  }
+  distance_m = far_m;
+}
+
+void Camera::frame_box(const Vec3f& lo_m, const Vec3f& hi_m, float aspect, float fill) {
+  target_m = (lo_m + hi_m) * 0.5f;
+  auto fits = [&](float distance) {
+    distance_m = distance;
+    return box_fits(*this, lo_m, hi_m, aspect, fill);
+  };
+  // Farther only shrinks the box on screen once the eye is outside it: bisect on the distance.
+  float near_m = 0.05f, far_m = 500;
+  if (!fits(far_m)) return;  // larger than anything the zoom reaches: stay at the farthest
+  for (int i = 0; i < 40; ++i) {
+    const float mid = std::sqrt(near_m * far_m);
+    (fits(mid) ? far_m : near_m) = mid;
+  }
+  distance_m = far_m;
 }
 
 void Camera::orbit(float dx_px, float dy_px) {

@@ -20,6 +20,18 @@ class Camera {
   Mat4 view() const;
   Mat4 projection(float aspect) const;
 
+  /// Looks from `eye_m` at `target_m` (a SimTwo project's saved camera).
+  void look_from(const Vec3f& eye_m, const Vec3f& target_m);
+
+  /// Keeps the yaw and pitch, looks at the box's centre and sets the distance at which every
+  /// corner of the box lies inside the central `fill` of the view (e.g. 0.85 of its width
+  /// and height) for the view's `aspect` (width / height).
+  void frame_box(const Vec3f& lo_m, const Vec3f& hi_m, float aspect, float fill = 0.85f);
+
+  /// Keeps the target, yaw and pitch and moves back (never closer) until every corner of the
+  /// box lies inside the central `fill` of the view: a saved camera that shows the whole scene.
+  void back_off_to_fit(const Vec3f& lo_m, const Vec3f& hi_m, float aspect, float fill = 0.9f);
+
   /// Mouse drags in pixels; the factors make one window width about half a turn.
   void orbit(float dx_px, float dy_px);
   void pan(float dx_px, float dy_px, float viewport_height_px);

@@ -50,6 +50,7 @@ const char* usage_text() {
   --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
+  --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
   --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
   --frames N               quit after N frames
   --do "COMMAND"           a UI script command (repeatable, see docs/viewer.md)
@@ -101,6 +102,10 @@ Options parse_options(int argc, char** argv) {
       if (o.chart_signals.empty()) throw Error(ErrorKind::usage, a + ": missing signal");
     } else if (a == "--show-window") {
       o.show_windows.push_back(value(i, a));
+    } else if (a == "--font-scale") {
+      o.font_scale = parse_double(a, value(i, a));
+      if (o.font_scale < 0.5 || o.font_scale > 4)
+        throw Error(ErrorKind::usage, a + ": must be 0.5 to 4");
     } else if (a == "--no-shadows") {
       o.shadows = false;
     } else if (a == "--hide-ui") {

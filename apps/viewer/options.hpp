@@ -29,6 +29,7 @@ struct Options {
   bool paused = false;
   bool shadows = true;             ///< --no-shadows turns them off
   bool hide_ui = false;            ///< world view only
+  double font_scale = 1;           ///< --font-scale: text and widgets scaled (HiDPI)
   bool no_frame_cap = false;       ///< draw as fast as possible (benchmark)
   bool report_fps = false;         ///< print frames per second at exit
   bool print_projections = false;  ///< print where each robot projects on screen (tests)

@@ -5,6 +5,7 @@
 #include <stb/stb_image.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace s2sim::viewer {
@@ -238,17 +239,22 @@ Mat4 Renderer::floor_shadow_projection() const {
   return m;
 }
 
-void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, int width_px,
-                    int height_px, const RenderSettings& settings) {
+void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
+                    int framebuffer_height_px, const RenderSettings& settings) {
+  const int width_px = std::max(1, static_cast<int>(std::lround(view.width)));
+  const int height_px = std::max(1, static_cast<int>(std::lround(view.height)));
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glEnable(GL_CULL_FACE);
-  glViewport(0, 0, width_px, height_px);
   glClearColor(settings.clear_color[0], settings.clear_color[1], settings.clear_color[2], 1);
   glClearStencil(0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  // OpenGL counts rows from the bottom.
+  glViewport(static_cast<int>(std::lround(view.x)),
+             framebuffer_height_px - static_cast<int>(std::lround(view.y)) - height_px, width_px,
+             height_px);
   const Mat4 view_projection =
-      camera.projection(static_cast<float>(width_px) / std::max(1, height_px)) * camera.view();
+      camera.projection(static_cast<float>(width_px) / height_px) * camera.view();
   const Vec3f eye = camera.eye_m();
 
   // The floor: a plane at z = 0, lit as a horizontal surface.
@@ -311,7 +317,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, in
     for (const auto& item : items) {
       // Only what stands above the floor casts a shadow on it.
       if (!item.casts_shadow || item.color[3] < 0.5f || item.model.at(2, 3) < 0) continue;
-      shadow.mesh = item.mesh;
+      shadow.mesh = item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh;
       draw_item(shadow, flatten * item.model);
     }
     glDepthMask(GL_TRUE);
@@ -319,6 +325,22 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, in
     glDisable(GL_STENCIL_TEST);
   }
   glEnable(GL_CULL_FACE);
+
+  // Pixels per metre at one metre from the eye: an item's size on screen is its largest scale
+  // times this over its distance.
+  const float pixels_per_m_at_1m = height_px / (2 * std::tan(camera.fov_y_rad / 2));
+  auto coarse_enough = [&](const DrawItem& item) {
+    if (item.coarse_mesh < 0) return false;
+    const Mat4& m = item.model;
+    float scale2 = 0;
+    for (int c = 0; c < 3; ++c)
+      scale2 = std::max(
+          scale2, m.at(0, c) * m.at(0, c) + m.at(1, c) * m.at(1, c) + m.at(2, c) * m.at(2, c));
+    const Vec3f centre{m.at(0, 3), m.at(1, 3), m.at(2, 3)};
+    const float distance2 = std::max(1e-6f, dot(centre - eye, centre - eye));
+    // Under about 24 pixels across, 12 segments look as round as 32.
+    return scale2 * pixels_per_m_at_1m * pixels_per_m_at_1m < 12.0f * 12.0f * distance2;
+  };
 
   transparent_.clear();
   for (const auto& item : items) {
@@ -328,7 +350,13 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, in
     }
     // Open meshes and flat polygons must show both faces.
     if (item.two_sided) glDisable(GL_CULL_FACE);
-    draw_item(item, item.model);
+    if (coarse_enough(item)) {
+      DrawItem coarse = item;
+      coarse.mesh = item.coarse_mesh;
+      draw_item(coarse, item.model);
+    } else {
+      draw_item(item, item.model);
+    }
     if (item.two_sided) glEnable(GL_CULL_FACE);
   }
   // Transparent items back to front, without writing depth, so they blend over each other.

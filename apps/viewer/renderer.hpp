@@ -5,6 +5,7 @@
 
 #include "camera.hpp"
 #include "gl_math.hpp"
+#include "layout.hpp"
 #include "mesh_data.hpp"
 
 #include <filesystem>
@@ -17,7 +18,10 @@ namespace s2sim::viewer {
 /// One thing to draw this frame.
 struct DrawItem {
   int mesh = 0;  ///< from Renderer::upload
-  Mat4 model;    ///< mesh to world, scale included
+  /// A coarser tessellation of the same shape (spheres, cylinders), drawn when the item is
+  /// small on screen and for its shadow; -1 = none.
+  int coarse_mesh = -1;
+  Mat4 model;  ///< mesh to world, scale included
   float color[4] = {0.5f, 0.5f, 0.5f, 1};
   unsigned texture = 0;  ///< from Renderer::texture, 0 = none
   float texture_scale = 1;
@@ -49,9 +53,10 @@ class Renderer {
   /// Loads an image file once (stb_image) and returns its texture, or 0 with `error` set.
   unsigned texture(const std::filesystem::path& file, std::string& error);
 
-  /// Draws the floor and the items into the current framebuffer (viewport width x height).
-  void draw(const std::vector<DrawItem>& items, const Camera& camera, int width_px, int height_px,
-            const RenderSettings& settings);
+  /// Clears the framebuffer and draws the floor and the items into `view` (framebuffer
+  /// pixels from the top left; the framebuffer is `framebuffer_height_px` high).
+  void draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
+            int framebuffer_height_px, const RenderSettings& settings);
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }

@@ -6,6 +6,27 @@
 
 namespace s2sim::viewer {
 
+void RtfMeter::sample(double wall_clock_s, double sim_time_s) {
+  newest_ = count_ == 0 ? 0 : (newest_ + 1) % ring_.size();
+  ring_[newest_] = {wall_clock_s, sim_time_s};
+  count_ = std::min(count_ + 1, ring_.size());
+}
+
+double RtfMeter::rtf() const {
+  if (count_ < 2) return 0;
+  const Sample& newest = ring_[newest_];
+  // The oldest kept sample still inside the window (or the oldest kept, if the ring is full).
+  std::size_t oldest = newest_;
+  for (std::size_t k = 1; k < count_; ++k) {
+    const std::size_t i = (newest_ + ring_.size() - k) % ring_.size();
+    if (newest.wall_s - ring_[i].wall_s > window_s) break;
+    oldest = i;
+  }
+  if (oldest == newest_) oldest = (newest_ + ring_.size() - 1) % ring_.size();  // one long frame
+  const double wall_s = newest.wall_s - ring_[oldest].wall_s;
+  return wall_s > 0 ? (newest.sim_s - ring_[oldest].sim_s) / wall_s : 0;
+}
+
 void RunControl::step_one(Simulation& sim, ChartData& chart) {
   sim.step(1);
   chart.record(sim);
@@ -18,6 +39,7 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
   std::int64_t done = 0;
   if (pending_reset_) {
     pending_reset_ = false;
+    rtf_meter_.clear();
     pending_steps_ = 0;
     owed_sim_s_ = 0;
     sim.reset();
@@ -26,7 +48,6 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
     chart.clear_samples();
     chart.record(sim);
   }
-  const double before_s = sim.time_s();
   // Single steps happen whether playing or not (a step while playing is simply one more).
   for (; pending_steps_ > 0; --pending_steps_, ++done)
     step_one(sim, chart);
@@ -69,17 +90,14 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
     }
   }
 
-  if (playing) {
-    rtf_window_wall_s_ += wall_dt_s;
-    rtf_window_sim_s_ += sim.time_s() - before_s;
-    if (rtf_window_wall_s_ >= 0.5) {
-      measured_rtf_ = rtf_window_sim_s_ / rtf_window_wall_s_;
-      rtf_window_wall_s_ = rtf_window_sim_s_ = 0;
-    }
-  } else {
-    measured_rtf_ = 0;
-    rtf_window_wall_s_ = rtf_window_sim_s_ = 0;
-  }
+  // Measured on the steady clock, not from `wall_dt_s`: scripted runs pace with a fixed
+  // frame time, and the factor shown must be what a watch says. (It used to be summed from
+  // wall_dt_s in half-second windows: 0.00x until the first window closed.)
+  if (playing)
+    rtf_meter_.sample(std::chrono::duration<double>(Clock::now().time_since_epoch()).count(),
+                      sim.time_s());
+  else
+    rtf_meter_.clear();
   return done;
 }
 

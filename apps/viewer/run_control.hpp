@@ -7,12 +7,35 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace s2sim::viewer {
+
+/// The real-time factor over the last `window_s` of wall time: simulated seconds done divided
+/// by wall seconds elapsed between the oldest kept sample and the newest. It has a value from
+/// the second sample on (no blank first half second), and a fixed ring of samples, so no
+/// allocation per frame.
+class RtfMeter {
+ public:
+  static constexpr double window_s = 0.5;
+  /// One frame's reading: a monotonic wall clock and the simulated time, both in seconds.
+  void sample(double wall_clock_s, double sim_time_s);
+  /// Forget the samples (pause, reset: the simulated time jumps or stands still).
+  void clear() { count_ = 0; }
+  /// Simulated seconds per wall second; 0 until two samples with distinct wall times exist.
+  double rtf() const;
+
+ private:
+  struct Sample {
+    double wall_s, sim_s;
+  };
+  std::array<Sample, 256> ring_{};
+  std::size_t newest_ = 0, count_ = 0;
+};
 
 class RunControl {
  public:
@@ -38,8 +61,9 @@ class RunControl {
   std::int64_t advance(Simulation& sim, double wall_dt_s, ChartData& chart,
                        bool ignore_budget = false);
 
-  /// Simulated seconds per wall second over the last half second of playing.
-  double measured_rtf() const { return measured_rtf_; }
+  /// Simulated seconds per wall second (measured on the steady clock, whatever `wall_dt_s`
+  /// the frames were paced with) over the last half second of playing.
+  double measured_rtf() const { return rtf_meter_.rtf(); }
   /// True when the simulation cannot keep up with the requested speed.
   bool falling_behind() const { return falling_behind_; }
 
@@ -49,8 +73,7 @@ class RunControl {
   std::int64_t pending_steps_ = 0;
   bool pending_reset_ = false;
   double owed_sim_s_ = 0;  ///< simulated time the pacing still owes
-  double rtf_window_wall_s_ = 0, rtf_window_sim_s_ = 0;
-  double measured_rtf_ = 0;
+  RtfMeter rtf_meter_;
   bool falling_behind_ = false;
 };
 

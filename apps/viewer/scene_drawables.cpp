@@ -51,6 +51,10 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     box_ = renderer.upload(unit_box());
     cylinder_ = renderer.upload(unit_cylinder());
     sphere_ = renderer.upload(unit_sphere());
+    // Coarse versions for what is small on screen and for shadows (llvmpipe transforms
+    // vertices on one thread: a pile of 50 spheres was 100 000 triangles a frame).
+    cylinder_coarse_ = renderer.upload(unit_cylinder(12));
+    sphere_coarse_ = renderer.upload(unit_sphere(6, 12));
   }
   std::map<std::pair<std::filesystem::path, double>, std::pair<int, std::pair<Vec3f, Vec3f>>>
       loaded_meshes;
@@ -63,6 +67,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
         break;
       case scene::ShapeType::cylinder: {
         d.item.mesh = cylinder_;
+        d.item.coarse_mesh = cylinder_coarse_;
         const auto r = static_cast<float>(s.radius_m);
         d.local = d.local * scale_matrix({r, r, static_cast<float>(s.length_m)});
         d.box_min = {-1, -1, -0.5f};
@@ -71,6 +76,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       }
       case scene::ShapeType::sphere: {
         d.item.mesh = sphere_;
+        d.item.coarse_mesh = sphere_coarse_;
         const auto r = static_cast<float>(s.radius_m);
         d.local = d.local * scale_matrix({r, r, r});
         d.box_min = {-1, -1, -1};
@@ -213,6 +219,26 @@ const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int 
         selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
   }
   return items_;
+}
+
+bool SceneDrawables::bounds(const scene::Scene& scene, int robot, Vec3f& lo, Vec3f& hi) const {
+  lo = {1e30f, 1e30f, 1e30f};
+  hi = {-1e30f, -1e30f, -1e30f};
+  bool any = false;
+  for (const auto& d : drawables_) {
+    using K = Drawable::Kind;
+    if (d.kind != K::solid && d.kind != K::shell && d.kind != K::obstacle) continue;
+    if (robot >= 0 && (d.body <= 0 || scene.bodies[d.body - 1].robot != robot)) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3f p = d.item.model.transform_point({corner & 1 ? d.box_max.x : d.box_min.x,
+                                                    corner & 2 ? d.box_max.y : d.box_min.y,
+                                                    corner & 4 ? d.box_max.z : d.box_min.z});
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+      any = true;
+    }
+  }
+  return any;
 }
 
 int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const {

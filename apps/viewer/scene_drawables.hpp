@@ -40,12 +40,17 @@ class SceneDrawables {
   /// The body hit first by the ray (world frame), or -1; `distance_m` is set on a hit.
   int pick(const Vec3f& origin, const Vec3f& direction, float& distance_m) const;
 
+  /// World-frame bounds of the solids, shells and obstacles at this frame's poses (after
+  /// update), of `robot`'s bodies only when `robot` >= 0 (track polygons, beams and joint
+  /// markers left out). False when there is nothing to bound.
+  bool bounds(const scene::Scene& scene, int robot, Vec3f& lo, Vec3f& hi) const;
+
   const std::vector<Drawable>& drawables() const { return drawables_; }
 
  private:
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame
-  int box_ = -1, cylinder_ = -1, sphere_ = -1;
+  int box_ = -1, cylinder_ = -1, sphere_ = -1, cylinder_coarse_ = -1, sphere_coarse_ = -1;
 };
 
 }  // namespace s2sim::viewer

@@ -1,10 +1,13 @@
 #include "ui_script.hpp"
 
+#include "windows/panels.hpp"
 #include "windows/windows.hpp"
 
 #include <s2sim/error.hpp>
 #include <s2sim/math.hpp>
 
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -88,11 +91,54 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         std::printf("camera %.4f %.4f %.4f %.4f %.4f %.4f\n", state.camera.yaw_rad,
                     state.camera.pitch_rad, state.camera.distance_m, state.camera.target_m.x,
                     state.camera.target_m.y, state.camera.target_m.z);
+      else if (rest == "layout" || rest == "scene-box")
+        state.end_of_frame_prints.push_back(rest);
+      else if (rest.rfind("trail ", 0) == 0) {
+        const auto& robots = state.sim->scene().robots;
+        std::size_t r = 0;
+        while (r < robots.size() && robots[r].id != rest.substr(6))
+          ++r;
+        if (r == robots.size()) throw bad("no robot with that ID");
+        const std::size_t n = state.trails.count(r, state.overlay.trail_length_s);
+        double length_m = 0;
+        for (std::size_t i = 1; i < n; ++i) {
+          const Vec3f d = state.trails.point(r, n, i) - state.trails.point(r, n, i - 1);
+          length_m += std::sqrt(dot(d, d));
+        }
+        std::printf("trail %s %zu %.4f\n", rest.substr(6).c_str(), n, length_m);
+      } else if (rest == "rtf")
+        std::printf("rtf %s\n", state.run_status_text.c_str());
+      else if (rest == "clock")
+        std::printf(
+            "clock %.9f %.9f\n", state.sim->time_s(),
+            std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+                .count());
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
       else
-        throw bad("print time, tick, camera, body ID, signal NAME or editor-error");
+        throw bad(
+            "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME or "
+            "editor-error");
       std::fflush(stdout);
+    } else if (command == "overlay") {
+      std::istringstream args(rest);
+      std::string what, on_off;
+      if (!(args >> what >> on_off) || (on_off != "on" && on_off != "off"))
+        throw bad("overlay trails|labels|axes|scale-bar on|off");
+      bool* flag = what == "trails"      ? &state.overlay.trails
+                   : what == "labels"    ? &state.overlay.labels
+                   : what == "axes"      ? &state.overlay.axes
+                   : what == "scale-bar" ? &state.overlay.scale_bar
+                                         : nullptr;
+      if (flag == nullptr) throw bad("overlay trails|labels|axes|scale-bar on|off");
+      *flag = on_off == "on";
+    } else if (command == "frame") {
+      state.frame_request = true;
+    } else if (command == "reset-layout") {
+      reset_layout(state);
+    } else if (command == "pace") {
+      if (rest != "wall" && rest != "fixed") throw bad("pace wall or pace fixed");
+      state.scripted_wall_pacing = rest == "wall";
     } else if (command == "chart-add") {
       for (std::size_t i : state.sim->match_signals(rest))
         if (state.sim->signal_info(i).name != "time") state.chart.add_signal(i);
@@ -100,6 +146,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.chart_view.csv_file = rest;
     } else if (command == "show" || command == "hide") {
       if (!set_window(state.windows, rest, command == "show")) throw bad("unknown window");
+      if (command == "show") bring_to_front(state, rest);
     } else if (command == "select") {
       state.selected_body = find_body(state, rest);
       if (state.selected_body < 0) throw bad("no body with that ID");
@@ -150,12 +197,15 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.camera.yaw_rad = yaw_deg * static_cast<float>(kPi) / 180;
       state.camera.pitch_rad = pitch_deg * static_cast<float>(kPi) / 180;
       state.camera.distance_m = distance_m;
+      state.frame_request = false;  // a camera set by the script wins over the start framing
+      state.camera_set_by_script = true;
     } else if (command == "follow") {
       const auto& robots = state.sim->scene().robots;
       state.camera.follow_robot = -1;
       for (std::size_t r = 0; r < robots.size(); ++r)
         if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
       if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
+      state.frame_request = false;  // following frames the robot, not the whole scene
     } else if (command == "screenshot") {
       screenshot_file = rest;
       return;

@@ -6,13 +6,16 @@
 
 #include "camera.hpp"
 #include "chart_data.hpp"
+#include "layout.hpp"
 #include "options.hpp"
 #include "renderer.hpp"
 #include "run_control.hpp"
 #include "scene_drawables.hpp"
+#include "trails.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <array>
 #include <map>
 #include <memory>
 #include <string>
@@ -52,6 +55,15 @@ struct ChartView {
   std::string status;
 };
 
+/// The world view's overlay (windows/world_overlay.cpp).
+struct OverlaySettings {
+  bool trails = false;
+  float trail_length_s = 20;  ///< simulated seconds of trail shown
+  bool axes = true;
+  bool labels = false;
+  bool scale_bar = true;
+};
+
 struct WindowFlags {
   bool run = true;
   bool configuration = false;
@@ -72,13 +84,30 @@ struct ViewerState {
   std::vector<LogLine> log;
   EditorState editor;
   WindowFlags windows;
+  LayoutFractions layout;    ///< column sizes the user set (saved in the ImGui ini file)
+  TiledLayout layout_rects;  ///< this frame's rectangles, the 3-D view's included
+  std::array<bool, 16> panels_open_last_frame{};  ///< a panel opened since brings its tab up
   RenderSettings render;
+  OverlaySettings overlay;
+  Trails trails;
   bool show_beams = true;
   bool show_joints = true;
   int selected_body = -1;          ///< simulation body index, -1 = none
   float physics_step_ms_edit = 0;  ///< the configuration window's field, 0 = not edited yet
   double frame_time_s = 0;         ///< smoothed wall time per frame
+  std::string run_status_text;     ///< the Run window's real-time factor line as last shown
+  /// Scripted runs advance a fixed 1/60 s per frame unless a script asks for the wall clock
+  /// (`pace wall`), as an interactive run does.
+  bool scripted_wall_pacing = false;
   bool quit = false;
+  /// Frame the whole scene at the start of the next frame (start, the F key, `frame`).
+  bool frame_request = true;
+  /// Set when a script placed the camera this frame: it wins over the framing that starts
+  /// with following a robot.
+  bool camera_set_by_script = false;
+  /// `print layout` / `print scene-box`: printed at the end of the frame, once the windows
+  /// are placed and the camera has moved.
+  std::vector<std::string> end_of_frame_prints;
   /// A freshly loaded simulation (scene editor, configuration) that the app swaps in at the
   /// start of the next frame, keeping the camera, the chart's signals and the windows.
   std::unique_ptr<Simulation> pending_simulation;

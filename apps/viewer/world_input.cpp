@@ -14,10 +14,11 @@ Vec3 to_d(const Vec3f& v) {
 }
 
 /// The ray under the mouse, from ImGui's display size and mouse position.
-void ray_under_mouse(const Camera& camera, Vec3f& origin, Vec3f& direction) {
+void ray_under_mouse(const ViewerState& state, Vec3f& origin, Vec3f& direction) {
   const ImGuiIO& io = ImGui::GetIO();
-  mouse_ray(camera, io.MousePos.x, io.MousePos.y, io.DisplaySize.x, io.DisplaySize.y, origin,
-            direction);
+  const Rect& view = state.layout_rects.world;  // the 3-D view's region of the window
+  mouse_ray(state.camera, io.MousePos.x - view.x, io.MousePos.y - view.y, view.width, view.height,
+            origin, direction);
 }
 
 }  // namespace
@@ -48,7 +49,7 @@ void WorldInput::mouse(ViewerState& state, const SceneDrawables& drawables) {
       return;
     }
     Vec3f origin, direction;
-    ray_under_mouse(state.camera, origin, direction);
+    ray_under_mouse(state, origin, direction);
     if (std::abs(direction.z) < 1e-6f) return;  // looking along the drag plane
     const float t = (drag_height_m_ - origin.z) / direction.z;
     if (t <= 0) return;
@@ -63,14 +64,14 @@ void WorldInput::mouse(ViewerState& state, const SceneDrawables& drawables) {
   }
   const bool pan = io.MouseDown[1] || io.MouseDown[2] || (io.MouseDown[0] && io.KeyShift);
   if (pan)
-    state.camera.pan(io.MouseDelta.x, io.MouseDelta.y, io.DisplaySize.y);
+    state.camera.pan(io.MouseDelta.x, io.MouseDelta.y, state.layout_rects.world.height);
   else if (io.MouseDown[0])
     state.camera.orbit(io.MouseDelta.x, io.MouseDelta.y);
   if (io.MouseWheel != 0) state.camera.zoom(io.MouseWheel);
   // A click is a press and release that moved less than 3 pixels (else it was an orbit).
   if (ImGui::IsMouseReleased(0) && io.MouseDragMaxDistanceSqr[0] < 9) {
     Vec3f origin, direction;
-    ray_under_mouse(state.camera, origin, direction);
+    ray_under_mouse(state, origin, direction);
     float distance_m = 0;
     state.selected_body = drawables.pick(origin, direction, distance_m);
     if (state.selected_body >= 0) state.windows.body = true;
@@ -79,7 +80,7 @@ void WorldInput::mouse(ViewerState& state, const SceneDrawables& drawables) {
 
 void WorldInput::start_drag(ViewerState& state, const SceneDrawables& drawables) {
   Vec3f origin, direction;
-  ray_under_mouse(state.camera, origin, direction);
+  ray_under_mouse(state, origin, direction);
   float distance_m = 0;
   const int body = drawables.pick(origin, direction, distance_m);
   if (body <= 0) return;
@@ -98,6 +99,7 @@ void WorldInput::keys(ViewerState& state) {
   if (ImGui::IsKeyPressed(GLFW_KEY_S) || ImGui::IsKeyPressed(GLFW_KEY_RIGHT))
     state.run.request_step(1);
   if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) state.run.request_reset();
+  if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.frame_request = true;
 }
 
 }  // namespace s2sim::viewer

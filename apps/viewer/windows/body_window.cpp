@@ -8,13 +8,7 @@
 namespace s2sim::viewer {
 
 void draw_body_window(ViewerState& state) {
-  if (!state.windows.body) return;
-  ImGui::SetNextWindowPos(ImVec2(860, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(410, 250), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Body", &state.windows.body)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   const Simulation& sim = *state.sim;
   const int b = state.selected_body;
   if (b < 0) {
@@ -40,7 +34,6 @@ void draw_body_window(ViewerState& state) {
     if (body.robot >= 0 && button(state, "Follow this robot"))
       state.camera.follow_robot = body.robot;
   }
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

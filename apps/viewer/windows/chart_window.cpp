@@ -153,13 +153,7 @@ void plot(ViewerState& state) {
 }  // namespace
 
 void draw_chart_window(ViewerState& state) {
-  if (!state.windows.chart) return;
-  ImGui::SetNextWindowPos(ImVec2(440, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(830, 420), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Chart", &state.windows.chart)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   ChartView& view = state.chart_view;
   if (button(state, view.frozen ? "Follow" : "Pause chart")) {
     view.frozen = !view.frozen;
@@ -196,7 +190,6 @@ void draw_chart_window(ViewerState& state) {
     plot(state);
     ImGui::EndTable();
   }
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

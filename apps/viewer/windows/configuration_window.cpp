@@ -8,13 +8,7 @@
 namespace s2sim::viewer {
 
 void draw_configuration_window(ViewerState& state) {
-  if (!state.windows.configuration) return;
-  ImGui::SetNextWindowPos(ImVec2(10, 170), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Configuration", &state.windows.configuration)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   Simulation& sim = *state.sim;
   const scene::Settings& settings = sim.scene().settings;
 
@@ -61,6 +55,18 @@ void draw_configuration_window(ViewerState& state) {
     ImGui::Checkbox("sensor beams", &state.show_beams);
     ImGui::SameLine();
     ImGui::Checkbox("joint markers", &state.show_joints);
+    ImGui::Checkbox("trails", &state.overlay.trails);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(120);
+    ImGui::SliderFloat("trail, s", &state.overlay.trail_length_s, 1, 120, "%.0f",
+                       ImGuiSliderFlags_Logarithmic);
+    ImGui::Checkbox("names", &state.overlay.labels);
+    ImGui::SameLine();
+    ImGui::Checkbox("axes", &state.overlay.axes);
+    ImGui::SameLine();
+    ImGui::Checkbox("scale bar", &state.overlay.scale_bar);
+    ImGui::SetNextItemWidth(120);
+    ImGui::SliderFloat("font scale", &ImGui::GetIO().FontGlobalScale, 0.5f, 4.0f, "%.2f");
     Camera& cam = state.camera;
     const auto& robots = sim.scene().robots;
     const char* following = cam.follow_robot >= 0 ? robots[cam.follow_robot].id.c_str() : "nothing";
@@ -105,7 +111,6 @@ void draw_configuration_window(ViewerState& state) {
       ImGui::EndTable();
     }
   }
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

@@ -5,13 +5,7 @@
 namespace s2sim::viewer {
 
 void draw_log_window(ViewerState& state) {
-  if (!state.windows.log) return;
-  ImGui::SetNextWindowPos(ImVec2(10, 480), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(620, 220), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Log", &state.windows.log)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   if (button(state, "Clear log")) state.log.clear();
   ImGui::Separator();
   ImGui::BeginChild("lines", ImVec2(0, 0), false, ImGuiWindowFlags_HorizontalScrollbar);
@@ -22,7 +16,6 @@ void draw_log_window(ViewerState& state) {
   // Follow new lines unless the user scrolled up to read older ones.
   if (ImGui::GetScrollY() >= ImGui::GetScrollMaxY()) ImGui::SetScrollHereY(1.0f);
   ImGui::EndChild();
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

@@ -3,14 +3,15 @@
 #include <imgui.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace s2sim::viewer {
 
 void draw_run_window(ViewerState& state) {
-  if (!state.windows.run) return;
-  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(430, 150), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Run", &state.windows.run)) {
+  // Placed at the top of the left column by windows/panels.cpp.
+  if (!ImGui::Begin("Run", &state.windows.run,
+                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse |
+                        ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings)) {
     ImGui::End();
     return;
   }
@@ -45,22 +46,16 @@ void draw_run_window(ViewerState& state) {
   ImGui::Text("t = %.3f s   tick %lld of %g ms", state.sim->time_s(),
               static_cast<long long>(state.sim->tick()), state.sim->tick_s() * 1e3);
   const double fps = state.frame_time_s > 0 ? 1.0 / state.frame_time_s : 0.0;
+  // Kept in the state too, so scripts and tests read exactly what is shown (`print rtf`).
+  char status[96];
   if (run.playing)
-    ImGui::Text("real-time factor %.2fx%s   %.0f fps", run.measured_rtf(),
-                run.falling_behind() ? " (cannot keep up)" : "", fps);
+    std::snprintf(status, sizeof status, "real-time factor %.2fx%s   %.0f fps", run.measured_rtf(),
+                  run.falling_behind() ? " (cannot keep up)" : "", fps);
   else
-    ImGui::Text("paused   %.0f fps", fps);
-  ImGui::TextDisabled("Windows:");
-  ImGui::SameLine();
-  ImGui::Checkbox("Config", &state.windows.configuration);
-  ImGui::SameLine();
-  ImGui::Checkbox("Chart", &state.windows.chart);
-  ImGui::SameLine();
-  ImGui::Checkbox("Sheet", &state.windows.sheet);
-  ImGui::SameLine();
-  ImGui::Checkbox("Editor", &state.windows.editor);
-  ImGui::SameLine();
-  ImGui::Checkbox("Log", &state.windows.log);
+    std::snprintf(status, sizeof status, "paused   %.0f fps", fps);
+  state.run_status_text = status;
+  ImGui::TextUnformatted(status);
+  // The other windows open from the View menu (windows/panels.cpp).
   ImGui::End();
 }
 

@@ -118,13 +118,7 @@ bool apply_editor(ViewerState& state) {
 }
 
 void draw_scene_editor_window(ViewerState& state) {
-  if (!state.windows.editor) return;
-  ImGui::SetNextWindowPos(ImVec2(580, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(690, 600), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Scene editor", &state.windows.editor)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   EditorState& editor = state.editor;
   if (editor.files.empty()) load_editor_files(state);
   const auto& folder = state.sim->scene().folder;
@@ -167,7 +161,6 @@ void draw_scene_editor_window(ViewerState& state) {
   if (!editor.status.empty()) ImGui::TextDisabled("%s", editor.status.c_str());
   ImGui::InputTextMultiline("##text", &editor.files[editor.current].text, ImVec2(-1, -1),
                             ImGuiInputTextFlags_AllowTabInput);
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

@@ -63,13 +63,7 @@ void cell_widget(ViewerState& state, std::size_t input, const std::string& label
 }  // namespace
 
 void draw_sheet_window(ViewerState& state) {
-  if (!state.windows.sheet) return;
-  ImGui::SetNextWindowPos(ImVec2(580, 440), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(690, 260), ImGuiCond_FirstUseEver);
-  if (!ImGui::Begin("Sheet", &state.windows.sheet)) {
-    ImGui::End();
-    return;
-  }
+  // Drawn inside its tab (windows/panels.cpp places it).
   Simulation& sim = *state.sim;
   std::vector<std::pair<CellAddress, std::size_t>> cells;
   std::vector<std::size_t> others;
@@ -90,7 +84,6 @@ void draw_sheet_window(ViewerState& state) {
         "No sheet cells in this scene. A controller makes a cell by declaring the input "
         "`sheet/<cell>` (e.g. `sheet/B3`) with declare_input_at(); it reads and writes it with "
         "ctx.input()/ctx.set_input(). Unit \"button\" shows a button (see docs/viewer.md).");
-    ImGui::End();
     return;
   }
   columns = std::min(columns, 26);
@@ -121,7 +114,6 @@ void draw_sheet_window(ViewerState& state) {
     ImGui::SameLine(160);
     cell_widget(state, input, sim.input_info(input).name.substr(kPrefix.size()));
   }
-  ImGui::End();
 }
 
 }  // namespace s2sim::viewer

@@ -2,14 +2,19 @@
 // assimp), the camera, the chart's CSV export and run control's pacing.
 #include <camera.hpp>
 #include <chart_data.hpp>
+#include <layout.hpp>
 #include <mesh_data.hpp>
 #include <run_control.hpp>
+#include <simtwo_camera.hpp>
+#include <trails.hpp>
 
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -133,6 +138,134 @@ TEST(RunControl, PacesTicksToWallTimeTimesSpeedAndStepsWhilePaused) {
   run.advance(*sim, 0.05, chart, true);
   EXPECT_EQ(sim->tick(), 20);
   EXPECT_FALSE(run.playing);
+}
+
+// Issue 15: the camera starts framed. Whatever the box, its corners land inside the view.
+TEST(Camera, FrameBoxPutsEveryCornerInsideTheView) {
+  struct Case {
+    Vec3f lo, hi;
+    float aspect;
+  };
+  for (const Case& c : {Case{{-0.1f, -0.1f, 0}, {0.1f, 0.1f, 0.2f}, 16.0f / 9},
+                        Case{{-3, -1, 0}, {5, 1, 0.5f}, 1.9f}, Case{{0, 0, 0}, {1, 20, 3}, 1.0f},
+                        Case{{-40, -40, 0}, {40, 40, 2}, 0.5f}}) {
+    Camera camera;
+    camera.frame_box(c.lo, c.hi, c.aspect);
+    const Mat4 vp = camera.projection(c.aspect) * camera.view();
+    float largest = 0;
+    for (int k = 0; k < 8; ++k) {
+      const Vec4f h =
+          vp * Vec4f{k & 1 ? c.hi.x : c.lo.x, k & 2 ? c.hi.y : c.lo.y, k & 4 ? c.hi.z : c.lo.z, 1};
+      ASSERT_GT(h.w, 0);
+      largest = std::max({largest, std::abs(h.x / h.w), std::abs(h.y / h.w)});
+    }
+    EXPECT_LE(largest, 0.85f + 1e-4f);
+    EXPECT_GT(largest, 0.8f) << "framed, not lost in the distance";
+  }
+}
+
+// Issue 15: a SimTwo project opens with its author's camera: the eye from config_Viewer.ini,
+// the point looked at from config_Params.ini (SimTwo.ini when those are missing).
+TEST(SimTwoCamera, ReadsTheProjectsSavedEyeAndTarget) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
+                                    ("s2sim_simtwo_camera_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  EXPECT_FALSE(read_simtwo_camera(dir)) << "no settings, no camera";
+  std::ofstream(dir / "SimTwo.ini")
+      << "[Viewer]\r\nGLDummyCamPos_PositionX=0.77\r\n"
+         "GLDummyCamPos_PositionY=-1.03\r\nGLDummyCamPos_PositionZ=1.29\r\n"
+         "[Config]\r\nEditSetCamLookX_Text=0.25\r\n"
+         "EditSetCamLookY_Text=0.10\r\nEditSetCamLookZ_Text=0.02\r\n";
+  auto saved = read_simtwo_camera(dir);
+  ASSERT_TRUE(saved);
+  EXPECT_FLOAT_EQ(saved->eye_m.y, -1.03f);
+  EXPECT_FLOAT_EQ(saved->target_m.x, 0.25f);
+  std::ofstream(dir / "config_Viewer.ini")
+      << "GLDummyCamPos_PositionX=1.41\nGLDummyCamPos_PositionY=0.03\n"
+         "GLDummyCamPos_PositionZ=0.88\n";
+  saved = read_simtwo_camera(dir);
+  ASSERT_TRUE(saved);
+  EXPECT_FLOAT_EQ(saved->eye_m.x, 1.41f) << "config_Viewer.ini comes first";
+  Camera camera;
+  camera.look_from(saved->eye_m, saved->target_m);
+  const Vec3f eye = camera.eye_m();
+  EXPECT_NEAR(eye.x, 1.41f, 1e-4f);
+  EXPECT_NEAR(eye.y, 0.03f, 1e-4f);
+  EXPECT_NEAR(eye.z, 0.88f, 1e-4f);
+  std::ofstream(dir / "config_Viewer.ini") << "GLDummyCamPos_PositionX=left\n";
+  EXPECT_TRUE(read_simtwo_camera(dir)) << "a bad file falls back to SimTwo.ini";
+  std::filesystem::remove_all(dir);
+}
+
+// Issue 15: a robot's trail keeps its recent path, skips standing still, starts anew on a
+// reset and overwrites its oldest points when full.
+TEST(Trails, KeepTheRecentPathOfEachRobot) {
+  Trails trails;
+  trails.reset(2);
+  for (int i = 0; i <= 100; ++i)
+    trails.add(0, i * 0.1, {i * 0.01f, 0, 0});  // 1 cm every 0.1 s for 10 s
+  trails.add(0, 10.1, {1.0f, 0.001f, 0});       // under 5 mm: not a new point
+  EXPECT_EQ(trails.count(0, 100), 101u);
+  EXPECT_EQ(trails.count(0, 2.0), 21u) << "the last 2 s";
+  const std::size_t n = trails.count(0, 2.0);
+  EXPECT_FLOAT_EQ(trails.point(0, n, 0).x, 0.8f);
+  EXPECT_FLOAT_EQ(trails.point(0, n, n - 1).x, 1.0f);
+  EXPECT_EQ(trails.count(1, 100), 0u) << "the other robot did not move";
+  trails.add(0, 0.0, {5, 5, 0});  // the simulation was reset
+  EXPECT_EQ(trails.count(0, 100), 1u);
+  for (std::size_t i = 1; i <= Trails::capacity + 10; ++i)
+    trails.add(1, i * 0.01, {i * 0.01f, 0, 0});
+  EXPECT_EQ(trails.count(1, 1e9), Trails::capacity);
+  EXPECT_FLOAT_EQ(trails.point(1, Trails::capacity, 0).x, 0.11f) << "the oldest overwritten";
+}
+
+// Issue 15: the tiled layout never lets the panels take more than half the window, and they
+// never overlap the 3-D view or each other, whatever the window size and column fractions.
+TEST(Layout, PanelsTileAroundAViewOfAtLeastHalfTheWindow) {
+  for (const auto& [w, h] : {std::pair{1280.0f, 720.0f}, {800.0f, 600.0f}, {1920.0f, 1080.0f}})
+    for (float left : {0.0f, 0.25f, 0.5f})
+      for (float bottom : {0.0f, 0.3f, 0.9f}) {
+        LayoutFractions f;
+        f.left = left;
+        f.bottom = bottom;
+        const TiledLayout l = compute_layout(w, h, 19, 170, f, true, true, true);
+        EXPECT_GE(l.world.area(), 0.5f * w * h) << w << "x" << h << " " << left << " " << bottom;
+        const Rect rects[] = {l.menu, l.run, l.left, l.bottom, l.world};
+        for (const Rect& a : rects)
+          for (const Rect& b : rects)
+            if (&a != &b) {
+              EXPECT_FALSE(a.overlaps(b));
+            }
+        EXPECT_FLOAT_EQ(l.bottom.y + l.bottom.height, h) << "the bottom row reaches the bottom";
+        EXPECT_FLOAT_EQ(l.world.x + l.world.width, w) << "the view reaches the right edge";
+      }
+  const TiledLayout bare = compute_layout(1280, 720, 0, 170, {}, false, false, false);
+  EXPECT_FLOAT_EQ(bare.world.area(), 1280.0f * 720) << "no panels: the view is the window";
+}
+
+// Issue 15: the Run window showed "0.00x" for the first half second (30 frames at 60 fps),
+// because the factor was only computed when a half-second window of frame times closed.
+TEST(RtfMeter, IsSimulatedOverWallTimeFromTheSecondFrameOn) {
+  RtfMeter meter;
+  EXPECT_EQ(meter.rtf(), 0);
+  meter.sample(100.0, 0.0);
+  EXPECT_EQ(meter.rtf(), 0) << "one sample has no rate";
+  meter.sample(100.0 + 1.0 / 60, 1.0 / 60);
+  EXPECT_NEAR(meter.rtf(), 1.0, 1e-9);
+  // 30 frames at 2x, then 30 frames at 0.5x: after the second half second only those count.
+  double wall_s = 100.0 + 1.0 / 60, sim_s = 1.0 / 60;
+  for (int i = 0; i < 30; ++i)
+    meter.sample(wall_s += 1.0 / 60, sim_s += 2.0 / 60);
+  EXPECT_NEAR(meter.rtf(), 2.0, 0.07);
+  for (int i = 0; i < 31; ++i)
+    meter.sample(wall_s += 1.0 / 60, sim_s += 0.5 / 60);
+  EXPECT_NEAR(meter.rtf(), 0.5, 1e-9);
+  // A thousand fast frames overflow the ring: the factor still uses the ones kept.
+  for (int i = 0; i < 1000; ++i)
+    meter.sample(wall_s += 1e-4, sim_s += 3e-4);
+  EXPECT_NEAR(meter.rtf(), 3.0, 1e-6);
+  meter.clear();
+  EXPECT_EQ(meter.rtf(), 0);
 }
 
 // ../shared/repro (issue 16): the viewer's Reset forgot the --set inputs, so a reset run was
