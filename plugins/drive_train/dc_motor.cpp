@@ -30,9 +30,9 @@ void DcMotor::configure(ConfigureContext& ctx) {
   simtwo_back_emf_ = back_emf == "simtwo";
   // SimTwo limits the current's change per physics step whatever the step (quirk 12): under
   // SimTwo semantics by default, anywhere with `<motor slew>`.
-  slew_A_per_tick_ = p.number("motor.slew",
-                              simtwo_semantics(p) ? d::kMotorSlewSimTwo : d::kMotorSlewS2Sim,
-                              Range::non_negative());
+  slew_A_per_tick_ =
+      p.number("motor.slew", simtwo_semantics(p) ? d::kMotorSlewSimTwo : d::kMotorSlewS2Sim,
+               Range::non_negative());
   if (simple_ && active_) R_ = p.number("motor.ri", Range::positive());  // i = V/R
   bv_ = p.number("friction.bv", d::kFrictionBv, Range::non_negative());
   fc_ = p.number("friction.fc", d::kFrictionFc, Range::non_negative());

@@ -34,9 +34,9 @@ void MotorController::configure(ConfigureContext& ctx) {
                     "unknown controller mode '" + p.text("controller.mode") +
                         "' (expected pidspeed, pidposition or state)");
   }
-  const std::string law = keyword(
-      p, "controller.law",
-      simtwo_semantics(p) ? defaults::kControllerLawSimTwo : defaults::kControllerLaw);
+  const std::string law =
+      keyword(p, "controller.law",
+              simtwo_semantics(p) ? defaults::kControllerLawSimTwo : defaults::kControllerLaw);
   if (law != "textbook" && law != "simtwo")
     throw bad_value(p, "controller.law",
                     "must be 'textbook' or 'simtwo', got '" + p.text("controller.law") + "'");

@@ -9,18 +9,18 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <unistd.h>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const fs::path dir = fs::temp_directory_path() /
-                              ("s2sim-scene-fuzzer-" + std::to_string(::getpid()));
+  static const fs::path dir =
+      fs::temp_directory_path() / ("s2sim-scene-fuzzer-" + std::to_string(::getpid()));
   static const bool made = fs::create_directories(dir) || true;
   (void)made;
   const std::string input(reinterpret_cast<const char*>(data), size);

@@ -245,7 +245,8 @@ int main(int argc, char** argv) {
           finish(r, std::string("crash (signal ") + ::strsignal(WTERMSIG(status)) + ")", true);
         } else {
           const int code = WEXITSTATUS(status);
-          static const char* const kNames[] = {"ran",     "internal error (exit 1)",
+          static const char* const kNames[] = {"ran",
+                                               "internal error (exit 1)",
                                                "refused: scene (exit 2)",
                                                "refused: plugin (exit 3)",
                                                "refused: usage (exit 4)",
@@ -264,8 +265,8 @@ int main(int argc, char** argv) {
   }
 
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
-  std::printf("s2sim-fuzz-scenes: %ld cases from %zu seed scenes in %.1f s (seed %llu)\n",
-              o.cases, o.corpus.size(), wall, static_cast<unsigned long long>(o.seed));
+  std::printf("s2sim-fuzz-scenes: %ld cases from %zu seed scenes in %.1f s (seed %llu)\n", o.cases,
+              o.corpus.size(), wall, static_cast<unsigned long long>(o.seed));
   for (const auto& [outcome, n] : outcomes)
     std::printf("  %6ld  %s\n", n, outcome.c_str());
   for (const auto& f : findings)

@@ -15,10 +15,12 @@ namespace {
 /// Values that broke readers before (../shared/repro): non-finite, huge, tiny, negative,
 /// integers past 32 bits, empty, non-numeric, expression traps.
 constexpr std::array<std::string_view, 26> kHostileValues = {
-    "nan",  "inf",     "-inf",        "1e308",      "-1e308",       "0",    "-0",
-    "-1",   "1e-300",  "4294967297",  "2147483647", "-2147483648",  "1e12", "",
-    "abc",  "1/0",     "0/0",         "(((",        "1e999",        "0x10", "1,5",
-    "sqrt(-1)", "-1e-9", "1e9", "99999999999999999999", "pow(10,400)"};
+    "nan",        "inf",         "-inf",  "1e308",  "-1e308",
+    "0",          "-0",          "-1",    "1e-300", "4294967297",
+    "2147483647", "-2147483648", "1e12",  "",       "abc",
+    "1/0",        "0/0",         "(((",   "1e999",  "0x10",
+    "1,5",        "sqrt(-1)",    "-1e-9", "1e9",    "99999999999999999999",
+    "pow(10,400)"};
 
 struct Span {
   std::size_t begin = 0, end = 0;  // [begin, end)
@@ -46,8 +48,8 @@ std::vector<Span> attribute_names(const std::string& s) {
   std::vector<Span> out;
   for (const Span& v : attribute_values(s)) {
     std::size_t end = v.begin - 2, begin = end;  // at the '='
-    while (begin > 0 && (std::isalnum(static_cast<unsigned char>(s[begin - 1])) ||
-                         s[begin - 1] == '_'))
+    while (begin > 0 &&
+           (std::isalnum(static_cast<unsigned char>(s[begin - 1])) || s[begin - 1] == '_'))
       --begin;
     if (begin < end) out.push_back({begin, end});
   }
@@ -119,8 +121,7 @@ Mutation mutate(const std::string& xml, Rng& rng) {
       if (kind == 0) {
         value = std::string(kHostileValues[rng.below(kHostileValues.size())]);
       } else {
-        constexpr std::array<std::string_view, 5> kScale = {"*1e6", "*1e-6", "*-1", "*1e15",
-                                                            "*0"};
+        constexpr std::array<std::string_view, 5> kScale = {"*1e6", "*1e-6", "*-1", "*1e15", "*0"};
         value = "(" + old + ")" + std::string(kScale[rng.below(kScale.size())]);
       }
       std::string s = xml;

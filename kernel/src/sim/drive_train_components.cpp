@@ -2,18 +2,13 @@
 /// Synthesises the drive-train components of every axis (see the header).
 
 #include "sim/drive_train_components.hpp"
+#include "sim/names.hpp"
 
 #include <cstdio>
 
 namespace s2sim::sim {
 namespace {
 
-/// Exact decimal text of a double (round-trips through the expression parser).
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
 std::string flag(bool b) {
   return b ? "1" : "0";
 }
@@ -30,14 +25,14 @@ scene::ParamSource drive_train_params(const scene::Scene& scene, const DriveAxis
   scene::Element& e = p.element;
   e.name = "drive_train";
   e.path = jt.where.element;
-  e.attributes = {{"axis", axis.prefix},
-                  {"linear", flag(axis.linear)},
-                  {"wheel", flag(jt.from_wheels)},
-                  {"wrap", flag(wrap)},
-                  {"control_period", num(scene.settings.control_period_s * 1000.0)},
-                  {"semantics", scene.settings.control_semantics == scene::ControlSemantics::simtwo
-                                    ? "simtwo"
-                                    : "s2sim"}};
+  e.attributes = {
+      {"axis", axis.prefix},
+      {"linear", flag(axis.linear)},
+      {"wheel", flag(jt.from_wheels)},
+      {"wrap", flag(wrap)},
+      {"control_period", exact_decimal(scene.settings.control_period_s * 1000.0)},
+      {"semantics",
+       scene.settings.control_semantics == scene::ControlSemantics::simtwo ? "simtwo" : "s2sim"}};
   e.attribute_paths.clear();
   return p;
 }

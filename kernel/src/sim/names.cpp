@@ -1,5 +1,7 @@
 #include "sim/names.hpp"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <numeric>
 
@@ -100,6 +102,12 @@ std::string unknown_name_message(std::string_view what, std::string_view wanted,
     msg += "?";
   }
   return msg;
+}
+
+std::string exact_decimal(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
 }
 
 }  // namespace s2sim::sim

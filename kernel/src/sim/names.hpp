@@ -47,6 +47,10 @@ std::string field_path(std::string_view prefix, std::string_view field);
 /// Glob match: `*` matches any run of characters (including '/'), `?` exactly one.
 bool glob_match(std::string_view pattern, std::string_view text);
 
+/// A double as exact decimal text ("%.17g": it reads back bit for bit through the expression
+/// parser), for attributes the kernel writes into a component's element.
+std::string exact_decimal(double v);
+
 /// Levenshtein distance: the edits (insert, delete, replace) that turn `a` into `b`.
 std::size_t edit_distance(std::string_view a, std::string_view b);
 

@@ -14,13 +14,7 @@
 
 namespace s2sim {
 namespace {
-
-std::string number(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
+using sim::exact_decimal;
 }  // namespace
 
 std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
@@ -49,7 +43,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   };
   set("file", file.string());
   set("found_by", found_by);
-  set("period_s", number(scene.settings.control_period_s));
+  set("period_s", exact_decimal(scene.settings.control_period_s));
 
   set("robots", std::to_string(scene.robots.size()));
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
@@ -61,13 +55,13 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
         robot.main_body >= 0
             ? sim::solid_path(rp, scene.bodies[static_cast<std::size_t>(robot.main_body)].id)
             : std::string());
-    set(k + "origin_x", number(robot.origin_m.x));
-    set(k + "origin_y", number(robot.origin_m.y));
-    set(k + "origin_z", number(robot.origin_m.z));
-    set(k + "offset_x", number(robot.offset_m.x));
-    set(k + "offset_y", number(robot.offset_m.y));
-    set(k + "offset_z", number(robot.offset_m.z));
-    set(k + "yaw", number(robot.yaw_rad));
+    set(k + "origin_x", exact_decimal(robot.origin_m.x));
+    set(k + "origin_y", exact_decimal(robot.origin_m.y));
+    set(k + "origin_z", exact_decimal(robot.origin_m.z));
+    set(k + "offset_x", exact_decimal(robot.offset_m.x));
+    set(k + "offset_y", exact_decimal(robot.offset_m.y));
+    set(k + "offset_z", exact_decimal(robot.offset_m.z));
+    set(k + "yaw", exact_decimal(robot.yaw_rad));
     set(k + "solids", std::to_string(robot.bodies.size()));
     for (std::size_t i = 0; i < robot.bodies.size(); ++i) {
       const scene::Body& b = scene.bodies[static_cast<std::size_t>(robot.bodies[i])];
@@ -118,19 +112,19 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
     set(tk + "id", b.id);
     set(tk + "body", sim::thing_path(b.id));
     const scene::Color c = b.geoms.empty() ? scene::Color{} : b.geoms[0].visual.color;
-    set(tk + "r", number(c.r));
-    set(tk + "g", number(c.g));
-    set(tk + "b", number(c.b));
-    set(tk + "a", number(c.a));
+    set(tk + "r", exact_decimal(c.r));
+    set(tk + "g", exact_decimal(c.g));
+    set(tk + "b", exact_decimal(c.b));
+    set(tk + "a", exact_decimal(c.a));
   }
   set("obstacles", std::to_string(scene.obstacles.size()));
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
     const scene::Geom& ob = scene.obstacles[o];
     const std::string ok = "obstacle_" + std::to_string(o) + "_";
     set(ok + "id", ob.id);
-    set(ok + "x", number(ob.pose.position.x));
-    set(ok + "y", number(ob.pose.position.y));
-    set(ok + "z", number(ob.pose.position.z));
+    set(ok + "x", exact_decimal(ob.pose.position.x));
+    set(ok + "y", exact_decimal(ob.pose.position.y));
+    set(ok + "z", exact_decimal(ob.pose.position.z));
   }
   // The file's cells, then the caller's (later ones win in the plugin's sheet).
   std::vector<scene::SheetCell> cells = scene.sheet;
@@ -146,7 +140,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   set("constants", std::to_string(constants.size()));
   for (std::size_t i = 0; i < constants.size(); ++i) {
     set("constant_" + std::to_string(i) + "_name", constants[i].first);
-    set("constant_" + std::to_string(i) + "_value", number(constants[i].second));
+    set("constant_" + std::to_string(i) + "_value", exact_decimal(constants[i].second));
   }
 
   scene::PluginInstance p;

@@ -466,7 +466,7 @@ TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
 TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) {
   const fs::path scene =
       s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
-                        "scene.xml", "MODE", "update_segv");
+                               "scene.xml", "MODE", "update_segv");
   const Result r = run({scene.string(), "--quiet", "--duration", "1", "--log", "crash.csv",
                         "--plugin-path", std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
   EXPECT_EQ(r.status, 7) << r.err;

@@ -119,10 +119,10 @@ TEST(SharedScenesContact, BaseDifferentialRobotDrivesForwardUnderItsController) 
 // of the contact.
 TEST(SharedScenesContact, BaseDifferentialRobotCreepsForwardUnderTheTextbookLaw) {
   REQUIRE_SHARED("base");
-  const double v = classic_forward_speed(
-      edited_copy("base", "scene.xml", "<scene>",
-                  "<scene><s2sim><control semantics='s2sim'/></s2sim>"),
-      0.5, 1.5);
+  const double v =
+      classic_forward_speed(edited_copy("base", "scene.xml", "<scene>",
+                                        "<scene><s2sim><control semantics='s2sim'/></s2sim>"),
+                            0.5, 1.5);
   EXPECT_GT(v, 0.01) << "it does not drive forward";
   EXPECT_LT(v, 0.12);
   RecordProperty("speed_m_s", std::to_string(v));

@@ -209,8 +209,7 @@ const char* kTwoSolids =
 
 TEST(SceneErrors, ControlSemanticsIsSimTwoOrS2Sim) {
   const auto semantics = [](const std::string& name, const std::string& value) {
-    return temp_scene(name, kTwoSolids,
-                      "<s2sim><control semantics='" + value + "'/></s2sim>");
+    return temp_scene(name, kTwoSolids, "<s2sim><control semantics='" + value + "'/></s2sim>");
   };
   EXPECT_EQ(load_scene(semantics("sem_simtwo", "simtwo")).settings.control_semantics,
             ControlSemantics::simtwo);

@@ -49,12 +49,13 @@ TEST(ControlSemantics, SimTwosSlewLimitsTheCurrentTo0Point5APerPhysicsStep) {
   EXPECT_NEAR(s2sim->signal(axis("current")), stall * (1 - decay * decay * decay), 1e-3);
 }
 
-// Pure integral speed control, ki = 2 (kp = kf = 0), the wheel held by the brake (speed 0), reference
-// 10 rad/s: after the first controller tick (10 ms) SimTwo's law has integrated e·dt with the
-// 1 ms physics step, the textbook law e·T with the 10 ms controller period.
+// Pure integral speed control, ki = 2 (kp = kf = 0), the wheel held by the brake (speed 0),
+// reference 10 rad/s: after the first controller tick (10 ms) SimTwo's law has integrated e·dt with
+// the 1 ms physics step, the textbook law e·T with the 10 ms controller period.
 TEST(ControlSemantics, SimTwosPidIntegratesOverThePhysicsStepS2SimsOverThePeriod) {
   const auto pi_only = [](const fs::path& scene) {
-    auto sim = Simulation::load(scene, bench_options({{"fc", 100}, {"kp", 0}, {"ki", 2}, {"kf", 0}}));
+    auto sim =
+        Simulation::load(scene, bench_options({{"fc", 100}, {"kp", 0}, {"ki", 2}, {"kf", 0}}));
     sim->set_input(axis("controller_active"), 1);
     sim->set_input(axis("ref_speed"), 10);
     sim->step();  // the controller ran once, at t = 0
@@ -92,11 +93,10 @@ TEST(ControlSemantics, SimTwosArmHoldsUnderSimTwosSemanticsAndIsUnstableUnderThe
     return worst;
   };
   const double simtwo = worst_j2(kManipulator);
-  const double textbook = worst_j2(
-      edited_copy(kManipulator, "scene.xml", "<scene>",
-                  "<scene><s2sim><control semantics='s2sim'/></s2sim>"));
-  std::printf("  J2 max |q| over 3 s: SimTwo semantics %.3f rad, textbook law %.3f rad\n",
-              simtwo, textbook);
+  const double textbook = worst_j2(edited_copy(
+      kManipulator, "scene.xml", "<scene>", "<scene><s2sim><control semantics='s2sim'/></s2sim>"));
+  std::printf("  J2 max |q| over 3 s: SimTwo semantics %.3f rad, textbook law %.3f rad\n", simtwo,
+              textbook);
   EXPECT_LT(simtwo, 0.5);  // it sags 0.24 rad and comes back
   EXPECT_GT(textbook, 1.0);
 }
