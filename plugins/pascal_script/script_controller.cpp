@@ -131,7 +131,6 @@ void ScriptController::configure(ConfigureContext& ctx) {
   for (const auto& r : robots_)
     axis_count += r.axes.size();
   state_ = ctx.declare_state("script", static_cast<int>(3 + axis_count), 0.0);
-  sig_compiled_ = ctx.declare_signal("compiled", "1");
   sig_error_ = ctx.declare_signal("error", "1");
   sig_calls_ = ctx.declare_signal("calls", "1");
 
@@ -158,7 +157,6 @@ void ScriptController::configure(ConfigureContext& ctx) {
     case CompileResult::Status::ok:
       available_ = true;
       library_path_ = compiled.library;
-      compiled_ = compiled.compiled ? 1 : 0;
       break;
   }
   if (period_s_ <= 0) period_s_ = 0.04;
@@ -205,7 +203,6 @@ void ScriptController::initialize(StepContext& ctx) {
       throw Error(ErrorKind::plugin, std::string("script '") + script_.string() + "': " + e.what());
     }
   }
-  ctx.publish(sig_compiled_, compiled_);
   ctx.publish(sig_error_, 0);
   ctx.publish(sig_calls_, 0);
 }

@@ -118,8 +118,9 @@ class ScriptController final : public Component {
   Sheet sheet_initial_;
   std::vector<std::pair<std::string, InputHandle>> sheet_input_names_;
   StateHandle state_;  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count
-  SignalHandle sig_compiled_, sig_error_, sig_calls_;
-  double compiled_ = 0;
+  // No "compiled" signal: whether this load found the library in the cache is not part of
+  // the run, and a signal of it made the logs of a cold and a warm run differ.
+  SignalHandle sig_error_, sig_calls_;
   bool loaded_poses_ = false;
 
   // Run-time state outside the kernel (docs/scripting.md, "State"): the script's own globals,
