@@ -200,7 +200,6 @@ CompileResult compile_script(const std::filesystem::path& script,
       result.output += "\ncannot move the library into the cache: " + ec.message();
     } else {
       result.status = CompileResult::Status::ok;
-      result.compiled = true;
     }
   } else {
     // "file(line,col) Error: text"; messages about the generated files are ours.

@@ -29,7 +29,6 @@ struct CompileMessage {
 struct CompileResult {
   enum class Status { ok, compiler_missing, failed } status = Status::failed;
   std::filesystem::path library;  ///< the cached library (ok)
-  bool compiled = false;          ///< false when the cache already had it
   std::vector<CompileMessage> errors;
   std::string output;  ///< the compiler's full output (failed, compiler_missing)
 };

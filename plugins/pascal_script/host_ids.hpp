@@ -4,31 +4,84 @@
 /// (pascal/s2simtwo.pas) gets one Pascal constant `h<Name>` per entry, generated from this list,
 /// and the host (script_controller.cpp) dispatches on it.
 
-#define S2SIM_PASCAL_HOST_FUNCTIONS(X)                                                             \
-  X(WriteLn)                                                                                       \
-  X(KeyPressed)                                                                                    \
-  X(ScriptPeriod)                                                                                  \
-  X(GetSceneConstant) X(SetRCValue) X(GetRCValue) X(GetRCText) X(RCButtonPressed) X(ClearButtons)  \
-      X(RefreshSheets) X(GetRobotIndex) X(GetSolidIndex) X(GetSensorIndex) X(GetAxisIndex) X(      \
-          GetGlobalSensorIndex) X(GetThingIndex) X(GetThingsCount) X(SetAxisVoltageRef)            \
-          X(SetAxisSpeedRef) X(SetAxisPosRef) X(SetAxisTorqueRef) X(GetAxisPosRef) X(              \
-              GetAxisSpeedRef) X(GetAxisOdo) X(GetAxisPos) X(GetAxisSpeed) X(GetAxisI) X(GetAxisU) \
-              X(GetAxisTorque) X(SetMotorActive) X(IsMotorActive) X(SetMotorControllerState)       \
-                  X(GetMotorControllerState) X(GetMotorPars) X(SetMotorPars) X(GetSensorVal)       \
-                      X(GetSensorValues) X(SetSensorVin) X(GetGlobalSensorVal) X(                  \
-                          GetGlobalSensorValues) X(SetRobotPos) X(GetRobotX) X(GetRobotY)          \
-                          X(GetRobotTheta) X(GetRobotVx) X(GetRobotVy) X(GetRobotW) X(GetSolidPos) \
-                              X(GetSolidTheta) X(GetSolidRotMat) X(GetSolidLinearVel)              \
-                                  X(SetSolidPos) X(SetSolidRotationMat) X(SetSolidLinearVel)       \
-                                      X(SetSolidAngularVel) X(SetSolidColor) X(SetShellTag)        \
-                                          X(GetShellTag) X(SetThingPos) X(GetThingPos)             \
-                                              X(GetThingColor) X(GetObstaclePos) X(AddOBstacleBox) \
-                                                  X(ClearObstacles) X(ChartSeriesSetCount)         \
-                                                      X(ChartSeriesSetColor) X(ChartSeriesClear)   \
-                                                          X(ChartSeriesAddXY) X(AddTrailNode)      \
-                                                              X(ClearTrail) X(WriteUDPData)        \
-                                                                  X(ReadUDPData) X(WriteComPort)   \
-                                                                      X(ReadComPort) X(HUDText)
+// clang-format off: one entry a line, in the support unit's order
+#define S2SIM_PASCAL_HOST_FUNCTIONS(X) \
+  X(WriteLn) \
+  X(KeyPressed) \
+  X(ScriptPeriod) \
+  X(GetSceneConstant) \
+  X(SetRCValue) \
+  X(GetRCValue) \
+  X(GetRCText) \
+  X(RCButtonPressed) \
+  X(ClearButtons) \
+  X(RefreshSheets) \
+  X(GetRobotIndex) \
+  X(GetSolidIndex) \
+  X(GetSensorIndex) \
+  X(GetAxisIndex) \
+  X(GetGlobalSensorIndex) \
+  X(GetThingIndex) \
+  X(GetThingsCount) \
+  X(SetAxisVoltageRef) \
+  X(SetAxisSpeedRef) \
+  X(SetAxisPosRef) \
+  X(SetAxisTorqueRef) \
+  X(GetAxisPosRef) \
+  X(GetAxisSpeedRef) \
+  X(GetAxisOdo) \
+  X(GetAxisPos) \
+  X(GetAxisSpeed) \
+  X(GetAxisI) \
+  X(GetAxisU) \
+  X(GetAxisTorque) \
+  X(SetMotorActive) \
+  X(IsMotorActive) \
+  X(SetMotorControllerState) \
+  X(GetMotorControllerState) \
+  X(GetMotorPars) \
+  X(SetMotorPars) \
+  X(GetSensorVal) \
+  X(GetSensorValues) \
+  X(SetSensorVin) \
+  X(GetGlobalSensorVal) \
+  X(GetGlobalSensorValues) \
+  X(SetRobotPos) \
+  X(GetRobotX) \
+  X(GetRobotY) \
+  X(GetRobotTheta) \
+  X(GetRobotVx) \
+  X(GetRobotVy) \
+  X(GetRobotW) \
+  X(GetSolidPos) \
+  X(GetSolidTheta) \
+  X(GetSolidRotMat) \
+  X(GetSolidLinearVel) \
+  X(SetSolidPos) \
+  X(SetSolidRotationMat) \
+  X(SetSolidLinearVel) \
+  X(SetSolidAngularVel) \
+  X(SetSolidColor) \
+  X(SetShellTag) \
+  X(GetShellTag) \
+  X(SetThingPos) \
+  X(GetThingPos) \
+  X(GetThingColor) \
+  X(GetObstaclePos) \
+  X(AddOBstacleBox) \
+  X(ClearObstacles) \
+  X(ChartSeriesSetCount) \
+  X(ChartSeriesSetColor) \
+  X(ChartSeriesClear) \
+  X(ChartSeriesAddXY) \
+  X(AddTrailNode) \
+  X(ClearTrail) \
+  X(WriteUDPData) \
+  X(ReadUDPData) \
+  X(WriteComPort) \
+  X(ReadComPort) \
+  X(HUDText)
+// clang-format on
 
 namespace s2sim::pascal {
 

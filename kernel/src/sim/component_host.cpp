@@ -1,8 +1,8 @@
 // Component instances: creation from the plugin registry, and the ConfigureContext through
 // which each declares its signals, inputs, state and schedule.
 #include "common/assert.hpp"
-#include "sim/running_component.hpp"
 #include "sim/names.hpp"
+#include "sim/running_component.hpp"
 #include "sim/simulation_impl.hpp"
 
 #include <algorithm>

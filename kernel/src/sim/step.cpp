@@ -10,8 +10,8 @@
 // A motor's torque is computed in `actuate` (the dc_motor component), contact forces in
 // `collide` (contact::ContactWorld), sensor readings in `sense` of the next tick, from the
 // state this tick ends with.
-#include "sim/running_component.hpp"
 #include "sim/step.hpp"
+#include "sim/running_component.hpp"
 
 #include "sim/simulation_impl.hpp"
 

@@ -48,7 +48,8 @@ static inline void s2sim_remote_put_u16(unsigned char* p, uint16_t v) {
 }
 static inline void s2sim_remote_put_u32(unsigned char* p, uint32_t v) {
   int i;
-  for (i = 0; i < 4; ++i) p[i] = (unsigned char)((v >> (8 * i)) & 0xffu);
+  for (i = 0; i < 4; ++i)
+    p[i] = (unsigned char)((v >> (8 * i)) & 0xffu);
 }
 static inline uint16_t s2sim_remote_get_u16(const unsigned char* p) {
   return (uint16_t)(p[0] | (p[1] << 8));
@@ -61,20 +62,22 @@ static inline void s2sim_remote_put_f64(unsigned char* p, double v) {
   uint64_t bits;
   int i;
   memcpy(&bits, &v, sizeof bits);
-  for (i = 0; i < 8; ++i) p[i] = (unsigned char)((bits >> (8 * i)) & 0xffu);
+  for (i = 0; i < 8; ++i)
+    p[i] = (unsigned char)((bits >> (8 * i)) & 0xffu);
 }
 static inline double s2sim_remote_get_f64(const unsigned char* p) {
   uint64_t bits = 0;
   double v;
   int i;
-  for (i = 0; i < 8; ++i) bits |= (uint64_t)p[i] << (8 * i);
+  for (i = 0; i < 8; ++i)
+    bits |= (uint64_t)p[i] << (8 * i);
   memcpy(&v, &bits, sizeof v);
   return v;
 }
 
 /* Writes a header; returns S2SIM_REMOTE_HEADER_SIZE. */
-static inline size_t s2sim_remote_write_header(unsigned char* out, uint16_t type,
-                                               uint32_t sequence, uint32_t length) {
+static inline size_t s2sim_remote_write_header(unsigned char* out, uint16_t type, uint32_t sequence,
+                                               uint32_t length) {
   out[0] = 'S';
   out[1] = '2';
   out[2] = 'S';
@@ -141,7 +144,8 @@ static inline uint32_t s2sim_remote_send(s2sim_remote_client* c, uint16_t type,
   if (size > S2SIM_REMOTE_MAX_DATAGRAM) return 0;
   c->sequence += 1;
   s2sim_remote_write_header(c->buffer, type, c->sequence, (uint32_t)(8 * count));
-  for (i = 0; i < count; ++i) s2sim_remote_put_f64(c->buffer + 16 + 8 * i, values[i]);
+  for (i = 0; i < count; ++i)
+    s2sim_remote_put_f64(c->buffer + 16 + 8 * i, values[i]);
   if (sendto(c->fd, c->buffer, size, 0, (const struct sockaddr*)&c->server, sizeof c->server) !=
       (ssize_t)size)
     return 0;
@@ -151,9 +155,8 @@ static inline uint32_t s2sim_remote_send(s2sim_remote_client* c, uint16_t type,
 /* Waits up to `timeout_ms` for a SIGNALS reply with `sequence` (0: any); copies its time and
  * at most `capacity` signal values. Returns the number of signal values in the reply, or -1 on
  * timeout or error. Replies to older requests are skipped. */
-static inline int s2sim_remote_receive(s2sim_remote_client* c, uint32_t sequence,
-                                       double* time_s, double* values, size_t capacity,
-                                       int timeout_ms) {
+static inline int s2sim_remote_receive(s2sim_remote_client* c, uint32_t sequence, double* time_s,
+                                       double* values, size_t capacity, int timeout_ms) {
   for (;;) {
     struct pollfd p;
     s2sim_remote_header h;
