@@ -338,8 +338,18 @@ void Simulation::Impl::add_component(plugin::PluginRegistry& registry, const std
   }
   slot.library = info.library.string();
   slot.crash_label = "component '" + slot.prefix + "' (kind '" + kind + "') from " + slot.library;
-  slot.component = registry.create(kind);
+  {
+    // The factory runs the component's constructor: a crash there is reported as its own.
+    const sim::RunningComponent running(slot.crash_label.c_str());
+    slot.component = registry.create(kind);
+  }
   components.push_back(std::move(slot));
+}
+
+sim::ComponentSlot::~ComponentSlot() {
+  if (!component) return;
+  const RunningComponent running(crash_label.c_str());
+  component = plugin::ComponentPtr();
 }
 
 void sim::rethrow_from_component(const ComponentSlot& slot, const char* call, ErrorKind fallback) {

@@ -62,6 +62,13 @@ struct SignalEntry {
 
 /// One component instance: a plugin object, where it came from and its schedule.
 struct ComponentSlot {
+  ComponentSlot() = default;
+  ComponentSlot(ComponentSlot&&) noexcept = default;
+  ComponentSlot& operator=(ComponentSlot&&) noexcept = default;
+  /// Destroys the component with its label marked as running, so that a crash in its
+  /// destructor is reported as its own (running_component.hpp).
+  ~ComponentSlot();
+
   plugin::ComponentPtr component;
   std::string kind;
   std::string id;

@@ -480,6 +480,33 @@ TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) 
   EXPECT_EQ(csv.rows.back().front(), "0.040000");
 }
 
+// Issue 16: a crash in a component's constructor (the plugin's factory) or its destructor is
+// named like one in its update: the kernel marks those calls too.
+TEST_F(Runner, ACrashInAComponentsConstructorOrDestructorIsNamed) {
+  const std::string plugins = std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile";
+  const fs::path destroy =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "destroy_segv");
+  const Result at_end = run({destroy.string(), "--quiet", "--duration", "0.1", "--log",
+                             "destroy.csv", "--plugin-path", plugins});
+  EXPECT_EQ(at_end.status, 7) << at_end.err;
+  EXPECT_THAT(at_end.err,
+              HasSubstr("in component 'controllers/villain' (kind 'test_hostile') from "));
+  // Every row was written before the components were destroyed.
+  EXPECT_EQ(read_csv(dir_ / "destroy.csv").rows.size(), 101u);
+
+  const fs::path quiet =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "none");
+  ASSERT_EQ(setenv("S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR", "1", 1), 0);
+  const Result at_start =
+      run({quiet.string(), "--quiet", "--duration", "0.1", "--plugin-path", plugins});
+  unsetenv("S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR");
+  EXPECT_EQ(at_start.status, 7) << at_start.err;
+  EXPECT_THAT(at_start.err,
+              HasSubstr("in component 'controllers/villain' (kind 'test_hostile') from "));
+}
+
 // --- Plugin search (issue 13) ----------------------------------------------------------------
 
 const fs::path kDefaultScene = fs::path(S2SIM_SOURCE_DIR) / "scenes/default";

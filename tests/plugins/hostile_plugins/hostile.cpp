@@ -1,11 +1,14 @@
 // A plugin that misbehaves on purpose (issue 16, ../shared/repro R07, R08): it throws from
 // configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
 // a std::exception or something that is not an exception at all, or crashes (SIGSEGV). Built like a
-// third party's.
+// third party's. Its constructor crashes when the environment variable
+// S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR is set (a factory has no parameters), its destructor
+// in mode 'destroy_segv'.
 #include <s2sim/sdk.hpp>
 
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +18,12 @@ using namespace s2sim;
 
 class Hostile : public Component {
  public:
+  Hostile() {
+    if (std::getenv("S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR") != nullptr) std::raise(SIGSEGV);
+  }
+  ~Hostile() override {
+    if (mode_ == "destroy_segv") std::raise(SIGSEGV);
+  }
   void configure(ConfigureContext& ctx) override {
     mode_ = ctx.params().text("mode");
     if (mode_ == "configure_error")
