@@ -42,7 +42,7 @@ class Remote final : public Component {
     timeout_s_ = p.number("timeout_s", 0.5, Range::positive());
     wait_s_ = p.number("wait_s", 10.0, Range::positive());
     const std::string address = p.text("address", "127.0.0.1");
-    socket_.bind(address, static_cast<int>(p.integer("port", S2SIM_REMOTE_DEFAULT_PORT)),
+    socket_.bind(address, p.integer_in("port", S2SIM_REMOTE_DEFAULT_PORT, 0, 65535),
                  p.boolean("allow_remote", false), p.where("address"));
     if (p.has("period_s")) {
       const double period = p.number("period_s", Range::positive());

@@ -106,7 +106,7 @@ void SensorSetup::read(ConfigureContext& ctx) {
     spec.beam.initial_width_m = p.number("beam.initial_width", spec.beam.initial_width_m);
     spec.beam.final_width_m = p.number("beam.final_width", spec.beam.final_width_m);
     if (p.has("beam.angle")) spec.beam.angle_rad = p.number("beam.angle") * kPi / 180;
-    spec.beam.rays = static_cast<int>(p.integer("beam.rays", spec.beam.rays));
+    spec.beam.rays = p.integer_in("beam.rays", spec.beam.rays, 1, kMaxBeamRays);
     spec.noise.present = p.has_element("noise");
     spec.noise.stdev = p.number("noise.stdev", 0.0);
     spec.noise.stdev_p = p.number("noise.stdev_p", 0.0);

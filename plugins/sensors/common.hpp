@@ -45,6 +45,9 @@ struct ZigguratTables {
 const ZigguratTables& ziggurat_tables();
 double ziggurat_normal(RandomStream& r, const ZigguratTables& t);
 
+/// Rays of one beam, at most (the kernel's scene limit, docs/reliability.md).
+inline constexpr int kMaxBeamRays = 100000;
+
 /// The common part of every scene sensor: mount, beam, noise, tags, period.
 struct SensorSetup {
   SensorSpec spec;    ///< as resolved by the loader (or read from `<plugin>` parameters)

@@ -35,16 +35,20 @@ void BroadPhase::resize(int count) {
   is_large_.reserve(static_cast<std::size_t>(count));
 }
 
-void BroadPhase::find_pairs(const Aabb* boxes,
-                            std::vector<std::pair<std::int32_t, std::int32_t>>& out) {
+bool BroadPhase::find_pairs(const Aabb* boxes,
+                            std::vector<std::pair<std::int32_t, std::int32_t>>& out,
+                            std::size_t max_pairs) {
   out.clear();
   const int n = count_;
-  if (n < 2) return;
+  if (n < 2) return true;
   if (n <= kBruteForceBelow) {  // cheaper than any structure for a few robots' parts
     for (int i = 0; i < n; ++i)
       for (int j = i + 1; j < n; ++j)
-        if (overlap(boxes[i], boxes[j])) out.emplace_back(i, j);
-    return;
+        if (overlap(boxes[i], boxes[j])) {
+          out.emplace_back(i, j);
+          if (out.size() > max_pairs) return false;
+        }
+    return true;
   }
   // Cell size: the 90th percentile of the boxes' largest sides.
   sizes_.clear();
@@ -94,7 +98,9 @@ void BroadPhase::find_pairs(const Aabb* boxes,
             pack(static_cast<std::int64_t>(std::floor(std::max(a.min.x, b.min.x) * inverse_cell)),
                  static_cast<std::int64_t>(std::floor(std::max(a.min.y, b.min.y) * inverse_cell)),
                  static_cast<std::int64_t>(std::floor(std::max(a.min.z, b.min.z) * inverse_cell)));
-        if (owner == entries_[first].cell) out.emplace_back(entries_[i].box, entries_[j].box);
+        if (owner != entries_[first].cell) continue;
+        out.emplace_back(entries_[i].box, entries_[j].box);
+        if (out.size() > max_pairs) return false;
       }
     first = last;
   }
@@ -102,15 +108,20 @@ void BroadPhase::find_pairs(const Aabb* boxes,
   for (std::size_t a = 0; a < large_.size(); ++a) {
     const std::int32_t l = large_[a];
     for (int i = 0; i < n; ++i)
-      if (!is_large_[static_cast<std::size_t>(i)] && overlap(boxes[l], boxes[i]))
+      if (!is_large_[static_cast<std::size_t>(i)] && overlap(boxes[l], boxes[i])) {
         out.emplace_back(std::min(l, i), std::max(l, i));
+        if (out.size() > max_pairs) return false;
+      }
     for (std::size_t b = a + 1; b < large_.size(); ++b)
-      if (overlap(boxes[l], boxes[large_[b]]))
+      if (overlap(boxes[l], boxes[large_[b]])) {
         out.emplace_back(std::min(l, large_[b]), std::max(l, large_[b]));
+        if (out.size() > max_pairs) return false;
+      }
   }
   // The result must not depend on the order of discovery (a restored snapshot repeats the run
   // bit for bit, so forces must be summed in the same order).
   std::sort(out.begin(), out.end());
+  return true;
 }
 
 }  // namespace s2sim::collision

@@ -9,6 +9,7 @@
 
 #include "collision/shape.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <utility>
 #include <vector>
@@ -20,8 +21,11 @@ class BroadPhase {
   /// `count` proxies; reserves every buffer once.
   void resize(int count);
   /// Pairs (i, j), i < j, whose boxes overlap, in increasing order; `out` is cleared first.
-  /// Allocates only when more pairs overlap than ever before.
-  void find_pairs(const Aabb* boxes, std::vector<std::pair<std::int32_t, std::int32_t>>& out);
+  /// Allocates only when more pairs overlap than ever before. Stops, returning false, once
+  /// more than `max_pairs` are found (`out` then holds max_pairs + 1 of them): boxes piled
+  /// into one another would otherwise ask for memory quadratic in their number.
+  bool find_pairs(const Aabb* boxes, std::vector<std::pair<std::int32_t, std::int32_t>>& out,
+                  std::size_t max_pairs = SIZE_MAX);
 
  private:
   struct Entry {

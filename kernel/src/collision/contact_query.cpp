@@ -2,7 +2,8 @@
 
 namespace s2sim::collision {
 
-ContactQuery::ContactQuery(const ShapeTable& table) : count_(table.size()) {
+ContactQuery::ContactQuery(const ShapeTable& table)
+    : count_(table.size()), max_pairs_(1024 + 64 * static_cast<std::size_t>(table.size())) {
   broad_phase_.resize(count_);
   pairs_.reserve(64 + 16 * static_cast<std::size_t>(count_));
 }
@@ -13,7 +14,8 @@ void ContactQuery::reset() {
 
 const std::vector<std::pair<std::int32_t, std::int32_t>>& ContactQuery::overlapping_pairs(
     const Placement& placement) {
-  broad_phase_.find_pairs(placement.boxes(), pairs_);
+  if (!broad_phase_.find_pairs(placement.boxes(), pairs_, max_pairs_))
+    throw TooManyPairs{max_pairs_, pairs_.front().first, pairs_.front().second};
   return pairs_;
 }
 

@@ -19,6 +19,13 @@
 
 namespace s2sim::collision {
 
+/// Thrown by ContactQuery::overlapping_pairs when more shape pairs overlap than its limit:
+/// `shape_a`, `shape_b` is one of them. The simulation turns it into a located runtime error.
+struct TooManyPairs {
+  std::size_t limit;
+  std::int32_t shape_a, shape_b;
+};
+
 class ContactQuery {
  public:
   /// Reserves every buffer for the table's shapes.
@@ -34,9 +41,12 @@ class ContactQuery {
                            ContactPoint* buffer, Sink&& sink);
 
   /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order. Allocates
-  /// only when more pairs overlap than ever before.
+  /// only when more pairs overlap than ever before. Throws TooManyPairs past max_pairs().
   const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs(
       const Placement& placement);
+  /// How many pairs may overlap at once: 1024 + 64 per shape, far above any pile that is not
+  /// bodies placed into one another (docs/reliability.md, "Limits").
+  std::size_t max_pairs() const { return max_pairs_; }
 
   /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
   /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
@@ -46,6 +56,7 @@ class ContactQuery {
 
  private:
   int count_ = 0;
+  std::size_t max_pairs_ = 0;
   BroadPhase broad_phase_;
   FclPairs fcl_;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;

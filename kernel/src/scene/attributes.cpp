@@ -84,6 +84,16 @@ std::int64_t Reader::integer(const Element& el, std::string_view attr,
   return static_cast<std::int64_t>(std::llround(v));
 }
 
+int Reader::integer_in(const Element& el, std::string_view attr, int fallback, int min,
+                       int max) const {
+  const std::int64_t v = integer(el, attr, fallback);
+  if (v < min || v > max)
+    fail(el, attr,
+         "must be an integer from " + std::to_string(min) + " to " + std::to_string(max) +
+             ", got " + std::to_string(v));
+  return static_cast<int>(v);
+}
+
 bool Reader::boolean(const Element& el, std::string_view attr, bool fallback) const {
   const std::string* t = el.attribute(attr);
   if (!t) return fallback;

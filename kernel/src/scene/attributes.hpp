@@ -52,6 +52,9 @@ class Reader {
   /// An integer attribute: Pascal `StrToInt` syntax (decimal or `$hex`) or an expression with
   /// an integral value.
   std::int64_t integer(const Element& el, std::string_view attr, std::int64_t fallback) const;
+  /// An integer from `min` to `max` (inclusive), or `fallback` when absent, as an `int`: the
+  /// checked way to read a count, never truncating a 64-bit value (a located error instead).
+  int integer_in(const Element& el, std::string_view attr, int fallback, int min, int max) const;
   bool boolean(const Element& el, std::string_view attr, bool fallback) const;
   std::string text(const Element& el, std::string_view attr, std::string_view fallback) const;
   /// The `x`, `y`, `z` attributes, each defaulting to `fallback`'s component.

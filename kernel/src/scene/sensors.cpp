@@ -3,6 +3,7 @@
 /// Only the common children are parsed here; a sensor's behaviour reads the rest through its
 /// ParamSource.
 
+#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
@@ -64,8 +65,7 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
         b.initial_width_m = r.number(c, "initial_width", b.initial_width_m);
         b.final_width_m = r.number(c, "final_width", b.final_width_m);
         if (auto deg = r.optional_number(c, "angle")) b.angle_rad = deg_to_rad(*deg);
-        b.rays = static_cast<int>(r.integer(c, "rays", b.rays));
-        if (b.rays < 1) r.fail(c, "rays", "must be >= 1, got " + std::to_string(b.rays));
+        b.rays = r.integer_in(c, "rays", b.rays, 1, limits::kMaxBeamRays);
         if (!(b.length_m > 0))
           r.fail(c, "length", "must be > 0 m, got " + format_number(b.length_m));
         if (!(b.initial_width_m >= 0))

@@ -4,6 +4,7 @@
 /// stays, mass adds, the centre of mass moves and inertias combine by the parallel-axis
 /// theorem with the shell's rotation (shell cylinders along their own Z).
 
+#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 #include "scene/mass.hpp"
 #include "scene/primitive.hpp"
@@ -49,9 +50,10 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
       } else if (n == "focal" && kind == "camera") {
         camera.focal_length = r.number(c, "length", camera.focal_length);
       } else if (n == "frame" && kind == "camera") {
-        camera.decimation = static_cast<int>(r.integer(c, "decimation", camera.decimation));
-        camera.width_px = static_cast<int>(r.integer(c, "width", camera.width_px));
-        camera.height_px = static_cast<int>(r.integer(c, "height", camera.height_px));
+        camera.decimation =
+            r.integer_in(c, "decimation", camera.decimation, 1, limits::kMaxImageSide_px);
+        camera.width_px = r.integer_in(c, "width", camera.width_px, 1, limits::kMaxImageSide_px);
+        camera.height_px = r.integer_in(c, "height", camera.height_px, 1, limits::kMaxImageSide_px);
       } else {
         read_visual_child(ctx, r, c, g.shape.type, g.visual, g.material);
       }

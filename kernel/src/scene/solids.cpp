@@ -2,6 +2,7 @@
 /// Robot `<solids>` and things (simtwo-format.md §4.2, §6): one body with one primitive each,
 /// plus the visual/surface children shared with shells and obstacles.
 
+#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 #include "scene/mass.hpp"
 #include "scene/primitive.hpp"
@@ -99,8 +100,9 @@ bool read_visual_child(LoadContext& ctx, const Reader& r, const Element& c, Shap
       ctx.warn(r.at(c), "<" + n + "> applies to cuboids only; ignored");
     } else if (n == "canvas") {
       v.canvas = true;
-      v.canvas_width_px = static_cast<int>(r.integer(c, "width", v.canvas_width_px));
-      v.canvas_height_px = static_cast<int>(r.integer(c, "heigth", v.canvas_height_px));  // sic
+      v.canvas_width_px = r.integer_in(c, "width", v.canvas_width_px, 1, limits::kMaxImageSide_px);
+      v.canvas_height_px =  // SimTwo's spelling
+          r.integer_in(c, "heigth", v.canvas_height_px, 1, limits::kMaxImageSide_px);
     } else {
       v.liquid = true;
     }

@@ -128,7 +128,20 @@ void Simulation::Impl::step_once() {
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
   check_loads_finite();
-  sim::physics_tick(*multibody, contacts.get(), profile.get());
+  try {
+    sim::physics_tick(*multibody, contacts.get(), profile.get());
+  } catch (const collision::TooManyPairs& too_many) {
+    const auto& body = contacts->shapes().bodies();
+    throw Error(ErrorKind::runtime,
+                "at t = " + std::to_string(multibody->time_s()) + " s more than " +
+                    std::to_string(too_many.limit) +
+                    " pairs of collision shapes overlap (the limit: 1024 + 64 per shape), "
+                    "among them bodies " +
+                    multibody->body_name(body[static_cast<std::size_t>(too_many.shape_a)]) +
+                    " and " +
+                    multibody->body_name(body[static_cast<std::size_t>(too_many.shape_b)]) +
+                    ": bodies are placed into one another");
+  }
   // What the axes carried over the tick: the plain forces and the drives' implicit values.
   const double* drive = multibody->drive_force_applied();
   for (std::size_t a = 0; a < axis_views.size(); ++a)

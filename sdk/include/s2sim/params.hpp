@@ -82,6 +82,20 @@ class Params {
   /// not in `allowed` throws naming the attribute and listing the allowed values.
   virtual std::string choice(std::string_view path, std::initializer_list<std::string_view> allowed,
                              std::string_view fallback) const = 0;
+
+  // SDK 0.9: non-virtual, so the vtable is unchanged.
+
+  /// An integer from `min` to `max` (inclusive), or `fallback` when absent, as an `int`. A
+  /// value outside throws naming the attribute: the checked way to read a count, so that no
+  /// 64-bit value is truncated into a narrower type.
+  int integer_in(std::string_view path, int fallback, int min, int max) const {
+    const std::int64_t v = integer(path, fallback);
+    if (v < min || v > max)
+      throw Error(ErrorKind::scene, where(path),
+                  "must be an integer from " + std::to_string(min) + " to " + std::to_string(max) +
+                      ", got " + std::to_string(v));
+    return static_cast<int>(v);
+  }
 };
 
 }  // namespace s2sim

@@ -43,5 +43,24 @@ TEST(BroadPhase, MatchesBruteForceWhileObjectsMove) {
   }
 }
 
+// Issue 16: boxes placed into one another ask for pairs quadratic in their number; past the
+// caller's limit the search stops (false) instead of growing without bound. Both paths: a few
+// boxes (tested pairwise) and many (the grid).
+TEST(BroadPhase, StopsPastTheLimitOfPairs) {
+  for (const int n : {40, 300}) {
+    std::vector<Aabb> boxes(static_cast<std::size_t>(n), Aabb{{0, 0, 0}, {0.1, 0.1, 0.1}});
+    BroadPhase bp;
+    bp.resize(n);
+    std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+    const std::size_t all = static_cast<std::size_t>(n) * (n - 1) / 2;
+    EXPECT_TRUE(bp.find_pairs(boxes.data(), pairs, all)) << n;
+    EXPECT_EQ(pairs.size(), all);
+    EXPECT_FALSE(bp.find_pairs(boxes.data(), pairs, all - 1)) << n;
+    EXPECT_EQ(pairs.size(), all);  // max_pairs + 1: the search stopped at the first one over
+    EXPECT_FALSE(bp.find_pairs(boxes.data(), pairs, 10)) << n;
+    EXPECT_EQ(pairs.size(), 11u);
+  }
+}
+
 }  // namespace
 }  // namespace s2sim::collision

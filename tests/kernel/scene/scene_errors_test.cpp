@@ -124,6 +124,13 @@ TEST(SceneErrors, CountsAndStepsBeyondTheLimitsAreRefusedWithoutTruncation) {
       {"tracks", "track.xml", "times='1'", "times='4294967296'", "times", "got 4294967296"},
       {"tracks", "track.xml", "step='30'", "step='1e-12'", "step",
        "more than the 100000 an arc may have"},
+      // Counts read into an int were cast from 64 bits: 4294967297 became 1.
+      {"sensors", "robot.xml", "rays='3'", "rays='4294967297'", "rays",
+       "must be an integer from 1 to 100000, got 4294967297"},
+      {"shells", "robot.xml", "width='640'", "width='4294967297'", "width",
+       "must be an integer from 1 to 16384, got 4294967297"},
+      {"shells", "robot.xml", "decimation='2'", "decimation='0'", "decimation",
+       "must be an integer from 1 to 16384, got 0"},
   };
   for (const Case& c : cases) {
     const Error e = load_error(test::edited_copy(fixture(c.folder), c.file, c.from, c.to));
