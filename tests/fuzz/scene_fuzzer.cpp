@@ -9,6 +9,7 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <dlfcn.h>
 #include <unistd.h>
 #include <cstdint>
 #include <cstdlib>
@@ -18,7 +19,24 @@
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// The plugins are built with coverage counters (-fsanitize=fuzzer-no-link) that libFuzzer
+/// registers when a library is loaded and reads after every input. The kernel unloads a
+/// plugin with its last simulation; its counters would be read unmapped. One reference held
+/// here for the process's life keeps every plugin mapped.
+bool pin_plugins() {
+  for (const auto& entry : fs::directory_iterator(S2SIM_PLUGIN_DIR))
+    if (entry.path().extension() == ".so")
+      (void)::dlopen(entry.path().c_str(), RTLD_NOW | RTLD_NODELETE);
+  return true;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const bool pinned = pin_plugins();
+  (void)pinned;
   static const fs::path dir =
       fs::temp_directory_path() / ("s2sim-scene-fuzzer-" + std::to_string(::getpid()));
   static const bool made = fs::create_directories(dir) || true;
