@@ -10,18 +10,26 @@ namespace s2sim::model {
 namespace {
 
 /// Columns computed at a configuration within 1e-7 (rad or m) of the current one in every
-/// coordinate the mass matrix depends on are still valid; otherwise every column is forgotten.
+/// coordinate of their tree that the mass matrix depends on are still valid; otherwise the
+/// tree's columns are forgotten (a tree's M^-1 block depends on its own coordinates only).
 void check_configuration(Multibody::Impl& m, const SimTK::State& s) {
   const SimTK::Vector& q = s.getQ();
   const double* now = q.hasContiguousData() ? q.getContiguousScalarData() : nullptr;
-  bool same = now != nullptr;
-  for (int i = 0; same && i < q.size(); ++i)
-    same = !m.q_shapes_mass[static_cast<std::size_t>(i)] ||
-           std::abs(now[i] - m.columns_q[static_cast<std::size_t>(i)]) <= 1e-7;
-  if (same) return;
-  std::fill(m.column_valid.begin(), m.column_valid.end(), 0);
-  for (int i = 0; i < q.size(); ++i)
-    m.columns_q[static_cast<std::size_t>(i)] = q[i];
+  bool any = false;
+  for (std::size_t t = 0; t < m.tree_q_begin.size(); ++t) {
+    bool same = now != nullptr;
+    for (int i = m.tree_q_begin[t]; same && i < m.tree_q_end[t]; ++i)
+      same = !m.q_shapes_mass[static_cast<std::size_t>(i)] ||
+             std::abs(now[i] - m.columns_q[static_cast<std::size_t>(i)]) <= 1e-7;
+    m.tree_changed[t] = !same;
+    if (same) continue;
+    any = true;
+    for (int i = m.tree_q_begin[t]; i < m.tree_q_end[t]; ++i)
+      m.columns_q[static_cast<std::size_t>(i)] = q[i];
+  }
+  if (!any) return;
+  for (std::size_t a = 0; a < m.column_valid.size(); ++a)
+    if (m.tree_changed[static_cast<std::size_t>(m.axis_tree[a])]) m.column_valid[a] = 0;
 }
 
 /// A column kept while the robot turned as a whole about its free root: M transforms as

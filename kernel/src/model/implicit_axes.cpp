@@ -229,31 +229,38 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   update_columns(m, s, m.solve_list);
   SimTK::Vector& u = s.updU();
 
-  // 1. The drive rows without bounds, all at once.
-  const std::size_t n = m.rows.size();
+  // 1. The drive rows without bounds, all at once: one block per tree (axis_trees.cpp).
   bool bounded = false;
-  if (n > 0) {
-    double* A = m.row_matrix.data();
-    double* b = m.row_rhs.data();
-    for (std::size_t i = 0; i < n; ++i) {
-      const auto& ri = m.rows[i];
-      const double si = std::sqrt(ri.damping);
-      for (std::size_t k = 0; k < n; ++k) {
-        const auto& rk = m.rows[k];
-        const double w = axis_dot(m, static_cast<std::size_t>(ri.axis), m.minv_column[rk.axis]);
-        A[i * n + k] = (i == k ? 1.0 : 0.0) + kick_s * si * w * std::sqrt(rk.damping);
+  if (!m.rows.empty()) {
+    group_rows_by_tree(m);
+    for (std::size_t t = 0; t + 1 < m.tree_row_start.size(); ++t) {
+      const int* order = m.row_order.data() + m.tree_row_start[t];
+      const auto n = static_cast<std::size_t>(m.tree_row_start[t + 1] - m.tree_row_start[t]);
+      if (n == 0) continue;
+      double* A = m.row_matrix.data();
+      double* b = m.row_rhs.data();
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& ri = m.rows[order[i]];
+        const double si = std::sqrt(ri.damping);
+        for (std::size_t k = 0; k < n; ++k) {
+          const auto& rk = m.rows[order[k]];
+          const double w = axis_dot(m, static_cast<std::size_t>(ri.axis), m.minv_column[rk.axis]);
+          A[i * n + k] = (i == k ? 1.0 : 0.0) + kick_s * si * w * std::sqrt(rk.damping);
+        }
+        const double v = axis_dot(m, static_cast<std::size_t>(ri.axis), u);
+        b[i] = (ri.force - ri.damping * (v - ri.rate0) - ri.applied) / si;
       }
-      const double v = axis_dot(m, static_cast<std::size_t>(ri.axis), u);
-      b[i] = (ri.force - ri.damping * (v - ri.rate0) - ri.applied) / si;
-    }
-    solve_spd(A, b, n);
-    for (std::size_t i = 0; i < n; ++i) {
-      auto& row = m.rows[i];
-      const double wanted = row.applied + std::sqrt(row.damping) * b[i];
-      const double f = std::clamp(wanted, row.low, row.high);
-      bounded = bounded || f != wanted;
-      if (f != row.applied) add_scaled(u, kick_s * (f - row.applied), m.minv_column[row.axis]);
-      row.applied = f;
+      solve_spd(A, b, n);
+      for (std::size_t i = 0; i < n; ++i) {
+        auto& row = m.rows[order[i]];
+        const double wanted = row.applied + std::sqrt(row.damping) * b[i];
+        const double f = std::clamp(wanted, row.low, row.high);
+        bounded = bounded || f != wanted;
+        if (f != row.applied)
+          add_scaled(u, kick_s * (f - row.applied), m.minv_column[row.axis], m.tree_u_begin[t],
+                     m.tree_u_end[t]);
+        row.applied = f;
+      }
     }
   }
   // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves.
@@ -267,7 +274,8 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
         if (!(w > 0)) continue;
         const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
         if (delta == 0.0) continue;
-        add_scaled(u, kick_s * delta, m.minv_column[a]);
+        const auto tree = static_cast<std::size_t>(m.axis_tree[axis]);
+        add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
         // A tree axis that sticks stands exactly still (no creep from rounding).
         if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
           u[m.axis_u[axis]] = 0.0;

@@ -8,14 +8,17 @@
 namespace s2sim::model {
 
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
-  const int n = v.size();
+  add_scaled(v, a, x, 0, v.size());
+}
+
+void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end) {
   if (v.hasContiguousData() && x.hasContiguousData()) {
     double* pv = v.updContiguousScalarData();
     const double* px = x.getContiguousScalarData();
-    for (int i = 0; i < n; ++i)
+    for (int i = begin; i < end; ++i)
       pv[i] += a * px[i];
   } else {
-    for (int i = 0; i < n; ++i)
+    for (int i = begin; i < end; ++i)
       v[i] += a * x[i];
   }
 }

@@ -355,7 +355,6 @@ void prepare_stepping(Multibody::Impl& m) {
   m.friction_applied.assign(m.axes.size(), 0.0);
   m.axis_stuck.assign(m.axes.size(), 0);
   m.breakpoints.assign(2 * max_rows, 0.0);
-  m.row_matrix.assign(max_rows * max_rows, 0.0);
   m.row_rhs.assign(max_rows, 0.0);
   m.explicit_drive.assign(m.axes.size(), 0.0);
   m.rate0.assign(m.axes.size(), 0.0);
@@ -369,6 +368,7 @@ void prepare_stepping(Multibody::Impl& m) {
       m.axis_u[a] =
           m.matter.getMobilizedBody(m.axis_impl[a].mobod).getFirstUIndex(m.initial_state) +
           m.axis_impl[a].coordinate;
+  find_axis_trees(m);
   m.qdot.resize(m.initial_state.getNQ());
   m.reactions_at_M.resize(m.matter.getNumBodies());
 }

@@ -178,9 +178,15 @@ struct Multibody::Impl {
   std::vector<double> drive_sum;            // per axis: Σ over the tick's substeps of drive forces
   std::vector<double> drive_applied;        // per axis: their mean over the last tick (an output:
                                             // the kernel's axis_force_applied segment keeps it)
-  std::vector<double> row_matrix, row_rhs;  // rows x rows, rows
-  int substep = 0;                          // index of the current substep in the tick
-  bool bodies_fresh = false;                // substep_poses/twists hold the current state
+  std::vector<double> row_matrix, row_rhs;  // one tree's rows x rows; rows
+  // Independent trees (axis_trees.cpp): per axis its tree; per tree the ranges of its speeds
+  // and coordinates; scratch: the rows ordered by tree, each tree's first, changed trees.
+  std::vector<int> axis_tree;
+  std::vector<int> tree_u_begin, tree_u_end, tree_q_begin, tree_q_end;
+  std::vector<int> row_order, tree_row_start, tree_cursor;
+  std::vector<char> tree_changed;
+  int substep = 0;            // index of the current substep in the tick
+  bool bodies_fresh = false;  // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   std::vector<Pose> substep_poses;
   std::vector<Twist> substep_twists;
@@ -206,6 +212,12 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
 /// v += a·x, through raw storage where it is contiguous (element access goes through a
 /// non-inline helper, and Vector expressions allocate).
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x);
+/// v[i] += a·x[i] for i in [begin, end): a column over its tree's speeds.
+void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end);
+/// Partitions the axes into independent trees (axis_trees.cpp); after axis_u is known.
+void find_axis_trees(Multibody::Impl& m);
+/// Orders this substep's rows by tree (row_order, tree_row_start), stably.
+void group_rows_by_tree(Multibody::Impl& m);
 /// Adds a load `f` (N·m or N) on axis a: a mobility force for a tree axis, equal and opposite
 /// body loads for a loop axis; `state` realized to Position.
 void apply_axis_load(const Multibody::Impl& m, const SimTK::State& state, std::size_t a, double f,
