@@ -11,6 +11,7 @@
 // `collide` (contact::ContactWorld), sensor readings in `sense` of the next tick, from the
 // state this tick ends with.
 #include "sim/step.hpp"
+#include "sim/names.hpp"
 #include "sim/running_component.hpp"
 
 #include "sim/simulation_impl.hpp"
@@ -130,6 +131,22 @@ void Simulation::Impl::step_once() {
   check_loads_finite();
   try {
     sim::physics_tick(*multibody, contacts.get(), profile.get());
+  } catch (const Error& e) {
+    // A divergence names its first body: add where that body last was, finite (the kernel's
+    // poses and twists still hold the previous tick's).
+    const int body = e.kind() == ErrorKind::runtime ? multibody->first_non_finite_body() : -1;
+    if (body <= 0 || static_cast<std::size_t>(body) >= poses.size()) throw;
+    const Pose& p = poses[static_cast<std::size_t>(body)];
+    const Twist& v = twists[static_cast<std::size_t>(body)];
+    auto vec = [](const Vec3& x) {
+      return "(" + sim::exact_decimal(x.x) + ", " + sim::exact_decimal(x.y) + ", " +
+             sim::exact_decimal(x.z) + ")";
+    };
+    throw Error(e.kind(), e.where(),
+                e.message() + "; its last finite state, at t = " +
+                    std::to_string(static_cast<double>(tick) * tick_s) + " s: position " +
+                    vec(p.position) + " m, velocity " + vec(v.linear_m_s) +
+                    " m/s, angular velocity " + vec(v.angular_rad_s) + " rad/s");
   } catch (const collision::TooManyPairs& too_many) {
     const auto& body = contacts->shapes().bodies();
     throw Error(ErrorKind::runtime,

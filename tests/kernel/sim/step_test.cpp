@@ -66,6 +66,8 @@ TEST(Step, DivergenceIsARuntimeErrorNamingTheBodyAndTheTime) {
     EXPECT_EQ(exit_code(e.kind()), 5);
     EXPECT_THAT(e.message(), HasSubstr("at t = "));
     EXPECT_THAT(e.message(), HasSubstr("body 'bob' of robot 'pendulum'"));
+    EXPECT_THAT(e.message(), HasSubstr("; its last finite state, at t = "));
+    EXPECT_THAT(e.message(), HasSubstr(" m, velocity ("));
   }
 }
 
