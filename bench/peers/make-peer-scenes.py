@@ -57,15 +57,17 @@ def s2sim_robots_scene(count):
     return "\n".join(lines) + "\n"
 
 
-def mjcf_header(model_name, comment):
+def mjcf_header(model_name, comment, contacts=100, rows=500, stack=250000):
     return [f'<mujoco model="{model_name}">',
             f"  <!-- Made by bench/peers/make-peer-scenes.py; do not edit. {comment} -->",
             '  <compiler angle="radian" inertiafromgeom="true"/>',
             # The Newton solver stops at tolerance 1e-8 by default, which let the robots' wheels
             # blow up within 50 ms on robots_4 and robots_16 (robots_1 held): 1e-10 holds all.
             '  <option timestep="0.001" gravity="0 0 -9.81" tolerance="1e-10"/>',
-            # MuJoCo 2.2 preallocates 100 contacts and 500 constraint rows unless told.
-            '  <size nconmax="1500" njmax="6000"/>',
+            # MuJoCo 2.2 preallocates 100 contacts and 500 constraint rows unless told; its
+            # arena grows with their product with the model's size (2 GB and 12 s to load the
+            # pile at 1500 and 6000), so each scene asks for what it needs.
+            f'  <size nconmax="{contacts}" njmax="{rows}" nstack="{stack}"/>',
             "  <default>",
             f'    <geom solref="{CONTACT_SOLREF}" friction="{PILE_FRICTION} 0.005 0.0001"/>',
             "  </default>",
@@ -87,7 +89,8 @@ def mjcf_robots(count):
     gain = m["ki"] / m["ri"]
     damping = m["ki"] * m["ki"] / m["ri"] + m["bv"]
     torque_limit = m["ki"] * m["imax"]
-    lines = mjcf_header(f"robots_{count}", f"{count} differential robots, bench/peers.")
+    lines = mjcf_header(f"robots_{count}", f"{count} differential robots, bench/peers.",
+                        contacts=10 * count + 20, rows=50 * count + 100, stack=500 * (50 * count + 100))
     actuators = []
     for i in range(count):
         x, y = grid_position(i, count)
@@ -135,7 +138,8 @@ def xyz(element, default=0.0):
 
 
 def mjcf_pile(things_path):
-    lines = mjcf_header("pile", "scenes/pile/things.xml: 100 boxes, 50 spheres.")
+    lines = mjcf_header("pile", "scenes/pile/things.xml: 100 boxes, 50 spheres.", contacts=1000,
+                        rows=4000, stack=30000000)
     for thing in ET.parse(things_path).getroot():
         name = thing.find("ID").get("value")
         mass = float(thing.find("mass").get("value"))
@@ -299,6 +303,11 @@ def mjcf_articulated(model):
             lines.append(f'    <connect name="{j["name"]}" body1="{j["child"]}" body2="{j["parent"]}"'
                          f' anchor="{fmt(*anchor)}"/>')
         lines.append("  </equality>")
+        # MuJoCo excludes only parent-child pairs: the loop's two bodies would touch at D.
+        lines.append("  <contact>")
+        for j in loops:
+            lines.append(f'    <exclude body1="{j["child"]}" body2="{j["parent"]}"/>')
+        lines.append("  </contact>")
     lines += ["  <actuator>"] + actuators + ["  </actuator>", "</mujoco>"]
     return "\n".join(lines) + "\n"
 

@@ -23,7 +23,8 @@ class MujocoEngine final : public Engine {
     switch (scene.kind) {
       case SceneSpec::Kind::robots:
         for (int i = 0; i < scene.robot_count; ++i) {
-          const std::string robot = "r" + std::to_string(i);
+          std::string robot = "r";
+          robot += std::to_string(i);
           tracked_.push_back(id(mjOBJ_BODY, robot));
           ctrl_.emplace_back(id(mjOBJ_ACTUATOR, robot + "_right"), scene.robot_volts);
           ctrl_.emplace_back(id(mjOBJ_ACTUATOR, robot + "_left"), -scene.robot_volts);
@@ -58,6 +59,7 @@ class MujocoEngine final : public Engine {
     mj_resetData(model_, data_);
     for (const auto& [actuator, volts] : ctrl_)
       data_->ctrl[actuator] = volts;
+    mj_forward(model_, data_);  // the bodies' poses at t = 0 (a reset leaves them unset)
   }
   void step(long steps) override {
     for (long i = 0; i < steps; ++i)

@@ -87,11 +87,12 @@ double median(std::vector<double> v) {
 }
 
 struct Outcome {
-  double distance_m = 0;     ///< mean horizontal displacement of the tracked bodies
-  double lateral_m = 0;      ///< largest |Δy| (the robots drive along +x)
-  double yaw_deg = 0;        ///< largest |Δyaw|
-  double height_m = 0;       ///< mean final height
-  double penetration_m = 0;  ///< deepest over every step
+  double distance_m = 0;             ///< mean horizontal displacement of the tracked bodies
+  double lateral_m = 0;              ///< largest |Δy| (the robots drive along +x)
+  double yaw_deg = 0;                ///< largest |Δyaw|
+  double rise_m = 0;                 ///< mean change of height
+  double penetration_m = 0;          ///< deepest over every step
+  double settled_penetration_m = 0;  ///< deepest over the second half of the run
   bool finite = true;
 };
 
@@ -111,7 +112,9 @@ Outcome measure_outcome(peers::Engine& engine, long steps) {
   Outcome out;
   for (long s = 0; s < steps; ++s) {
     engine.step(1);
-    out.penetration_m = std::max(out.penetration_m, engine.deepest_penetration_m());
+    const double depth = engine.deepest_penetration_m();
+    out.penetration_m = std::max(out.penetration_m, depth);
+    if (2 * s >= steps) out.settled_penetration_m = std::max(out.settled_penetration_m, depth);
   }
   const int n = engine.tracked_count();
   for (int i = 0; i < n; ++i) {
@@ -125,7 +128,7 @@ Outcome measure_outcome(peers::Engine& engine, long steps) {
     out.lateral_m = std::max(out.lateral_m, std::abs(dy));
     const double dyaw = std::remainder(b.yaw_rad - a.yaw_rad, 2 * M_PI);
     out.yaw_deg = std::max(out.yaw_deg, std::abs(dyaw) * 180 / M_PI);
-    out.height_m += b.position_m[2] / n;
+    out.rise_m += (b.position_m[2] - a.position_m[2]) / n;
   }
   out.finite = out.finite && std::isfinite(out.penetration_m) && std::isfinite(out.distance_m);
   return out;
@@ -173,16 +176,17 @@ double speedup(const std::vector<Result>& results, const Result& r) {
 void write_reports(const std::vector<Result>& results, const Options& o) {
   std::ostringstream md;
   md << "| scene | engine | CPU µs/step (median) | CPU min–max | wall µs/step | CPU µs per robot"
-        " | S2Sim speed-up | distance m | lateral m | yaw ° | height m | deepest mm |\n"
-     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        " | S2Sim speed-up | distance m | lateral m | yaw ° | rise m | deepest mm | settled mm |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   std::ostringstream csv;
   csv << "scene,engine,rounds,cpu_us_median,cpu_us_min,cpu_us_max,wall_us_median,cpu_us_per_robot,"
-         "s2sim_speedup,distance_m,lateral_m,yaw_deg,height_m,penetration_mm,finite\n";
+         "s2sim_speedup,distance_m,lateral_m,yaw_deg,rise_m,penetration_mm,settled_penetration_mm,"
+         "finite\n";
   for (const auto& r : results) {
     if (!r.error.empty()) {
       md << "| " << r.scene << " | " << r.engine << " | failed: " << r.error
-         << " | | | | | | | | | |\n";
-      csv << r.scene << ',' << r.engine << ",0,,,,,,,,,,,,0\n";
+         << " | | | | | | | | | | |\n";
+      csv << r.scene << ',' << r.engine << ",0,,,,,,,,,,,,,0\n";
       continue;
     }
     const double cpu = median(r.cpu_us), wall = median(r.wall_us);
@@ -193,12 +197,14 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
        << "–" << fixed(*hi, 1) << " | " << fixed(wall, 1) << " | " << fixed(cpu / r.robots, 2)
        << " | " << (r.engine == "s2sim" || std::isnan(up) ? std::string("") : fixed(up, 2) + "×")
        << " | " << fixed(oc.distance_m, 4) << " | " << fixed(oc.lateral_m, 4) << " | "
-       << fixed(oc.yaw_deg, 2) << " | " << fixed(oc.height_m, 4) << " | "
-       << fixed(oc.penetration_m * 1e3, 2) << (oc.finite ? "" : " NON-FINITE") << " |\n";
+       << fixed(oc.yaw_deg, 2) << " | " << fixed(oc.rise_m, 4) << " | "
+       << fixed(oc.penetration_m * 1e3, 2) << " | " << fixed(oc.settled_penetration_m * 1e3, 2)
+       << (oc.finite ? "" : " NON-FINITE") << " |\n";
     csv << r.scene << ',' << r.engine << ',' << r.cpu_us.size() << ',' << cpu << ',' << *lo << ','
         << *hi << ',' << wall << ',' << cpu / r.robots << ',' << (std::isnan(up) ? 1.0 : up) << ','
-        << oc.distance_m << ',' << oc.lateral_m << ',' << oc.yaw_deg << ',' << oc.height_m << ','
-        << oc.penetration_m * 1e3 << ',' << (oc.finite ? 1 : 0) << '\n';
+        << oc.distance_m << ',' << oc.lateral_m << ',' << oc.yaw_deg << ',' << oc.rise_m << ','
+        << oc.penetration_m * 1e3 << ',' << oc.settled_penetration_m * 1e3 << ','
+        << (oc.finite ? 1 : 0) << '\n';
   }
   std::fputs(md.str().c_str(), stdout);
   if (!o.markdown.empty()) std::ofstream(o.markdown) << md.str();
