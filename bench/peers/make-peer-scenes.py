@@ -176,11 +176,12 @@ def hinge(name, child, parent, axis, anchor, drive, loop=False):
 def humanoid():
     """A humanoid-sized tree: 21 boxes, 20 hinges, 64.5 kg, standing on its feet. Every hinge
     has a motor at 0 V and a Coulomb friction that holds it, except the shoulders' pitch, driven
-    at 12 V against 0.5 N·m: the arms swing up and settle where gravity balances the motor."""
+    at 4 V against 0.5 N·m: the arms swing forward to about 18 degrees, where gravity balances
+    the motor (at 12 V the swing toppled the figure, differently in each engine)."""
     bodies = [box("pelvis", (0.2, 0.3, 0.1), (0, 0, 1.05), 8.0)]
     joints = []
     arm_hold = dict(HOLD, fc=20.0)
-    shoulder = dict(HOLD, fc=0.5, volts=12.0)
+    shoulder = dict(HOLD, fc=0.5, volts=4.0)
     for side, y in (("l", 0.1), ("r", -0.1)):
         bodies += [box(f"hip_{side}", (0.08, 0.08, 0.06), (0, y, 0.95), 1.0),
                    box(f"thigh_{side}", (0.1, 0.1, 0.4), (0, y, 0.7), 6.0),
