@@ -357,6 +357,7 @@ void prepare_stepping(Multibody::Impl& m) {
   m.breakpoints.assign(2 * max_rows, 0.0);
   m.row_matrix.assign(max_rows * max_rows, 0.0);
   m.row_rhs.assign(max_rows, 0.0);
+  m.row_first.assign(max_rows, 0);
   m.explicit_drive.assign(m.axes.size(), 0.0);
   m.rate0.assign(m.axes.size(), 0.0);
   m.drive_sum.assign(m.axes.size(), 0.0);

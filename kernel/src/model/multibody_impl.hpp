@@ -179,6 +179,7 @@ struct Multibody::Impl {
   std::vector<double> drive_applied;        // per axis: their mean over the last tick (an output:
                                             // the kernel's axis_force_applied segment keeps it)
   std::vector<double> row_matrix, row_rhs;  // rows x rows, rows
+  std::vector<std::size_t> row_first;       // rows: each row's first non-zero (solve_spd)
   int substep = 0;                          // index of the current substep in the tick
   bool bodies_fresh = false;                // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
