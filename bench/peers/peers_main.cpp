@@ -1,0 +1,327 @@
+// s2sim-peers: S2Sim side by side with MuJoCo and ODE on the same scenes (docs/benchmarks.md,
+// "Peers"). Every engine steps each scene in turn, several rounds in a rotating order; the
+// report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's speed-up over
+// each peer, and each engine's physical outcome, so that a faster wrong answer shows.
+//   s2sim-peers [--scenes A,B,...] [--engines A,B,...] [--duration S] [--warmup S]
+//               [--rounds N] [--csv FILE] [--markdown FILE] [--check]
+#include "engine.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <exception>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace peers {
+
+std::filesystem::path SceneSpec::s2sim_scene() const {
+  switch (kind) {
+    case Kind::robots:
+      return source_dir / "bench/peers/scenes" / name;
+    case Kind::pile:
+      return source_dir / "scenes/pile";
+    default:
+      return source_dir / "bench/peers/scenes" / name;
+  }
+}
+std::filesystem::path SceneSpec::mjcf() const {
+  return source_dir / "bench/peers/mjcf" / (name + ".xml");
+}
+std::filesystem::path SceneSpec::ode_table() const {
+  return source_dir / "bench/peers/scenes" / name / "model.txt";
+}
+
+std::vector<EngineFactory> available_engines() {
+  std::vector<EngineFactory> engines{{"s2sim", &make_s2sim}};
+#ifdef S2SIM_PEERS_HAVE_MUJOCO
+  engines.push_back({"mujoco", &make_mujoco});
+#endif
+#ifdef S2SIM_PEERS_HAVE_ODE
+  engines.push_back({"ode-quick20", &make_ode_quickstep});
+  engines.push_back({"ode-step", &make_ode_worldstep});
+#endif
+  return engines;
+}
+
+}  // namespace peers
+
+namespace {
+
+using peers::SceneSpec;
+
+struct Options {
+  std::vector<std::string> scenes{"robots_1", "robots_4", "robots_16", "robots_64",
+                                  "pile",     "humanoid", "arm_loop"};
+  std::vector<std::string> engines;  // empty: every engine built
+  double duration_s = 2.0;
+  double warmup_s = 0.2;
+  int rounds = 5;
+  std::string csv, markdown;
+  bool check = false;  // exit 5 unless every outcome is finite
+};
+
+std::vector<std::string> split(const std::string& list) {
+  std::vector<std::string> out;
+  std::istringstream in(list);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+double thread_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Outcome {
+  double distance_m = 0;             ///< mean horizontal displacement of the tracked bodies
+  double lateral_m = 0;              ///< largest |Δy| (the robots drive along +x)
+  double yaw_deg = 0;                ///< largest |Δyaw|
+  double rise_m = 0;                 ///< mean change of height
+  double penetration_m = 0;          ///< deepest over every step
+  double settled_penetration_m = 0;  ///< deepest over the second half of the run
+  bool finite = true;
+};
+
+struct Result {
+  std::string scene, engine;
+  int robots = 1;
+  std::vector<double> cpu_us, wall_us;  // per step, one per round
+  Outcome outcome;
+  std::string error;  // the engine could not load the scene
+};
+
+Outcome measure_outcome(peers::Engine& engine, long steps) {
+  engine.reset();
+  std::vector<peers::TrackedPose> start;
+  for (int i = 0; i < engine.tracked_count(); ++i)
+    start.push_back(engine.tracked(i));
+  Outcome out;
+  for (long s = 0; s < steps; ++s) {
+    engine.step(1);
+    const double depth = engine.deepest_penetration_m();
+    out.penetration_m = std::max(out.penetration_m, depth);
+    if (2 * s >= steps) out.settled_penetration_m = std::max(out.settled_penetration_m, depth);
+  }
+  const int n = engine.tracked_count();
+  for (int i = 0; i < n; ++i) {
+    const auto& a = start[static_cast<std::size_t>(i)];
+    const auto b = engine.tracked(i);
+    for (double v : b.position_m)
+      out.finite = out.finite && std::isfinite(v);
+    out.finite = out.finite && std::isfinite(b.yaw_rad);
+    const double dx = b.position_m[0] - a.position_m[0], dy = b.position_m[1] - a.position_m[1];
+    out.distance_m += std::hypot(dx, dy) / n;
+    out.lateral_m = std::max(out.lateral_m, std::abs(dy));
+    const double dyaw = std::remainder(b.yaw_rad - a.yaw_rad, 2 * M_PI);
+    out.yaw_deg = std::max(out.yaw_deg, std::abs(dyaw) * 180 / M_PI);
+    out.rise_m += (b.position_m[2] - a.position_m[2]) / n;
+  }
+  out.finite = out.finite && std::isfinite(out.penetration_m) && std::isfinite(out.distance_m);
+  return out;
+}
+
+SceneSpec scene_spec(const std::string& name, const std::filesystem::path& source_dir) {
+  SceneSpec s;
+  s.name = name;
+  s.source_dir = source_dir;
+  if (name.rfind("robots_", 0) == 0) {
+    s.kind = SceneSpec::Kind::robots;
+    s.robot_count = std::atoi(name.c_str() + 7);
+    if (s.robot_count <= 0) throw std::runtime_error("bad scene name '" + name + "'");
+  } else if (name == "pile") {
+    s.kind = SceneSpec::Kind::pile;
+  } else if (name == "humanoid") {
+    s.kind = SceneSpec::Kind::humanoid;
+  } else if (name == "arm_loop") {
+    s.kind = SceneSpec::Kind::arm_loop;
+  } else {
+    throw std::runtime_error("unknown scene '" + name + "' (robots_<N>, pile, humanoid, arm_loop)");
+  }
+  return s;
+}
+
+std::string fixed(double v, int decimals) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+const Result* s2sim_of(const std::vector<Result>& results, const std::string& scene) {
+  for (const auto& r : results)
+    if (r.scene == scene && r.engine == "s2sim" && r.error.empty()) return &r;
+  return nullptr;
+}
+
+/// S2Sim's speed-up over `r`: the peer's median CPU time per step over S2Sim's (> 1: S2Sim faster).
+double speedup(const std::vector<Result>& results, const Result& r) {
+  const Result* s = s2sim_of(results, r.scene);
+  if (s == nullptr || r.cpu_us.empty() || s->cpu_us.empty()) return NAN;
+  return median(r.cpu_us) / median(s->cpu_us);
+}
+
+void write_reports(const std::vector<Result>& results, const Options& o) {
+  std::ostringstream md;
+  md << "| scene | engine | CPU µs/step (median) | CPU min–max | wall µs/step | CPU µs per robot"
+        " | S2Sim speed-up | distance m | lateral m | yaw ° | rise m | deepest mm | settled mm |\n"
+     << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  std::ostringstream csv;
+  csv << "scene,engine,rounds,cpu_us_median,cpu_us_min,cpu_us_max,wall_us_median,cpu_us_per_robot,"
+         "s2sim_speedup,distance_m,lateral_m,yaw_deg,rise_m,penetration_mm,settled_penetration_mm,"
+         "finite\n";
+  for (const auto& r : results) {
+    if (!r.error.empty()) {
+      md << "| " << r.scene << " | " << r.engine << " | failed: " << r.error
+         << " | | | | | | | | | | |\n";
+      csv << r.scene << ',' << r.engine << ",0,,,,,,,,,,,,,0\n";
+      continue;
+    }
+    const double cpu = median(r.cpu_us), wall = median(r.wall_us);
+    const auto [lo, hi] = std::minmax_element(r.cpu_us.begin(), r.cpu_us.end());
+    const double up = speedup(results, r);
+    const auto& oc = r.outcome;
+    md << "| " << r.scene << " | " << r.engine << " | " << fixed(cpu, 1) << " | " << fixed(*lo, 1)
+       << "–" << fixed(*hi, 1) << " | " << fixed(wall, 1) << " | " << fixed(cpu / r.robots, 2)
+       << " | " << (r.engine == "s2sim" || std::isnan(up) ? std::string("") : fixed(up, 2) + "×")
+       << " | " << fixed(oc.distance_m, 4) << " | " << fixed(oc.lateral_m, 4) << " | "
+       << fixed(oc.yaw_deg, 2) << " | " << fixed(oc.rise_m, 4) << " | "
+       << fixed(oc.penetration_m * 1e3, 2) << " | " << fixed(oc.settled_penetration_m * 1e3, 2)
+       << (oc.finite ? "" : " NON-FINITE") << " |\n";
+    csv << r.scene << ',' << r.engine << ',' << r.cpu_us.size() << ',' << cpu << ',' << *lo << ','
+        << *hi << ',' << wall << ',' << cpu / r.robots << ',' << (std::isnan(up) ? 1.0 : up) << ','
+        << oc.distance_m << ',' << oc.lateral_m << ',' << oc.yaw_deg << ',' << oc.rise_m << ','
+        << oc.penetration_m * 1e3 << ',' << oc.settled_penetration_m * 1e3 << ','
+        << (oc.finite ? 1 : 0) << '\n';
+  }
+  std::fputs(md.str().c_str(), stdout);
+  if (!o.markdown.empty()) std::ofstream(o.markdown) << md.str();
+  if (!o.csv.empty()) std::ofstream(o.csv) << csv.str();
+}
+
+int run(const Options& o) {
+  std::vector<peers::EngineFactory> engines;
+  for (const auto& e : peers::available_engines())
+    if (o.engines.empty() ||
+        std::find(o.engines.begin(), o.engines.end(), e.name) != o.engines.end())
+      engines.push_back(e);
+  std::printf("engines built: ");
+  for (const auto& e : peers::available_engines())
+    std::printf("%s ", e.name.c_str());
+#ifndef S2SIM_PEERS_HAVE_MUJOCO
+  std::printf("(MuJoCo skipped: libmujoco-dev not found at configure time) ");
+#endif
+#ifndef S2SIM_PEERS_HAVE_ODE
+  std::printf("(ODE skipped: libode-dev not found at configure time) ");
+#endif
+  std::printf("\n");
+
+  const long steps = std::max(1L, std::lround(o.duration_s / 0.001));
+  const long warmup = std::lround(o.warmup_s / 0.001);
+  std::vector<Result> results;
+  bool all_finite = true;
+  for (const auto& scene_name : o.scenes) {
+    const SceneSpec spec = scene_spec(scene_name, S2SIM_SOURCE_DIR);
+    std::vector<std::unique_ptr<peers::Engine>> loaded;
+    const std::size_t first = results.size();
+    for (const auto& e : engines) {
+      Result r;
+      r.scene = scene_name;
+      r.engine = e.name;
+      r.robots = spec.kind == SceneSpec::Kind::robots ? spec.robot_count : 1;
+      try {
+        loaded.push_back(e.make(spec));
+        r.outcome = measure_outcome(*loaded.back(), steps);
+        all_finite = all_finite && r.outcome.finite;
+      } catch (const std::exception& ex) {
+        loaded.push_back(nullptr);
+        r.error = ex.what();
+        all_finite = false;
+      }
+      results.push_back(r);
+    }
+    for (int round = 0; round < o.rounds; ++round) {
+      for (std::size_t k = 0; k < loaded.size(); ++k) {
+        const std::size_t i = (k + static_cast<std::size_t>(round)) % loaded.size();
+        if (!loaded[i]) continue;
+        loaded[i]->reset();
+        loaded[i]->step(warmup);
+        const double cpu0 = thread_cpu_s();
+        const auto wall0 = std::chrono::steady_clock::now();
+        loaded[i]->step(steps);
+        const auto wall1 = std::chrono::steady_clock::now();
+        const double cpu1 = thread_cpu_s();
+        Result& r = results[first + i];
+        r.cpu_us.push_back(1e6 * (cpu1 - cpu0) / static_cast<double>(steps));
+        r.wall_us.push_back(1e6 * std::chrono::duration<double>(wall1 - wall0).count() /
+                            static_cast<double>(steps));
+      }
+    }
+    std::fprintf(stderr, "%s done\n", scene_name.c_str());
+  }
+  write_reports(results, o);
+  if (o.check && !all_finite) {
+    std::fprintf(stderr, "s2sim-peers: an engine failed or produced a non-finite outcome\n");
+    return 5;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+        return argv[++i];
+      };
+      if (a == "--scenes")
+        o.scenes = split(value());
+      else if (a == "--engines")
+        o.engines = split(value());
+      else if (a == "--duration")
+        o.duration_s = std::stod(value());
+      else if (a == "--warmup")
+        o.warmup_s = std::stod(value());
+      else if (a == "--rounds")
+        o.rounds = std::stoi(value());
+      else if (a == "--csv")
+        o.csv = value();
+      else if (a == "--markdown")
+        o.markdown = value();
+      else if (a == "--check")
+        o.check = true;
+      else
+        throw std::invalid_argument("unknown option " + a);
+    }
+    if (o.duration_s <= 0 || o.warmup_s < 0 || o.rounds < 1)
+      throw std::invalid_argument("--duration > 0, --warmup >= 0 and --rounds >= 1");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr,
+                 "s2sim-peers: %s\nusage: s2sim-peers [--scenes A,B] [--engines A,B] [--duration S]"
+                 " [--warmup S] [--rounds N] [--csv FILE] [--markdown FILE] [--check]\n",
+                 e.what());
+    return 4;
+  }
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "s2sim-peers: %s\n", e.what());
+    return 2;
+  }
+}
