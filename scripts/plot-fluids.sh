@@ -40,7 +40,7 @@ GP
 "$run" "$root/scenes/blimp" --quiet --no-timing --duration 90 --log "$tmp/blimp.csv" \
   --log-period 0.2 --signals robots/blimp/solids/gondola/x robots/blimp/solids/gondola/y \
   robots/blimp/solids/gondola/z
-printf '3 0 2\n3 3 2.5\n0 3 2\n0 0 1.5\n' > "$tmp/waypoints.dat"
+printf '3,0,2\n3,3,2.5\n0,3,2\n0,0,1.5\n' > "$tmp/waypoints.dat"  # the CSV separator
 gnuplot <<GP
 set terminal pngcairo size 700,650 font ",11"
 set output "$out/fluids-blimp-path.png"
