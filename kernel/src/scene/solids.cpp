@@ -10,9 +10,14 @@
 
 #include <array>
 #include <cctype>
+#include <cmath>
 
 namespace s2sim::scene::detail {
 namespace {
+
+/// Largest magnitude of SimTwo's drag coefficient, buoyant mass (kg) and thrust coefficient:
+/// far beyond any sample, small enough that the forces stay finite.
+constexpr double kMaxFluidCoefficient = 1e6;
 
 std::string lower(std::string s) {
   for (char& c : s)
@@ -172,14 +177,39 @@ std::optional<int> load_solid(LoadContext& ctx, const Reader& r, const Element& 
       mu_given = mu_given || (r.has(c, "mu") && surface.mu >= 0);
       mu2_given = mu2_given || (r.has(c, "mu2") && surface.mu2 >= 0);
     } else if (n == "drag") {
+      // SimTwo's per-step factors and quadratic coefficient (§4.4), applied by the `drag`
+      // plugin (docs/models/fluids.md): bounded here so that a bad value is refused, located.
+      body.drag.present = true;
       body.drag.coefficient = r.number(c, "coefficient", body.drag.coefficient);
       body.drag.stokes = r.number(c, "stokes", body.drag.stokes);
       body.drag.roll = r.number(c, "roll", body.drag.roll);
+      if (!(body.drag.coefficient >= 0 && body.drag.coefficient <= kMaxFluidCoefficient))
+        r.fail(c, "coefficient",
+               "drag coefficient must be from 0 to " + format_number(kMaxFluidCoefficient) +
+                   ", got " + format_number(body.drag.coefficient));
+      if (!(body.drag.stokes >= 0 && body.drag.stokes < 1))
+        r.fail(c, "stokes",
+               "stokes is a per-step velocity factor from 0 to below 1, got " +
+                   format_number(body.drag.stokes));
+      if (!(body.drag.roll >= 0 && body.drag.roll < 1))
+        r.fail(c, "roll",
+               "roll is a per-step velocity factor from 0 to below 1, got " +
+                   format_number(body.drag.roll));
     } else if (n == "buoyant" || n == "buoyance") {
       body.buoyancy.mass_kg = r.number(c, "mass", body.buoyancy.mass_kg);
       body.buoyancy.point_m = r.xyz(c, body.buoyancy.point_m);
+      if (!(std::abs(body.buoyancy.mass_kg) <= kMaxFluidCoefficient))
+        r.fail(c, "mass",
+               "buoyant mass must be from -" + format_number(kMaxFluidCoefficient) + " to " +
+                   format_number(kMaxFluidCoefficient) + " kg, got " +
+                   format_number(body.buoyancy.mass_kg));
     } else if (n == "thrust") {
       body.thrust_coefficient = r.number(c, "coefficient", 0.1);
+      if (!(std::abs(body.thrust_coefficient) <= kMaxFluidCoefficient))
+        r.fail(c, "coefficient",
+               "thrust coefficient must be from -" + format_number(kMaxFluidCoefficient) + " to " +
+                   format_number(kMaxFluidCoefficient) + " N*s/rad, got " +
+                   format_number(body.thrust_coefficient));
     } else if (n == "nogravity") {
       body.gravity = false;
     } else {

@@ -2,6 +2,7 @@
 // with the axis inertias the components declared, contact and ray casting.
 #include "scene/limits.hpp"
 #include "sim/drive_train_components.hpp"
+#include "sim/fluid_components.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -55,8 +56,13 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   // configured last, they can address every input and signal of the scene (SDK 0.7,
   // ConfigureContext::signal_names; a remote link serves a whole robot). Order within a stage
   // is unchanged for the others; controllers keep their scene order among themselves.
-  const bool needs_plugins =
-      !m.scene.sensors.empty() || !m.scene.plugins.empty() || !m.axis_views.empty();
+  std::vector<std::string> robot_prefixes;
+  for (std::size_t r = 0; r < m.scene.robots.size(); ++r)
+    robot_prefixes.push_back(m.robot_prefix(static_cast<int>(r)));
+  const std::vector<sim::FluidComponent> fluids =
+      sim::fluid_components(m.scene, robot_prefixes, m.warnings);
+  const bool needs_plugins = !m.scene.sensors.empty() || !m.scene.plugins.empty() ||
+                             !m.axis_views.empty() || !fluids.empty();
   std::optional<plugin::PluginRegistry> registry;
   if (needs_plugins)
     registry.emplace(
@@ -78,6 +84,17 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     if (is_controller(p)) continue;
     m.add_component(*registry, p.kind, p.id, p.robot, p.params, p.where, std::nullopt);
     m.components.back().plugin_element = true;
+  }
+  // SimTwo's drag, buoyancy and propeller solids (sim/fluid_components.hpp).
+  for (const auto& c : fluids) {
+    if (!registry->has(c.kind)) {
+      m.warnings.push_back(c.where.str() + ": no plugin provides the kind '" + c.kind +
+                           "' (plugin fluids, libfluids.so); solid '" +
+                           c.id.substr(0, c.id.rfind('/')) + "' gets no " + c.kind);
+      continue;
+    }
+    m.add_component(*registry, c.kind, c.id, c.robot, c.params, c.where, std::nullopt);
+    m.components.back().prefix = c.prefix;
   }
   std::vector<sim::DriveAxis> drive_axes;
   for (const auto& ax : m.topology.axes)

@@ -150,6 +150,7 @@ struct Drag {
   double coefficient = 0;  ///< quadratic drag Cd
   double stokes = 1e-5;    ///< linear damping per step (SimTwo/ODE meaning, §4.4)
   double roll = 1e-3;      ///< angular damping per step
+  bool present = false;    ///< an explicit `<drag>`: only then is the `drag` plugin attached
 };
 
 struct Buoyancy {
