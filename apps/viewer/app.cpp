@@ -108,9 +108,10 @@ class App {
     state_.run.as_fast_as_possible = options.speed == 0;
     for (const auto& name : options.show_windows)
       if (!set_window(state_.windows, name, true))
-        throw Error(ErrorKind::usage, "--show-window: unknown window '" + name +
-                                          "' (run, configuration, chart, sheet, editor, log, "
-                                          "body)");
+        throw Error(ErrorKind::usage,
+                    "--show-window: unknown window '" + name +
+                        "' (run, configuration, chart, sheet, editor, script, log, "
+                        "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
     register_layout_settings(state_);

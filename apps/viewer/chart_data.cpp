@@ -52,7 +52,7 @@ std::size_t ChartData::stored_values() const {
 void ChartData::drop_front(std::size_t count) {
   begin_ += count;
   // Compact once a quarter is dead: the buffers keep their capacity, so no allocation.
-  if (begin_ >= 1024 && begin_ * 4 >= times_s_.size()) {
+  if (begin_ >= 64 && begin_ * 4 >= times_s_.size()) {
     const auto dead = static_cast<long>(begin_);
     times_s_.erase(times_s_.begin(), times_s_.begin() + dead);
     for (auto& v : values_)
@@ -67,8 +67,8 @@ void ChartData::record(const Simulation& sim) {
   const std::size_t max_samples = std::max<std::size_t>(2, kMaxStoredValues * 4 / 5 / per_sample);
   if (times_s_.size() == times_s_.capacity()) {
     // Grow as a vector does, but never past what compaction can leave: at most a third more
-    // than the live samples, plus the 1024 compaction waits for.
-    const std::size_t limit = max_samples * 4 / 3 + 1100;
+    // than the live samples, plus the 64 compaction waits for.
+    const std::size_t limit = max_samples * 4 / 3 + 70;
     const std::size_t capacity =
         std::max(times_s_.size() + 1, std::min(2 * times_s_.capacity() + 64, limit));
     times_s_.reserve(capacity);

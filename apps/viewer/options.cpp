@@ -53,7 +53,8 @@ const char* usage_text() {
   --run-script             run the project's SimTwo script even when its control block is not
                            "Script"        --no-script   do not run it
   --sheet R,C=VALUE        set SimTwo's sheet cell (row R, column C, from 1) before the start
-  --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
+  --show-window NAME       open a window: run, configuration, chart, sheet, editor, script,
+                           log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)

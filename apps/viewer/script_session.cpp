@@ -3,6 +3,7 @@
 #include <s2sim/error.hpp>
 
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <sstream>
 
@@ -136,7 +137,10 @@ bool compile_script(ViewerState& state) {
   if (editor.text != editor.on_disk && !save_script(state)) return false;
   Options options = state.options;
   options.script_mode = ScriptMode::always;
-  options.script_file = editor.file.string();
+  // The project's own script is found as the project names it (the messages say how).
+  const auto& scene = state.sim->scene();
+  if (!scene.script || scene.script->file != editor.file)
+    options.script_file = editor.file.string();
   editor.errors.clear();
   editor.highlight_line = -1;
   try {

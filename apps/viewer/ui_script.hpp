@@ -18,7 +18,7 @@
 ///   sheet-set CELL VALUE set the sheet cell (input sheet/CELL), as typing in the Sheet does
 ///   chart-add PATTERN    chart the signals matching PATTERN
 ///   chart-csv FILE       set the chart's CSV file name (then `click Export CSV`)
-///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet,
+///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet, script,
 ///                        editor, log, body)
 ///   select BODY          pick a body by ID (as a click in the world view does)
 ///   editor-open FILE     show the scene editor's file whose name is FILE

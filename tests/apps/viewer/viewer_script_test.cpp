@@ -9,6 +9,7 @@
 #include "viewer_test_support.hpp"
 
 #include <chrono>
+#include <tuple>
 
 namespace {
 
@@ -261,35 +262,45 @@ TEST_F(ViewerScript, ScriptTrailHudAndXyChart) {
   EXPECT_TRUE(expected == read_file(chart_csv)) << "the XY chart's CSV differs from s2sim-run's";
 }
 
-// Issue 16, acceptance 4: every signal of the largest shared SimTwo project charted for 60 s
-// simulated stays under the documented bound (docs/viewer.md, "Chart memory"): the chart holds
-// at most the last --chart-span seconds and at most ChartData::kMaxStoredValues numbers (64 MB),
-// so the process's peak memory grows by less than 100 MB over the same run without the chart.
+// Issue 16, acceptance 4: every signal of the largest shared SimTwo project (`default`, 881
+// signals at 1 kHz) charted for 60 s simulated stays under the documented bound
+// (docs/viewer.md, "Chart memory"): the chart holds at most ChartData::kMaxStoredValues numbers
+// (64 MB; here the last 7.3 s), so the process's peak memory exceeds that of a run without the
+// chart by less than 100 MB. The baseline runs 5 s: a longer run without the chart holds no
+// more, which only makes the comparison stricter.
 TEST_F(ViewerScript, ChartingEverySignalFor60SecondsStaysUnderTheMemoryBound) {
-  const fs::path scene = kShared / "RobotFactoryLite";
-  auto peak_kB = [&](std::vector<std::string> args) {
-    for (const char* c : {"speed 0", "run-until 60", "print chart-samples", "print memory"})
+  const fs::path scene = kShared / "default";
+  auto run_for = [&](const char* until, std::vector<std::string> args) {
+    for (const char* c : {"speed 0", until, "print chart-samples", "print memory"})
       args.insert(args.end(), {"--do", c});
     const Result r = view(scene.string(), args);
     EXPECT_EQ(r.status, 0) << r.err;
     std::printf("%s", r.out.c_str());
-    long rss = 0, hwm = 0;
-    std::sscanf(lines_with(r.out, "memory ").at(0).c_str(), "%ld %ld", &rss, &hwm);
-    return std::pair<long, std::string>(hwm, lines_with(r.out, "chart-samples ").at(0));
+    long rss_kB = 0, peak_kB = 0;
+    std::sscanf(lines_with(r.out, "memory ").at(0).c_str(), "%ld %ld", &rss_kB, &peak_kB);
+    std::size_t samples = 0;
+    double first_s = 0, last_s = 0;
+    std::sscanf(lines_with(r.out, "chart-samples ").at(0).c_str(), "%zu %lf %lf", &samples,
+                &first_s, &last_s);
+    return std::tuple(peak_kB, samples, first_s, last_s);
   };
-  const auto [without_kB, no_samples] = peak_kB({"--no-script", "--hide-ui"});
-  const auto [with_kB, samples] =
-      peak_kB({"--no-script", "--hide-ui", "--chart", "*", "--chart-span", "60"});
-  const auto [short_kB, short_samples] =
-      peak_kB({"--no-script", "--hide-ui", "--chart", "*", "--chart-span", "5"});
+  const long without_kB = std::get<0>(run_for("run-until 5", {"--no-script", "--hide-ui"}));
+  const auto [with_kB, samples, first_s, last_s] =
+      run_for("run-until 60", {"--no-script", "--hide-ui", "--chart", "*"});
   EXPECT_LT(with_kB - without_kB, 100 * 1024)
       << "peak " << with_kB << " kB against " << without_kB << " kB without the chart";
-  EXPECT_LT(short_kB, with_kB);
-  std::size_t n = 0;
-  double first = 0, last = 0;
-  ASSERT_EQ(std::sscanf(short_samples.c_str(), "%zu %lf %lf", &n, &first, &last), 3);
-  EXPECT_NEAR(last, 60, 1e-6);
-  EXPECT_NEAR(first, 55, 0.01) << "a 5 s span keeps the last 5 s";
+  EXPECT_NEAR(last_s, 60, 1e-6);
+  EXPECT_GT(first_s, 50) << "the oldest samples were dropped";
+  EXPECT_GT(samples, 5000u) << "but seconds of them are kept";
+}
+
+// --chart-span keeps the last SECONDS of simulated time.
+TEST_F(Viewer, ChartSpanKeepsTheLastSeconds) {
+  const Result r = view(robot_scene().string(),
+                        {"--hide-ui", "--chart", "robots/*/x", "--chart-span", "2", "--do",
+                         "speed 0", "--do", "run-until 5", "--do", "print chart-samples"});
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(lines_with(r.out, "chart-samples ").at(0), "2001 3.000000 5.000000");
 }
 
 // Issue 16, acceptance 4: Reset replays the run exactly, --set inputs included.
