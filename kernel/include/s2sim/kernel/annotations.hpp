@@ -2,7 +2,7 @@
 /// \file
 /// What components publish for the people watching a simulation (SDK 0.9:
 /// `StepContext::log_line`, `set_hud_text`, `add_trail_point`, `add_xy_point`): log lines, HUD
-/// texts, trails and XY series. The viewer draws them; the runner prints the log lines. They
+/// texts, trails and XY series. The viewer draws them (s2sim-run does not read them). They
 /// are not part of the simulation's state: a reset forgets them and a snapshot does not hold
 /// them. Every list is bounded, so a component publishing every tick cannot exhaust memory.
 
