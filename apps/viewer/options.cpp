@@ -51,7 +51,8 @@ const char* usage_text() {
   --chart-span S           simulated seconds of history the chart keeps, 1 to 3600 (60)
   --script-file FILE       run this SimTwo script instead of the one the project names
   --run-script             run the project's SimTwo script even when its control block is not
-                           "Script"        --no-script   do not run it
+                           "Script"
+  --no-script              do not run the project's SimTwo script
   --sheet R,C=VALUE        set SimTwo's sheet cell (row R, column C, from 1) before the start
   --show-window NAME       open a window: run, configuration, chart, sheet, editor, script,
                            log, body

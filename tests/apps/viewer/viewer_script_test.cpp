@@ -365,4 +365,20 @@ TEST_F(Viewer, SceneEditorValidatesAnEditBeforeWritingAndKeepsThePreviousVersion
   EXPECT_EQ(read_file(scene / "scene.xml~"), original);
 }
 
+// The new options' bad values are usage errors (exit 4) naming the option.
+TEST_F(Viewer, BadScriptAndChartOptionsAreUsageErrorsNamingTheOption) {
+  const std::string scene = (kSource / "scenes/default").string();
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--sheet", "1,x=3"}, "--sheet"},
+      {{"--chart-span", "0"}, "--chart-span"},
+      {{"--no-script", "--script-file", "a.pas"}, "--script-file and --no-script"},
+      {{"--show-window", "scripts"}, "script, log"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const Result r = view(scene, args);
+    EXPECT_EQ(r.status, 4) << args[0] << "\n" << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+  }
+}
+
 }  // namespace
