@@ -3,7 +3,10 @@
 /// What the viewer's tests share: running s2sim-view under xvfb-run (the `Viewer` fixture)
 /// and s2sim-run, reading their output.
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -71,6 +74,18 @@ inline fs::path robot_scene() {
 class Viewer : public ::testing::Test {
  protected:
   void SetUp() override {
+    // A SimTwo project's script listens on UDP 9808 (SimTwo's default), as does
+    // scenes/cartpole_remote's link: a free port for the scripts, so parallel tests do not
+    // collide there.
+    const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t length = sizeof address;
+    if (fd >= 0 && ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) == 0)
+      ::setenv("S2SIM_UDP_PORT", std::to_string(ntohs(address.sin_port)).c_str(), 1);
+    if (fd >= 0) ::close(fd);
     if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is missing: install xvfb to run the viewer tests";
     ASSERT_TRUE(fs::exists(kViewer)) << kViewer << " not built";
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
