@@ -66,3 +66,25 @@ if [ -d "$shared/base" ]; then
   shot viewer-simtwo-base "$shared/base" --show-window log --do "follow Classic" \
     --do "camera -120 35 2.2" --do "run-until 1"
 fi
+
+# SimTwo scripts in the viewer (issues 11, 15). The compile cache of the tests, if built.
+export S2SIM_PASCAL_CACHE="${S2SIM_PASCAL_CACHE:-$build/pascal-cache}"
+if [ -d "$shared/MotorModel_V3AGM" ] && command -v fpc >/dev/null; then
+  # The script editor after Compile: fpc's located error, its line shown (the project's named
+  # script, control_PosCascata.pas, does not compile in SimTwo either).
+  cp -r "$shared/MotorModel_V3AGM" "$tmp/motor"
+  shot viewer-script-error "$tmp/motor" --show-window script --show-window log --do "wait 3" \
+    --do "click Compile" --do "wait 1" --do "script-goto-error 1" --do "wait 3"
+fi
+if [ -d "$shared/RobotFactoryLite" ] && command -v fpc >/dev/null; then
+  # RobotFactoryLite under its script with its sheet, its [Set] button pressed at 0.5 s.
+  shot viewer-script-sheet "$shared/RobotFactoryLite" --show-window sheet --show-window log \
+    --do "run-until 0.5" --do "click Set##C11" --do "run-until 2"
+fi
+if [ -d "$shared/base" ] && command -v fpc >/dev/null; then
+  # A script's trail (AddTrailNode), HUD lines (HUDStrings) and WriteLn lines, and the chart's
+  # XY mode: the robot's y against its x beside the script's own XY series.
+  shot viewer-script-trail-xy "$shared/base" \
+    --script-file "$repo/tests/apps/viewer/fixtures/trail_xy.pas" --show-window log \
+    --do "chart-xy robots/Classic/x robots/Classic/y" --do "show chart" --do "run-until 4"
+fi

@@ -4,10 +4,12 @@
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
 #include "screenshot.hpp"
+#include "script_session.hpp"
 #include "simtwo_camera.hpp"
 #include "ui_script.hpp"
 #include "viewer_state.hpp"
 #include "windows/panels.hpp"
+#include "windows/published_overlay.hpp"
 #include "windows/windows.hpp"
 #include "windows/world_overlay.hpp"
 #include "world_input.hpp"
@@ -106,9 +108,10 @@ class App {
     state_.run.as_fast_as_possible = options.speed == 0;
     for (const auto& name : options.show_windows)
       if (!set_window(state_.windows, name, true))
-        throw Error(ErrorKind::usage, "--show-window: unknown window '" + name +
-                                          "' (run, configuration, chart, sheet, editor, log, "
-                                          "body)");
+        throw Error(ErrorKind::usage,
+                    "--show-window: unknown window '" + name +
+                        "' (run, configuration, chart, sheet, editor, script, log, "
+                        "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
     register_layout_settings(state_);
@@ -117,7 +120,8 @@ class App {
     ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
     ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
     renderer_.init();
-    install(load_simulation(options));
+    state_.chart.set_span(options.chart_span_s);
+    install(load_simulation_keeping_script_errors(state_, options));
     state_.run.held_inputs = options.inputs;
     // The runner's selection, so an exported chart has s2sim-run's columns in its order.
     if (!options.chart_signals.empty()) {
@@ -168,6 +172,8 @@ class App {
                          fixed_pacing);
       drawables_.update(*state_.sim);
       record_trails(state_);
+      collect_published_lines(state_);
+      reload_script_if_changed(state_);
       frame_camera();
 
       // The 3-D view in framebuffer pixels (they differ from ImGui's on a HiDPI screen).
@@ -178,6 +184,7 @@ class App {
                      {world.x * scale, world.y * scale, world.width * scale, world.height * scale},
                      height, state_.render);
       draw_world_overlay(state_);
+      draw_published_overlay(state_);
       draw_windows();
       ImGui::Render();
       for (const std::string& what : state_.end_of_frame_prints)
@@ -223,6 +230,8 @@ class App {
     if (state_.camera.follow_robot >= static_cast<int>(state_.sim->scene().robots.size()))
       state_.camera.follow_robot = -1;
     load_editor_files(state_);
+    open_scene_script(state_);
+    state_.next_published_line = 0;
   }
 
   /// The view's width over its height.

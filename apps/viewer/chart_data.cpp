@@ -10,15 +10,11 @@
 #include <limits>
 
 namespace s2sim::viewer {
-namespace {
-// About 100 MB of doubles at most: beyond it the oldest half of the history is dropped.
-constexpr std::size_t kMaxStoredValues = 12'000'000;
-}  // namespace
-
 void ChartData::add_signal(std::size_t signal) {
   if (has_signal(signal)) return;
   signals_.push_back(signal);
   values_.emplace_back(times_s_.size(), std::numeric_limits<double>::quiet_NaN());
+  values_.back().reserve(times_s_.capacity());
 }
 
 void ChartData::remove_signal(std::size_t signal) {
@@ -33,6 +29,7 @@ bool ChartData::has_signal(std::size_t signal) const {
 }
 
 void ChartData::clear_samples() {
+  begin_ = 0;
   times_s_.clear();
   for (auto& v : values_)
     v.clear();
@@ -42,18 +39,53 @@ void ChartData::clear() {
   signals_.clear();
   values_.clear();
   times_s_.clear();
+  begin_ = 0;
+}
+
+std::size_t ChartData::stored_values() const {
+  std::size_t n = times_s_.capacity();
+  for (const auto& v : values_)
+    n += v.capacity();
+  return n;
+}
+
+void ChartData::drop_front(std::size_t count) {
+  begin_ += count;
+  // Compact once a quarter is dead: the buffers keep their capacity, so no allocation.
+  if (begin_ >= 64 && begin_ * 4 >= times_s_.size()) {
+    const auto dead = static_cast<long>(begin_);
+    times_s_.erase(times_s_.begin(), times_s_.begin() + dead);
+    for (auto& v : values_)
+      v.erase(v.begin(), v.begin() + dead);
+    begin_ = 0;
+  }
 }
 
 void ChartData::record(const Simulation& sim) {
-  if ((times_s_.size() + 1) * (values_.size() + 1) > kMaxStoredValues) {
-    const auto half = static_cast<long>(times_s_.size() / 2);
-    times_s_.erase(times_s_.begin(), times_s_.begin() + half);
+  const double now_s = sim.time_s();
+  const std::size_t per_sample = signals_.size() + 1;
+  const std::size_t max_samples = std::max<std::size_t>(2, kMaxStoredValues * 4 / 5 / per_sample);
+  if (times_s_.size() == times_s_.capacity()) {
+    // Grow as a vector does, but never past what compaction can leave: at most a third more
+    // than the live samples, plus the 64 compaction waits for.
+    const std::size_t limit = max_samples * 4 / 3 + 70;
+    const std::size_t capacity =
+        std::max(times_s_.size() + 1, std::min(2 * times_s_.capacity() + 64, limit));
+    times_s_.reserve(capacity);
     for (auto& v : values_)
-      v.erase(v.begin(), v.begin() + half);
+      v.reserve(capacity);
   }
-  times_s_.push_back(sim.time_s());
+  times_s_.push_back(now_s);
   for (std::size_t k = 0; k < signals_.size(); ++k)
     values_[k].push_back(sim.signal(signals_[k]));
+  // The span (a tick's slack, so a span of T seconds keeps T / tick + 1 samples)...
+  std::size_t old = 0;
+  const double from_s = now_s - span_s_ - 0.5 * sim.tick_s();
+  while (old < size() && times_s_[begin_ + old] < from_s)
+    ++old;
+  // ...and the bound on the numbers kept (0.8 of it live, the rest slack before compaction).
+  if (size() - old > max_samples) old = size() - max_samples;
+  if (old > 0) drop_front(old);
 }
 
 std::string ChartData::export_csv(const std::string& file, const Simulation& sim) const {
@@ -61,7 +93,7 @@ std::string ChartData::export_csv(const std::string& file, const Simulation& sim
   if (out == nullptr) return "cannot write '" + file + "': " + std::strerror(errno);
   apps::write_csv_header(out, sim, signals_);
   std::vector<double> row(signals_.size());
-  for (std::size_t i = 0; i < times_s_.size(); ++i) {
+  for (std::size_t i = begin_; i < times_s_.size(); ++i) {
     for (std::size_t k = 0; k < signals_.size(); ++k)
       row[k] = values_[k][i];
     apps::write_csv_row(out, times_s_[i], row);

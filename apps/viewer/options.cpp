@@ -3,6 +3,7 @@
 #include <s2sim/error.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 
@@ -47,7 +48,14 @@ const char* usage_text() {
   --speed X                times real time, 0.1 to 1000; 0 = as fast as possible (1)
   --paused                 start paused
   --chart SIGNAL...        signals to chart (patterns, as s2sim-run --signals)
-  --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
+  --chart-span S           simulated seconds of history the chart keeps, 1 to 3600 (60)
+  --script-file FILE       run this SimTwo script instead of the one the project names
+  --run-script             run the project's SimTwo script even when its control block is not
+                           "Script"
+  --no-script              do not run the project's SimTwo script
+  --sheet R,C=VALUE        set SimTwo's sheet cell (row R, column C, from 1) before the start
+  --show-window NAME       open a window: run, configuration, chart, sheet, editor, script,
+                           log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
@@ -100,6 +108,26 @@ Options parse_options(int argc, char** argv) {
       while (i + 1 < argc && argv[i + 1][0] != '-')
         o.chart_signals.emplace_back(argv[++i]);
       if (o.chart_signals.empty()) throw Error(ErrorKind::usage, a + ": missing signal");
+    } else if (a == "--chart-span") {
+      o.chart_span_s = parse_double(a, value(i, a));
+      if (!(o.chart_span_s >= 1 && o.chart_span_s <= 3600))
+        throw Error(ErrorKind::usage, a + ": must be 1 to 3600 seconds");
+    } else if (a == "--script-file") {
+      o.script_file = value(i, a);
+    } else if (a == "--sheet") {
+      const std::string v = value(i, a);
+      int row = 0, col = 0, used = 0;
+      if (std::sscanf(v.c_str(), "%d,%d=%n", &row, &col, &used) != 2 || used == 0 || row < 1 ||
+          col < 1)
+        throw Error(ErrorKind::usage, a + ": expected ROW,COLUMN=VALUE (from 1), got '" + v + "'");
+      char text[40];
+      std::snprintf(text, sizeof text, "%.17g",
+                    parse_double(a, v.substr(static_cast<std::size_t>(used))));
+      o.sheet_cells.push_back({row, col, text});
+    } else if (a == "--run-script") {
+      o.script_mode = ScriptMode::always;
+    } else if (a == "--no-script") {
+      o.script_mode = ScriptMode::off;
     } else if (a == "--show-window") {
       o.show_windows.push_back(value(i, a));
     } else if (a == "--font-scale") {
@@ -138,6 +166,10 @@ Options parse_options(int argc, char** argv) {
   }
   if (!o.help && o.scene.empty()) throw Error(ErrorKind::usage, "no scene given (see --help)");
   if (!o.screenshot_file.empty() && o.frames < 0) o.frames = 3;
+  if (o.script_mode == ScriptMode::off && !o.script_file.empty())
+    throw Error(ErrorKind::usage, "--script-file and --no-script contradict each other");
+  if (!o.script_file.empty() && o.script_mode == ScriptMode::control_block)
+    o.script_mode = ScriptMode::always;
   return o;
 }
 

@@ -2,6 +2,8 @@
 /// \file
 /// Command line of s2sim-view.
 
+#include <s2sim/kernel/simulation.hpp>
+
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -33,6 +35,15 @@ struct Options {
   bool no_frame_cap = false;       ///< draw as fast as possible (benchmark)
   bool report_fps = false;         ///< print frames per second at exit
   bool print_projections = false;  ///< print where each robot projects on screen (tests)
+  /// The SimTwo project's script (docs/scripting.md): as s2sim-run, it runs when the project's
+  /// control block says so (--run-script: always, --no-script: never); `script_file` is another
+  /// script (--script-file; the viewer's --script is its UI commands).
+  ScriptMode script_mode = ScriptMode::control_block;
+  std::string script_file;
+  /// --sheet R,C=VALUE: SimTwo sheet cells set before the start, as s2sim-run's.
+  std::vector<scene::SheetCell> sheet_cells;
+  /// Simulated seconds of history the chart keeps (--chart-span), a ring per signal.
+  double chart_span_s = 60;
   bool help = false;
 };
 

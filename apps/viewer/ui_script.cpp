@@ -19,6 +19,7 @@ bool set_window(WindowFlags& w, const std::string& name, bool open) {
                : name == "chart"         ? &w.chart
                : name == "sheet"         ? &w.sheet
                : name == "editor"        ? &w.editor
+               : name == "script"        ? &w.script
                : name == "log"           ? &w.log
                : name == "body"          ? &w.body
                                          : nullptr;
@@ -115,10 +116,11 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
                 .count());
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
-      else
+      else if (!print_more(state, rest))
         throw bad(
-            "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME or "
-            "editor-error");
+            "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME, "
+            "editor-error, script-errors, script-view, script-status, script-line N, hud, "
+            "log-count TEXT, script-trails, xy-series, chart-samples or memory");
       std::fflush(stdout);
     } else if (command == "overlay") {
       std::istringstream args(rest);
@@ -206,6 +208,8 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
       if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
       state.frame_request = false;  // following frames the robot, not the whole scene
+    } else if (more_commands(state, command, rest)) {
+      // script-*, chart-xy, chart-time: ui_script_more.cpp
     } else if (command == "screenshot") {
       screenshot_file = rest;
       return;

@@ -18,7 +18,7 @@
 ///   sheet-set CELL VALUE set the sheet cell (input sheet/CELL), as typing in the Sheet does
 ///   chart-add PATTERN    chart the signals matching PATTERN
 ///   chart-csv FILE       set the chart's CSV file name (then `click Export CSV`)
-///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet,
+///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet, script,
 ///                        editor, log, body)
 ///   select BODY          pick a body by ID (as a click in the world view does)
 ///   editor-open FILE     show the scene editor's file whose name is FILE
@@ -54,6 +54,25 @@ class UiScript {
   int wait_frames_ = 0;
   bool running_ = false;  ///< inside run-until
 };
+
+/// The commands of ui_script_more.cpp (SimTwo script editor, XY chart, HUD, memory):
+///   script-goto-error N  show the script's N-th compile error's line, as clicking it does
+///   script-set-line N TEXT   replace line N (1-based) of the script editor's text
+///   chart-xy X Y         chart signal Y against signal X (exact names); chart-time: back
+///   sleep S              wait S seconds of wall time (tests that change files meanwhile)
+///   print script-errors  "script-error FILE LINE COLUMN TEXT" for each compile error
+///   print script-view    "script-view FIRST LAST HIGHLIGHT": the lines the editor shows
+///   print script-status  "script-status LOADED RUNNING STATUS"
+///   print script-line N  "script-line N TEXT" of the editor's text
+///   print hud            "hud TEXT" (lines joined by " | ")
+///   print log-count TEXT "log-count N": the log's lines that contain TEXT
+///   print script-trails  "script-trail SOURCE ID POINTS" for each published trail
+///   print xy-series      "xy-series SOURCE ID POINTS" for each published XY series
+///   print chart-samples  "chart-samples N FIRST_S LAST_S"
+///   print memory         "memory VmRSS_kB VmHWM_kB" (/proc/self/status)
+/// Each returns false for a command (or print argument) it does not know.
+bool more_commands(ViewerState& state, const std::string& command, const std::string& rest);
+bool print_more(ViewerState& state, const std::string& what);
 
 /// Opens or closes a window by name; false for an unknown name.
 bool set_window(WindowFlags& windows, const std::string& name, bool open);

@@ -30,7 +30,9 @@ bool move_body(ViewerState& state, int body, const Vec3& position_m) {
 }
 
 std::unique_ptr<Simulation> load_simulation(const Options& o) {
-  auto sim = Simulation::load(o.scene, apps::simulation_options(o));
+  SimulationOptions options = apps::simulation_options(o);
+  options.sheet_cells = o.sheet_cells;
+  auto sim = Simulation::load(o.scene, options);
   for (const auto& [name, value] : o.inputs)
     sim->set_input(name, value);
   return sim;

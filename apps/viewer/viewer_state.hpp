@@ -45,8 +45,32 @@ struct EditorState {
   std::string status;
 };
 
+/// A located message of the script compiler: `file:line:column: text`.
+struct ScriptMessage {
+  std::string file;
+  int line = 0, column = 0;
+  std::string text;
+};
+
+/// The Script window (windows/script_window.cpp, script_session.cpp): SimTwo's script editor.
+struct ScriptEditorState {
+  std::filesystem::path file;               ///< the project's script; empty when it has none
+  std::string text;                         ///< what the editor shows (maybe edited)
+  std::string on_disk;                      ///< the file as last read or saved
+  std::filesystem::file_time_type mtime{};  ///< of the file when read or saved
+  std::vector<ScriptMessage> errors;        ///< of the last compile
+  std::string status;
+  int highlight_line = -1;                            ///< 1-based: the error line shown, -1 = none
+  int scroll_to_line = -1;                            ///< scroll there in the next frame
+  int first_visible_line = 0, last_visible_line = 0;  ///< as last drawn (tests)
+};
+
 /// What the chart window shows (the samples are in ChartData).
 struct ChartView {
+  /// XY mode: series `y_series` against series `x_series` (positions in ChartData::signals(),
+  /// -1 = unset), and the XY series a SimTwo script publishes (Simulation::annotations()).
+  bool xy = false;
+  int x_series = -1, y_series = -1;
   double window_s = 10;  ///< visible time span
   bool frozen = false;   ///< "pause": the view stops following new samples
   double frozen_end_s = 0;
@@ -70,6 +94,7 @@ struct WindowFlags {
   bool chart = false;
   bool sheet = false;
   bool editor = false;
+  bool script = false;
   bool log = false;
   bool body = false;
 };
@@ -83,6 +108,9 @@ struct ViewerState {
   ChartView chart_view;
   std::vector<LogLine> log;
   EditorState editor;
+  ScriptEditorState script_editor;
+  /// The next annotation log line to copy into the log (Simulation::annotations()).
+  std::uint64_t next_published_line = 0;
   WindowFlags windows;
   LayoutFractions layout;    ///< column sizes the user set (saved in the ImGui ini file)
   TiledLayout layout_rects;  ///< this frame's rectangles, the 3-D view's included
@@ -129,7 +157,13 @@ bool button(ViewerState& state, const char* label);
 /// returns false then.
 bool move_body(ViewerState& state, int body, const Vec3& position_m);
 
-/// Loads options.scene with the options' seed, step and constants; throws s2sim::Error.
+/// Loads options.scene with the options' seed, step, constants and script settings; throws
+/// s2sim::Error.
 std::unique_ptr<Simulation> load_simulation(const Options& options);
+/// load_simulation, but a SimTwo script that does not compile does not refuse the scene: its
+/// located messages go to `state.script_editor.errors` (and the log), and the scene loads
+/// without its script. Other errors throw as load_simulation's.
+std::unique_ptr<Simulation> load_simulation_keeping_script_errors(ViewerState& state,
+                                                                  const Options& options);
 
 }  // namespace s2sim::viewer

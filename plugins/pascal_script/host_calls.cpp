@@ -33,6 +33,11 @@ AxisRef& ScriptController::axis(double r, double i) {
   if (i < 0 || i >= static_cast<double>(rb.axes.size())) fail(index_error(i));
   return rb.axes[static_cast<std::size_t>(i)];
 }
+int ScriptController::chart_series(double chart, double series) {
+  if (chart < 0 || chart >= kMaxCharts) fail(index_error(chart));
+  if (series < 0 || series >= kMaxChartSeries) fail(index_error(series));
+  return static_cast<int>(chart) * kMaxChartSeries + static_cast<int>(series);
+}
 SolidRef& ScriptController::solid(double r, double i) {
   RobotRef& rb = robot(r);
   if (i < 0 || i >= static_cast<double>(rb.solids.size())) fail(index_error(i));
@@ -129,6 +134,7 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
   switch (fn) {
     case HostFn::WriteLn:
       std::fprintf(stderr, "script: %s\n", s.c_str());
+      ctx.log_line(s);  // the viewer's Log window (SDK 0.9)
       output_.push_back(s);
       if (output_.size() > 100) output_.pop_front();
       return 0;
@@ -455,13 +461,32 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::ClearObstacles:
       not_provided(fn, "obstacles are fixed at load");
     case HostFn::ChartSeriesSetCount:
+      need(2);
+      (void)chart_series(a[0], 0);
+      if (a[1] < 0 || a[1] > kMaxChartSeries) fail(index_error(a[1]));
+      return 0;  // series exist once they have points
     case HostFn::ChartSeriesSetColor:
+      need(3);
+      (void)chart_series(a[0], a[1]);
+      return 0;  // the viewer colours series itself (docs/scripting.md)
     case HostFn::ChartSeriesClear:
+      need(2);
+      ctx.clear_xy_series(chart_series(a[0], a[1]));
+      return 0;
     case HostFn::ChartSeriesAddXY:
-      not_provided(fn, "the viewer's chart plots signals; log them with --log");
+      need(4);
+      ctx.add_xy_point(chart_series(a[0], a[1]), a[2], a[3]);
+      return 0;
     case HostFn::AddTrailNode:
+      need(4);
+      if (a[0] < 0 || a[0] > kMaxTrails) fail(index_error(a[0]));
+      ctx.add_trail_point(static_cast<int>(a[0]), Vec3{a[1], a[2], a[3]});
+      return 0;
     case HostFn::ClearTrail:
-      not_provided(fn, "the viewer draws no trails yet");
+      need(1);
+      if (a[0] < 0 || a[0] > kMaxTrails) fail(index_error(a[0]));
+      ctx.clear_trail(static_cast<int>(a[0]));
+      return 0;
     case HostFn::WriteUDPData:
       need(1);
       udp_.send(s, static_cast<int>(a[0]), s2);
@@ -477,6 +502,14 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       return 0;
     case HostFn::HUDText:
       hud_ = s;
+      {  // TStringList.Text: CR LF after every line; the viewer wants '\n' between lines
+        std::string lines;
+        for (char c : s)
+          if (c != '\r') lines += c;
+        while (!lines.empty() && lines.back() == '\n')
+          lines.pop_back();
+        ctx.set_hud_text(lines);  // drawn over the viewer's 3-D view (SDK 0.9)
+      }
       return 0;
     case HostFn::count:
       break;

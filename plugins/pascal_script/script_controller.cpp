@@ -133,6 +133,9 @@ void ScriptController::configure(ConfigureContext& ctx) {
   state_ = ctx.declare_state("script", static_cast<int>(3 + axis_count), 0.0);
   sig_error_ = ctx.declare_signal("error", "1");
   sig_calls_ = ctx.declare_signal("calls", "1");
+  // SimTwo's Stop and Run (the viewer's Script window): 0 stops the calls; a new non-zero
+  // value starts the script afresh (fresh globals, Initialize at the next script tick).
+  run_input_ = ctx.declare_input("running", "1", 1.0);
 
   // Compile (or find in the cache). A compile error refuses the scene, located.
   const CompileResult compiled = compile_script(script_, CompilerSettings::from_environment());
@@ -195,6 +198,7 @@ void ScriptController::initialize(StepContext& ctx) {
     ctx.set_input(sheet_inputs_[i], sheet_initial_values_[i]);
   output_.clear();
   hud_.clear();
+  last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
   if (available_) {
     try {
@@ -222,6 +226,20 @@ void ScriptController::update(StepContext& ctx) {
       }
       ++k;
     }
+  const double run = ctx.input(run_input_);
+  if (run != last_run_value_) {
+    last_run_value_ = run;
+    if (run != 0) {  // Run: fresh globals, Initialize first, any earlier error forgotten
+      load_library();
+      s[0] = 0;
+      s[1] = 0;
+      ctx.publish(sig_error_, 0);
+      ctx.log_line("script started");
+    } else {
+      ctx.log_line("script stopped");
+    }
+  }
+  if (run == 0) return;   // stopped (SimTwo's Stop)
   if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
   ctx_ = &ctx;
   std::string error;
@@ -249,6 +267,7 @@ void ScriptController::update(StepContext& ctx) {
   if (!ok) {
     s[1] = 1;  // SimTwo switches the control block to None: no further calls
     ctx.publish(sig_error_, 1);
+    ctx.log_line(last_error_ + "; the script is stopped");
   }
 }
 

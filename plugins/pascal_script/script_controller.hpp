@@ -22,7 +22,11 @@
 
 namespace s2sim::pascal {
 
-inline constexpr int kMaxNumbers = 4096;  // a host function's numeric result (ranger rays...)
+inline constexpr int kMaxNumbers = 4096;
+// SimTwo's trails and chart series by index; the viewer gets series chart * 100 + series.
+inline constexpr int kMaxTrails = 255;
+inline constexpr int kMaxCharts = 100;
+inline constexpr int kMaxChartSeries = 100;  // a host function's numeric result (ranger rays...)
 
 /// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
 inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
@@ -92,6 +96,8 @@ class ScriptController final : public Component {
   SensorRef& robot_sensor(double r, double i);
   SensorRef& global_sensor(double i);
   SolidRef& solid(double r, double i);
+  /// The XY series id the viewer gets for SimTwo's (chart, series); raises out of range.
+  int chart_series(double chart, double series);
   ThingRef& thing(double t);
   double sensor_value(const SensorRef& s, bool substitute);
   void sensor_values(const SensorRef& s);
@@ -121,6 +127,8 @@ class ScriptController final : public Component {
   // No "compiled" signal: whether this load found the library in the cache is not part of
   // the run, and a signal of it made the logs of a cold and a warm run differ.
   SignalHandle sig_error_, sig_calls_;
+  InputHandle run_input_;
+  double last_run_value_ = 1;  // the `running` input as last seen (Run restarts on a change)
   bool loaded_poses_ = false;
 
   // Run-time state outside the kernel (docs/scripting.md, "State"): the script's own globals,

@@ -54,7 +54,7 @@ void plot(ViewerState& state) {
   const ChartData& chart = state.chart;
   ChartView& view = state.chart_view;
   const Simulation& sim = *state.sim;
-  const auto& times = chart.times_s();
+  const auto times = chart.times_s();
 
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
@@ -119,7 +119,7 @@ void plot(ViewerState& state) {
   const std::size_t stride =
       std::max<std::size_t>(1, (last - first) / static_cast<std::size_t>(2 * (right - left)));
   for (std::size_t k = 0; k < chart.signals().size(); ++k) {
-    const auto& values = chart.values(k);
+    const auto values = chart.values(k);
     ImVec2 previous;
     bool has_previous = false;
     for (std::size_t i = first; i < last; i += stride) {
@@ -150,6 +150,138 @@ void plot(ViewerState& state) {
   }
 }
 
+/// XY mode: one charted signal against another over the visible time span (a trajectory),
+/// and the XY series a SimTwo script publishes (ChartSeriesAddXY), each axis scaled to its
+/// data with equal metres per pixel when both share a unit (a path keeps its shape).
+void plot_xy(ViewerState& state) {
+  const ChartData& chart = state.chart;
+  ChartView& view = state.chart_view;
+  const Simulation& sim = *state.sim;
+  const auto& signals = chart.signals();
+  auto chooser = [&](const char* label, int& series) {
+    const char* current =
+        series >= 0 && series < static_cast<int>(signals.size())
+            ? sim.signal_info(signals[static_cast<std::size_t>(series)]).name.c_str()
+            : "(tick a signal)";
+    ImGui::SetNextItemWidth(220);
+    if (ImGui::BeginCombo(label, current)) {
+      for (std::size_t k = 0; k < signals.size(); ++k)
+        if (ImGui::Selectable(sim.signal_info(signals[k]).name.c_str(),
+                              static_cast<int>(k) == series))
+          series = static_cast<int>(k);
+      ImGui::EndCombo();
+    }
+  };
+  chooser("X##xy", view.x_series);
+  ImGui::SameLine();
+  chooser("Y##xy", view.y_series);
+
+  // The curves: (x, y) pairs, the charted pair first, then the script's series.
+  struct Curve {
+    std::vector<std::pair<double, double>> points;
+    std::string name;
+  };
+  std::vector<Curve> curves;
+  const bool pair_ok = view.x_series >= 0 && view.y_series >= 0 &&
+                       view.x_series < static_cast<int>(signals.size()) &&
+                       view.y_series < static_cast<int>(signals.size());
+  std::string unit_x, unit_y;
+  if (pair_ok) {
+    const auto times = chart.times_s();
+    const double end_s = view.frozen ? view.frozen_end_s : sim.time_s();
+    const auto first = static_cast<std::size_t>(
+        std::lower_bound(times.begin(), times.end(), end_s - view.window_s) - times.begin());
+    const auto xs = chart.values(static_cast<std::size_t>(view.x_series));
+    const auto ys = chart.values(static_cast<std::size_t>(view.y_series));
+    Curve c;
+    const SignalInfo& ix = sim.signal_info(signals[static_cast<std::size_t>(view.x_series)]);
+    const SignalInfo& iy = sim.signal_info(signals[static_cast<std::size_t>(view.y_series)]);
+    unit_x = ix.unit, unit_y = iy.unit;
+    c.name = iy.name + " against " + ix.name;
+    const std::size_t stride = std::max<std::size_t>(1, (times.size() - first) / 4000);
+    for (std::size_t i = first; i < times.size(); i += stride)
+      if (std::isfinite(xs[i]) && std::isfinite(ys[i])) c.points.emplace_back(xs[i], ys[i]);
+    curves.push_back(std::move(c));
+  }
+  for (const auto& series : sim.annotations().series) {
+    Curve c;
+    c.name = series.source + " series " + std::to_string(series.id);
+    c.points.assign(series.points.begin(), series.points.end());
+    curves.push_back(std::move(c));
+  }
+
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const float legend_h = ImGui::GetTextLineHeightWithSpacing() *
+                         static_cast<float>(std::max<std::size_t>(1, curves.size()));
+  const ImVec2 size(std::max(100.0f, avail.x), std::max(80.0f, avail.y - legend_h - 4));
+  ImGui::InvisibleButton("xyplot", size);
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Curve& c : curves)
+    for (const auto& [x, y] : c.points) {
+      x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    }
+  if (!(x0 <= x1)) x0 = -1, x1 = 1, y0 = -1, y1 = 1;
+  if (x1 - x0 < 1e-12) x0 -= 0.5, x1 += 0.5;
+  if (y1 - y0 < 1e-12) y0 -= 0.5, y1 += 0.5;
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float left = origin.x + 60, right = origin.x + size.x - 8;
+  const float top = origin.y + 6, bottom = origin.y + size.y - 20;
+  // Same unit on both axes: the same scale, so a path keeps its shape.
+  if (unit_x == unit_y || unit_x.empty()) {
+    const double per_px = std::max((x1 - x0) / (right - left), (y1 - y0) / (bottom - top));
+    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
+    x0 = cx - 0.5 * per_px * (right - left), x1 = cx + 0.5 * per_px * (right - left);
+    y0 = cy - 0.5 * per_px * (bottom - top), y1 = cy + 0.5 * per_px * (bottom - top);
+  }
+  const double mx = 0.05 * (x1 - x0), my = 0.05 * (y1 - y0);
+  x0 -= mx, x1 += mx, y0 -= my, y1 += my;
+  auto px = [&](double x) {
+    return left + static_cast<float>((x - x0) / (x1 - x0)) * (right - left);
+  };
+  auto py = [&](double y) {
+    return bottom - static_cast<float>((y - y0) / (y1 - y0)) * (bottom - top);
+  };
+  dl->AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
+  char label[32];
+  const double ty = tick_step(y1 - y0, 5), tx = tick_step(x1 - x0, 8);
+  for (double v = std::ceil(y0 / ty) * ty; v <= y1; v += ty) {
+    dl->AddLine(ImVec2(left, py(v)), ImVec2(right, py(v)), IM_COL32(220, 220, 220, 255));
+    std::snprintf(label, sizeof label, "%.4g", std::abs(v) < ty * 1e-6 ? 0.0 : v);
+    dl->AddText(ImVec2(origin.x + 2, py(v) - 7), IM_COL32(230, 230, 230, 255), label);
+  }
+  for (double v = std::ceil(x0 / tx) * tx; v <= x1; v += tx) {
+    dl->AddLine(ImVec2(px(v), top), ImVec2(px(v), bottom), IM_COL32(220, 220, 220, 255));
+    std::snprintf(label, sizeof label, "%.4g", std::abs(v) < tx * 1e-6 ? 0.0 : v);
+    dl->AddText(ImVec2(px(v) - 12, bottom + 3), IM_COL32(230, 230, 230, 255), label);
+  }
+  dl->PushClipRect(ImVec2(left, top), ImVec2(right, bottom), true);
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const auto& points = curves[k].points;
+    for (std::size_t i = 1; i < points.size(); ++i)
+      dl->AddLine(ImVec2(px(points[i - 1].first), py(points[i - 1].second)),
+                  ImVec2(px(points[i].first), py(points[i].second)), series_colour(k), 1.5f);
+    if (!points.empty())  // where it is now
+      dl->AddCircleFilled(ImVec2(px(points.back().first), py(points.back().second)), 4,
+                          series_colour(k));
+  }
+  dl->PopClipRect();
+  dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
+  for (std::size_t k = 0; k < curves.size(); ++k) {
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float h = ImGui::GetTextLineHeight();
+    dl->AddRectFilled(ImVec2(p.x, p.y + h * 0.3f), ImVec2(p.x + 16, p.y + h * 0.7f),
+                      series_colour(k));
+    ImGui::Dummy(ImVec2(20, h));
+    ImGui::SameLine();
+    ImGui::Text("%s  (%zu points)", curves[k].name.c_str(), curves[k].points.size());
+  }
+  if (curves.empty())
+    ImGui::TextDisabled(
+        "Tick two signals, then choose X and Y (or run a script that calls "
+        "ChartSeriesAddXY).");
+}
+
 }  // namespace
 
 void draw_chart_window(ViewerState& state) {
@@ -161,6 +293,8 @@ void draw_chart_window(ViewerState& state) {
   }
   ImGui::SameLine();
   if (button(state, "Clear chart")) state.chart.clear_samples();
+  ImGui::SameLine();
+  ImGui::Checkbox("XY", &view.xy);
   ImGui::SameLine();
   ImGui::SetNextItemWidth(90);
   float window_s = static_cast<float>(view.window_s);
@@ -187,7 +321,10 @@ void draw_chart_window(ViewerState& state) {
     ImGui::TableNextColumn();
     signal_chooser(state);
     ImGui::TableNextColumn();
-    plot(state);
+    if (state.chart_view.xy)
+      plot_xy(state);
+    else
+      plot(state);
     ImGui::EndTable();
   }
 }

@@ -24,9 +24,7 @@ struct Panel {
   void (*draw)(ViewerState&);
 };
 
-// The tab order. The script editor (SimTwo's Pascal scripts, built on another branch) takes
-// its tab in the bottom group after the scene editor, as one more row here:
-//   {"script", "Script", Slot::bottom, &WindowFlags::script, draw_script_window},
+// The tab order.
 constexpr Panel kPanels[] = {
     {"configuration", "Configuration", Slot::left, &WindowFlags::configuration,
      draw_configuration_window},
@@ -35,6 +33,7 @@ constexpr Panel kPanels[] = {
     {"chart", "Chart", Slot::bottom, &WindowFlags::chart, draw_chart_window},
     {"sheet", "Sheet", Slot::bottom, &WindowFlags::sheet, draw_sheet_window},
     {"editor", "Scene editor", Slot::bottom, &WindowFlags::editor, draw_scene_editor_window},
+    {"script", "Script", Slot::bottom, &WindowFlags::script, draw_script_window},
 };
 
 constexpr ImGuiWindowFlags kFixed =

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <map>
 #include <optional>
 
 namespace s2sim::viewer {
@@ -46,9 +48,10 @@ void cell_widget(ViewerState& state, std::size_t input, const std::string& label
   const SignalInfo& info = sim.input_info(input);
   ImGui::PushID(static_cast<int>(input));
   if (info.unit == "button") {
+    // Pressed and not yet acted on: highlighted (the script's RCButtonPressed clears it).
     const bool down = sim.input(input) != 0;
     if (down) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.8f, 0.5f, 0.1f, 1));
-    if (button(state, label.c_str())) sim.set_input(input, 1);
+    if (button(state, label.c_str())) sim.set_input(input, sim.input(input) + 1);
     if (down) ImGui::PopStyleColor();
   } else {
     double value = sim.input(input);
@@ -60,6 +63,21 @@ void cell_widget(ViewerState& state, std::size_t input, const std::string& label
   ImGui::PopID();
 }
 
+bool is_number(const std::string& text) {
+  char* end = nullptr;
+  std::strtod(text.c_str(), &end);
+  while (end && *end == ' ')
+    ++end;
+  return end != text.c_str() && end && *end == '\0';
+}
+
+/// SimTwo's caption of a button cell: "[Set]" -> "Set".
+std::string button_caption(const std::string& text) {
+  const auto open = text.find('['), close = text.rfind(']');
+  if (open == std::string::npos || close == std::string::npos || close <= open) return text;
+  return text.substr(open + 1, close - open - 1);
+}
+
 }  // namespace
 
 void draw_sheet_window(ViewerState& state) {
@@ -68,6 +86,14 @@ void draw_sheet_window(ViewerState& state) {
   std::vector<std::pair<CellAddress, std::size_t>> cells;
   std::vector<std::size_t> others;
   int columns = 0, rows = 0;
+  // SimTwo's Global.S2Sheet: the texts of its cells (numbers and buttons are also inputs).
+  std::map<std::pair<int, int>, std::string> texts;  // (row, column from 0)
+  for (const scene::SheetCell& cell : sim.scene().sheet) {
+    if (cell.row < 1 || cell.col < 1 || cell.text.empty()) continue;
+    texts[{cell.row, cell.col - 1}] = cell.text;
+    columns = std::max(columns, cell.col);
+    rows = std::max(rows, cell.row);
+  }
   for (std::size_t i = 0; i < sim.input_count(); ++i) {
     const std::string& name = sim.input_info(i).name;
     if (name.compare(0, kPrefix.size(), kPrefix) != 0) continue;
@@ -79,7 +105,7 @@ void draw_sheet_window(ViewerState& state) {
       others.push_back(i);
     }
   }
-  if (cells.empty() && others.empty()) {
+  if (cells.empty() && others.empty() && texts.empty()) {
     ImGui::TextWrapped(
         "No sheet cells in this scene. A controller makes a cell by declaring the input "
         "`sheet/<cell>` (e.g. `sheet/B3`) with declare_input_at(); it reads and writes it with "
@@ -102,9 +128,23 @@ void draw_sheet_window(ViewerState& state) {
       ImGui::TextDisabled("%d", r);
       for (int c = 0; c < columns; ++c) {
         ImGui::TableNextColumn();
+        const std::string name = column_name(c) + std::to_string(r);
+        const auto text = texts.find({r, c});
+        bool drawn = false;
+        // A text that is not a number (a label) is shown as text, not as its input's 0.
+        const bool label = text != texts.end() && !is_number(text->second) &&
+                           text->second.find('[') == std::string::npos;
         for (const auto& [address, input] : cells)
-          if (address.column == c && address.row == r)
-            cell_widget(state, input, column_name(c) + std::to_string(r));
+          if (!label && address.column == c && address.row == r) {
+            // A button shows SimTwo's caption; "##B3" keeps equal captions apart.
+            const bool is_button = sim.input_info(input).unit == "button";
+            cell_widget(state, input,
+                        is_button && text != texts.end()
+                            ? button_caption(text->second) + "##" + name
+                            : name);
+            drawn = true;
+          }
+        if (!drawn && text != texts.end()) ImGui::TextUnformatted(text->second.c_str());
       }
     }
     ImGui::EndTable();

@@ -16,6 +16,9 @@ void draw_chart_window(ViewerState& state);
 void draw_sheet_window(ViewerState& state);
 /// The scene's XML files; apply reloads the scene and keeps the camera.
 void draw_scene_editor_window(ViewerState& state);
+/// SimTwo's script editor: the script with line numbers, Compile, Run, Stop, Save, the
+/// compiler's located errors (a click shows the line).
+void draw_script_window(ViewerState& state);
 /// Loader warnings and viewer messages.
 void draw_log_window(ViewerState& state);
 /// The data of the body picked in the world view.

@@ -177,6 +177,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.pending_places.reserve(m.poses.size());
   m.world.placer = &m;
   m.world.request_place = &Simulation::Impl::request_place;
+  m.world.annotator = &m;
+  m.world.annotate = &Simulation::Impl::annotate;
   m.declare_state();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

@@ -9,6 +9,7 @@
 /// - snapshot.cpp: the state layout, save, restore and placing bodies;
 /// - simulation.cpp: the remaining façade calls.
 
+#include <s2sim/kernel/annotations.hpp>
 #include <s2sim/kernel/simulation.hpp>
 
 #include "collision/ray_caster.hpp"
@@ -142,6 +143,12 @@ struct Simulation::Impl {
   std::vector<std::pair<std::int32_t, Pose>> pending_places;
   static void request_place(const void* impl, std::int32_t body, const Pose& pose);
   void apply_pending_places();
+
+  /// What components published for the people watching (WorldView::annotate,
+  /// annotations.cpp); cleared by reset, not part of a snapshot.
+  Annotations annotations;
+  static void annotate(const void* impl, std::int32_t component, std::int32_t what, std::int32_t id,
+                       const char* text, std::size_t text_size, const double* values);
 
   // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
   std::unique_ptr<collision::RayCaster> ray_caster;

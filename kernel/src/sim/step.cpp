@@ -242,6 +242,7 @@ void Simulation::Impl::refresh() {
 void Simulation::Impl::reset() {
   tick = 0;
   pending_places.clear();
+  annotations.clear();
   multibody->reset();
   contacts->reset();
   // Copy in place: the WorldView points into these buffers.

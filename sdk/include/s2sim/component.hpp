@@ -195,6 +195,23 @@ struct WorldView {
   /// after the stage that asked, before the physics (`StepContext::request_place`).
   const void* placer = nullptr;
   void (*request_place)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
+  /// What components show the people watching (SDK 0.9, ABI 6): `StepContext::log_line`,
+  /// `set_hud_text`, `add_trail_point`... `what` is a `detail::Annotation`.
+  const void* annotator = nullptr;
+  void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
+                   std::int32_t id, const char* text, std::size_t text_size,
+                   const double* values) = nullptr;
+};
+
+/// The kinds of `WorldView::annotate` calls; new kinds may be added without an ABI change (a
+/// kernel ignores a kind it does not know).
+enum class Annotation : std::int32_t {
+  log_line = 0,     ///< text: one line for the log
+  hud_text = 1,     ///< text: the component's HUD text (replaces the previous one)
+  trail_point = 2,  ///< id: trail, values: x, y, z in metres (world frame)
+  clear_trail = 3,  ///< id: trail
+  xy_point = 4,     ///< id: series, values: x, y
+  clear_xy = 5,     ///< id: series
 };
 }  // namespace detail
 
@@ -292,6 +309,32 @@ class StepContext {
     w_->request_place(w_->placer, b.index, pose);
   }
 
+  /// Publishes one line of text for the people watching (SDK 0.9): the viewer's Log window
+  /// shows it with the simulated time and the component's path. Not part of the simulation's
+  /// state (a reset forgets it, a snapshot does not hold it); the kernel keeps the last 1000
+  /// lines. Copies the text, so it may allocate: call it on events, not every tick.
+  void log_line(std::string_view text) { annotate(detail::Annotation::log_line, 0, text); }
+  /// Sets the component's head-up text (SDK 0.9), drawn over the 3-D view's top-left corner
+  /// until set again; lines separated by '\n', empty to clear it. Not part of the state.
+  void set_hud_text(std::string_view text) { annotate(detail::Annotation::hud_text, 0, text); }
+  /// Appends a world point to the component's trail `trail` (SDK 0.9), drawn as a polyline
+  /// in the 3-D view; the kernel keeps the latest 10 000 points of each trail. Not part of
+  /// the state.
+  void add_trail_point(int trail, const Vec3& point_m) {
+    const double xyz[3] = {point_m.x, point_m.y, point_m.z};
+    annotate(detail::Annotation::trail_point, trail, {}, xyz);
+  }
+  /// Removes every point of trail `trail` (SDK 0.9).
+  void clear_trail(int trail) { annotate(detail::Annotation::clear_trail, trail, {}); }
+  /// Appends a point (x, y) to the component's XY series `series` (SDK 0.9), which the
+  /// viewer's chart can plot; the kernel keeps the latest 10 000 points of each series.
+  void add_xy_point(int series, double x, double y) {
+    const double xy[2] = {x, y};
+    annotate(detail::Annotation::xy_point, series, {}, xy);
+  }
+  /// Removes every point of XY series `series` (SDK 0.9).
+  void clear_xy_series(int series) { annotate(detail::Annotation::clear_xy, series, {}); }
+
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }
   /// Sets an input (controllers set the references that motor controllers read).
@@ -311,6 +354,13 @@ class StepContext {
   RandomStream random() { return RandomStream(w_->random_state + 4 * component_); }
 
  private:
+  void annotate(detail::Annotation what, std::int32_t id, std::string_view text,
+                const double* values = nullptr) {
+    if (w_->annotate != nullptr)
+      w_->annotate(w_->annotator, component_, static_cast<std::int32_t>(what), id, text.data(),
+                   text.size(), values);
+  }
+
   detail::WorldView* w_;
   std::int32_t component_;
   std::int64_t period_ticks_;

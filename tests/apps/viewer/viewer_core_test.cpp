@@ -315,5 +315,43 @@ TEST(ChartData, RecordsEveryTickAndExportsTheRunnersFormat) {
   EXPECT_NE(chart.export_csv("/nonexistent/dir/x.csv", *sim), "");
 }
 
+// Issue 16: the chart keeps the last span of simulated time, and no more numbers than its
+// bound, whatever is charted and however long the run; once grown it does not grow further.
+TEST(ChartData, KeepsTheLastSpanAndAtMostItsBoundOfNumbers) {
+  auto sim = Simulation::load(kDefaultScene);  // 1 ms ticks
+  ChartData chart;
+  chart.set_span(0.5);
+  chart.add_signal(sim->signal_index("robots/pendulum/axes/swing/pos"));
+  chart.record(*sim);
+  for (int i = 0; i < 2000; ++i) {
+    sim->step();
+    chart.record(*sim);
+  }
+  EXPECT_EQ(chart.sample_count(), 501u);
+  EXPECT_NEAR(chart.time_s(0), 1.5, 1e-9);
+  EXPECT_NEAR(chart.times_s().back(), 2.0, 1e-9);
+  const std::size_t grown = chart.stored_values();
+  for (int i = 0; i < 3000; ++i) {
+    sim->step();
+    chart.record(*sim);
+  }
+  EXPECT_EQ(chart.stored_values(), grown) << "a steady span allocates no more";
+
+  // Every signal: the bound, not the span, decides.
+  ChartData all;
+  all.set_span(3600);
+  for (std::size_t i = 0; i < sim->signal_count(); ++i)
+    if (sim->signal_info(i).name != "time") all.add_signal(i);
+  const std::size_t per_sample = all.signals().size() + 1;
+  const std::size_t steps = 13 * ChartData::kMaxStoredValues / per_sample / 10;
+  for (std::size_t i = 0; i < steps; ++i) {
+    sim->step();
+    all.record(*sim);
+  }
+  EXPECT_LE(all.sample_count() * per_sample, ChartData::kMaxStoredValues);
+  EXPECT_LE(all.stored_values(), ChartData::kMaxStoredValues * 11 / 10);
+  EXPECT_NEAR(all.times_s().back(), sim->time_s(), 1e-9) << "the newest sample is kept";
+}
+
 }  // namespace
 }  // namespace s2sim::viewer

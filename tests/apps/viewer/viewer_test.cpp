@@ -3,109 +3,13 @@
 // chart; the tests check the pixels, the simulated time, the CSV against s2sim-run's and the
 // scene editor's error handling. Each run is a few seconds of Mesa llvmpipe.
 
-#include <gtest/gtest.h>
-#include <stb/stb_image.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "viewer_test_support.hpp"
 
-#include <algorithm>
-#include <cctype>
-#include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <map>
-#include <sstream>
-#include <string>
-#include <vector>
+#include <stb/stb_image.h>
 
 namespace {
 
-namespace fs = std::filesystem;
-
-const fs::path kViewer = fs::path(S2SIM_BIN_DIR) / "s2sim-view";
-const fs::path kRunner = fs::path(S2SIM_BIN_DIR) / "s2sim-run";
-const fs::path kSource = S2SIM_SOURCE_DIR;
-
-std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-Result run(const std::string& command, const fs::path& dir) {
-  const fs::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string full = command + " >" + quote(out.string()) + " 2>" + quote(err.string());
-  const int raw = std::system(full.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  r.out = read_file(out);
-  r.err = read_file(err);
-  return r;
-}
-
-bool have_xvfb() {
-  return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
-}
-
-/// The scene the issue names: scenes/nxt once it exists, the default scene until then.
-fs::path robot_scene() {
-  return fs::exists(kSource / "scenes/nxt/scene.xml") ? kSource / "scenes/nxt"
-                                                      : kSource / "scenes/default";
-}
-
-class Viewer : public ::testing::Test {
- protected:
-  void SetUp() override {
-    if (!have_xvfb()) GTEST_SKIP() << "xvfb-run is missing: install xvfb to run the viewer tests";
-    ASSERT_TRUE(fs::exists(kViewer)) << kViewer << " not built";
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = info->name();
-    for (char& c : name)
-      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::path(::testing::TempDir()) /
-           ("s2sim_viewer_" + std::to_string(::getpid()) + "_" + name);
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    if (!dir_.empty() && !HasFailure()) fs::remove_all(dir_);
-  }
-
-  /// s2sim-view under a virtual display of 1280x720. The viewer's exit status goes through a
-  /// file: xvfb-run replaces it with its own when its clean-up races with another xvfb-run.
-  Result view(const std::string& scene, const std::vector<std::string>& args) {
-    const fs::path status = dir_ / "status.txt";
-    fs::remove(status);
-    std::string command = "xvfb-run -a -s '-screen 0 1280x720x24' sh -c '\"$0\" \"$@\"; echo $? >" +
-                          status.string() + "' " + quote(kViewer.string()) + " " + quote(scene);
-    for (const auto& a : args) {
-      command += ' ';  // two appends: GCC 12 warns (-Wrestrict) on " " + std::string
-      command += quote(a);
-    }
-    Result r = run(command, dir_);
-    const std::string code = read_file(status);
-    r.status = code.empty() ? -1 : std::stoi(code);
-    return r;
-  }
-
-  fs::path dir_;
-};
+using namespace viewer_test;
 
 struct Image {
   int width = 0, height = 0;

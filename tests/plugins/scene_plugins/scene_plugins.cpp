@@ -137,6 +137,30 @@ class NameReader : public Component {
   SignalHandle matched_, matched_inputs_, time_read_, value_read_;
 };
 
+// SDK 0.9: publishes for the people watching, on every update: a log line "update N", its HUD
+// text "updates N", a trail point (t, 0, 0) on trail 0 and an XY point (t, 2t) on series 1;
+// every `clear_every`-th update clears the trail.
+class Annotator : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    clear_every_ = static_cast<int>(ctx.params().number("clear_every", 0.0));
+    ctx.set_schedule(Stage::control, ctx.params().number("period_ms", 10.0) / 1000.0, 0.0);
+  }
+  void initialize(StepContext&) override { updates_ = 0; }
+  void update(StepContext& ctx) override {
+    ++updates_;
+    ctx.log_line("update " + std::to_string(updates_));
+    ctx.set_hud_text("updates " + std::to_string(updates_));
+    if (clear_every_ > 0 && updates_ % clear_every_ == 0) ctx.clear_trail(0);
+    ctx.add_trail_point(0, Vec3{ctx.time_s(), 0, 0});
+    ctx.add_xy_point(1, ctx.time_s(), 2 * ctx.time_s());
+  }
+
+ private:
+  int clear_every_ = 0;
+  int updates_ = 0;
+};
+
 }  // namespace
 
 S2SIM_PLUGIN("s2sim_test_scene_plugins",
@@ -146,4 +170,5 @@ S2SIM_PLUGIN("s2sim_test_scene_plugins",
              S2SIM_KIND("test_echo_sensor", Category::sensor, Echo),
              S2SIM_KIND("test_noise", Category::sensor, Noise),
              S2SIM_KIND("test_body_push", Category::body, BodyPush),
-             S2SIM_KIND("test_name_reader", Category::controller, NameReader))
+             S2SIM_KIND("test_name_reader", Category::controller, NameReader),
+             S2SIM_KIND("test_annotator", Category::controller, Annotator))

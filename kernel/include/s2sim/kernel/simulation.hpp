@@ -4,6 +4,7 @@
 /// scene, step it and read it. No Simbody type appears here.
 
 #include <s2sim/component.hpp>
+#include <s2sim/kernel/annotations.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -176,6 +177,10 @@ class Simulation {
   /// SimTwo's SetRobotPos. Time does not change. Throws s2sim::Error (usage) naming the body
   /// for a body jointed to something else, or for the world.
   void place_body(int body, const Pose& pose);
+
+  /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
+  /// annotations.hpp), since the load or the last reset. Not part of the state.
+  const Annotations& annotations() const;
 
   struct Impl;
 

@@ -1,0 +1,61 @@
+#pragma once
+/// \file
+/// What components publish for the people watching a simulation (SDK 0.9:
+/// `StepContext::log_line`, `set_hud_text`, `add_trail_point`, `add_xy_point`): log lines, HUD
+/// texts, trails and XY series. The viewer draws them (s2sim-run does not read them). They
+/// are not part of the simulation's state: a reset forgets them and a snapshot does not hold
+/// them. Every list is bounded, so a component publishing every tick cannot exhaust memory.
+
+#include <s2sim/math.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace s2sim {
+
+struct Annotations {
+  static constexpr std::size_t kMaxLines = 1000;          ///< log lines kept
+  static constexpr std::size_t kMaxPoints = 10000;        ///< points kept per trail or series
+  static constexpr std::size_t kMaxTrailsOrSeries = 256;  ///< per simulation; more are ignored
+
+  struct Line {
+    std::uint64_t sequence = 0;  ///< 0, 1, 2... since the load or the last reset
+    double time_s = 0;           ///< simulated time of the tick that published it
+    std::string source;          ///< the component's signal prefix, e.g. `controllers/script`
+    std::string text;
+  };
+  struct Hud {
+    std::string source;
+    std::string text;  ///< lines separated by '\n'
+  };
+  struct Trail {
+    std::string source;
+    int id = 0;
+    std::deque<Vec3> points_m;  ///< oldest first, world frame
+  };
+  struct XySeries {
+    std::string source;
+    int id = 0;
+    std::deque<std::pair<double, double>> points;  ///< oldest first
+  };
+
+  std::deque<Line> lines;  ///< the latest kMaxLines, oldest first
+  std::uint64_t next_sequence = 0;
+  std::vector<Hud> huds;  ///< one per component that set a non-empty text, in order of first use
+  std::vector<Trail> trails;
+  std::vector<XySeries> series;
+  /// Incremented whenever anything changes (a viewer redraws or copies only then).
+  std::uint64_t version = 0;
+
+  /// Lines with a sequence number >= `sequence`, oldest first.
+  std::vector<Line> lines_from(std::uint64_t sequence) const;
+  /// All HUD texts joined, one component after the other.
+  std::string hud_text() const;
+  void clear();
+};
+
+}  // namespace s2sim

@@ -1,0 +1,105 @@
+#include <s2sim/kernel/annotations.hpp>
+
+#include "sim/simulation_impl.hpp"
+
+#include <algorithm>
+#include <string_view>
+
+namespace s2sim {
+
+std::vector<Annotations::Line> Annotations::lines_from(std::uint64_t sequence) const {
+  std::vector<Line> out;
+  for (const Line& line : lines)
+    if (line.sequence >= sequence) out.push_back(line);
+  return out;
+}
+
+std::string Annotations::hud_text() const {
+  std::string text;
+  for (const Hud& hud : huds) {
+    if (hud.text.empty()) continue;
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    text += hud.text;
+  }
+  return text;
+}
+
+void Annotations::clear() {
+  lines.clear();
+  next_sequence = 0;
+  huds.clear();
+  trails.clear();
+  series.clear();
+  ++version;
+}
+
+namespace {
+
+/// The entry of `list` for (source, id), made when absent and there is room; null otherwise.
+template <class T>
+T* find_or_add(std::vector<T>& list, const std::string& source, int id, bool add) {
+  for (T& item : list)
+    if (item.id == id && item.source == source) return &item;
+  if (!add || list.size() >= Annotations::kMaxTrailsOrSeries) return nullptr;
+  list.push_back(T{source, id, {}});
+  return &list.back();
+}
+
+}  // namespace
+
+void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::int32_t what,
+                                std::int32_t id, const char* text, std::size_t text_size,
+                                const double* values) {
+  auto& m = *const_cast<Simulation::Impl*>(static_cast<const Simulation::Impl*>(impl));
+  if (component < 0 || static_cast<std::size_t>(component) >= m.components.size()) return;
+  const std::string& source = m.components[static_cast<std::size_t>(component)].prefix;
+  Annotations& a = m.annotations;
+  const std::string_view body(text, text_size);
+  switch (static_cast<detail::Annotation>(what)) {
+    case detail::Annotation::log_line:
+      a.lines.push_back({a.next_sequence++, m.tick * m.tick_s, source, std::string(body)});
+      if (a.lines.size() > Annotations::kMaxLines) a.lines.pop_front();
+      break;
+    case detail::Annotation::hud_text: {
+      auto it = std::find_if(a.huds.begin(), a.huds.end(),
+                             [&](const Annotations::Hud& h) { return h.source == source; });
+      if (it == a.huds.end()) {
+        if (body.empty()) return;
+        a.huds.push_back({source, std::string(body)});
+      } else {
+        if (it->text == body) return;
+        it->text.assign(body);
+      }
+      break;
+    }
+    case detail::Annotation::trail_point:
+      if (values == nullptr) return;
+      if (auto* trail = find_or_add(a.trails, source, id, true)) {
+        trail->points_m.push_back(Vec3{values[0], values[1], values[2]});
+        if (trail->points_m.size() > Annotations::kMaxPoints) trail->points_m.pop_front();
+      }
+      break;
+    case detail::Annotation::clear_trail:
+      if (auto* trail = find_or_add(a.trails, source, id, false)) trail->points_m.clear();
+      break;
+    case detail::Annotation::xy_point:
+      if (values == nullptr) return;
+      if (auto* series = find_or_add(a.series, source, id, true)) {
+        series->points.emplace_back(values[0], values[1]);
+        if (series->points.size() > Annotations::kMaxPoints) series->points.pop_front();
+      }
+      break;
+    case detail::Annotation::clear_xy:
+      if (auto* series = find_or_add(a.series, source, id, false)) series->points.clear();
+      break;
+    default:
+      return;  // a kind from a newer SDK: ignored
+  }
+  ++a.version;
+}
+
+const Annotations& Simulation::annotations() const {
+  return impl_->annotations;
+}
+
+}  // namespace s2sim
