@@ -3,6 +3,7 @@
 #include "gl.hpp"
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
+#include "scene_look.hpp"
 #include "screenshot.hpp"
 #include "simtwo_camera.hpp"
 #include "ui_script.hpp"
@@ -111,6 +112,7 @@ class App {
                                           "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
+    state_.render.msaa_samples = options.msaa_samples;
     register_layout_settings(state_);
     // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
     // layout, only larger (the columns' rows are measured from the font).
@@ -216,6 +218,7 @@ class App {
     state_.chart.record(*state_.sim);
     std::vector<std::string> warnings = state_.sim->warnings();
     drawables_.build(state_.sim->scene(), renderer_, warnings);
+    apply_look_of(state_.sim->scene().folder, warnings);
     for (const auto& w : warnings)
       state_.log_message("warning: " + w);
     state_.log_message("loaded " + state_.sim->scene().file.string());
@@ -223,6 +226,21 @@ class App {
     if (state_.camera.follow_robot >= static_cast<int>(state_.sim->scene().robots.size()))
       state_.camera.follow_robot = -1;
     load_editor_files(state_);
+  }
+
+  /// The floor and sky of the scene folder's settings, once per folder (a reload of the same
+  /// scene keeps what the user changed). Its warnings go to stderr as well as to the Log.
+  void apply_look_of(const std::filesystem::path& folder, std::vector<std::string>& warnings) {
+    if (folder == look_folder_) return;
+    look_folder_ = folder;
+    std::vector<std::string> look_warnings, notes;
+    apply_scene_look(folder, state_.options.shadows, renderer_, state_.render, look_warnings,
+                     notes);
+    for (const auto& w : look_warnings)
+      std::fprintf(stderr, "s2sim-view: warning: %s\n", w.c_str());
+    warnings.insert(warnings.end(), look_warnings.begin(), look_warnings.end());
+    for (const auto& n : notes)
+      state_.log_message(n);
   }
 
   /// The view's width over its height.
@@ -365,6 +383,7 @@ class App {
   UiScript script_;
   WorldInput input_;
   int followed_robot_ = -1;                  ///< the robot followed last frame, -1 = none
+  std::filesystem::path look_folder_;        ///< the folder whose floor and sky are applied
   std::optional<SavedCamera> start_camera_;  ///< a SimTwo project's camera, until first used
 };
 

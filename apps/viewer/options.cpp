@@ -50,6 +50,7 @@ const char* usage_text() {
   --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
+  --msaa N                 samples per pixel of the 3-D view (4); 0 = no anti-aliasing
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
   --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
   --frames N               quit after N frames
@@ -108,6 +109,9 @@ Options parse_options(int argc, char** argv) {
         throw Error(ErrorKind::usage, a + ": must be 0.5 to 4");
     } else if (a == "--no-shadows") {
       o.shadows = false;
+    } else if (a == "--msaa") {
+      o.msaa_samples = parse_int(a, value(i, a), 0);
+      if (o.msaa_samples > 16) throw Error(ErrorKind::usage, a + ": must be 0 to 16");
     } else if (a == "--hide-ui") {
       o.hide_ui = true;
     } else if (a == "--screenshot") {
