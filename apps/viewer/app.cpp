@@ -112,13 +112,13 @@ class App {
                                           "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
-    state_.render.msaa_samples = options.msaa_samples;
+    renderer_.init();
+    choose_multisampling(options);
     register_layout_settings(state_);
     // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
     // layout, only larger (the columns' rows are measured from the font).
     ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
     ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
-    renderer_.init();
     install(load_simulation(options));
     state_.run.held_inputs = options.inputs;
     // The runner's selection, so an exported chart has s2sim-run's columns in its order.
@@ -226,6 +226,27 @@ class App {
     if (state_.camera.follow_robot >= static_cast<int>(state_.sim->scene().robots.size()))
       state_.camera.follow_robot = -1;
     load_editor_files(state_);
+  }
+
+  static bool takes_screenshots(const Options& options) {
+    return !options.screenshot_file.empty() ||
+           std::any_of(options.script.begin(), options.script.end(),
+                       [](const std::string& c) { return c.rfind("screenshot ", 0) == 0; });
+  }
+
+  /// 4x multisampling unless --msaa says otherwise; on a software rasteriser (llvmpipe) it
+  /// halves the frame rate, so there only screenshots get it by default (docs/viewer.md).
+  void choose_multisampling(const Options& options) {
+    if (options.msaa_samples >= 0) {
+      state_.render.msaa_samples = options.msaa_samples;
+    } else if (renderer_.software_rasteriser() && !takes_screenshots(options)) {
+      state_.render.msaa_samples = 0;
+      state_.log_message(
+          "no multisampling by default on a software rasteriser (it halves the "
+          "frame rate); --msaa 4 turns it on");
+    } else {
+      state_.render.msaa_samples = 4;
+    }
   }
 
   /// The floor and sky of the scene folder's settings, once per folder (a reload of the same

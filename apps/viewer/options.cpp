@@ -50,7 +50,8 @@ const char* usage_text() {
   --show-window NAME       open a window: run, configuration, chart, sheet, editor, log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
-  --msaa N                 samples per pixel of the 3-D view (4); 0 = no anti-aliasing
+  --msaa N                 samples per pixel of the 3-D view, 0 = no anti-aliasing (4; on a
+                           software rasteriser such as llvmpipe only for --screenshot)
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
   --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
   --frames N               quit after N frames

@@ -39,8 +39,9 @@ struct DrawItem {
 struct RenderSettings {
   bool shadows = true;
   bool grid = true;
-  bool sky = true;       ///< gradient sky; false = clear_color
-  int msaa_samples = 4;  ///< samples per pixel of the 3-D view; 0 or 1 = no multisampling
+  bool sky = true;             ///< gradient sky; false = clear_color
+  int msaa_samples = 4;        ///< samples per pixel of the 3-D view; 0 or 1 = no multisampling
+  bool smooth_shadows = true;  ///< filtered (PCF) shadow edges; false = hard, cheaper on a CPU
   float floor_half_size_m = 20;
   float clear_color[3] = {0.62f, 0.72f, 0.85f};
   float floor_color[3] = {0.80f, 0.82f, 0.84f};
@@ -70,6 +71,9 @@ class Renderer {
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }
+  /// Whether OpenGL runs on the CPU (Mesa llvmpipe, softpipe, swrast), where every shaded
+  /// sample costs CPU time: the viewer then does not multisample unless asked to.
+  bool software_rasteriser() const;
   /// Whether shadows use the shadow map (false: the floor-only fallback).
   bool has_shadow_map() const { return shadow_map_.ready(); }
   /// The samples per pixel of the last frame, 0 = none.
@@ -95,6 +99,9 @@ class Renderer {
   Vec3f light_direction_ = normalized({0.35f, 0.25f, 1.0f});
   std::vector<const DrawItem*> transparent_;  ///< reused every frame
   std::vector<CasterBound> casters_;          ///< reused every frame
+  /// The casters' poses this frame and when the shadow map was last drawn (reused buffers).
+  std::vector<Mat4> caster_models_, drawn_caster_models_;
+  bool shadow_map_valid_ = false;
   MsaaTarget msaa_;
   ShadowMap shadow_map_;
   Sky sky_;

@@ -34,9 +34,9 @@ bool ShadowMap::init(int size_px) {
   glBindTexture(GL_TEXTURE_2D, depth_texture_);
   glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, size_px, size_px, 0, GL_DEPTH_COMPONENT,
                GL_UNSIGNED_INT, nullptr);
-  // Linear filtering with comparison: each lookup is already a 2x2 percentage-closer filter.
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // Nearest texel until set_smooth(true): see set_smooth.
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
   // Outside the map nothing casts: the border is the far plane, i.e. lit.
@@ -115,6 +115,16 @@ void ShadowMap::begin_pass() const {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);
   glDisable(GL_CULL_FACE);
+}
+
+void ShadowMap::set_smooth(bool smooth) {
+  if (smooth == smooth_) return;
+  smooth_ = smooth;
+  const GLint filter = smooth ? GL_LINEAR : GL_NEAREST;
+  glBindTexture(GL_TEXTURE_2D, depth_texture_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+  glBindTexture(GL_TEXTURE_2D, 0);
 }
 
 void ShadowMap::set_model(const Mat4& model) const {

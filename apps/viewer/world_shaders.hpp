@@ -1,7 +1,9 @@
 #pragma once
 /// \file
 /// GLSL sources of the world view: lit bodies and the floor, both shadowed through the
-/// shadow map (4 linear-compare taps: percentage-closer filtering) when it is in use.
+/// shadow map when it is in use. One linear-compare tap: the texture unit compares the 2x2
+/// nearest texels and blends the results (percentage-closer filtering); more taps cost too
+/// much on llvmpipe, where every lookup runs on the CPU for every pixel.
 
 namespace s2sim::viewer::shaders {
 
@@ -15,12 +17,7 @@ namespace s2sim::viewer::shaders {
   "float light_reaching(vec3 world, vec3 normal) {\n"                                          \
   "  if (!u_use_shadow_map) return 1.0;\n"                                                     \
   "  vec3 p = (u_shadow_matrix * vec4(world + normal * (1.5 * u_shadow_texel_m), 1.0)).xyz;\n" \
-  "  float texel = 1.0 / float(textureSize(u_shadow_map, 0).x);\n"                             \
-  "  float lit = texture(u_shadow_map, p + vec3(-0.75 * texel, -0.75 * texel, 0.0));\n"        \
-  "  lit += texture(u_shadow_map, p + vec3(0.75 * texel, -0.75 * texel, 0.0));\n"              \
-  "  lit += texture(u_shadow_map, p + vec3(-0.75 * texel, 0.75 * texel, 0.0));\n"              \
-  "  lit += texture(u_shadow_map, p + vec3(0.75 * texel, 0.75 * texel, 0.0));\n"               \
-  "  return lit * 0.25;\n"                                                                     \
+  "  return texture(u_shadow_map, p);\n"                                                       \
   "}\n"
 
 inline constexpr const char* kLitVertex = R"(#version 330 core
