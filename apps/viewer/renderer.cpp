@@ -14,9 +14,10 @@
 namespace s2sim::viewer {
 namespace {
 
-// 1024 texels a side: 4x cheaper to clear and fill than 2048 on llvmpipe; a scene of 3 m gets
-// 3 mm texels, softened by the filtered lookup.
-constexpr int kShadowMapSize_px = 1024;
+// Texels a side: 2048 with smooth shadows (a GPU, or screenshots); 1024, 4x cheaper to clear
+// and fill, for the fast mode of a software rasteriser.
+constexpr int kSmoothShadowMapSize_px = 2048;
+constexpr int kFastShadowMapSize_px = 1024;
 
 int location(unsigned program, const char* name) {
   return uniform(program, name);
@@ -48,10 +49,6 @@ void Renderer::init() {
   lit_program_ = link_program(shaders::kLitVertex, shaders::kLitFragment);
   floor_program_ = link_program(shaders::kFloorVertex, shaders::kFloorFragment);
   sky_.init();
-  if (!shadow_map_.init(kShadowMapSize_px))
-    std::fprintf(stderr,
-                 "s2sim-view: the driver refused the shadow map's framebuffer; shadows fall on "
-                 "the floor only\n");
   MeshData floor;
   floor.vertices = {{{-1, -1, 0}, {0, 0, 1}, {0, 0}},
                     {{1, -1, 0}, {0, 0, 1}, {1, 0}},
@@ -155,13 +152,33 @@ Mat4 Renderer::floor_shadow_projection() const {
   return m;
 }
 
-bool Renderer::render_shadow_map(const std::vector<DrawItem>& items) {
-  auto casts = [](const DrawItem& item) { return item.casts_shadow && item.color[3] >= 0.5f; };
-  // Nothing moved since the map was drawn (paused, or bodies at rest): keep it.
+bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f& focus_m,
+                                 float focus_radius_m) {
+  // The casters near the point looked at: texels stay small when bodies are spread far.
+  caster_items_.clear();
   caster_models_.clear();
-  for (const auto& item : items)
-    if (casts(item)) caster_models_.push_back(item.model);
-  if (shadow_map_valid_ && caster_models_.size() == drawn_caster_models_.size()) {
+  casters_.clear();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const DrawItem& item = items[i];
+    if (!item.casts_shadow || item.color[3] < 0.5f) continue;
+    const GpuMesh& mesh = meshes_[item.mesh];
+    const Mat4& m = item.model;
+    float scale2 = 0;  // the largest axis scale, squared
+    for (int c = 0; c < 3; ++c)
+      scale2 = std::max(
+          scale2, m.at(0, c) * m.at(0, c) + m.at(1, c) * m.at(1, c) + m.at(2, c) * m.at(2, c));
+    const CasterBound bound{m.transform_point(mesh.centre), mesh.radius * std::sqrt(scale2)};
+    const Vec3f d = bound.centre_m - focus_m;
+    if (std::sqrt(dot(d, d)) - bound.radius_m > focus_radius_m) continue;
+    caster_items_.push_back(static_cast<int>(i));
+    caster_models_.push_back(m);
+    casters_.push_back(bound);
+  }
+  // Nothing moved since the map was drawn (paused, or bodies at rest): keep it.
+  // Not before the map was drawn twice: on llvmpipe the frame that creates it shows no shadow
+  // (seen on a static scene, whose map was then never drawn again).
+  if (shadow_map_valid_ && shadow_map_draws_ >= 2 &&
+      caster_models_.size() == drawn_caster_models_.size()) {
     bool same = true;
     for (std::size_t i = 0; same && i < caster_models_.size(); ++i)
       for (int k = 0; same && k < 16; ++k)
@@ -170,27 +187,17 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items) {
   }
   std::swap(caster_models_, drawn_caster_models_);
   shadow_map_valid_ = false;
-  casters_.clear();
-  for (const auto& item : items) {
-    if (!casts(item)) continue;
-    const GpuMesh& mesh = meshes_[item.mesh];
-    const Mat4& m = item.model;
-    float scale2 = 0;  // the largest axis scale, squared
-    for (int c = 0; c < 3; ++c)
-      scale2 = std::max(
-          scale2, m.at(0, c) * m.at(0, c) + m.at(1, c) * m.at(1, c) + m.at(2, c) * m.at(2, c));
-    casters_.push_back({m.transform_point(mesh.centre), mesh.radius * std::sqrt(scale2)});
-  }
   if (!shadow_map_.fit(casters_.data(), static_cast<int>(casters_.size()), light_direction_, 0))
     return false;
   shadow_map_.begin_pass();
-  for (const auto& item : items) {
-    if (!casts(item)) continue;
+  for (int i : caster_items_) {
+    const DrawItem& item = items[static_cast<std::size_t>(i)];
     shadow_map_.set_model(item.model);
     draw_mesh(meshes_[item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh]);
   }
   shadow_map_.end_pass();
   shadow_map_valid_ = true;
+  ++shadow_map_draws_;
   return true;
 }
 
@@ -213,7 +220,19 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
   glDisable(GL_SCISSOR_TEST);
 
   // The light's depth first: it has its own framebuffer and viewport.
-  const bool use_shadow_map = settings.shadows && shadow_map_.ready() && render_shadow_map(items);
+  if (settings.shadows && !shadow_map_tried_) {
+    shadow_map_tried_ = true;
+    if (!shadow_map_.init(settings.smooth_shadows ? kSmoothShadowMapSize_px
+                                                  : kFastShadowMapSize_px))
+      std::fprintf(stderr,
+                   "s2sim-view: the driver refused the shadow map's framebuffer; shadows fall on "
+                   "the floor only\n");
+  }
+  if (shadow_map_.ready()) shadow_map_.set_smooth(settings.smooth_shadows);
+  // The casters within 2.5 view distances of the point looked at (at least 3 m).
+  const bool use_shadow_map =
+      settings.shadows && shadow_map_.ready() &&
+      render_shadow_map(items, camera.target_m, std::max(3.0f, 2.5f * camera.distance_m));
 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glClearColor(settings.clear_color[0], settings.clear_color[1], settings.clear_color[2], 1);

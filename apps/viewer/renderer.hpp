@@ -88,8 +88,10 @@ class Renderer {
   };
   void draw_mesh(const GpuMesh& mesh) const;
   Mat4 floor_shadow_projection() const;
-  /// Renders the casters' depth from the light; false when nothing casts.
-  bool render_shadow_map(const std::vector<DrawItem>& items);
+  /// Renders the depth, seen from the light, of the casters within `focus_radius_m` of
+  /// `focus_m`; false when nothing casts there.
+  bool render_shadow_map(const std::vector<DrawItem>& items, const Vec3f& focus_m,
+                         float focus_radius_m);
   void set_shadow_uniforms(unsigned program, bool use) const;
 
   std::vector<GpuMesh> meshes_;
@@ -101,7 +103,10 @@ class Renderer {
   std::vector<CasterBound> casters_;          ///< reused every frame
   /// The casters' poses this frame and when the shadow map was last drawn (reused buffers).
   std::vector<Mat4> caster_models_, drawn_caster_models_;
+  std::vector<int> caster_items_;  ///< indices of this frame's casters in the items
   bool shadow_map_valid_ = false;
+  bool shadow_map_tried_ = false;  ///< created on the first frame with shadows
+  int shadow_map_draws_ = 0;
   MsaaTarget msaa_;
   ShadowMap shadow_map_;
   Sky sky_;

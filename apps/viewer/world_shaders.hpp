@@ -8,7 +8,7 @@
 namespace s2sim::viewer::shaders {
 
 /// Shadow lookup shared by both fragment shaders: 1 = lit, 0 = in shadow. The receiver is
-/// moved a texel and a half along its normal (normal offset) so it does not shadow itself.
+/// moved two and a half texels along its normal (normal offset) so it does not shadow itself.
 #define S2SIM_SHADOW_FUNCTION                                                                  \
   "uniform bool u_use_shadow_map;\n"                                                           \
   "uniform sampler2DShadow u_shadow_map;\n"                                                    \
@@ -16,7 +16,7 @@ namespace s2sim::viewer::shaders {
   "uniform float u_shadow_texel_m;\n"                                                          \
   "float light_reaching(vec3 world, vec3 normal) {\n"                                          \
   "  if (!u_use_shadow_map) return 1.0;\n"                                                     \
-  "  vec3 p = (u_shadow_matrix * vec4(world + normal * (1.5 * u_shadow_texel_m), 1.0)).xyz;\n" \
+  "  vec3 p = (u_shadow_matrix * vec4(world + normal * (2.5 * u_shadow_texel_m), 1.0)).xyz;\n" \
   "  return texture(u_shadow_map, p);\n"                                                       \
   "}\n"
 
