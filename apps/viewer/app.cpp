@@ -113,7 +113,7 @@ class App {
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
     renderer_.init();
-    choose_multisampling(options);
+    choose_look(options);
     register_layout_settings(state_);
     // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
     // layout, only larger (the columns' rows are measured from the font).
@@ -234,19 +234,19 @@ class App {
                        [](const std::string& c) { return c.rfind("screenshot ", 0) == 0; });
   }
 
-  /// 4x multisampling unless --msaa says otherwise; on a software rasteriser (llvmpipe) it
-  /// halves the frame rate, so there only screenshots get it by default (docs/viewer.md).
-  void choose_multisampling(const Options& options) {
-    if (options.msaa_samples >= 0) {
-      state_.render.msaa_samples = options.msaa_samples;
-    } else if (renderer_.software_rasteriser() && !takes_screenshots(options)) {
-      state_.render.msaa_samples = 0;
+  /// The full look (4x multisampling, a shadow map with smooth edges) unless --look fast; on
+  /// a software rasteriser (llvmpipe) it costs more than the rest of the frame, so there
+  /// only screenshots get it by default (docs/viewer.md). --msaa overrides the samples.
+  void choose_look(const Options& options) {
+    const bool fast = options.look == 0 || (options.look < 0 && renderer_.software_rasteriser() &&
+                                            !takes_screenshots(options));
+    state_.render.shadow_map = !fast;
+    state_.render.smooth_shadows = !fast;
+    state_.render.msaa_samples = options.msaa_samples >= 0 ? options.msaa_samples : fast ? 0 : 4;
+    if (fast && options.look < 0)
       state_.log_message(
-          "no multisampling by default on a software rasteriser (it halves the "
-          "frame rate); --msaa 4 turns it on");
-    } else {
-      state_.render.msaa_samples = 4;
-    }
+          "software rasteriser: the fast look by default (no multisampling, "
+          "shadows on the floor only); --look full for the full one");
   }
 
   /// The floor and sky of the scene folder's settings, once per folder (a reload of the same

@@ -25,9 +25,11 @@ unsigned compile(GLenum type, const char* source) {
 
 }  // namespace
 
-unsigned link_program(const char* vertex_source, const char* fragment_source) {
+unsigned link_program(const char* vertex_source, const char* fragment_source, const char* defines) {
+  std::string fragment = fragment_source;
+  fragment.insert(fragment.find('\n') + 1, defines);
   const unsigned vs = compile(GL_VERTEX_SHADER, vertex_source);
-  const unsigned fs = compile(GL_FRAGMENT_SHADER, fragment_source);
+  const unsigned fs = compile(GL_FRAGMENT_SHADER, fragment.c_str());
   const unsigned program = glCreateProgram();
   glAttachShader(program, vs);
   glAttachShader(program, fs);

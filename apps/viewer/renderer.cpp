@@ -41,13 +41,23 @@ Renderer::~Renderer() {
   }
   for (const auto& [path, t] : textures_)
     if (t != 0) glDeleteTextures(1, &t);
-  if (lit_program_) glDeleteProgram(lit_program_);
-  if (floor_program_) glDeleteProgram(floor_program_);
+  for (int shadow = 0; shadow < 2; ++shadow) {
+    if (lit_programs_[shadow]) glDeleteProgram(lit_programs_[shadow]);
+    for (unsigned program : floor_programs_[shadow])
+      if (program) glDeleteProgram(program);
+  }
 }
 
 void Renderer::init() {
-  lit_program_ = link_program(shaders::kLitVertex, shaders::kLitFragment);
-  floor_program_ = link_program(shaders::kFloorVertex, shaders::kFloorFragment);
+  for (int shadow = 0; shadow < 2; ++shadow) {
+    const std::string defines = shadow ? "#define SHADOW_MAP\n" : "";
+    lit_programs_[shadow] =
+        link_program(shaders::kLitVertex, shaders::kLitFragment, defines.c_str());
+    for (int texture = 0; texture < 2; ++texture)
+      floor_programs_[shadow][texture] =
+          link_program(shaders::kFloorVertex, shaders::kFloorFragment,
+                       (defines + (texture ? "#define FLOOR_TEXTURE\n" : "")).c_str());
+  }
   sky_.init();
   MeshData floor;
   floor.vertices = {{{-1, -1, 0}, {0, 0, 1}, {0, 0}},
@@ -201,10 +211,8 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f
   return true;
 }
 
-void Renderer::set_shadow_uniforms(unsigned program, bool use) const {
-  glUniform1i(location(program, "u_use_shadow_map"), use ? 1 : 0);
+void Renderer::set_shadow_uniforms(unsigned program) const {
   glUniform1i(location(program, "u_shadow_map"), 1);
-  if (!use) return;
   glUniformMatrix4fv(location(program, "u_shadow_matrix"), 1, GL_FALSE,
                      shadow_map_.world_to_texture().m);
   glUniform1f(location(program, "u_shadow_texel_m"), shadow_map_.texel_m());
@@ -220,7 +228,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
   glDisable(GL_SCISSOR_TEST);
 
   // The light's depth first: it has its own framebuffer and viewport.
-  if (settings.shadows && !shadow_map_tried_) {
+  if (settings.shadows && settings.shadow_map && !shadow_map_tried_) {
     shadow_map_tried_ = true;
     if (!shadow_map_.init(settings.smooth_shadows ? kSmoothShadowMapSize_px
                                                   : kFastShadowMapSize_px))
@@ -231,7 +239,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
   if (shadow_map_.ready()) shadow_map_.set_smooth(settings.smooth_shadows);
   // The casters within 2.5 view distances of the point looked at (at least 3 m).
   const bool use_shadow_map =
-      settings.shadows && shadow_map_.ready() &&
+      settings.shadows && settings.shadow_map && shadow_map_.ready() &&
       render_shadow_map(items, camera.target_m, std::max(3.0f, 2.5f * camera.distance_m));
 
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -260,44 +268,45 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
 
   // The floor: a plane at z = 0, lit as a horizontal surface.
   glDisable(GL_CULL_FACE);
-  glUseProgram(floor_program_);
+  const unsigned floor_program = floor_programs_[use_shadow_map][settings.floor_texture != 0];
+  glUseProgram(floor_program);
   const Mat4 floor_model =
       scale_matrix({settings.floor_half_size_m, settings.floor_half_size_m, 1});
-  glUniformMatrix4fv(location(floor_program_, "u_model"), 1, GL_FALSE, floor_model.m);
-  glUniformMatrix4fv(location(floor_program_, "u_view_projection"), 1, GL_FALSE, view_projection.m);
+  glUniformMatrix4fv(location(floor_program, "u_model"), 1, GL_FALSE, floor_model.m);
+  glUniformMatrix4fv(location(floor_program, "u_view_projection"), 1, GL_FALSE, view_projection.m);
   const float* fc = settings.floor_color;
-  glUniform3f(location(floor_program_, "u_color"), fc[0], fc[1], fc[2]);
+  glUniform3f(location(floor_program, "u_color"), fc[0], fc[1], fc[2]);
   // Grid lines that show on the floor: dark on a light floor, light blue (SimTwo's) on a dark one.
   const bool dark_floor =
       settings.floor_texture == 0 && 0.299f * fc[0] + 0.587f * fc[1] + 0.114f * fc[2] < 0.45f;
   if (dark_floor)
-    glUniform3f(location(floor_program_, "u_grid_color"), 0.55f, 0.70f, 0.90f);
+    glUniform3f(location(floor_program, "u_grid_color"), 0.55f, 0.70f, 0.90f);
   else
-    glUniform3f(location(floor_program_, "u_grid_color"), 0.35f, 0.37f, 0.40f);
-  glUniform1i(location(floor_program_, "u_grid"), settings.grid ? 1 : 0);
-  glUniform1i(location(floor_program_, "u_use_texture"), settings.floor_texture != 0 ? 1 : 0);
-  glUniform1i(location(floor_program_, "u_texture"), 0);
-  glUniform1f(location(floor_program_, "u_tile_m"), settings.floor_texture_tile_m);
-  glUniform1f(location(floor_program_, "u_light_z"), light_direction_.z);
-  set_shadow_uniforms(floor_program_, use_shadow_map);
+    glUniform3f(location(floor_program, "u_grid_color"), 0.35f, 0.37f, 0.40f);
+  glUniform1i(location(floor_program, "u_grid"), settings.grid ? 1 : 0);
+  glUniform1i(location(floor_program, "u_texture"), 0);
+  glUniform1f(location(floor_program, "u_tile_m"), settings.floor_texture_tile_m);
+  glUniform1f(location(floor_program, "u_light_z"), light_direction_.z);
+  if (use_shadow_map) set_shadow_uniforms(floor_program);
   if (settings.floor_texture != 0) glBindTexture(GL_TEXTURE_2D, settings.floor_texture);
   draw_mesh(meshes_[floor_mesh_]);
 
-  glUseProgram(lit_program_);
-  glUniformMatrix4fv(location(lit_program_, "u_view_projection"), 1, GL_FALSE, view_projection.m);
-  glUniform3f(location(lit_program_, "u_light_direction"), light_direction_.x, light_direction_.y,
+  const unsigned lit_program = lit_programs_[use_shadow_map];
+  glUseProgram(lit_program);
+  glUniformMatrix4fv(location(lit_program, "u_view_projection"), 1, GL_FALSE, view_projection.m);
+  glUniform3f(location(lit_program, "u_light_direction"), light_direction_.x, light_direction_.y,
               light_direction_.z);
-  glUniform3f(location(lit_program_, "u_eye"), eye.x, eye.y, eye.z);
-  glUniform1i(location(lit_program_, "u_texture"), 0);
-  set_shadow_uniforms(lit_program_, use_shadow_map);
+  glUniform3f(location(lit_program, "u_eye"), eye.x, eye.y, eye.z);
+  glUniform1i(location(lit_program, "u_texture"), 0);
+  if (use_shadow_map) set_shadow_uniforms(lit_program);
 
-  const int model_loc = location(lit_program_, "u_model");
-  const int normal_loc = location(lit_program_, "u_normal_matrix");
-  const int color_loc = location(lit_program_, "u_color");
-  const int use_texture_loc = location(lit_program_, "u_use_texture");
-  const int texture_scale_loc = location(lit_program_, "u_texture_scale");
-  const int lit_loc = location(lit_program_, "u_lit");
-  const int highlight_loc = location(lit_program_, "u_highlight");
+  const int model_loc = location(lit_program, "u_model");
+  const int normal_loc = location(lit_program, "u_normal_matrix");
+  const int color_loc = location(lit_program, "u_color");
+  const int use_texture_loc = location(lit_program, "u_use_texture");
+  const int texture_scale_loc = location(lit_program, "u_texture_scale");
+  const int lit_loc = location(lit_program, "u_lit");
+  const int highlight_loc = location(lit_program, "u_highlight");
   auto draw_item = [&](const DrawItem& item, const Mat4& model, int mesh) {
     float normals[9];
     normal_matrix(model, normals);
@@ -374,7 +383,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     return dot(pa - eye, pa - eye) > dot(pb - eye, pb - eye);
   });
   if (!transparent_.empty()) {
-    glUseProgram(lit_program_);
+    glUseProgram(lit_program);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);

@@ -41,7 +41,8 @@ struct RenderSettings {
   bool grid = true;
   bool sky = true;             ///< gradient sky; false = clear_color
   int msaa_samples = 4;        ///< samples per pixel of the 3-D view; 0 or 1 = no multisampling
-  bool smooth_shadows = true;  ///< filtered (PCF) shadow edges; false = hard, cheaper on a CPU
+  bool shadow_map = true;      ///< shadows on bodies too; false = planar, on the floor only
+  bool smooth_shadows = true;  ///< filtered (PCF) shadow-map edges; false = hard
   float floor_half_size_m = 20;
   float clear_color[3] = {0.62f, 0.72f, 0.85f};
   float floor_color[3] = {0.80f, 0.82f, 0.84f};
@@ -92,11 +93,12 @@ class Renderer {
   /// `focus_m`; false when nothing casts there.
   bool render_shadow_map(const std::vector<DrawItem>& items, const Vec3f& focus_m,
                          float focus_radius_m);
-  void set_shadow_uniforms(unsigned program, bool use) const;
+  void set_shadow_uniforms(unsigned program) const;
 
   std::vector<GpuMesh> meshes_;
   std::map<std::filesystem::path, unsigned> textures_;
-  unsigned lit_program_ = 0, floor_program_ = 0;
+  unsigned lit_programs_[2] = {0, 0};                 ///< [shadow map]
+  unsigned floor_programs_[2][2] = {{0, 0}, {0, 0}};  ///< [shadow map][texture]
   int floor_mesh_ = -1;
   Vec3f light_direction_ = normalized({0.35f, 0.25f, 1.0f});
   std::vector<const DrawItem*> transparent_;  ///< reused every frame

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
 /// GLSL sources of the world view: lit bodies and the floor, both shadowed through the
-/// shadow map when it is in use. One linear-compare tap: the texture unit compares the 2x2
-/// nearest texels and blends the results (percentage-closer filtering); more taps cost too
+/// shadow map when it is in use. Variants are compiled with SHADOW_MAP and FLOOR_TEXTURE
+/// defined or not rather than switched by uniforms: llvmpipe runs both sides of a branch, so
+/// an unused lookup would still cost every pixel. One linear-compare tap: the texture unit compares
+/// the 2x2 nearest texels and blends the results (percentage-closer filtering); more taps cost too
 /// much on llvmpipe, where every lookup runs on the CPU for every pixel.
 
 namespace s2sim::viewer::shaders {
@@ -10,15 +12,17 @@ namespace s2sim::viewer::shaders {
 /// Shadow lookup shared by both fragment shaders: 1 = lit, 0 = in shadow. The receiver is
 /// moved two and a half texels along its normal (normal offset) so it does not shadow itself.
 #define S2SIM_SHADOW_FUNCTION                                                                  \
-  "uniform bool u_use_shadow_map;\n"                                                           \
+  "#ifdef SHADOW_MAP\n"                                                                        \
   "uniform sampler2DShadow u_shadow_map;\n"                                                    \
   "uniform mat4 u_shadow_matrix;\n"                                                            \
   "uniform float u_shadow_texel_m;\n"                                                          \
   "float light_reaching(vec3 world, vec3 normal) {\n"                                          \
-  "  if (!u_use_shadow_map) return 1.0;\n"                                                     \
   "  vec3 p = (u_shadow_matrix * vec4(world + normal * (2.5 * u_shadow_texel_m), 1.0)).xyz;\n" \
   "  return texture(u_shadow_map, p);\n"                                                       \
-  "}\n"
+  "}\n"                                                                                        \
+  "#else\n"                                                                                    \
+  "float light_reaching(vec3 world, vec3 normal) { return 1.0; }\n"                            \
+  "#endif\n"
 
 inline constexpr const char* kLitVertex = R"(#version 330 core
 layout(location = 0) in vec3 a_position;
@@ -93,13 +97,16 @@ inline constexpr const char* kFloorFragment =
     "uniform vec3 u_color;\n"
     "uniform vec3 u_grid_color;\n"
     "uniform bool u_grid;\n"
-    "uniform bool u_use_texture;\n"
     "uniform sampler2D u_texture;\n"
     "uniform float u_tile_m;\n"
     "uniform float u_light_z;\n"
     "out vec4 frag_color;\n" S2SIM_SHADOW_FUNCTION R"(
 void main() {
-  vec3 color = u_use_texture ? texture(u_texture, v_xy / u_tile_m).rgb : u_color;
+#ifdef FLOOR_TEXTURE
+  vec3 color = texture(u_texture, v_xy / u_tile_m).rgb;
+#else
+  vec3 color = u_color;
+#endif
   color *= 0.35 + 0.65 * u_light_z * light_reaching(vec3(v_xy, 0.0), vec3(0.0, 0.0, 1.0));
   if (u_grid) {
     // Lines every metre (strong) and every 10 cm (faint), anti-aliased with fwidth.
