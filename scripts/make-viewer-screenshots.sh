@@ -57,7 +57,8 @@ if [ -d "$plugins" ]; then
     --do "sheet-set B2 1.25" --do "sheet-set B3 -0.1" --do "run-until 1"
 fi
 
-# A SimTwo project with its author's saved camera (config_Viewer.ini, config_Params.ini).
+# A SimTwo project with its author's saved camera (config_Viewer.ini, config_Params.ini), floor
+# texture (ground.jpg), grid and sky (issue 15).
 if [ -d "$shared/Manipulator6DoF" ]; then
   shot viewer-simtwo-camera "$shared/Manipulator6DoF" --show-window log --do "run-until 0.5"
 fi
@@ -88,3 +89,6 @@ if [ -d "$shared/base" ] && command -v fpc >/dev/null; then
     --script-file "$repo/tests/apps/viewer/fixtures/trail_xy.pas" --show-window log \
     --do "chart-xy robots/Classic/x robots/Classic/y" --do "show chart" --do "run-until 4"
 fi
+# Shadows on bodies as well as on the floor (issue 15): the pile settling, seen close.
+shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "camera -60 25 1.4" \
+  --do "wait 1"

@@ -3,6 +3,7 @@
 #include "gl.hpp"
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
+#include "scene_look.hpp"
 #include "screenshot.hpp"
 #include "script_session.hpp"
 #include "simtwo_camera.hpp"
@@ -114,12 +115,13 @@ class App {
                         "body)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
+    renderer_.init();
+    choose_look(options);
     register_layout_settings(state_);
     // One scale for the font and the widgets' paddings, so a HiDPI screen gets the same
     // layout, only larger (the columns' rows are measured from the font).
     ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
     ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
-    renderer_.init();
     state_.chart.set_span(options.chart_span_s);
     install(load_simulation_keeping_script_errors(state_, options));
     state_.run.held_inputs = options.inputs;
@@ -223,6 +225,7 @@ class App {
     state_.chart.record(*state_.sim);
     std::vector<std::string> warnings = state_.sim->warnings();
     drawables_.build(state_.sim->scene(), renderer_, warnings);
+    apply_look_of(state_.sim->scene().folder, warnings);
     for (const auto& w : warnings)
       state_.log_message("warning: " + w);
     state_.log_message("loaded " + state_.sim->scene().file.string());
@@ -232,6 +235,42 @@ class App {
     load_editor_files(state_);
     open_scene_script(state_);
     state_.next_published_line = 0;
+  }
+
+  static bool takes_screenshots(const Options& options) {
+    return !options.screenshot_file.empty() ||
+           std::any_of(options.script.begin(), options.script.end(),
+                       [](const std::string& c) { return c.rfind("screenshot ", 0) == 0; });
+  }
+
+  /// The full look (4x multisampling, a shadow map with smooth edges) unless --look fast; on
+  /// a software rasteriser (llvmpipe) it costs more than the rest of the frame, so there
+  /// only screenshots get it by default (docs/viewer.md). --msaa overrides the samples.
+  void choose_look(const Options& options) {
+    const bool fast = options.look == 0 || (options.look < 0 && renderer_.software_rasteriser() &&
+                                            !takes_screenshots(options));
+    state_.render.shadow_map = !fast;
+    state_.render.smooth_shadows = !fast;
+    state_.render.msaa_samples = options.msaa_samples >= 0 ? options.msaa_samples : fast ? 0 : 4;
+    if (fast && options.look < 0)
+      state_.log_message(
+          "software rasteriser: the fast look by default (no multisampling, "
+          "shadows on the floor only); --look full for the full one");
+  }
+
+  /// The floor and sky of the scene folder's settings, once per folder (a reload of the same
+  /// scene keeps what the user changed). Its warnings go to stderr as well as to the Log.
+  void apply_look_of(const std::filesystem::path& folder, std::vector<std::string>& warnings) {
+    if (folder == look_folder_) return;
+    look_folder_ = folder;
+    std::vector<std::string> look_warnings, notes;
+    apply_scene_look(folder, state_.options.shadows, renderer_, state_.render, look_warnings,
+                     notes);
+    for (const auto& w : look_warnings)
+      std::fprintf(stderr, "s2sim-view: warning: %s\n", w.c_str());
+    warnings.insert(warnings.end(), look_warnings.begin(), look_warnings.end());
+    for (const auto& n : notes)
+      state_.log_message(n);
   }
 
   /// The view's width over its height.
@@ -374,6 +413,7 @@ class App {
   UiScript script_;
   WorldInput input_;
   int followed_robot_ = -1;                  ///< the robot followed last frame, -1 = none
+  std::filesystem::path look_folder_;        ///< the folder whose floor and sky are applied
   std::optional<SavedCamera> start_camera_;  ///< a SimTwo project's camera, until first used
 };
 

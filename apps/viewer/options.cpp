@@ -58,6 +58,10 @@ const char* usage_text() {
                            log, body
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
+  --look fast|full         full: 4x anti-aliasing, shadows on bodies (shadow map); fast: none,
+                           shadows on the floor only (default: full, but fast on a software
+                           rasteriser such as llvmpipe outside screenshot runs)
+  --msaa N                 samples per pixel of the 3-D view, 0 = no anti-aliasing
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
   --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
   --frames N               quit after N frames
@@ -136,6 +140,13 @@ Options parse_options(int argc, char** argv) {
         throw Error(ErrorKind::usage, a + ": must be 0.5 to 4");
     } else if (a == "--no-shadows") {
       o.shadows = false;
+    } else if (a == "--look") {
+      const std::string v = value(i, a);
+      if (v != "fast" && v != "full") throw Error(ErrorKind::usage, a + ": must be fast or full");
+      o.look = v == "full" ? 1 : 0;
+    } else if (a == "--msaa") {
+      o.msaa_samples = parse_int(a, value(i, a), 0);
+      if (o.msaa_samples > 16) throw Error(ErrorKind::usage, a + ": must be 0 to 16");
     } else if (a == "--hide-ui") {
       o.hide_ui = true;
     } else if (a == "--screenshot") {

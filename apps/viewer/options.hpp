@@ -29,7 +29,13 @@ struct Options {
   std::vector<std::string> script;         ///< UI commands, see ui_script.hpp
   double speed = 1.0;                      ///< times real time; 0 = as fast as possible
   bool paused = false;
-  bool shadows = true;             ///< --no-shadows turns them off
+  bool shadows = true;  ///< --no-shadows turns them off
+  /// --msaa N: samples per pixel of the 3-D view, 0 = off; -1 (default) = as --look says.
+  int msaa_samples = -1;
+  /// --look fast|full: 0 = fast (no multisampling, planar floor-only shadows), 1 = full
+  /// (4x multisampling, shadow map with smooth edges); -1 (default) = full, except fast on a
+  /// software rasteriser (llvmpipe) outside screenshot runs.
+  int look = -1;
   bool hide_ui = false;            ///< world view only
   double font_scale = 1;           ///< --font-scale: text and widgets scaled (HiDPI)
   bool no_frame_cap = false;       ///< draw as fast as possible (benchmark)

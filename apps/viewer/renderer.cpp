@@ -1,137 +1,26 @@
 #include "renderer.hpp"
 
 #include "gl.hpp"
+#include "gl_program.hpp"
+#include "world_shaders.hpp"
 
 #include <stb/stb_image.h>
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
+#include <cstdio>
+#include <string>
 
 namespace s2sim::viewer {
 namespace {
 
-constexpr const char* kLitVertex = R"(#version 330 core
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
-uniform mat4 u_model;
-uniform mat3 u_normal_matrix;
-uniform mat4 u_view_projection;
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-void main() {
-  vec4 world = u_model * vec4(a_position, 1.0);
-  v_world = world.xyz;
-  v_normal = u_normal_matrix * a_normal;
-  v_uv = a_uv;
-  gl_Position = u_view_projection * world;
-}
-)";
-
-constexpr const char* kLitFragment = R"(#version 330 core
-in vec3 v_world;
-in vec3 v_normal;
-in vec2 v_uv;
-uniform vec4 u_color;
-uniform sampler2D u_texture;
-uniform bool u_use_texture;
-uniform float u_texture_scale;
-uniform bool u_lit;
-uniform bool u_highlight;
-uniform vec3 u_light_direction;
-uniform vec3 u_eye;
-out vec4 frag_color;
-
-void main() {
-  vec4 base = u_color;
-  if (u_use_texture) base *= texture(u_texture, v_uv * u_texture_scale);
-  if (!u_lit) {
-    frag_color = base;
-    return;
-  }
-  vec3 n = normalize(v_normal);
-  if (!gl_FrontFacing) n = -n;
-  vec3 view = normalize(u_eye - v_world);
-  float diffuse = max(dot(n, u_light_direction), 0.0);
-  float specular = pow(max(dot(n, normalize(u_light_direction + view)), 0.0), 32.0) * 0.2;
-  vec3 color = base.rgb * (0.35 + 0.65 * diffuse) + vec3(specular);
-  if (u_highlight) color = mix(color, vec3(1.0, 0.85, 0.2), 0.35);
-  frag_color = vec4(color, base.a);
-}
-)";
-
-// The floor covers most of the screen, so it has its own minimal shader: one varying, the
-// grid, and the constant lighting of a horizontal plane. On llvmpipe (no GPU) this is what
-// keeps 1280x720 above 60 frames per second.
-constexpr const char* kFloorVertex = R"(#version 330 core
-layout(location = 0) in vec3 a_position;
-uniform mat4 u_model;
-uniform mat4 u_view_projection;
-out vec2 v_xy;
-void main() {
-  vec4 world = u_model * vec4(a_position, 1.0);
-  v_xy = world.xy;
-  gl_Position = u_view_projection * world;
-}
-)";
-
-constexpr const char* kFloorFragment = R"(#version 330 core
-in vec2 v_xy;
-uniform vec3 u_color;
-uniform bool u_grid;
-out vec4 frag_color;
-void main() {
-  vec3 color = u_color;
-  if (u_grid) {
-    // Lines every metre (strong) and every 10 cm (faint), anti-aliased with fwidth.
-    vec2 w = fwidth(v_xy);
-    vec2 d1 = abs(fract(v_xy - 0.5) - 0.5) / w;
-    vec2 d01 = abs(fract(v_xy * 10.0 - 0.5) - 0.5) / (w * 10.0);
-    float major = 1.0 - min(min(d1.x, d1.y), 1.0);
-    float minor = (1.0 - min(min(d01.x, d01.y), 1.0)) * 0.35;
-    color = mix(color, vec3(0.35, 0.37, 0.40), max(major * 0.8, minor));
-  }
-  frag_color = vec4(color, 1.0);
-}
-)";
-
-unsigned compile(GLenum type, const char* source) {
-  const unsigned shader = glCreateShader(type);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader compilation failed: ") + log);
-  }
-  return shader;
-}
-
-unsigned link(const char* vertex, const char* fragment) {
-  const unsigned program = glCreateProgram();
-  const unsigned vs = compile(GL_VERTEX_SHADER, vertex);
-  const unsigned fs = compile(GL_FRAGMENT_SHADER, fragment);
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048];
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("shader link failed: ") + log);
-  }
-  return program;
-}
+// Texels a side: 2048 with smooth shadows (a GPU, or screenshots); 1024, 4x cheaper to clear
+// and fill, for the fast mode of a software rasteriser.
+constexpr int kSmoothShadowMapSize_px = 2048;
+constexpr int kFastShadowMapSize_px = 1024;
 
 int location(unsigned program, const char* name) {
-  return glGetUniformLocation(program, name);
+  return uniform(program, name);
 }
 
 /// The inverse transpose of the model's 3x3 part: normals stay normal under non-uniform scale.
@@ -152,13 +41,24 @@ Renderer::~Renderer() {
   }
   for (const auto& [path, t] : textures_)
     if (t != 0) glDeleteTextures(1, &t);
-  if (lit_program_) glDeleteProgram(lit_program_);
-  if (floor_program_) glDeleteProgram(floor_program_);
+  for (int shadow = 0; shadow < 2; ++shadow) {
+    if (lit_programs_[shadow]) glDeleteProgram(lit_programs_[shadow]);
+    for (unsigned program : floor_programs_[shadow])
+      if (program) glDeleteProgram(program);
+  }
 }
 
 void Renderer::init() {
-  lit_program_ = link(kLitVertex, kLitFragment);
-  floor_program_ = link(kFloorVertex, kFloorFragment);
+  for (int shadow = 0; shadow < 2; ++shadow) {
+    const std::string defines = shadow ? "#define SHADOW_MAP\n" : "";
+    lit_programs_[shadow] =
+        link_program(shaders::kLitVertex, shaders::kLitFragment, defines.c_str());
+    for (int texture = 0; texture < 2; ++texture)
+      floor_programs_[shadow][texture] =
+          link_program(shaders::kFloorVertex, shaders::kFloorFragment,
+                       (defines + (texture ? "#define FLOOR_TEXTURE\n" : "")).c_str());
+  }
+  sky_.init();
   MeshData floor;
   floor.vertices = {{{-1, -1, 0}, {0, 0, 1}, {0, 0}},
                     {{1, -1, 0}, {0, 0, 1}, {1, 0}},
@@ -192,6 +92,21 @@ int Renderer::upload(const MeshData& mesh) {
                         reinterpret_cast<void*>(offsetof(Vertex, uv)));
   glBindVertexArray(0);
   g.index_count = static_cast<int>(mesh.indices.size());
+  // Bounding sphere: the box's centre and its farthest vertex.
+  Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+  for (const Vertex& v : mesh.vertices) {
+    lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
+          std::min(lo.z, v.position[2])};
+    hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
+          std::max(hi.z, v.position[2])};
+  }
+  if (!mesh.vertices.empty()) {
+    g.centre = (lo + hi) * 0.5f;
+    for (const Vertex& v : mesh.vertices) {
+      const Vec3f d = Vec3f{v.position[0], v.position[1], v.position[2]} - g.centre;
+      g.radius = std::max(g.radius, std::sqrt(dot(d, d)));
+    }
+  }
   meshes_.push_back(g);
   return static_cast<int>(meshes_.size()) - 1;
 }
@@ -219,6 +134,14 @@ unsigned Renderer::texture(const std::filesystem::path& file, std::string& error
   return t;
 }
 
+bool Renderer::software_rasteriser() const {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  for (const char* software : {"llvmpipe", "softpipe", "swrast", "Software"})
+    if (name.find(software) != std::string::npos) return true;
+  return false;
+}
+
 void Renderer::draw_mesh(const GpuMesh& mesh) const {
   glBindVertexArray(mesh.vao);
   glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
@@ -239,53 +162,152 @@ Mat4 Renderer::floor_shadow_projection() const {
   return m;
 }
 
+bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f& focus_m,
+                                 float focus_radius_m) {
+  // The casters near the point looked at: texels stay small when bodies are spread far.
+  caster_items_.clear();
+  caster_models_.clear();
+  casters_.clear();
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const DrawItem& item = items[i];
+    if (!item.casts_shadow || item.color[3] < 0.5f) continue;
+    const GpuMesh& mesh = meshes_[item.mesh];
+    const Mat4& m = item.model;
+    float scale2 = 0;  // the largest axis scale, squared
+    for (int c = 0; c < 3; ++c)
+      scale2 = std::max(
+          scale2, m.at(0, c) * m.at(0, c) + m.at(1, c) * m.at(1, c) + m.at(2, c) * m.at(2, c));
+    const CasterBound bound{m.transform_point(mesh.centre), mesh.radius * std::sqrt(scale2)};
+    const Vec3f d = bound.centre_m - focus_m;
+    if (std::sqrt(dot(d, d)) - bound.radius_m > focus_radius_m) continue;
+    caster_items_.push_back(static_cast<int>(i));
+    caster_models_.push_back(m);
+    casters_.push_back(bound);
+  }
+  // Nothing moved since the map was drawn (paused, or bodies at rest): keep it.
+  // Not before the map was drawn twice: on llvmpipe the frame that creates it shows no shadow
+  // (seen on a static scene, whose map was then never drawn again).
+  if (shadow_map_valid_ && shadow_map_draws_ >= 2 &&
+      caster_models_.size() == drawn_caster_models_.size()) {
+    bool same = true;
+    for (std::size_t i = 0; same && i < caster_models_.size(); ++i)
+      for (int k = 0; same && k < 16; ++k)
+        same = std::abs(caster_models_[i].m[k] - drawn_caster_models_[i].m[k]) < 1e-5f;
+    if (same) return true;
+  }
+  std::swap(caster_models_, drawn_caster_models_);
+  shadow_map_valid_ = false;
+  if (!shadow_map_.fit(casters_.data(), static_cast<int>(casters_.size()), light_direction_, 0))
+    return false;
+  shadow_map_.begin_pass();
+  for (int i : caster_items_) {
+    const DrawItem& item = items[static_cast<std::size_t>(i)];
+    shadow_map_.set_model(item.model);
+    draw_mesh(meshes_[item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh]);
+  }
+  shadow_map_.end_pass();
+  shadow_map_valid_ = true;
+  ++shadow_map_draws_;
+  return true;
+}
+
+void Renderer::set_shadow_uniforms(unsigned program) const {
+  glUniform1i(location(program, "u_shadow_map"), 1);
+  glUniformMatrix4fv(location(program, "u_shadow_matrix"), 1, GL_FALSE,
+                     shadow_map_.world_to_texture().m);
+  glUniform1f(location(program, "u_shadow_texel_m"), shadow_map_.texel_m());
+}
+
 void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
                     int framebuffer_height_px, const RenderSettings& settings) {
   const int width_px = std::max(1, static_cast<int>(std::lround(view.width)));
   const int height_px = std::max(1, static_cast<int>(std::lround(view.height)));
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_BLEND);
-  glEnable(GL_CULL_FACE);
+  // OpenGL counts rows from the bottom.
+  const int x_px = static_cast<int>(std::lround(view.x));
+  const int y_px = framebuffer_height_px - static_cast<int>(std::lround(view.y)) - height_px;
+  glDisable(GL_SCISSOR_TEST);
+
+  // The light's depth first: it has its own framebuffer and viewport.
+  if (settings.shadows && settings.shadow_map && !shadow_map_tried_) {
+    shadow_map_tried_ = true;
+    if (!shadow_map_.init(settings.smooth_shadows ? kSmoothShadowMapSize_px
+                                                  : kFastShadowMapSize_px))
+      std::fprintf(stderr,
+                   "s2sim-view: the driver refused the shadow map's framebuffer; shadows fall on "
+                   "the floor only\n");
+  }
+  if (shadow_map_.ready()) shadow_map_.set_smooth(settings.smooth_shadows);
+  // The casters within 2.5 view distances of the point looked at (at least 3 m).
+  const bool use_shadow_map =
+      settings.shadows && settings.shadow_map && shadow_map_.ready() &&
+      render_shadow_map(items, camera.target_m, std::max(3.0f, 2.5f * camera.distance_m));
+
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glClearColor(settings.clear_color[0], settings.clear_color[1], settings.clear_color[2], 1);
   glClearStencil(0);
+  glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
-  // OpenGL counts rows from the bottom.
-  glViewport(static_cast<int>(std::lround(view.x)),
-             framebuffer_height_px - static_cast<int>(std::lround(view.y)) - height_px, width_px,
-             height_px);
+  const bool multisampled =
+      settings.msaa_samples >= 2 && msaa_.bind(width_px, height_px, settings.msaa_samples);
+  msaa_in_use_ = multisampled ? msaa_.samples() : 0;
+  if (multisampled) {
+    glViewport(0, 0, width_px, height_px);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+  } else {
+    glViewport(x_px, y_px, width_px, height_px);
+  }
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_BLEND);
   const Mat4 view_projection =
       camera.projection(static_cast<float>(width_px) / height_px) * camera.view();
   const Vec3f eye = camera.eye_m();
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, use_shadow_map ? shadow_map_.texture() : 0);
+  glActiveTexture(GL_TEXTURE0);
 
   // The floor: a plane at z = 0, lit as a horizontal surface.
   glDisable(GL_CULL_FACE);
-  glUseProgram(floor_program_);
+  const unsigned floor_program = floor_programs_[use_shadow_map][settings.floor_texture != 0];
+  glUseProgram(floor_program);
   const Mat4 floor_model =
       scale_matrix({settings.floor_half_size_m, settings.floor_half_size_m, 1});
-  glUniformMatrix4fv(location(floor_program_, "u_model"), 1, GL_FALSE, floor_model.m);
-  glUniformMatrix4fv(location(floor_program_, "u_view_projection"), 1, GL_FALSE, view_projection.m);
-  const float floor_light = 0.35f + 0.65f * light_direction_.z;
-  glUniform3f(location(floor_program_, "u_color"), 0.80f * floor_light, 0.82f * floor_light,
-              0.84f * floor_light);
-  glUniform1i(location(floor_program_, "u_grid"), settings.grid ? 1 : 0);
+  glUniformMatrix4fv(location(floor_program, "u_model"), 1, GL_FALSE, floor_model.m);
+  glUniformMatrix4fv(location(floor_program, "u_view_projection"), 1, GL_FALSE, view_projection.m);
+  const float* fc = settings.floor_color;
+  glUniform3f(location(floor_program, "u_color"), fc[0], fc[1], fc[2]);
+  // Grid lines that show on the floor: dark on a light floor, light blue (SimTwo's) on a dark one.
+  const bool dark_floor =
+      settings.floor_texture == 0 && 0.299f * fc[0] + 0.587f * fc[1] + 0.114f * fc[2] < 0.45f;
+  if (dark_floor)
+    glUniform3f(location(floor_program, "u_grid_color"), 0.55f, 0.70f, 0.90f);
+  else
+    glUniform3f(location(floor_program, "u_grid_color"), 0.35f, 0.37f, 0.40f);
+  glUniform1i(location(floor_program, "u_grid"), settings.grid ? 1 : 0);
+  glUniform1i(location(floor_program, "u_texture"), 0);
+  glUniform1f(location(floor_program, "u_tile_m"), settings.floor_texture_tile_m);
+  glUniform1f(location(floor_program, "u_light_z"), light_direction_.z);
+  if (use_shadow_map) set_shadow_uniforms(floor_program);
+  if (settings.floor_texture != 0) glBindTexture(GL_TEXTURE_2D, settings.floor_texture);
   draw_mesh(meshes_[floor_mesh_]);
 
-  glUseProgram(lit_program_);
-  glUniformMatrix4fv(location(lit_program_, "u_view_projection"), 1, GL_FALSE, view_projection.m);
-  glUniform3f(location(lit_program_, "u_light_direction"), light_direction_.x, light_direction_.y,
+  const unsigned lit_program = lit_programs_[use_shadow_map];
+  glUseProgram(lit_program);
+  glUniformMatrix4fv(location(lit_program, "u_view_projection"), 1, GL_FALSE, view_projection.m);
+  glUniform3f(location(lit_program, "u_light_direction"), light_direction_.x, light_direction_.y,
               light_direction_.z);
-  glUniform3f(location(lit_program_, "u_eye"), eye.x, eye.y, eye.z);
-  glUniform1i(location(lit_program_, "u_texture"), 0);
-  glActiveTexture(GL_TEXTURE0);
+  glUniform3f(location(lit_program, "u_eye"), eye.x, eye.y, eye.z);
+  glUniform1i(location(lit_program, "u_texture"), 0);
+  if (use_shadow_map) set_shadow_uniforms(lit_program);
 
-  const int model_loc = location(lit_program_, "u_model");
-  const int normal_loc = location(lit_program_, "u_normal_matrix");
-  const int color_loc = location(lit_program_, "u_color");
-  const int use_texture_loc = location(lit_program_, "u_use_texture");
-  const int texture_scale_loc = location(lit_program_, "u_texture_scale");
-  const int lit_loc = location(lit_program_, "u_lit");
-  const int highlight_loc = location(lit_program_, "u_highlight");
-  auto draw_item = [&](const DrawItem& item, const Mat4& model) {
+  const int model_loc = location(lit_program, "u_model");
+  const int normal_loc = location(lit_program, "u_normal_matrix");
+  const int color_loc = location(lit_program, "u_color");
+  const int use_texture_loc = location(lit_program, "u_use_texture");
+  const int texture_scale_loc = location(lit_program, "u_texture_scale");
+  const int lit_loc = location(lit_program, "u_lit");
+  const int highlight_loc = location(lit_program, "u_highlight");
+  auto draw_item = [&](const DrawItem& item, const Mat4& model, int mesh) {
     float normals[9];
     normal_matrix(model, normals);
     glUniformMatrix4fv(model_loc, 1, GL_FALSE, model.m);
@@ -296,13 +318,12 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     glUniform1i(lit_loc, item.lit ? 1 : 0);
     glUniform1i(highlight_loc, item.highlighted ? 1 : 0);
     if (item.texture != 0) glBindTexture(GL_TEXTURE_2D, item.texture);
-    draw_mesh(meshes_[item.mesh]);
+    draw_mesh(meshes_[mesh]);
   };
 
-  // Shadows on the floor: every opaque item flattened along the light, drawn dark and
-  // translucent; the stencil darkens each pixel once where shadows overlap. Far cheaper than
-  // a shadow map on a machine without a GPU (Mesa llvmpipe), which matters for 60 fps.
-  if (settings.shadows) {
+  // Without the shadow map: every opaque item flattened along the light onto the floor, drawn
+  // dark and translucent; the stencil darkens each pixel once where shadows overlap.
+  if (settings.shadows && !use_shadow_map) {
     const Mat4 flatten = floor_shadow_projection();
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xff);
@@ -317,8 +338,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     for (const auto& item : items) {
       // Only what stands above the floor casts a shadow on it.
       if (!item.casts_shadow || item.color[3] < 0.5f || item.model.at(2, 3) < 0) continue;
-      shadow.mesh = item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh;
-      draw_item(shadow, flatten * item.model);
+      draw_item(shadow, flatten * item.model, item.coarse_mesh >= 0 ? item.coarse_mesh : item.mesh);
     }
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
@@ -350,30 +370,34 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     }
     // Open meshes and flat polygons must show both faces.
     if (item.two_sided) glDisable(GL_CULL_FACE);
-    if (coarse_enough(item)) {
-      DrawItem coarse = item;
-      coarse.mesh = item.coarse_mesh;
-      draw_item(coarse, item.model);
-    } else {
-      draw_item(item, item.model);
-    }
+    draw_item(item, item.model, coarse_enough(item) ? item.coarse_mesh : item.mesh);
     if (item.two_sided) glEnable(GL_CULL_FACE);
   }
+  // The sky where nothing opaque was drawn (before the transparent items, which blend over it).
+  if (settings.sky) sky_.draw(view_projection, eye);
+
   // Transparent items back to front, without writing depth, so they blend over each other.
   std::sort(transparent_.begin(), transparent_.end(), [&](const DrawItem* a, const DrawItem* b) {
     const Vec3f pa{a->model.at(0, 3), a->model.at(1, 3), a->model.at(2, 3)};
     const Vec3f pb{b->model.at(0, 3), b->model.at(1, 3), b->model.at(2, 3)};
     return dot(pa - eye, pa - eye) > dot(pb - eye, pb - eye);
   });
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-  glDepthMask(GL_FALSE);
-  glDisable(GL_CULL_FACE);
-  for (const DrawItem* item : transparent_)
-    draw_item(*item, item->model);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_BLEND);
+  if (!transparent_.empty()) {
+    glUseProgram(lit_program);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    for (const DrawItem* item : transparent_)
+      draw_item(*item, item->model, item->mesh);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+  }
   glBindVertexArray(0);
+  glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0);
+  if (multisampled) msaa_.resolve_to_window(x_px, y_px);
 }
 
 }  // namespace s2sim::viewer

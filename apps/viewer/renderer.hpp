@@ -1,12 +1,17 @@
 #pragma once
 /// \file
 /// Draws the world view with OpenGL 3.3 core: lit meshes (colour, transparency, texture), a
-/// floor with a grid, and the shadows a directional light casts on the floor.
+/// floor (colour or texture, grid), a gradient sky and the shadows of a directional light
+/// (a shadow map, on bodies and floor; planar floor-only shadows when it is unavailable),
+/// multisampled and resolved into the window.
 
 #include "camera.hpp"
 #include "gl_math.hpp"
 #include "layout.hpp"
 #include "mesh_data.hpp"
+#include "msaa_target.hpp"
+#include "shadow_map.hpp"
+#include "sky.hpp"
 
 #include <filesystem>
 #include <map>
@@ -34,8 +39,15 @@ struct DrawItem {
 struct RenderSettings {
   bool shadows = true;
   bool grid = true;
+  bool sky = true;             ///< gradient sky; false = clear_color
+  int msaa_samples = 4;        ///< samples per pixel of the 3-D view; 0 or 1 = no multisampling
+  bool shadow_map = true;      ///< shadows on bodies too; false = planar, on the floor only
+  bool smooth_shadows = true;  ///< filtered (PCF) shadow-map edges; false = hard
   float floor_half_size_m = 20;
   float clear_color[3] = {0.62f, 0.72f, 0.85f};
+  float floor_color[3] = {0.80f, 0.82f, 0.84f};
+  unsigned floor_texture = 0;  ///< from Renderer::texture, 0 = the plain colour
+  float floor_texture_tile_m = 1;
 };
 
 class Renderer {
@@ -60,21 +72,47 @@ class Renderer {
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }
+  /// Whether OpenGL runs on the CPU (Mesa llvmpipe, softpipe, swrast), where every shaded
+  /// sample costs CPU time: the viewer then does not multisample unless asked to.
+  bool software_rasteriser() const;
+  /// Whether shadows use the shadow map (false: the floor-only fallback).
+  bool has_shadow_map() const { return shadow_map_.ready(); }
+  /// The samples per pixel of the last frame, 0 = none.
+  int msaa_samples() const { return msaa_in_use_; }
 
  private:
   struct GpuMesh {
     unsigned vao = 0, vbo = 0, ebo = 0;
     int index_count = 0;
+    Vec3f centre;  ///< bounding sphere in mesh space, for fitting the shadow map
+    float radius = 0;
   };
   void draw_mesh(const GpuMesh& mesh) const;
   Mat4 floor_shadow_projection() const;
+  /// Renders the depth, seen from the light, of the casters within `focus_radius_m` of
+  /// `focus_m`; false when nothing casts there.
+  bool render_shadow_map(const std::vector<DrawItem>& items, const Vec3f& focus_m,
+                         float focus_radius_m);
+  void set_shadow_uniforms(unsigned program) const;
 
   std::vector<GpuMesh> meshes_;
   std::map<std::filesystem::path, unsigned> textures_;
-  unsigned lit_program_ = 0, floor_program_ = 0;
+  unsigned lit_programs_[2] = {0, 0};                 ///< [shadow map]
+  unsigned floor_programs_[2][2] = {{0, 0}, {0, 0}};  ///< [shadow map][texture]
   int floor_mesh_ = -1;
   Vec3f light_direction_ = normalized({0.35f, 0.25f, 1.0f});
   std::vector<const DrawItem*> transparent_;  ///< reused every frame
+  std::vector<CasterBound> casters_;          ///< reused every frame
+  /// The casters' poses this frame and when the shadow map was last drawn (reused buffers).
+  std::vector<Mat4> caster_models_, drawn_caster_models_;
+  std::vector<int> caster_items_;  ///< indices of this frame's casters in the items
+  bool shadow_map_valid_ = false;
+  bool shadow_map_tried_ = false;  ///< created on the first frame with shadows
+  int shadow_map_draws_ = 0;
+  MsaaTarget msaa_;
+  ShadowMap shadow_map_;
+  Sky sky_;
+  int msaa_in_use_ = 0;
 };
 
 }  // namespace s2sim::viewer
