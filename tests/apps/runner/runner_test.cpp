@@ -507,6 +507,37 @@ TEST_F(Runner, ACrashInAComponentsConstructorOrDestructorIsNamed) {
               HasSubstr("in component 'controllers/villain' (kind 'test_hostile') from "));
 }
 
+// ../shared/repro R03 (eacces/): a scene naming a file in a folder its user may not read
+// ended as an internal error (exit 1). Run as an unprivileged user where the test is root (root
+// reads everything).
+TEST_F(Runner, AFileInAnUnreadableFolderIsALocatedSceneError) {
+  const fs::path scene = dir_ / "sc";
+  fs::create_directories(scene / "locked");
+  std::ofstream(scene / "scene.xml") << "<scene><things file='locked/t.xml'/></scene>\n";
+  std::ofstream(scene / "locked" / "t.xml") << "<things/>\n";
+  fs::permissions(scene / "locked", fs::perms::none);
+  std::string cmd;
+  if (::geteuid() == 0) {
+    if (std::system("command -v setpriv >/dev/null 2>&1") != 0) {
+      fs::permissions(scene / "locked", fs::perms::owner_all);
+      GTEST_SKIP() << "running as root without setpriv: no unprivileged user to read as";
+    }
+    cmd = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  }
+  cmd += quote(kRunner.string());
+  cmd += ' ';
+  cmd += quote(scene.string());
+  cmd += " --quiet --duration 0.01 >";
+  cmd += quote((dir_ / "out.txt").string());
+  cmd += " 2>&1 </dev/null";
+  const int status = std::system(cmd.c_str());
+  fs::permissions(scene / "locked", fs::perms::owner_all);  // for the clean-up
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  EXPECT_THAT(read_file(dir_ / "out.txt"),
+              HasSubstr("scene.xml: scene/things@file: cannot read 'locked/t.xml': "));
+}
+
 // Issue 16 (3 000 coincident cuboids took 3.1 GB): bodies placed into one another stop the
 // run at the first tick with a runtime error naming two of them, in bounded memory. 200
 // coincident boxes overlap in 19 900 pairs, above the limit of 1024 + 64 × 200.
