@@ -168,6 +168,10 @@ void load_articulations(LoadContext& ctx, const Reader& r, const Element& list, 
     j.body1 = resolve("B1", "S1");
     j.body2 = resolve("B2", "S2");
     if (j.body1 < 0 && j.body2 < 0) r.fail(*connect_el, "", "both bodies are the world");
+    if (j.body1 == j.body2)  // a loop on one body: Simbody asserts on it (found by fuzzing)
+      r.fail(*connect_el, r.has(*connect_el, "B2") ? "B2" : "S2",
+             "joins solid '" + r.text(*connect_el, r.has(*connect_el, "B2") ? "B2" : "S2", "") +
+                 "' to itself");
     if (j.body1 < 0) std::swap(j.body1, j.body2);  // the solid is body 1, as in SimTwo
 
     const bool rotational = j.type != JointType::slider;

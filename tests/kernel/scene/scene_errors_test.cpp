@@ -51,6 +51,18 @@ TEST(SceneErrors, JointToAMissingSolid) {
   EXPECT_THAT(e.message(), HasSubstr("'Nope'"));
 }
 
+// Found by the hour-long libFuzzer run (docs/reliability.md): a joint from a solid to itself
+// reached Simbody as a loop on one body, which aborts on an assertion.
+TEST(SceneErrors, JointFromASolidToItselfIsRefused) {
+  const Error e = load_error(test::edited_copy(fixture("err_joint_missing"), "bot.xml",
+                                               "B1='A' B2='Nope'", "B1='A' B2='A'"));
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_EQ(e.where().file, "bot.xml");
+  EXPECT_EQ(e.where().element, "robot/articulations/joint[2]/connect");
+  EXPECT_EQ(e.where().attribute, "B2");
+  EXPECT_THAT(e.message(), HasSubstr("joins solid 'A' to itself"));
+}
+
 TEST(SceneErrors, MotherSolidMustComeEarlier) {
   const Error e = load_error(fixture("err_mother"));
   EXPECT_EQ(e.where().file, "robot.xml");
