@@ -28,6 +28,7 @@ class Buoyancy final : public Component {
   enum class Hull { box, cylinder, sphere };
 
   void configure(ConfigureContext& ctx) override {
+    ctx.refuse_unread_attributes();  // a misspelt coefficient would leave its default
     const Params& p = ctx.params();
     body_ = ctx.body(p.text("body"));
     if (body_.index == 0) throw bad_value(p, "body", "the world does not float");

@@ -33,6 +33,7 @@ constexpr double kSimTwoDampingThreshold = 1e-4;  // ODE damps only above |v|² 
 class Drag final : public Component {
  public:
   void configure(ConfigureContext& ctx) override {
+    ctx.refuse_unread_attributes();  // a misspelt coefficient would leave its default
     const Params& p = ctx.params();
     body_ = ctx.body(p.text("body"));
     if (body_.index == 0) throw bad_value(p, "body", "the world does not move through a fluid");

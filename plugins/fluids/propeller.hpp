@@ -32,6 +32,7 @@ namespace s2sim::fluids {
 class Propeller final : public Component {
  public:
   void configure(ConfigureContext& ctx) override {
+    ctx.refuse_unread_attributes();  // a misspelt coefficient would leave its default
     const Params& p = ctx.params();
     body_ = ctx.body(p.text("body"));
     if (body_.index == 0) throw bad_value(p, "body", "a propeller needs a moving body");

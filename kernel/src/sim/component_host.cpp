@@ -52,6 +52,7 @@ class ConfigureContextImpl final : public ConfigureContext {
   const Params& params() const override { return *slot().params; }
   std::string_view id() const override { return slot().id; }
   std::string_view signal_prefix() const override { return slot().prefix; }
+  void refuse_unread_attributes() override { slot().strict_attributes = true; }
   std::string_view robot() const override {
     return slot().robot >= 0 ? std::string_view(sim_.scene.robots[slot().robot].id)
                              : std::string_view();
@@ -431,9 +432,22 @@ void collect_unread(const scene::ElementParams& params, const scene::Element& el
 }  // namespace
 
 void Simulation::Impl::warn_unread_plugin_attributes() {
-  for (const auto& slot : components)
-    if (slot.plugin_element && slot.params)
+  for (const auto& slot : components) {
+    if (!slot.plugin_element || !slot.params) continue;
+    if (!slot.strict_attributes) {
       collect_unread(*slot.params, slot.params->source().element, true, slot.kind, warnings);
+      continue;
+    }
+    std::vector<std::string> unread;
+    collect_unread(*slot.params, slot.params->source().element, true, slot.kind, unread);
+    if (unread.empty()) continue;
+    // "file: element@attribute: attribute ignored: ..." becomes a refusal of the scene.
+    std::string message = unread.front();
+    const std::string ignored = "attribute ignored: ";
+    if (const auto at = message.find(ignored); at != std::string::npos)
+      message.replace(at, ignored.size(), "unknown attribute: ");
+    throw Error(ErrorKind::scene, message);
+  }
 }
 
 // --- façade ------------------------------------------------------------------------------------

@@ -81,9 +81,10 @@ struct ComponentSlot {
   std::int64_t phase_ticks = 0;
   std::unique_ptr<scene::ElementParams> params;
   Location where;
-  int sensor = -1;              // index into scene.sensors when made for a scene sensor element
-  bool plugin_element = false;  // made for a <plugin> element: its unread attributes warn
-  std::string library;          // the plugin file it came from, for messages
+  int sensor = -1;                 // index into scene.sensors when made for a scene sensor element
+  bool plugin_element = false;     // made for a <plugin> element: its unread attributes warn
+  bool strict_attributes = false;  // ...or refuse the scene (refuse_unread_attributes)
+  std::string library;             // the plugin file it came from, for messages
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
   /// "component '<prefix>' (kind '<kind>') from <library>", made once at load: what a
   /// fatal-signal handler prints (running_component.hpp).

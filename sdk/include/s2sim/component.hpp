@@ -486,6 +486,14 @@ class ConfigureContext {
   /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
   /// not own (a compiled script's RTL random numbers); 1 outside the kernel.
   virtual std::uint64_t seed() const { return 1; }
+
+  // --- strict parameters (SDK 0.9 addition, appended) ---
+
+  /// Asks the kernel to refuse the scene, rather than warn, when the component's `<plugin>`
+  /// element holds an attribute the component did not read: for a kind whose misspelt
+  /// parameter would silently leave a physical default in place (`cD` for `cd`). The error
+  /// names the file, the element and the attribute, with the closest names it did read.
+  virtual void refuse_unread_attributes() {}
 };
 
 /// Base of every plugin component.

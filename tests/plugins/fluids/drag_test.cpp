@@ -1,5 +1,6 @@
 // The drag plugin against closed forms: quadratic drag's terminal velocity, linear drag's
 // exponential approach, the wind input; determinism and reset.
+#include "common/edited_copy.hpp"
 #include "fixture.hpp"
 
 #include <gtest/gtest.h>
@@ -74,6 +75,27 @@ TEST(Drag, RunsAreDeterministicAndResetAndRestoreAreExact) {
   a->reset();
   a->run_until(1.0);
   EXPECT_EQ(a->signal(kVz), b->signal(kVz));
+}
+
+// A misspelt parameter of a fluids kind is a refusal, not a warning: the default it leaves in
+// place would change the physics silently (issue 12). `cD` for `cd`.
+TEST(Drag, AMisspeltParameterIsRefusedNamingTheClosestOne) {
+  const auto dir = s2sim::test::edited_copy(
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/plugins/fluids/fixtures/sphere_air",
+      "ball.xml", "density='1.225' cd='cd'", "density='1.225' cD='cd'");
+  SimulationOptions o;
+  o.plugin_path = {std::filesystem::path(S2SIM_PLUGIN_DIR)};
+  try {
+    Simulation::load(dir, o);
+    FAIL() << "a misspelt cd was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::scene);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("ball.xml: robot/plugin[1]@cD: unknown attribute: kind 'drag' does not "
+                        "read it; did you mean 'cd'?"),
+              std::string::npos)
+        << what;
+  }
 }
 
 TEST(Drag, NegativeOrUnknownParametersAreRefusedWithTheirPlace) {
