@@ -1,9 +1,11 @@
 #pragma once
 // Running the real s2sim-view under xvfb-run and reading its screenshots, for the viewer's
-// screenshot tests (the same approach as viewer_test.cpp's helpers).
+// screenshot tests, on viewer_test_support.hpp's helpers.
+
+#include "viewer_png.hpp"
+#include "viewer_test_support.hpp"
 
 #include <gtest/gtest.h>
-#include <stb/stb_image.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,51 +21,15 @@ namespace s2sim::viewer_test {
 
 namespace fs = std::filesystem;
 
-inline const fs::path kViewer = fs::path(S2SIM_BIN_DIR) / "s2sim-view";
-inline const fs::path kSource = S2SIM_SOURCE_DIR;
+using ::viewer_test::Image;
+using ::viewer_test::kSource;
+using ::viewer_test::kViewer;
+using ::viewer_test::luminance;
+using ::viewer_test::quote;
+using ::viewer_test::read_file;
+using ::viewer_test::read_png;
+using ::viewer_test::Result;
 inline const fs::path kSharedScenes = S2SIM_SHARED_SCENES;
-
-inline std::string read_file(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-inline std::string quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s)
-    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-struct Result {
-  int status = -1;
-  std::string out;
-  std::string err;
-};
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const {
-    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-  }
-};
-
-inline Image read_png(const fs::path& file) {
-  Image image;
-  int channels = 0;
-  unsigned char* data = stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
-  if (data == nullptr) return image;
-  image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
-  stbi_image_free(data);
-  return image;
-}
-
-inline double luminance(const unsigned char* p) {
-  return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
-}
 
 /// A test that runs s2sim-view in its own temporary folder (kept when the test fails).
 class ViewerRun : public ::testing::Test {

@@ -5,33 +5,11 @@
 
 #include "viewer_test_support.hpp"
 
-#include <stb/stb_image.h>
+#include "viewer_png.hpp"
 
 namespace {
 
 using namespace viewer_test;
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgb;
-  const unsigned char* at(int x, int y) const {
-    return &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-  }
-};
-
-Image read_png(const fs::path& file) {
-  Image image;
-  int channels = 0;
-  unsigned char* data = stbi_load(file.string().c_str(), &image.width, &image.height, &channels, 3);
-  if (data == nullptr) return image;
-  image.rgb.assign(data, data + static_cast<std::size_t>(image.width) * image.height * 3);
-  stbi_image_free(data);
-  return image;
-}
-
-double luminance(const unsigned char* p) {
-  return 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
-}
 
 /// Whether some pixel within `radius` of (x, y) shows `colour` lit: the shading scales a
 /// colour by 0.35 (ambient) to 1 and adds at most 0.2 of specular, so the pixel must have the
