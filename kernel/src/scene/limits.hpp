@@ -17,6 +17,9 @@ inline constexpr double kMaxPhysicsStep_s = 1.0;
 inline constexpr double kMaxLength_m = 1e4;
 /// Nesting of XML elements (SimTwo's scenes nest a dozen deep; the parsers recurse).
 inline constexpr std::int64_t kMaxXmlDepth = 256;
+/// Elements of one XML file (a 3 000-body pile is about 25 000): checked by a scan before the
+/// tree is built, which takes some 500 bytes per element.
+inline constexpr std::int64_t kMaxXmlElements = 500000;
 /// Copies one track element makes with `<repeat times>`.
 inline constexpr std::int64_t kMaxTrackRepeats = 10000;
 /// Segments of one track arc ((stop − start) / step).

@@ -75,10 +75,12 @@ void check_well_formed(const std::string& text, const std::string& display_name)
 }
 
 /// Refuses elements nested deeper than limits::kMaxXmlDepth before any recursive parser sees
-/// them (40 000 levels overflowed the stack): a linear scan of the tags, skipping comments,
-/// CDATA, processing instructions and declarations, quotes respected inside tags.
+/// them (40 000 levels overflowed the stack), and files of more than limits::kMaxXmlElements
+/// elements before any tree is built (a million things needed 36 times the file's size in
+/// memory): a linear scan of the tags, skipping comments, CDATA, processing instructions and
+/// declarations, quotes respected inside tags.
 void check_nesting_depth(const std::string& text, const std::string& display_name) {
-  std::int64_t depth = 0;
+  std::int64_t depth = 0, elements = 0;
   auto skip_to = [&](std::size_t from, const char* end) {
     const auto at = text.find(end, from);
     return at == std::string::npos ? text.size() : at + std::char_traits<char>::length(end);
@@ -107,6 +109,12 @@ void check_nesting_depth(const std::string& text, const std::string& display_nam
         } else if (c == '>') {
           break;
         }
+      }
+      if (++elements > limits::kMaxXmlElements) {
+        const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(i), '\n');
+        throw Error(
+            ErrorKind::scene, Location{display_name + ":" + std::to_string(line), "", ""},
+            "more than " + std::to_string(limits::kMaxXmlElements) + " elements in one file");
       }
       if (j < text.size() && text[j - 1] != '/' && ++depth > limits::kMaxXmlDepth) {
         const auto line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(i), '\n');
