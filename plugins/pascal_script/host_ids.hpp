@@ -4,7 +4,8 @@
 /// (pascal/s2simtwo.pas) gets one Pascal constant `h<Name>` per entry, generated from this list,
 /// and the host (script_controller.cpp) dispatches on it.
 
-// clang-format off: one entry a line, in the support unit's order
+// One entry a line, in the support unit's order.
+// clang-format off
 #define S2SIM_PASCAL_HOST_FUNCTIONS(X) \
   X(WriteLn) \
   X(KeyPressed) \
