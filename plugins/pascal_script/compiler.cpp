@@ -134,11 +134,14 @@ begin
     S2SimPublishHUD;
   except
     on E: Exception do begin
-      { the raising address, then the callers: the host names the first in the user's file }
-      msg := E.ClassName + ': ' + E.Message + ' |' + BackTraceStrFunc(ExceptAddr);
+      { the raising address, then the callers, as bare addresses: the host names the first
+        in the user's file with addr2line. Not the RTL's line-info unit: it walks past the end
+        of envp to find the auxiliary vector, which is heap garbage once the host has called
+        setenv (a segfault seen in CI). }
+      msg := E.ClassName + ': ' + E.Message + ' | $' + HexStr(ExceptAddr);
       frames := ExceptFrames;
       for i := 0 to ExceptFrameCount - 1 do
-        msg := msg + ' |' + BackTraceStrFunc(frames[i]);
+        msg := msg + ' | $' + HexStr(frames[i]);
       StrPLCopy(err, msg, errcap - 1);
       result := 1;
     end;
@@ -189,7 +192,7 @@ CompileResult compile_script(const std::filesystem::path& script,
     std::ofstream(build / "s2script.pas", std::ios::binary) << wrapper;
     std::ofstream(build / script.filename(), std::ios::binary) << text;
   }
-  const std::string command = shell_quote(settings.compiler) + " -Mdelphi -gl -O1 -vewn -Fu" +
+  const std::string command = shell_quote(settings.compiler) + " -Mdelphi -g -O1 -vewn -Fu" +
                               shell_quote(build.string()) + " -FE" + shell_quote(build.string()) +
                               " " + shell_quote((build / "s2script.pas").string());
   const int status = run(command, result.output);

@@ -273,7 +273,8 @@ void ScriptController::update(StepContext& ctx) {
 
 void ScriptController::report_error(const std::string& routine, const std::string& message) {
   // "EClass: text |  $addr |  $addr ...": the raising address, then its callers. Name the first
-  // frame in the user's file (fpc -gl line table), else the first one known.
+  // frame in the user's file (fpc -g DWARF line table, read by addr2line), else the first one
+  // known.
   std::vector<std::string> parts;
   for (std::size_t from = 0;;) {
     const auto bar = message.find(" |", from);

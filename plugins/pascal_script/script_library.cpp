@@ -54,7 +54,7 @@ void ScriptLibrary::load(const std::filesystem::path& library, const HostTable& 
     FpuGuard guard;  // the Pascal RTL's start-up sets its own FPU masks
     handle_ = ::dlopen(tmpl.c_str(), RTLD_NOW | RTLD_LOCAL);
   }
-  // Kept while loaded: the Pascal RTL reads its line info (-gl) from the file on an error.
+  // Kept while loaded: addr2line reads its line table (fpc -g) from the file on an error.
   copy_ = tmpl;
   if (!handle_)
     throw std::runtime_error(std::string("cannot load the compiled script: ") + ::dlerror());

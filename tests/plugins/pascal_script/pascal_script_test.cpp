@@ -19,6 +19,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using s2sim::ScriptMode;
@@ -269,6 +270,31 @@ TEST_F(PascalScript, RunTimeErrorStopsTheScriptNotTheSimulation) {
       EXPECT_NE(err.find("ClearObstacles is not provided by S2Sim"), std::string::npos) << err;
     }
   }
+}
+
+/// Free Pascal's line-info unit finds the executable by walking past the NULL that ends the
+/// library's envp into what it takes for the auxiliary vector. After a setenv, envp is a heap
+/// array and that walk read garbage (a segfault in CI). Here the entries after the NULL say
+/// "4 program headers at address 8": a script library that still walks there crashes.
+TEST_F(PascalScript, RunTimeErrorIsReportedWhateverFollowsTheEnvironment) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  std::vector<char*> env;
+  for (char** e = environ; *e; ++e)
+    env.push_back(*e);
+  env.push_back(nullptr);
+  for (std::uintptr_t word : {5u, 4u, 4u, 56u, 3u, 8u, 0u, 0u})  // AT_PHNUM, AT_PHENT, AT_PHDR
+    env.push_back(reinterpret_cast<char*>(word));
+  char** const saved = environ;
+  environ = env.data();
+  SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
+  o.sheet_cells = {{1, 1, "0"}, {2, 1, "0"}};
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
+  ::testing::internal::CaptureStderr();
+  sim->run_until(0.5);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  sim.reset();
+  environ = saved;
+  EXPECT_NE(err.find("runtime_error.pas:14"), std::string::npos) << err;
 }
 
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
