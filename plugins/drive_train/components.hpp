@@ -50,7 +50,16 @@ class DcMotor final : public Component {
   double R_ = 1, L_ = 0, K_ = 0, vmax_ = 24, imax_ = 4, N_ = 1;
   double bv_ = 0, fc_ = 0, spring_k_ = 0, zero_pos_ = 0;
   double slew_A_per_tick_ = 0;  ///< |Δi| per physics step; 0 = none
+  /// The parameters as their inputs hold them this tick (the scene's values unless changed
+  /// at run time: SimTwo's SetMotorActive and SetMotorPars, --set, the viewer).
+  struct Parameters {
+    bool active, simple;
+    double R, L, K, vmax, imax, N;
+  };
+  Parameters parameters(const StepContext& ctx) const;
   InputHandle ref_voltage_;
+  InputHandle active_in_, simple_in_, ri_in_, li_in_, ki_in_, vmax_in_, imax_in_, gear_in_;
+  std::string prefix_;
   SignalHandle voltage_, current_, back_emf_, motor_torque_, power_, energy_sig_;
   StateHandle current_state_, energy_;
 };
@@ -82,9 +91,9 @@ class MotorController final : public Component {
  private:
   AxisHandle axis_;
   Mode mode_ = Mode::pid_speed;
-  bool motor_active_ = true, simtwo_law_ = false, wrap_ = false;
+  bool simtwo_law_ = false, wrap_ = false;
   double kp_ = 1, ki_ = 0, kd_ = 0, kf_ = 0, vmax_ = 24;
-  InputHandle ref_voltage_, ref_speed_, ref_pos_, active_;
+  InputHandle ref_voltage_, ref_speed_, ref_pos_, active_, motor_active_;
   SignalHandle error_;
   StateHandle state_;  // integral, previous error, primed, was active
 };

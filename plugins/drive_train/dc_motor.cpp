@@ -5,6 +5,8 @@
 #include "defaults.hpp"
 #include "drive_train_math.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -57,6 +59,17 @@ void DcMotor::configure(ConfigureContext& ctx) {
   const std::string at = ctx.axis_prefix(axis_) + "/";
   const char* torque_unit = linear ? "N" : "N*m";
   ref_voltage_ = ctx.declare_input_at(at + "ref_voltage", "V", 0.0);
+  // What SimTwo's SetMotorActive and SetMotorPars change at run time (and the viewer's
+  // inputs, --set, a remote client): read every tick, validated where they are used.
+  active_in_ = ctx.declare_input_at(at + "motor_active", "1", active_ ? 1.0 : 0.0);
+  simple_in_ = ctx.declare_input_at(at + "motor_simple", "1", simple_ ? 1.0 : 0.0);
+  ri_in_ = ctx.declare_input_at(at + "motor_ri", "ohm", R_);
+  li_in_ = ctx.declare_input_at(at + "motor_li", "H", L_);
+  ki_in_ = ctx.declare_input_at(at + "motor_ki", linear ? "N/A" : "N*m/A", K_);
+  vmax_in_ = ctx.declare_input_at(at + "motor_vmax", "V", vmax_);
+  imax_in_ = ctx.declare_input_at(at + "motor_imax", "A", imax_);
+  gear_in_ = ctx.declare_input_at(at + "gear_ratio", "1", N_);
+  prefix_ = at;
   voltage_ = ctx.declare_signal_at(at + "voltage", "V");
   current_ = ctx.declare_signal_at(at + "current", "A");
   back_emf_ = ctx.declare_signal_at(at + "back_emf", "V");
@@ -72,7 +85,29 @@ void DcMotor::initialize(StepContext& ctx) {
   *ctx.state(energy_) = 0.0;
 }
 
+DcMotor::Parameters DcMotor::parameters(const StepContext& ctx) const {
+  Parameters m;
+  m.active = ctx.input(active_in_) != 0.0;
+  m.simple = ctx.input(simple_in_) != 0.0;
+  auto read = [&](InputHandle h, const char* name, bool positive) {
+    const double v = ctx.input(h);
+    if (std::isfinite(v) && v >= 0 && (v > 0 || !positive)) return v;
+    char value[32];
+    std::snprintf(value, sizeof value, "%.17g", v);
+    throw Error(ErrorKind::runtime, "input '" + prefix_ + name + "' = " + value +
+                                        (positive ? ": must be positive" : ": must be >= 0"));
+  };
+  m.R = read(ri_in_, "motor_ri", m.simple && m.active);  // simple: i = V/R
+  m.L = read(li_in_, "motor_li", false);
+  m.K = read(ki_in_, "motor_ki", false);
+  m.vmax = read(vmax_in_, "motor_vmax", false);
+  m.imax = read(imax_in_, "motor_imax", false);
+  m.N = read(gear_in_, "gear_ratio", true);
+  return m;
+}
+
 void DcMotor::update(StepContext& ctx) {
+  const Parameters m = parameters(ctx);
   const double w = ctx.axis_velocity(axis_);  // mid-step speed of the last step
   const double q = ctx.axis_position(axis_);
   const double dt = ctx.tick_s();
@@ -81,15 +116,17 @@ void DcMotor::update(StepContext& ctx) {
 
   double v = 0, e = 0;
   CurrentStep step;
-  const double de_dw = simtwo_back_emf_ ? K_ / N_ : K_ * N_;
-  if (active_) {
-    v = std::clamp(ctx.input(ref_voltage_), -vmax_, vmax_);
+  const double de_dw = simtwo_back_emf_ ? m.K / m.N : m.K * m.N;
+  if (m.active) {
+    v = std::clamp(ctx.input(ref_voltage_), -m.vmax, m.vmax);
     e = de_dw * w;
-    step = advance_current(i, v, e, R_, L_, imax_, simple_, dt);
+    step = advance_current(i, v, e, m.R, m.L, m.imax, m.simple, dt);
+  } else {
+    i = 0;  // switched off (SimTwo's SetMotorActive false): no current, no torque
   }
   // The slew limit is a box around the last step's current: it bounds the drive as the
   // current limit does, so the implicit solve keeps it.
-  double i_min = -imax_, i_max = imax_;
+  double i_min = -m.imax, i_max = m.imax;
   if (slew_A_per_tick_ > 0) {
     i_min = std::max(i_min, i - slew_A_per_tick_);
     i_max = std::min(i_max, i + slew_A_per_tick_);
@@ -97,7 +134,7 @@ void DcMotor::update(StepContext& ctx) {
     step.mean = std::clamp(step.mean, i_min, i_max);
   }
   i = step.end;
-  const double motor_torque = N_ * K_ * step.mean;
+  const double motor_torque = m.N * m.K * step.mean;
   const double power = v * step.mean;
   energy += power * dt;
 
@@ -105,9 +142,9 @@ void DcMotor::update(StepContext& ctx) {
   // the viscous friction too: drives, which the kernel integrates implicitly (stable and
   // without ringing on any inertia, docs/models/dc-motor.md). The spring stays an explicit
   // force: the leapfrog keeps its energy exactly, an implicit spring would bleed it.
-  if (active_) {
-    ctx.apply_axis_drive(axis_, N_ * K_ * step.unlimited_mean, -N_ * K_ * step.dmean_de * de_dw,
-                         N_ * K_ * i_min, N_ * K_ * i_max);
+  if (m.active) {
+    ctx.apply_axis_drive(axis_, m.N * m.K * step.unlimited_mean, -m.N * m.K * step.dmean_de * de_dw,
+                         m.N * m.K * i_min, m.N * m.K * i_max);
   }
   if (bv_ > 0) ctx.apply_axis_drive(axis_, -bv_ * w, bv_);
   if (spring_k_ > 0) ctx.apply_axis_force(axis_, -spring_k_ * (q - zero_pos_));

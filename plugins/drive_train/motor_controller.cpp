@@ -49,7 +49,7 @@ void MotorController::configure(ConfigureContext& ctx) {
   const double period_ms =
       p.number("controller.period", defaults::kControllerPeriodMs, Range::positive());
   const bool active = p.boolean("controller.active", defaults::kControllerActive);
-  motor_active_ = p.boolean("motor.active", defaults::kMotorActive);
+  const bool motor_active = p.boolean("motor.active", defaults::kMotorActive);
   vmax_ = p.number("motor.vmax", defaults::kMotorVmax, Range::non_negative());
   wrap_ = p.boolean("wrap", !linear) && !linear;
   ctx.set_schedule(Stage::motor_control, period_on_grid(period_ms / 1000.0, ctx.tick_s()));
@@ -59,6 +59,7 @@ void MotorController::configure(ConfigureContext& ctx) {
   ref_speed_ = ctx.declare_input_at(at + "ref_speed", linear ? "m/s" : "rad/s", 0.0);
   ref_pos_ = ctx.declare_input_at(at + "ref_pos", linear ? "m" : "rad", 0.0);
   active_ = ctx.declare_input_at(at + "controller_active", "1", active ? 1.0 : 0.0);
+  motor_active_ = ctx.declare_input_at(at + "motor_active", "1", motor_active ? 1.0 : 0.0);
   const char* error_unit =
       mode_ == Mode::pid_speed ? (linear ? "m/s" : "rad/s") : (linear ? "m" : "rad");
   error_ = ctx.declare_signal_at(at + "control_error", error_unit);
@@ -73,7 +74,10 @@ void MotorController::initialize(StepContext& ctx) {
 
 void MotorController::update(StepContext& ctx) {
   double* s = ctx.state(state_);
-  if (!motor_active_ || ctx.input(active_) == 0.0) {
+  // A switched-off motor (SimTwo's SetMotorActive false) stops the controller where it is:
+  // its integral and previous error wait for the motor to come back.
+  if (ctx.input(motor_active_) == 0.0) return;
+  if (ctx.input(active_) == 0.0) {
     if (s[kWasActive] != 0.0) ctx.set_input(ref_voltage_, 0.0);  // release the motor once
     s[kWasActive] = 0.0;
     return;

@@ -33,6 +33,10 @@ AxisRef& ScriptController::axis(double r, double i) {
   if (i < 0 || i >= static_cast<double>(rb.axes.size())) fail(index_error(i));
   return rb.axes[static_cast<std::size_t>(i)];
 }
+const AxisRef& ScriptController::motor(const AxisRef& ax) {
+  if (!ax.has_motor) fail("axis " + ax.path + " has no motor");
+  return ax;
+}
 int ScriptController::chart_series(double chart, double series) {
   if (chart < 0 || chart >= kMaxCharts) fail(index_error(chart));
   if (series < 0 || series >= kMaxChartSeries) fail(index_error(series));
@@ -238,9 +242,16 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     }
     case HostFn::GetAxisIndex: {
       need(2);
+      // Joint ID's axis k (0 first, 1 a Universal joint's second, listed before its first).
       const RobotRef& rb = robot(a[0]);
-      (void)rb;
-      not_provided(fn, "look axes up by their index in joint order");
+      const bool second = a[1] == 1;
+      for (std::size_t i = 0; i < rb.axes.size(); ++i) {
+        const AxisRef& ax = rb.axes[i];
+        const bool is_second =
+            ax.path.size() > 2 && ax.path.compare(ax.path.size() - 2, 2, ":2") == 0;
+        if (ax.joint == s && is_second == second) return static_cast<double>(i);
+      }
+      return -1;
     }
     case HostFn::GetGlobalSensorIndex:
       for (std::size_t i = 0; i < sensors_.size(); ++i)
@@ -315,17 +326,18 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       if (ax.voltage.index < 0) fail("axis " + ax.path + " has no motor");
       return ctx.signal(ax.voltage);
     }
-    case HostFn::GetAxisTorque:
-      not_provided(fn, "read the axis torque signal from a log instead");
+    case HostFn::GetAxisTorque: {
+      need(2);
+      const AxisRef& ax = axis(a[0], a[1]);
+      return ax.path.empty() ? 0 : ctx.signal(ax.torque);  // Fixed and Ball: 0
+    }
     case HostFn::SetMotorActive:
       need(3);
-      (void)drive(a[0], a[1]);
-      if (a[2] == 0) not_provided(fn, "a motor cannot be switched off at run time yet");
-      return 0;  // motors are active as the scene declares them
+      ctx.set_input(motor(drive(a[0], a[1])).motor[kMotorActive], a[2] != 0 ? 1 : 0);
+      return 0;
     case HostFn::IsMotorActive:
       need(2);
-      (void)drive(a[0], a[1]);
-      return 1;
+      return ctx.input(motor(drive(a[0], a[1])).motor[kMotorActive]) != 0 ? 1 : 0;
     case HostFn::SetMotorControllerState:
       need(3);
       ctx.set_input(drive(a[0], a[1]).controller_active, a[2] != 0 ? 1 : 0);
@@ -333,9 +345,33 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetMotorControllerState:
       need(2);
       return ctx.input(drive(a[0], a[1]).controller_active);
-    case HostFn::GetMotorPars:
-    case HostFn::SetMotorPars:
-      not_provided(fn, "motor parameters are fixed at load");
+    case HostFn::GetMotorPars: {
+      need(2);
+      const AxisRef& ax = motor(drive(a[0], a[1]));
+      numbers_.clear();
+      for (const InputHandle h : ax.motor)
+        numbers_.push_back(ctx.input(h));
+      return 0;
+    }
+    case HostFn::SetMotorPars: {
+      need(2 + kMotorParCount);
+      const AxisRef& ax = motor(drive(a[0], a[1]));
+      // Checked here, so that a bad record stops the script, not the simulation (the motor
+      // refuses the same values set from outside). As SimTwo, the controller's anti-windup
+      // keeps the scene's Vmax.
+      for (int k = 0; k < kMotorParCount; ++k) {
+        const double v = a[2 + k];
+        const bool positive = k == kMotorGearRatio || (k == kMotorRi && a[2 + kMotorSimple] != 0 &&
+                                                       a[2 + kMotorActive] != 0);
+        if (!std::isfinite(v) || v < 0 || (positive && v == 0))
+          fail(std::string("SetMotorPars: ") + kMotorParNames[k] + " = " + std::to_string(v) +
+               (positive ? " must be positive" : " must be >= 0"));
+      }
+      for (int k = 0; k < kMotorParCount; ++k)
+        ctx.set_input(ax.motor[static_cast<std::size_t>(k)],
+                      k >= kMotorSimple ? (a[2 + k] != 0 ? 1.0 : 0.0) : a[2 + k]);
+      return 0;
+    }
     case HostFn::GetSensorVal:
       need(2);
       return sensor_value(robot_sensor(a[0], a[1]), true);

@@ -35,6 +35,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;
       a.path = p.text(k + "axis_" + std::to_string(i), "");
+      a.joint = p.text(k + "axis_" + std::to_string(i) + "_joint", "");
       if (!a.path.empty()) {
         a.axis = ctx.axis(a.path);
         a.linear = ctx.axis_is_linear(a.axis);
@@ -43,11 +44,22 @@ void ScriptController::configure(ConfigureContext& ctx) {
         a.ref_speed = ctx.declare_input_at(a.path + "/ref_speed", a.linear ? "m/s" : "rad/s", 0.0);
         a.ref_pos = ctx.declare_input_at(a.path + "/ref_pos", u, 0.0);
         a.ref_torque = ctx.declare_input_at(a.path + "/ref_torque", a.linear ? "N" : "N*m", 0.0);
+        a.torque = ctx.signal_reader(a.path + "/torque");  // the kernel's, on every axis
         try {
           a.controller_active = ctx.declare_input_at(a.path + "/controller_active", "1", 0.0);
           a.encoder = ctx.published_signal(a.path + "/encoder");
           a.current = ctx.published_signal(a.path + "/current");
           a.voltage = ctx.published_signal(a.path + "/voltage");
+          const char* motor_inputs[kMotorParCount] = {"motor_ri",     "motor_li",    "motor_ki",
+                                                      "motor_vmax",   "motor_imax",  "gear_ratio",
+                                                      "motor_simple", "motor_active"};
+          // The motor declared them (the drive train is configured before controllers):
+          // these join its inputs, and their units must agree.
+          const char* motor_units[kMotorParCount] = {
+              "ohm", "H", a.linear ? "N/A" : "N*m/A", "V", "A", "1", "1", "1"};
+          for (std::size_t m = 0; m < a.motor.size(); ++m)
+            a.motor[m] = ctx.declare_input_at(a.path + "/" + motor_inputs[m], motor_units[m], 0.0);
+          a.has_motor = true;
         } catch (const Error&) {
           // an axis without a drive train (loop-closing): GetAxisOdo/I/U raise if asked
         }

@@ -11,6 +11,7 @@
 
 #include <s2sim/sdk.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -26,17 +27,37 @@ inline constexpr int kMaxNumbers = 4096;
 // SimTwo's trails and chart series by index; the viewer gets series chart * 100 + series.
 inline constexpr int kMaxTrails = 255;
 inline constexpr int kMaxCharts = 100;
+/// TMotorPars's fields in record order, as AxisRef::motor holds their inputs.
+enum MotorPar : int {
+  kMotorRi,
+  kMotorLi,
+  kMotorKi,
+  kMotorVmax,
+  kMotorImax,
+  kMotorGearRatio,
+  kMotorSimple,
+  kMotorActive,
+  kMotorParCount
+};
+inline constexpr const char* kMotorParNames[kMotorParCount] = {
+    "Ri", "Li", "Ki", "Vmax", "Imax", "GearRatio", "simple", "active"};
 inline constexpr int kMaxChartSeries = 100;  // a host function's numeric result (ranger rays...)
 
 /// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
 inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
 
 struct AxisRef {
-  std::string path;  // empty for a Fixed or Ball joint (SimTwo gives it an index too)
+  std::string path;   // empty for a Fixed or Ball joint (SimTwo gives it an index too)
+  std::string joint;  // the joint's ID (GetAxisIndex)
   AxisHandle axis;
   bool linear = false;
   InputHandle ref_voltage, ref_speed, ref_pos, ref_torque, controller_active;
   SignalHandle encoder{-1}, current{-1}, voltage{-1};
+  SignalReader torque;  // the kernel's axis torque (GetAxisTorque)
+  /// The DC motor's run-time parameters (TMotorPars order: Ri, Li, Ki, Vmax, Imax,
+  /// GearRatio, simple, active); index -1 without a motor.
+  std::array<InputHandle, 8> motor{};
+  bool has_motor = false;
 };
 
 struct SensorRef {
@@ -93,6 +114,8 @@ class ScriptController final : public Component {
   [[noreturn]] void not_provided(HostFn fn, const char* why);
   RobotRef& robot(double r);
   AxisRef& axis(double r, double i);
+  /// The axis itself when it has a DC motor; a script error otherwise.
+  const AxisRef& motor(const AxisRef& ax);
   SensorRef& robot_sensor(double r, double i);
   SensorRef& global_sensor(double i);
   SolidRef& solid(double r, double i);

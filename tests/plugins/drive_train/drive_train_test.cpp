@@ -232,6 +232,44 @@ TEST(MotorController, ReferencesHoldUntilSetAndDeactivationReleasesTheMotor) {
   EXPECT_EQ(sim->signal(axis("voltage")), 0.0);
 }
 
+TEST(DcMotor, ParameterInputsSwitchTheMotorAndChangeItsLawAtRunTime) {
+  auto sim = load_bench();
+  EXPECT_EQ(sim->signal(axis("motor_active")), 1.0);
+  EXPECT_EQ(sim->signal(axis("motor_ri")), kRa);
+  sim->set_input(axis("ref_voltage"), 6);
+  sim->run_until(1.0);
+  const double w6 = sim->signal(axis("speed"));
+  EXPECT_NEAR(w6, eq_3_11(6), 1e-3 * eq_3_11(6));
+  // Off: no current, the flywheel coasts down under its friction; the controller waits.
+  sim->set_input(axis("controller_active"), 1);
+  sim->set_input(axis("ref_speed"), 3);
+  sim->set_input(axis("motor_active"), 0);
+  sim->run_until(1.5);
+  EXPECT_EQ(sim->signal(axis("current")), 0.0);
+  EXPECT_EQ(sim->signal(axis("motor_torque")), 0.0);
+  EXPECT_LT(sim->signal(axis("speed")), 0.5 * w6);
+  EXPECT_EQ(sim->input(sim->input_index(axis("ref_voltage"))), 6.0) << "the controller ran";
+  // On again under the controller, then open loop with twice the resistance: (3.11) again.
+  sim->set_input(axis("motor_active"), 1);
+  sim->run_until(2.5);
+  EXPECT_NEAR(sim->signal(axis("speed")), 3, 0.05);
+  sim->set_input(axis("controller_active"), 0);
+  sim->set_input(axis("motor_ri"), 2 * kRa);
+  sim->step(10);
+  sim->set_input(axis("ref_voltage"), 6);
+  sim->run_until(4.0);
+  const double w_2r = (6 - 2 * kRa * kTc / kKs) / (kKs + 2 * kRa * kB / kKs);
+  EXPECT_NEAR(sim->signal(axis("speed")), w_2r, 1e-3 * w_2r);
+  // A value the motor cannot take stops the run, naming the input and the value.
+  sim->set_input(axis("gear_ratio"), 0);
+  try {
+    sim->step();
+    FAIL() << "a zero gear ratio was accepted";
+  } catch (const Error& e) {
+    EXPECT_THAT(e.message(), HasSubstr(axis("gear_ratio") + "' = 0: must be positive"));
+  }
+}
+
 TEST(MotorController, SimTwoLawAndStateFeedbackAlsoRegulate) {
   // SimTwo's law (integral and derivative with the physics step) on the bench's pidspeed.
   auto simtwo = Simulation::load(

@@ -297,6 +297,51 @@ TEST_F(PascalScript, RunTimeErrorIsReportedWhateverFollowsTheEnvironment) {
   EXPECT_NE(err.find("runtime_error.pas:14"), std::string::npos) << err;
 }
 
+/// SetMotorActive, GetMotorPars/SetMotorPars, IsMotorActive, GetAxisTorque and GetAxisIndex
+/// (MotorModel_V3AGM's control.pas, simtwo-script-api.md §3.1): the motor's inputs change, the
+/// current follows, and a bad record stops the script, not the simulation.
+TEST_F(PascalScript, MotorCallsSwitchTheMotorAndChangeItsParameters) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "motor_pars.pas");
+  for (auto [r, c] : {std::pair{1, 1}, {1, 2}, {1, 3}, {2, 1}, {3, 1}, {4, 1}, {4, 2}, {4, 3}})
+    o.sheet_cells.push_back({r, c, "9"});
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
+  const std::string axis = "robots/Motor/axes/InertialBoard/";
+  const double ri = sim->signal(axis + "motor_ri");
+  EXPECT_EQ(ri, 7.1);     // Motor.xml's <motor ri>
+  sim->run_until(0.035);  // 1st Control (at T - dt = 0.039 s) not yet
+  sim->run_until(0.045);  // after the 1st: 12 V, the motor on
+  EXPECT_EQ(sig(*sim, "sheet/A2"), 1);
+  EXPECT_GT(std::abs(sim->signal(axis + "current")), 0.1);
+  sim->run_until(0.085);  // after the 2nd: off, no current
+  EXPECT_EQ(sim->signal(axis + "motor_active"), 0);
+  EXPECT_EQ(sig(*sim, "sheet/A2"), 0);
+  sim->run_until(0.12);
+  EXPECT_EQ(sim->signal(axis + "current"), 0);
+  EXPECT_EQ(sim->signal(axis + "motor_torque"), 0);
+  sim->run_until(0.165);  // after the 4th: on again, Ri doubled
+  EXPECT_EQ(sig(*sim, "sheet/A1"), ri);
+  EXPECT_EQ(sig(*sim, "sheet/B1"), 1);  // <gear ratio>
+  EXPECT_EQ(sig(*sim, "sheet/C1"), 0);  // read while off
+  EXPECT_EQ(sim->signal(axis + "motor_active"), 1);
+  EXPECT_EQ(sim->signal(axis + "motor_ri"), 2 * ri);
+  EXPECT_EQ(sig(*sim, "sheet/A2"), 1);
+  sim->run_until(0.2);
+  EXPECT_GT(std::abs(sim->signal(axis + "current")), 0.1);
+  // GetAxisTorque is the axis's torque signal of the tick before the call.
+  EXPECT_NE(sig(*sim, "sheet/A3"), 0);
+  EXPECT_EQ(sig(*sim, "sheet/A4"), 0);   // the hinge
+  EXPECT_EQ(sig(*sim, "sheet/B4"), 1);   // the Fixed joint has an index too
+  EXPECT_EQ(sig(*sim, "sheet/C4"), -1);  // no such joint
+  ::testing::internal::CaptureStderr();
+  sim->run_until(0.3);  // the 6th refuses Ri = -1: the script stops, the motor keeps 2 Ri
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 1);
+  EXPECT_NE(err.find("SetMotorPars: Ri = -1"), std::string::npos) << err;
+  EXPECT_EQ(sim->signal(axis + "motor_ri"), 2 * ri);
+  EXPECT_NEAR(sim->time_s(), 0.3, 1e-9);
+}
+
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
