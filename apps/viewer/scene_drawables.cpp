@@ -202,11 +202,22 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     set_color(d.item, j.draw.color);
     drawables_.push_back(d);
   }
+  for (auto& d : drawables_)
+    std::copy(d.item.color, d.item.color + 4, d.scene_color);
 }
 
 void SceneDrawables::update(const Simulation& sim) {
-  for (auto& d : drawables_)
+  const Annotations& notes = sim.annotations();
+  for (auto& d : drawables_) {
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
+    if (d.kind != Drawable::Kind::solid) continue;
+    const Annotations::BodyColor* painted =
+        notes.body_colors.empty() ? nullptr : notes.body_color(d.body);
+    for (int k = 0; k < 4; ++k)
+      d.item.color[k] = painted && k < 3 ? static_cast<float>(painted->rgb[k])
+                        : painted        ? 1.0f
+                                         : d.scene_color[k];
+  }
 }
 
 const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int selected_body) {

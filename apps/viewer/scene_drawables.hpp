@@ -20,7 +20,8 @@ struct Drawable {
   Mat4 local;                          ///< mesh to body frame (scale included)
   Vec3f box_min{-0.5f, -0.5f, -0.5f};  ///< mesh-space bounds, for picking
   Vec3f box_max{0.5f, 0.5f, 0.5f};
-  DrawItem item;  ///< model is rewritten every frame
+  DrawItem item;                                 ///< model is rewritten every frame
+  float scene_color[4] = {0.5f, 0.5f, 0.5f, 1};  ///< the scene's; a script may repaint a solid
 };
 
 class SceneDrawables {
@@ -30,7 +31,8 @@ class SceneDrawables {
   /// primitive (or untextured).
   void build(const scene::Scene& scene, Renderer& renderer, std::vector<std::string>& warnings);
 
-  /// Updates every item's model matrix from the simulation's body poses. No allocation.
+  /// Updates every item's model matrix from the simulation's body poses, and each solid's
+  /// colour from the run-time colours (`Annotations::body_colors`). No allocation.
   void update(const Simulation& sim);
 
   /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags),

@@ -33,6 +33,19 @@ AxisRef& ScriptController::axis(double r, double i) {
   if (i < 0 || i >= static_cast<double>(rb.axes.size())) fail(index_error(i));
   return rb.axes[static_cast<std::size_t>(i)];
 }
+Pose& ScriptController::move_of(BodyHandle b) {
+  for (auto& [body, pose] : moves_)
+    if (body == b.index) return pose;
+  moves_.emplace_back(b.index, ctx_->body_pose(b));
+  return moves_.back().second;
+}
+Twist& ScriptController::velocity_of(BodyHandle b) {
+  for (auto& [body, twist] : velocities_)
+    if (body == b.index) return twist;
+  velocities_.emplace_back(b.index, ctx_->body_twist(b));
+  return velocities_.back().second;
+}
+
 const AxisRef& ScriptController::motor(const AxisRef& ax) {
   if (!ax.has_motor) fail("axis " + ax.path + " has no motor");
   return ax;
@@ -444,16 +457,49 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetSolidLinearVel:
       need(2);
       return point(ctx.body_twist(solid(a[0], a[1]).body).linear_m_s);
-    case HostFn::SetSolidPos:
-    case HostFn::SetSolidRotationMat:
-    case HostFn::SetSolidLinearVel:
-    case HostFn::SetSolidAngularVel:
-      not_provided(fn,
-                   "one body of a jointed robot cannot be teleported; SetRobotPos moves a robot");
-    case HostFn::SetSolidColor:
+    // One body teleported, its speeds kept (§3.3): ODE then pulls the joints together again;
+    // S2Sim's joints cannot come apart, so a jointed body goes as close as its joint allows.
+    case HostFn::SetSolidPos: {
       need(5);
-      (void)solid(a[0], a[1]);
-      not_provided(fn, "colours are fixed at load");
+      const BodyHandle b = solid(a[0], a[1]).body;
+      Pose& pose = move_of(b);
+      pose.position = {a[2], a[3], a[4]};
+      ctx.request_move(b, pose);
+      return 0;
+    }
+    case HostFn::SetSolidRotationMat: {
+      need(4);
+      const BodyHandle b = solid(a[0], a[1]).body;
+      if (a[2] < 3 || a[3] < 3 || n < 4 + static_cast<int>(a[2] * a[3]))
+        fail("Invalid (row,col) value: SetSolidRotationMat needs a 3x3 matrix");
+      const int cols = static_cast<int>(a[3]);
+      Pose& pose = move_of(b);
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          pose.rotation.m[r][c] = a[4 + r * cols + c];
+      ctx.request_move(b, pose);
+      return 0;
+    }
+    case HostFn::SetSolidLinearVel: {
+      need(5);
+      const BodyHandle b = solid(a[0], a[1]).body;
+      Twist& twist = velocity_of(b);
+      twist.linear_m_s = {a[2], a[3], a[4]};
+      ctx.request_velocity(b, twist);
+      return 0;
+    }
+    case HostFn::SetSolidAngularVel: {
+      need(5);
+      const BodyHandle b = solid(a[0], a[1]).body;
+      Twist& twist = velocity_of(b);
+      twist.angular_rad_s = {a[2], a[3], a[4]};
+      ctx.request_velocity(b, twist);
+      return 0;
+    }
+    case HostFn::SetSolidColor:  // bytes 0..255, opaque
+      need(5);
+      ctx.set_body_color(solid(a[0], a[1]).body, a[2] / 255, a[3] / 255, a[4] / 255);
+      return 0;
     case HostFn::SetShellTag: {
       need(2);
       RobotRef& rb = robot(a[0]);

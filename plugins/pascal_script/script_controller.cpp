@@ -226,6 +226,8 @@ void ScriptController::initialize(StepContext& ctx) {
 void ScriptController::update(StepContext& ctx) {
   double* s = ctx.state(state_);
   if (!available_) return;  // no compiler: the scene runs without its controller
+  moves_.clear();
+  velocities_.clear();
   // The script tick, before the script: encoders counted over the period, references zeroed
   // (§1.3 steps 1-2; the position reference is kept).
   std::size_t k = 3;

@@ -162,6 +162,12 @@ class ScriptController final : public Component {
   std::string last_error_;  // the run-time error that stopped the script
   std::string text_result_;
   std::vector<double> numbers_;
+  // The bodies a script moved or set moving in this call, as it built them up: SetSolidPos
+  // then SetSolidRotationMat on one body make one move (the kernel applies it after the call).
+  std::vector<std::pair<std::int32_t, Pose>> moves_;
+  std::vector<std::pair<std::int32_t, Twist>> velocities_;
+  Pose& move_of(BodyHandle b);
+  Twist& velocity_of(BodyHandle b);
   std::deque<std::string> output_;  // WriteLn, the last 100 lines
   std::string hud_;
   UdpPort udp_;

@@ -148,6 +148,28 @@ void LooseBodies::declare_state(sim::StateLayout& layout) {
       });
 }
 
+bool LooseBodies::set_velocity(int kernel_index, const Twist& twist) {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    if (model_[i].kernel_index != kernel_index) continue;
+    State& b = state_[i];
+    const Vec3 com_from_origin = to_matrix(b.q) * model_[i].com_body_m;
+    b.com_velocity_m_s = twist.linear_m_s + cross(twist.angular_rad_s, com_from_origin);
+    b.angular_velocity_rad_s = twist.angular_rad_s;
+    return true;
+  }
+  return false;
+}
+
+bool LooseBodies::move(int kernel_index, const Pose& pose) {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    if (model_[i].kernel_index != kernel_index) continue;
+    state_[i].com_m = pose * model_[i].com_body_m;
+    state_[i].q = normalized(to_quat(pose.rotation));
+    return true;
+  }
+  return false;
+}
+
 bool LooseBodies::place(int kernel_index, const Pose& pose) {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     if (model_[i].kernel_index != kernel_index) continue;

@@ -49,6 +49,10 @@ class LooseBodies {
   /// Puts kernel body `kernel_index` at `pose` (body origin, world frame), at rest. Returns
   /// false when that body is not one of these.
   bool place(int kernel_index, const Pose& pose);
+  /// Puts kernel body `kernel_index` at `pose`, its velocities kept; false if not loose.
+  bool move(int kernel_index, const Pose& pose);
+  /// Sets body `kernel_index`'s velocity (its origin's, world frame); false if not loose.
+  bool set_velocity(int kernel_index, const Twist& twist);
 
   /// Registers the state segments `loose/position` (per body its centre of mass and
   /// orientation quaternion w, x, y, z: 7 numbers) and `loose/velocity` (its centre of mass's

@@ -267,19 +267,4 @@ void Multibody::restored() {
   }
 }
 
-bool Multibody::place_free_body(int body, const Pose& pose) {
-  Impl& m = *impl_;
-  if (body <= 0 || body >= static_cast<int>(m.mobod_of_body.size())) return false;
-  m.bodies_fresh = false;  // the cached body poses no longer hold the state
-  if (!m.mobod_of_body[body].isValid()) return m.loose.place(body, pose);  // a loose body
-  SimTK::MobilizedBody& b = m.upd_mobod(body);
-  if (!SimTK::MobilizedBody::Free::isInstanceOf(b) || !b.getParentMobilizedBody().isGround())
-    return false;
-  SimTK::State& s = m.current;
-  b.setQToFitTransform(s, to_simtk(pose));
-  b.setUToFitVelocity(s, SimTK::SpatialVec(SimTK::Vec3(0), SimTK::Vec3(0)));
-  m.system.realize(s, SimTK::Stage::Velocity);
-  return true;
-}
-
 }  // namespace s2sim::model

@@ -163,6 +163,14 @@ class Multibody {
   /// Returns false, changing nothing, for any other body. The other bodies' leapfrog goes on
   /// undisturbed; the placed body's zero speed is its mid-step speed.
   bool place_free_body(int body, const Pose& pose);
+  /// Moves any body to `pose` as closely as its joint allows, its speeds kept: a loose body
+  /// or a robot's root body goes exactly there; a jointed body's mobilizer coordinates are
+  /// fitted (a hinge keeps the rotation about its axis), its children following. False for
+  /// the world or an unknown index.
+  bool move_body(int body, const Pose& pose);
+  /// Sets a body's velocity (world frame, of its origin) as closely as its joint allows, the
+  /// same way; false for the world or an unknown index.
+  bool set_body_velocity(int body, const Twist& twist);
 
   struct Impl;  // Simbody's objects, defined in multibody.cpp
 

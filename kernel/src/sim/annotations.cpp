@@ -24,7 +24,14 @@ std::string Annotations::hud_text() const {
   return text;
 }
 
+const Annotations::BodyColor* Annotations::body_color(int body) const {
+  for (const BodyColor& c : body_colors)
+    if (c.body == body) return &c;
+  return nullptr;
+}
+
 void Annotations::clear() {
+  body_colors.clear();
   lines.clear();
   next_sequence = 0;
   huds.clear();
@@ -92,6 +99,21 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
     case detail::Annotation::clear_xy:
       if (auto* series = find_or_add(a.series, source, id, false)) series->points.clear();
       break;
+    case detail::Annotation::body_color: {
+      if (values == nullptr || id <= 0 || id >= static_cast<std::int32_t>(m.poses.size())) return;
+      Annotations::BodyColor c{id, {}};
+      for (int k = 0; k < 3; ++k)  // NaN becomes 0
+        c.rgb[k] = values[k] >= 0 ? (values[k] <= 1 ? values[k] : 1.0) : 0.0;
+      const Annotations::BodyColor* old = a.body_color(id);
+      if (old == nullptr) {
+        a.body_colors.push_back(c);
+      } else {
+        if (std::equal(c.rgb, c.rgb + 3, old->rgb)) return;
+        auto& slot = a.body_colors[static_cast<std::size_t>(old - a.body_colors.data())];
+        slot = c;
+      }
+      break;
+    }
     default:
       return;  // a kind from a newer SDK: ignored
   }

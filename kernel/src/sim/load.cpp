@@ -175,8 +175,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.cast_ray = &collision::RayCaster::callback;
   m.world.joint_reaction = m.multibody->joint_reactions();
   m.pending_places.reserve(m.poses.size());
+  m.pending_moves.reserve(m.poses.size());
+  m.pending_velocities.reserve(m.poses.size());
   m.world.placer = &m;
   m.world.request_place = &Simulation::Impl::request_place;
+  m.world.request_move = &Simulation::Impl::request_move;
+  m.world.request_velocity = &Simulation::Impl::request_velocity;
   m.world.annotator = &m;
   m.world.annotate = &Simulation::Impl::annotate;
   m.declare_state();

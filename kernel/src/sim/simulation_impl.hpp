@@ -142,7 +142,13 @@ struct Simulation::Impl {
   /// Re-placements components asked for in the current stage (StepContext::request_place),
   /// applied once the stage has run (step.cpp); reserved at load, one per body.
   std::vector<std::pair<std::int32_t, Pose>> pending_places;
+  /// Moves and velocities (StepContext::request_move, request_velocity), applied after the
+  /// places in that order; reserved at load, one of each per body.
+  std::vector<std::pair<std::int32_t, Pose>> pending_moves;
+  std::vector<std::pair<std::int32_t, Twist>> pending_velocities;
   static void request_place(const void* impl, std::int32_t body, const Pose& pose);
+  static void request_move(const void* impl, std::int32_t body, const Pose& pose);
+  static void request_velocity(const void* impl, std::int32_t body, const Twist& twist);
   void apply_pending_places();
 
   /// What components published for the people watching (WorldView::annotate,

@@ -124,7 +124,8 @@ void Simulation::Impl::step_once() {
         sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
       }
     }
-    if (!pending_places.empty()) apply_pending_places();
+    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
+      apply_pending_places();
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
@@ -169,15 +170,30 @@ void Simulation::Impl::step_once() {
   world.contacts = contacts->contacts();  // the buffer may have grown
 }
 
-void Simulation::Impl::request_place(const void* impl, std::int32_t body, const Pose& pose) {
-  auto& m = *const_cast<Simulation::Impl*>(static_cast<const Simulation::Impl*>(impl));
-  // Within the reserve (one per body) a request does not allocate; a later one replaces.
-  for (auto& [b, p] : m.pending_places)
+namespace {
+/// Within the reserve (one per body) a request does not allocate; a later one replaces.
+template <class T>
+void add_request(std::vector<std::pair<std::int32_t, T>>& list, std::int32_t body, const T& v) {
+  for (auto& [b, p] : list)
     if (b == body) {
-      p = pose;
+      p = v;
       return;
     }
-  m.pending_places.emplace_back(body, pose);
+  list.emplace_back(body, v);
+}
+Simulation::Impl& impl_of(const void* impl) {
+  return *const_cast<Simulation::Impl*>(static_cast<const Simulation::Impl*>(impl));
+}
+}  // namespace
+
+void Simulation::Impl::request_place(const void* impl, std::int32_t body, const Pose& pose) {
+  add_request(impl_of(impl).pending_places, body, pose);
+}
+void Simulation::Impl::request_move(const void* impl, std::int32_t body, const Pose& pose) {
+  add_request(impl_of(impl).pending_moves, body, pose);
+}
+void Simulation::Impl::request_velocity(const void* impl, std::int32_t body, const Twist& twist) {
+  add_request(impl_of(impl).pending_velocities, body, twist);
 }
 
 void Simulation::Impl::apply_pending_places() {
@@ -193,6 +209,18 @@ void Simulation::Impl::apply_pending_places() {
                       "can be placed)");
   }
   pending_places.clear();
+  for (const auto& [body, pose] : pending_moves)
+    if (!multibody->move_body(body, pose))
+      throw Error(ErrorKind::runtime, "a component asked to move body index " +
+                                          std::to_string(body) +
+                                          ", which is not a body of the scene");
+  pending_moves.clear();
+  for (const auto& [body, twist] : pending_velocities)
+    if (!multibody->set_body_velocity(body, twist))
+      throw Error(ErrorKind::runtime, "a component asked to set the velocity of body index " +
+                                          std::to_string(body) +
+                                          ", which is not a body of the scene");
+  pending_velocities.clear();
   refresh();
 }
 
@@ -242,6 +270,8 @@ void Simulation::Impl::refresh() {
 void Simulation::Impl::reset() {
   tick = 0;
   pending_places.clear();
+  pending_moves.clear();
+  pending_velocities.clear();
   annotations.clear();
   multibody->reset();
   contacts->reset();

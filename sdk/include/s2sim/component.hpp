@@ -201,6 +201,10 @@ struct WorldView {
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
                    const double* values) = nullptr;
+  /// Moves and velocities of any body (SDK 0.10, ABI 7), applied after the stage that asked,
+  /// after its re-placements (`StepContext::request_move`, `request_velocity`).
+  void (*request_move)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
+  void (*request_velocity)(const void* placer, std::int32_t body, const Twist& twist) = nullptr;
 };
 
 /// The kinds of `WorldView::annotate` calls; new kinds may be added without an ABI change (a
@@ -212,6 +216,7 @@ enum class Annotation : std::int32_t {
   clear_trail = 3,  ///< id: trail
   xy_point = 4,     ///< id: series, values: x, y
   clear_xy = 5,     ///< id: series
+  body_color = 6,   ///< id: body, values: red, green, blue in 0..1 (SDK 0.10)
 };
 }  // namespace detail
 
@@ -308,6 +313,19 @@ class StepContext {
   void request_place(BodyHandle b, const Pose& pose) {
     w_->request_place(w_->placer, b.index, pose);
   }
+  /// Asks the kernel to move any body to `pose` (world frame) once the current stage has run,
+  /// its speeds kept (SDK 0.10, SimTwo's `SetSolidPos`, `SetSolidRotationMat`): a thing or a
+  /// robot's root body goes exactly there, carrying what is jointed to it; a jointed body goes
+  /// as close as its joint allows (its joint coordinates fitted: a hinge keeps only the
+  /// rotation about its axis), its children following. Applied after `request_place`; a later
+  /// request for the same body replaces an earlier one. Does not allocate.
+  void request_move(BodyHandle b, const Pose& pose) { w_->request_move(w_->placer, b.index, pose); }
+  /// Asks the kernel to set a body's velocity (world frame, of the body origin) once the
+  /// current stage has run, as closely as its joint allows, the same way (SDK 0.10, SimTwo's
+  /// `SetSolidLinearVel`, `SetSolidAngularVel`); applied after the moves. Does not allocate.
+  void request_velocity(BodyHandle b, const Twist& twist) {
+    w_->request_velocity(w_->placer, b.index, twist);
+  }
 
   /// Publishes one line of text for the people watching (SDK 0.9): the viewer's Log window
   /// shows it with the simulated time and the component's path. Not part of the simulation's
@@ -334,6 +352,13 @@ class StepContext {
   }
   /// Removes every point of XY series `series` (SDK 0.9).
   void clear_xy_series(int series) { annotate(detail::Annotation::clear_xy, series, {}); }
+  /// Paints a body's solid (not its shells) in the 3-D view (SDK 0.10, SimTwo's
+  /// `SetSolidColor`): red, green, blue in 0..1, opaque, until painted again. Not part of the
+  /// state: a reset restores the scene's colours.
+  void set_body_color(BodyHandle body, double red, double green, double blue) {
+    const double rgb[3] = {red, green, blue};
+    annotate(detail::Annotation::body_color, body.index, {}, rgb);
+  }
 
   /// Current value of an input.
   double input(InputHandle i) const { return w_->inputs[i.index]; }

@@ -1,6 +1,7 @@
 // The SimTwo script controller: SimTwo's shared projects run under their own control.pas,
 // compile errors are located, the cache is used, run-time errors stop the script and not the
 // simulation, UDP and serial talk to test peers, runs repeat exactly (docs/scripting.md).
+#include <s2sim/kernel/annotations.hpp>
 #include <s2sim/kernel/simulation.hpp>
 
 #include <gtest/gtest.h>
@@ -340,6 +341,49 @@ TEST_F(PascalScript, MotorCallsSwitchTheMotorAndChangeItsParameters) {
   EXPECT_NE(err.find("SetMotorPars: Ri = -1"), std::string::npos) << err;
   EXPECT_EQ(sim->signal(axis + "motor_ri"), 2 * ri);
   EXPECT_NEAR(sim->time_s(), 0.3, 1e-9);
+}
+
+/// SetSolidPos, SetSolidRotationMat, SetSolidLinearVel, SetSolidAngularVel (CartPole's reset,
+/// simtwo-script-api.md §3.3) on scenes/cartpole: the cart (on a slider) and the pole (on a
+/// hinge) go back to their load poses at rest; SetSolidColor paints the pole.
+TEST_F(PascalScript, SolidTeleportsPutAJointedRobotBackAtRestAndColourIt) {
+  if (std::system("fpc -iV > /dev/null 2>&1") != 0) GTEST_SKIP() << "no fpc";
+  auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/cartpole",
+                              with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "teleport.pas"));
+  const std::string axes = "robots/cartpole/axes/";
+  int pole = 0;  // scene body i is body i + 1
+  for (std::size_t b = 0; b < sim->scene().bodies.size(); ++b)
+    if (sim->scene().bodies[b].id == "pole") pole = static_cast<int>(b) + 1;
+  ASSERT_GT(pole, 0);
+  sim->run_until(0.019);  // what Initialize reads at the first script tick: the pole has
+  const s2sim::Pose pole0 = sim->body_pose(pole);  // begun to fall
+  const double hinge0 = sim->signal(axes + "hinge/pos");
+  EXPECT_GT(std::abs(hinge0), 1e-5);
+  sim->run_until(0.49);  // 24 calls (at T - dt, then every T): pushed and falling
+  EXPECT_GT(sim->signal(axes + "slide/pos"), 0.05);
+  EXPECT_GT(std::abs(sim->signal(axes + "hinge/speed")), 0.05);
+  sim->run_until(0.5);  // the 25th call's teleport (0.499 s), then one tick of the push
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 0);
+  // One tick from rest under 5 N: the cart moves 2 µm, the pole turns 7 mrad/s.
+  EXPECT_NEAR(sim->signal(axes + "slide/pos"), 0, 1e-5);
+  EXPECT_NEAR(sim->signal(axes + "hinge/pos"), hinge0, 1e-5);
+  EXPECT_NEAR(sim->signal(axes + "slide/speed"), 0, 5e-3);
+  EXPECT_NEAR(sim->signal(axes + "hinge/speed"), 0, 1e-2);
+  const s2sim::Pose pole1 = sim->body_pose(pole);
+  EXPECT_NEAR(pole1.position.x, pole0.position.x, 1e-5);
+  EXPECT_NEAR(pole1.position.z, pole0.position.z, 1e-5);
+  const auto* painted = sim->annotations().body_color(pole);
+  ASSERT_NE(painted, nullptr);
+  EXPECT_EQ(painted->rgb[0], 1.0);
+  EXPECT_EQ(painted->rgb[1], 0.0);
+  EXPECT_EQ(painted->rgb[2], 0.2);
+  ::testing::internal::CaptureStderr();
+  sim->run_until(0.52);  // a 2x2 rotation raises as SimTwo's Mgetv does
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 1);
+  EXPECT_NE(err.find("Invalid (row,col) value"), std::string::npos) << err;
+  sim->reset();
+  EXPECT_EQ(sim->annotations().body_color(pole), nullptr);
 }
 
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {

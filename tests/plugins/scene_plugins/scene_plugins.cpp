@@ -102,6 +102,36 @@ class BodyPush : public Component {
   Vec3 force_, point_;
 };
 
+// SDK 0.10: at its first update at or after `at_s`, moves `solid` to `position` (its rotation
+// kept) with StepContext::request_move, then sets its velocity with request_velocity.
+class BodyMover : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    body_ = ctx.body(p.text("solid"));
+    at_s_ = p.number("at_s");
+    position_ = p.vec3("position");
+    twist_ = {p.vec3("angular"), p.vec3("linear")};
+    done_ = ctx.declare_state("done", 1, 0.0);
+  }
+  void update(StepContext& ctx) override {
+    double& done = *ctx.state(done_);
+    if (done != 0 || ctx.time_s() < at_s_ - 1e-12) return;
+    done = 1;
+    Pose pose = ctx.body_pose(body_);
+    pose.position = position_;
+    ctx.request_move(body_, pose);
+    ctx.request_velocity(body_, twist_);
+  }
+
+ private:
+  BodyHandle body_;
+  double at_s_ = 0;
+  Vec3 position_;
+  Twist twist_;
+  StateHandle done_;
+};
+
 // SDK 0.7: finds signals and inputs by name. Publishes how many signals match `signals`, the
 // values of `time` and of `read` as it reads them, and sets the existing input `input` to
 // `value` (never declaring it).
@@ -170,5 +200,6 @@ S2SIM_PLUGIN("s2sim_test_scene_plugins",
              S2SIM_KIND("test_echo_sensor", Category::sensor, Echo),
              S2SIM_KIND("test_noise", Category::sensor, Noise),
              S2SIM_KIND("test_body_push", Category::body, BodyPush),
+             S2SIM_KIND("test_body_mover", Category::actuator, BodyMover),
              S2SIM_KIND("test_name_reader", Category::controller, NameReader),
              S2SIM_KIND("test_annotator", Category::controller, Annotator))

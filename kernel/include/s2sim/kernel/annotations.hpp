@@ -48,6 +48,14 @@ struct Annotations {
   std::vector<Hud> huds;  ///< one per component that set a non-empty text, in order of first use
   std::vector<Trail> trails;
   std::vector<XySeries> series;
+  /// Bodies painted at run time (StepContext::set_body_color), one entry per body.
+  struct BodyColor {
+    int body = 0;
+    double rgb[3] = {0, 0, 0};  ///< 0..1
+  };
+  std::vector<BodyColor> body_colors;
+  /// The run-time colour of `body`, or null when it keeps the scene's.
+  const BodyColor* body_color(int body) const;
   /// Incremented whenever anything changes (a viewer redraws or copies only then).
   std::uint64_t version = 0;
 
