@@ -29,8 +29,12 @@ std::uint64_t pack(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
          static_cast<std::uint64_t>((iz + offset) & mask);
 }
 
+/// floor(coordinate / cell) as an integer, inline (std::floor is a library call without
+/// SSE4.1): truncation, one less below zero when it rounded up.
 std::int64_t cell_index(double coordinate_m, double inverse_cell) {
-  return static_cast<std::int64_t>(std::floor(coordinate_m * inverse_cell));
+  const double x = coordinate_m * inverse_cell;
+  const auto truncated = static_cast<std::int64_t>(x);
+  return truncated - (x < static_cast<double>(truncated) ? 1 : 0);
 }
 
 bool entry_less(std::uint64_t cell_a, std::int32_t box_a, std::uint64_t cell_b,
