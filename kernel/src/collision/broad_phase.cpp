@@ -59,6 +59,7 @@ void BroadPhase::resize(int count) {
   large_.reserve(n);
   is_large_.reserve(n);
   first_of_.reserve(n + 1);
+  sorted_.reserve(64 + 16 * n);  // as many pairs as ContactQuery reserves for
 }
 
 void BroadPhase::choose_cell(const Aabb* boxes) {

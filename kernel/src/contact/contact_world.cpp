@@ -231,7 +231,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
     bool renumbered = false;
     const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
-    if (renumbered) match_features(ia, ib, points, n);
+    if (renumbered && n > 0) match_features(ia, ib, points, n);
     for (int k = 0; k < n; ++k)
       add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
   }
