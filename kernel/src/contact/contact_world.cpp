@@ -9,8 +9,45 @@
 namespace s2sim::contact {
 namespace {
 
-constexpr double kMaxApparentMass = 1e12;  // a body that cannot move (welded to the world)
-constexpr double kBeltTopCosine = 0.7;     // contacts within 45° of the belt's +Z ride it
+constexpr double kMaxApparentMass = 1e12;           // a body that cannot move (welded to the world)
+constexpr double kBeltTopCosine = 0.7;              // contacts within 45° of the belt's +Z ride it
+constexpr std::size_t kMaxTabulatedMaterials = 64;  // distinct surfaces; beyond, per point
+
+bool same_material(const Surface& a, const Surface& b) {
+  return a.has_mu == b.has_mu && a.mu == b.mu && a.mu2 == b.mu2 && a.softness == b.softness &&
+         a.restitution == b.restitution &&
+         a.restitution_threshold_m_s == b.restitution_threshold_m_s && a.anisotropy == b.anisotropy;
+}
+
+/// Insertion sort for a range that is sorted but for a few local swaps; past a budget of moves
+/// (a range far from sorted) it hands over to std::sort. Keys are unique, so either way the
+/// order is the one std::sort alone would give.
+template <class It, class Less>
+void sort_nearly_sorted(It first, It last, Less less) {
+  if (last - first < 2) return;
+  const auto budget = 4 * (last - first) + 64;
+  std::ptrdiff_t moves = 0;
+  for (It i = first + 1; i != last; ++i) {
+    if (!less(*i, *(i - 1))) continue;
+    auto value = *i;
+    It j = i;
+    do {
+      *j = *(j - 1);
+      --j;
+      ++moves;
+    } while (j != first && less(value, *(j - 1)));
+    *j = value;
+    if (moves > budget) {
+      std::sort(first, last, less);
+      return;
+    }
+  }
+}
+
+bool off_diagonal_zero(const Mat3& m) {
+  return m.m[0][1] == 0 && m.m[0][2] == 0 && m.m[1][0] == 0 && m.m[1][2] == 0 && m.m[2][0] == 0 &&
+         m.m[2][1] == 0;
+}
 
 std::uint64_t pair_key(std::int32_t shape_a, std::uint64_t other_id, std::int32_t feature) {
   return (static_cast<std::uint64_t>(shape_a) << 40) | (other_id << 16) |
@@ -44,6 +81,10 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
     com_m_[i + 1] = scene.bodies[i].com_m;
     inverse_inertia_[i + 1] = inverse(scene.bodies[i].inertia_kg_m2);
   }
+  diagonal_inertia_.resize(inverse_inertia_.size());
+  for (std::size_t i = 0; i < inverse_inertia_.size(); ++i)
+    diagonal_inertia_[i] = off_diagonal_zero(inverse_inertia_[i]) ? 1 : 0;
+  to_body_.assign(apparent_mass_kg_.size(), Mat3{});
   fixed_to_world_.assign(scene.bodies.size() + 1, 0);
   for (const auto& j : scene.joints) {
     if (j.body1 < 0 || j.body2 < 0) {
@@ -55,11 +96,59 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   std::sort(joined_pairs_.begin(), joined_pairs_.end());
   for (double& m : apparent_mass_kg_)
     if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
+  for (const double m : apparent_mass_kg_)
+    inverse_apparent_mass_.push_back(1 / m);
+  tabulate_materials();
 
   const std::size_t reserve = 64 + 16 * static_cast<std::size_t>(table_.size());
   memory_.reserve(reserve);
   next_memory_.reserve(reserve);
   info_.reserve(reserve);
+}
+
+void ContactWorld::tabulate_materials() {
+  const auto& surfaces = table_.surfaces();
+  std::vector<std::size_t> first_shape;  // per material, the first shape that has it
+  for (std::size_t s = 0; s < surfaces.size(); ++s) {
+    std::size_t m = 0;
+    while (m < first_shape.size() && !same_material(surfaces[first_shape[m]], surfaces[s]))
+      ++m;
+    if (m == first_shape.size()) {
+      if (first_shape.size() == kMaxTabulatedMaterials) return;  // combined per point instead
+      first_shape.push_back(s);
+    }
+    material_of_.push_back(static_cast<std::int32_t>(m));
+  }
+  material_count_ = first_shape.size();
+  const std::size_t columns = material_count_ + 1;
+  pair_materials_.resize(material_count_ * columns);
+  for (std::size_t a = 0; a < material_count_; ++a) {
+    const std::size_t sa = first_shape[a];
+    for (std::size_t b = 0; b < material_count_; ++b) {
+      const std::size_t sb = first_shape[b];
+      pair_materials_[a * columns + b] = combine_surfaces(
+          surfaces[sa], restitution_beta_[sa], &surfaces[sb], restitution_beta_[sb], default_mu_);
+    }
+    pair_materials_[a * columns + material_count_] =
+        combine_surfaces(surfaces[sa], restitution_beta_[sa], nullptr, 0.0, default_mu_);
+  }
+}
+
+const PairMaterial& ContactWorld::pair_material(std::size_t shape_a, std::size_t other,
+                                                bool other_is_plane, PairMaterial& scratch) const {
+  if (!pair_materials_.empty()) {
+    const auto a = static_cast<std::size_t>(material_of_[shape_a]);
+    const std::size_t b =
+        other_is_plane ? material_count_ : static_cast<std::size_t>(material_of_[other]);
+    return pair_materials_[a * (material_count_ + 1) + b];
+  }
+  const auto& surfaces = table_.surfaces();
+  scratch = other_is_plane
+                ? combine_surfaces(surfaces[shape_a], restitution_beta_[shape_a], nullptr, 0.0,
+                                   default_mu_)
+                : combine_surfaces(surfaces[shape_a], restitution_beta_[shape_a], &surfaces[other],
+                                   restitution_beta_[other], default_mu_);
+  return scratch;
 }
 
 void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
@@ -74,13 +163,25 @@ void ContactWorld::inverse_masses(std::int32_t body, const Vec3& point, const Po
   // Along each direction d: 1/m + wᵀ I⁻¹ w with w = r × d in body axes. The body's own inertia
   // stands for its rotation, its apparent mass for its translation.
   if (body == 0) return;
-  const Pose& pose = poses[body];
-  const Mat3 rt = pose.rotation.transposed();
-  const Vec3 r = rt * (point - pose.position) - com_m_[body];  // from the COM, body axes
-  const double translation = 1 / apparent_mass_kg_[body];
+  const auto b = static_cast<std::size_t>(body);
+  const Mat3& rt = to_body_[b];
+  const Vec3 r = rt * (point - poses[body].position) - com_m_[b];  // from the COM, body axes
+  const double translation = inverse_apparent_mass_[b];
+  const Mat3& inertia = inverse_inertia_[b];
+  if (diagonal_inertia_[b]) {
+    // The products with the zero entries add nothing (translation > 0 absorbs a signed
+    // zero): the same numbers as the full product, a third of the work.
+    const Vec3 diagonal{inertia.m[0][0], inertia.m[1][1], inertia.m[2][2]};
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 w = cross(r, rt * directions[k]);
+      inverse_mass[k] +=
+          translation + dot(w, Vec3{diagonal.x * w.x, diagonal.y * w.y, diagonal.z * w.z});
+    }
+    return;
+  }
   for (int k = 0; k < 3; ++k) {
     const Vec3 w = cross(r, rt * directions[k]);
-    inverse_mass[k] += translation + dot(w, inverse_inertia_[body] * w);
+    inverse_mass[k] += translation + dot(w, inertia * w);
   }
 }
 
@@ -103,9 +204,12 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
                            Wrench* wrenches) {
   const std::size_t body_count = apparent_mass_kg_.size();
   std::fill(wrenches, wrenches + body_count, Wrench{});
+  for (std::size_t b = 1; b < body_count; ++b)
+    to_body_[b] = poses[b].rotation.transposed();
   placement_.update(table_, poses);
   next_memory_.clear();
   info_.clear();
+  memory_cursor_ = 0;
 
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
@@ -119,6 +223,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
         });
   }
   // Shape pairs.
+  const std::size_t pair_run_begin = next_memory_.size();
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
@@ -126,24 +231,50 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
     bool renumbered = false;
     const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
-    if (renumbered) match_features(ia, ib, points, n);
+    if (renumbered && n > 0) match_features(ia, ib, points, n);
     for (int k = 0; k < n; ++k)
       add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
   }
-  std::sort(next_memory_.begin(), next_memory_.end(),
-            [](const Memory& x, const Memory& y) { return x.key < y.key; });
-  memory_.swap(next_memory_);
+  keep_sorted_memory(pair_run_begin);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
+void ContactWorld::keep_sorted_memory(std::size_t pair_run_begin) {
+  // The plane run comes shape by shape, corner by corner: sorted. The pair run follows the
+  // sorted pair list but for pairs with a static first shape and FCL's renumbered points.
+  auto less = [](const Memory& x, const Memory& y) { return x.key < y.key; };
+  const auto middle = next_memory_.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
+  sort_nearly_sorted(next_memory_.begin(), middle, less);
+  sort_nearly_sorted(middle, next_memory_.end(), less);
+  memory_.resize(next_memory_.size());
+  std::merge(next_memory_.begin(), middle, middle, next_memory_.end(), memory_.begin(), less);
+}
+
+std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(std::uint64_t key) {
+  // Everything before `lo` is below key; gallop forward, then search the last stride.
+  std::size_t lo = memory_cursor_;
+  if (lo > memory_.size() || (lo > 0 && memory_[lo - 1].key >= key)) lo = 0;
+  std::size_t hi = lo, stride = 1;
+  while (hi < memory_.size() && memory_[hi].key < key) {
+    lo = hi + 1;
+    hi += stride;
+    stride *= 2;
+  }
+  hi = std::min(hi, memory_.size());
+  const auto found = std::lower_bound(memory_.cbegin() + static_cast<std::ptrdiff_t>(lo),
+                                      memory_.cbegin() + static_cast<std::ptrdiff_t>(hi), key,
+                                      [](const Memory& m, std::uint64_t k) { return m.key < k; });
+  memory_cursor_ = static_cast<std::size_t>(found - memory_.cbegin());
+  return found;
+}
+
 void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
-                                  int count) const {
+                                  int count) {
   // FCL numbers its points by its own clipping order, which changes as the overlap changes:
   // give each point the id of the remembered point of this pair nearest to it (in a's frame),
   // so that friction memory follows the material point.
   const std::uint64_t prefix = pair_key(shape_a, static_cast<std::uint64_t>(shape_b), 0);
-  auto first = std::lower_bound(memory_.begin(), memory_.end(), prefix,
-                                [](const Memory& m, std::uint64_t k) { return m.key < k; });
+  const auto first = remembered(prefix);
   auto last = first;
   while (last != memory_.end() && (last->key >> 16) == (prefix >> 16))
     ++last;
@@ -202,8 +333,8 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   kin.relative_velocity_m_s = point_velocity(body_a) + belt_velocity(a, ia, -p.normal) -
                               point_velocity(body_b) -
                               (b ? belt_velocity(*b, ib, p.normal) : Vec3{});
-  const PairMaterial material =
-      combine_surfaces(a, restitution_beta_[ia], b, b ? restitution_beta_[ib] : 0.0, default_mu_);
+  PairMaterial scratch;
+  const PairMaterial& material = pair_material(ia, ib, other_is_plane, scratch);
   if (material.anisotropic)
     kin.friction_axis = (material.anisotropy_on_a ? world[ia] : world[ib]).rotation.column(2);
   const Vec3 helper = std::abs(p.normal.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
@@ -220,8 +351,7 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  auto found = std::lower_bound(memory_.begin(), memory_.end(), key,
-                                [](const Memory& m, std::uint64_t k) { return m.key < k; });
+  const auto found = remembered(key);
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
   const Vec3 force = contact_force(p, material, kin, law_, !known, state);

@@ -67,25 +67,45 @@ class ContactWorld final : public model::SubstepForces {
   /// Adds the body's inverse effective mass at `point` along three directions.
   void inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
                       const Vec3* directions, double* inverse_mass) const;
-  void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
-                      int count) const;
+  /// The combined surfaces of shape `shape_a` and shape `other` (a static plane when
+  /// `other_is_plane`): from the table built at load, else combined now into `scratch`.
+  const PairMaterial& pair_material(std::size_t shape_a, std::size_t other, bool other_is_plane,
+                                    PairMaterial& scratch) const;
+  /// Builds material_of_ and pair_materials_ (at load).
+  void tabulate_materials();
+  void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points, int count);
+  /// The first remembered point whose key is not below `key` (memory_.end() if none), found
+  /// forward from the last one asked for: the points come in nearly increasing key order.
+  std::vector<Memory>::const_iterator remembered(std::uint64_t key);
+  /// Sorts next_memory_ (its plane run, then its pair run, each nearly sorted) into memory_.
+  void keep_sorted_memory(std::size_t pair_run_begin);
 
   const collision::ShapeTable& table_;
   std::vector<double> restitution_beta_;        // per shape
   std::vector<std::int32_t> belt_speed_input_;  // per shape: kernel input of the belt's speed
   std::vector<double> apparent_mass_kg_;
-  std::vector<Vec3> com_m_;                  // per body, body frame
-  std::vector<Mat3> inverse_inertia_;        // per body, about the COM, body axes
-  std::vector<char> fixed_to_world_;         // per body: jointed to the world
-  std::vector<std::uint64_t> joined_pairs_;  // sorted body pairs that never collide
+  std::vector<Vec3> com_m_;                    // per body, body frame
+  std::vector<Mat3> inverse_inertia_;          // per body, about the COM, body axes
+  std::vector<char> diagonal_inertia_;         // per body: inverse_inertia_ has no off-diagonal
+  std::vector<double> inverse_apparent_mass_;  // per body, 1 / apparent_mass_kg_
+  std::vector<char> fixed_to_world_;           // per body: jointed to the world
+  std::vector<std::uint64_t> joined_pairs_;    // sorted body pairs that never collide
   double default_mu_ = 0.95;
+  // Surfaces combined once per pair of distinct surfaces (plus each against the planes):
+  // pair_materials_[material_of_[a] * (material_count_ + 1) + material_of_[b]], column
+  // material_count_ for a plane. Empty when the scene has too many distinct surfaces.
+  std::vector<std::int32_t> material_of_;  // per shape
+  std::vector<PairMaterial> pair_materials_;
+  std::size_t material_count_ = 0;
   ForceLawSettings law_;
   const double* inputs_ = nullptr;
 
   // Per substep (reserved at load).
+  std::vector<Mat3> to_body_;  // per body: its rotation transposed (world to body axes)
   collision::Placement placement_;
   collision::ContactQuery query_;
   std::vector<Memory> memory_, next_memory_;
+  std::size_t memory_cursor_ = 0;  // where remembered() last stopped
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;
 };

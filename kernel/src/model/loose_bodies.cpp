@@ -27,11 +27,18 @@ void LooseBodies::add(int kernel_index, const scene::Body& body) {
   m.q0 = to_quat(body.pose.rotation);
   model_.push_back(m);
   state_.push_back({m.com0_m, {}, {}, m.q0});
+  rotation_.push_back(to_matrix(m.q0));
+}
+
+void LooseBodies::refresh_rotations() {
+  for (std::size_t i = 0; i < state_.size(); ++i)
+    rotation_[i] = to_matrix(state_[i].q);
 }
 
 void LooseBodies::reset() {
   for (std::size_t i = 0; i < model_.size(); ++i)
     state_[i] = {model_[i].com0_m, {}, {}, model_[i].q0};
+  refresh_rotations();
 }
 
 void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_s) {
@@ -43,7 +50,7 @@ void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_
       w.force_N += extra[m.kernel_index].force_N;
       w.torque_Nm += extra[m.kernel_index].torque_Nm;
     }
-    const Mat3 r = to_matrix(s.q);
+    const Mat3& r = rotation_[i];
     // Wrenches are about the body origin; Newton–Euler wants them about the COM.
     const Vec3 com_from_origin = r * m.com_body_m;
     const Vec3 torque_com = w.torque_Nm - cross(com_from_origin, w.force_N);
@@ -61,7 +68,8 @@ void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_
 }
 
 void LooseBodies::drift(double step_s) {
-  for (State& s : state_) {
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    State& s = state_[i];
     s.com_m += s.com_velocity_m_s * step_s;
     const Vec3& w = s.angular_velocity_rad_s;
     const Quat& q = s.q;
@@ -71,6 +79,7 @@ void LooseBodies::drift(double step_s) {
         0.5 * (-w.x * q.z + w.y * q.w + w.z * q.x), 0.5 * (w.x * q.y - w.y * q.x + w.z * q.w)};
     s.q = normalized(
         {q.w + step_s * dq.w, q.x + step_s * dq.x, q.y + step_s * dq.y, q.z + step_s * dq.z});
+    rotation_[i] = to_matrix(s.q);
   }
 }
 
@@ -78,7 +87,7 @@ void LooseBodies::read(Pose* poses, Twist* twists) const {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     const Model& m = model_[i];
     const State& s = state_[i];
-    const Mat3 r = to_matrix(s.q);
+    const Mat3& r = rotation_[i];
     const Vec3 com_from_origin = r * m.com_body_m;
     poses[m.kernel_index] = {s.com_m - com_from_origin, r};
     twists[m.kernel_index] = {
@@ -129,6 +138,7 @@ void LooseBodies::declare_state(sim::StateLayout& layout) {
           s.q = {in[3], in[4], in[5], in[6]};
           in += 7;
         }
+        refresh_rotations();
       });
   layout.add(
       "loose/velocity", 6 * state_.size(),
@@ -174,6 +184,7 @@ bool LooseBodies::place(int kernel_index, const Pose& pose) {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     if (model_[i].kernel_index != kernel_index) continue;
     state_[i] = {pose * model_[i].com_body_m, {}, {}, normalized(to_quat(pose.rotation))};
+    rotation_[i] = to_matrix(state_[i].q);
     return true;
   }
   return false;

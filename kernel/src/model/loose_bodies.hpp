@@ -73,8 +73,13 @@ class LooseBodies {
     Vec3 com_m, com_velocity_m_s, angular_velocity_rad_s;
     Quat q;
   };
-  std::vector<Model> model_;  // built at load
-  std::vector<State> state_;  // what a snapshot holds
+  /// rotation_[i] = to_matrix(state_[i].q), refreshed wherever q changes: kick and read
+  /// both need it, and the quaternion changes once per step (drift).
+  void refresh_rotations();
+
+  std::vector<Model> model_;    // built at load
+  std::vector<State> state_;    // what a snapshot holds
+  std::vector<Mat3> rotation_;  // derived from state_, per body
 };
 
 }  // namespace s2sim::model

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 namespace s2sim::collision {
@@ -40,6 +41,42 @@ TEST(BroadPhase, MatchesBruteForceWhileObjectsMove) {
       b.min += d;
       b.max += d;
     }
+  }
+}
+
+// Issue 17: the grid keeps its cell and its sorted entries from call to call and re-sorts only
+// the boxes that changed cells. Boxes that grow and shrink (the cell is chosen anew, some turn
+// large and back), a few that jump across the scene, and a reset half way: every call still
+// gives exactly the brute-force pairs.
+TEST(BroadPhase, KeptCellsGiveTheSamePairsAsAFreshSearch) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> where(-1, 1), size(0.02, 0.1), step(-0.005, 0.005),
+      unit(0, 1);
+  const int n = 200;
+  std::vector<Vec3> center(n), half(n);
+  for (int i = 0; i < n; ++i) {
+    center[i] = {where(rng), where(rng), 0.2 * where(rng)};
+    half[i] = {size(rng), size(rng), size(rng)};
+  }
+  std::vector<Aabb> boxes(n);
+  BroadPhase kept;
+  kept.resize(n);
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs, fresh_pairs;
+  for (int frame = 0; frame < 120; ++frame) {
+    const double scale = 1 + 0.8 * std::sin(0.1 * frame);  // the cell must follow
+    for (int i = 0; i < n; ++i) {
+      center[i] += Vec3{step(rng), step(rng), step(rng)};
+      if (unit(rng) < 0.01) center[i] = {where(rng), where(rng), 0.2 * where(rng)};
+      const double grow = i % 23 == 0 ? 6 * scale : scale;  // a few become large
+      boxes[i] = {center[i] - half[i] * grow, center[i] + half[i] * grow};
+    }
+    if (frame == 60) kept.resize(n);
+    ASSERT_TRUE(kept.find_pairs(boxes.data(), pairs));
+    ASSERT_EQ(pairs, brute_force(boxes)) << "frame " << frame;
+    BroadPhase fresh;
+    fresh.resize(n);
+    ASSERT_TRUE(fresh.find_pairs(boxes.data(), fresh_pairs));
+    ASSERT_EQ(pairs, fresh_pairs) << "frame " << frame;
   }
 }
 

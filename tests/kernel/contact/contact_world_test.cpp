@@ -163,6 +163,48 @@ TEST(Contact, StackOfFiveBoxesStandsTenSeconds) {
   }
 }
 
+// Issue 17: surfaces are combined once per pair of distinct surfaces at load, up to 64 of them;
+// past that, per point as before. A leaning stack of boxes with three frictions and a bouncy
+// sphere, alone and with 70 far-away obstacles of distinct friction (which force the per-point
+// path): the same poses bit for bit.
+TEST(Contact, TabulatedSurfacesGiveTheSameForcesAsCombiningPerPoint) {
+  auto make = [](int extra_surfaces) {
+    scene::Scene s;
+    for (int i = 0; i < 4; ++i) {
+      s.bodies.push_back(test::box("b" + std::to_string(i), 0.5, {0.1, 0.1, 0.1},
+                                   {0.02 * i, 0.01 * i, 0.06 + 0.1 * i}));
+      if (i % 3 != 0) set_mu(s.bodies.back(), 0.3 + 0.2 * i);
+    }
+    s.bodies.push_back(test::sphere("ball", 0.3, 0.05, {0.05, 0, 0.5}));
+    set_mu(s.bodies.back(), 0.6, 0.5);
+    for (int k = 0; k < extra_surfaces; ++k) {
+      scene::Geom g;
+      g.id = "far" + std::to_string(k);
+      g.shape.type = scene::ShapeType::box;
+      g.shape.size_m = {0.1, 0.1, 0.1};
+      g.pose = {{5.0 + 0.2 * k, 5, 0.05}, Mat3::identity()};
+      g.surface.explicit_surface = true;
+      g.surface.mu = 0.01 * (k + 1);
+      s.obstacles.push_back(g);
+    }
+    return s;
+  };
+  Runner tabulated(make(0)), per_point(make(70));
+  tabulated.step(1500);
+  per_point.step(1500);
+  for (int b = 1; b <= 5; ++b) {
+    const Pose &x = tabulated.poses[b], &y = per_point.poses[b];
+    EXPECT_EQ(x.position.x, y.position.x) << "body " << b;
+    EXPECT_EQ(x.position.y, y.position.y) << "body " << b;
+    EXPECT_EQ(x.position.z, y.position.z) << "body " << b;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        EXPECT_EQ(x.rotation.m[i][j], y.rotation.m[i][j]) << "body " << b;
+  }
+  // Both paths were exercised: the stack and the ball rest on contacts.
+  EXPECT_GT(*tabulated.contacts.contact_count(), 8);
+}
+
 TEST(Contact, DrivenWheelRollsAtRadiusTimesSpinWithinHalfAPercent) {
   // A carriage on a frictionless rail along X carries a wheel on an axle along Y; a speed
   // loop on the axle torque spins the wheel, the ground drives the carriage.
