@@ -162,7 +162,7 @@ bool LooseBodies::set_velocity(int kernel_index, const Twist& twist) {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     if (model_[i].kernel_index != kernel_index) continue;
     State& b = state_[i];
-    const Vec3 com_from_origin = to_matrix(b.q) * model_[i].com_body_m;
+    const Vec3 com_from_origin = rotation_[i] * model_[i].com_body_m;
     b.com_velocity_m_s = twist.linear_m_s + cross(twist.angular_rad_s, com_from_origin);
     b.angular_velocity_rad_s = twist.angular_rad_s;
     return true;
@@ -175,6 +175,7 @@ bool LooseBodies::move(int kernel_index, const Pose& pose) {
     if (model_[i].kernel_index != kernel_index) continue;
     state_[i].com_m = pose * model_[i].com_body_m;
     state_[i].q = normalized(to_quat(pose.rotation));
+    rotation_[i] = to_matrix(state_[i].q);
     return true;
   }
   return false;
