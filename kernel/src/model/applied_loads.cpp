@@ -27,8 +27,7 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
 
 double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
-  if (!m.axes[a].loop)
-    return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneU(s, ax.coordinate);
+  if (!m.axes[a].loop) return ax.sign * s.getU()[m.axis_u[a]];  // u by index: no look-up
   const auto& b1 = m.mobod(ax.body1);
   const auto& b2 = m.mobod(ax.body2);
   const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
@@ -48,8 +47,8 @@ void apply_axis_load(const Multibody::Impl& mb, const SimTK::State& state, std::
                      SimTK::Vector& mobility_forces) {
   const AxisImpl& ax = mb.axis_impl[a];
   if (!mb.axes[a].loop) {
-    mb.matter.getMobilizedBody(ax.mobod).applyOneMobilityForce(state, ax.coordinate, ax.sign * f,
-                                                               mobility_forces);
+    // What MobilizedBody::applyOneMobilityForce adds, by index (its look-ups cost more).
+    mobility_forces[mb.axis_u[a]] += ax.sign * f;
     return;
   }
   const auto& b1 = mb.mobod(ax.body1);
@@ -72,68 +71,30 @@ namespace {
 /// Speed (rad/s or m/s) over which a loop axis's Coulomb friction ramps to its bound.
 constexpr double kLoopFrictionSpeed = 1e-2;
 
-/// Applies the kernel's loads for the tick: body wrenches and axis forces.
+/// Per-kernel-body wrenches (about each body origin, world frame) on Simbody's bodies; the
+/// loose bodies take theirs in LooseBodies::kick.
+void add_wrenches(const Multibody::Impl& mb, const std::vector<Wrench>& wrenches,
+                  SimTK::Vector_<SimTK::SpatialVec>& body_forces) {
+  for (std::size_t b = 1; b < wrenches.size(); ++b) {
+    if (!mb.mobod_of_body[b].isValid()) continue;
+    const Wrench& w = wrenches[b];
+    body_forces[mb.mobod_of_body[b]] +=
+        SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+  }
+}
+
+/// The kernel's loads as a Simbody force, for the systems with constraints (without, the
+/// loads go straight into the system's force arrays: realize_accelerations, integrator.cpp).
 class AppliedLoads : public SimTK::Force::Custom::Implementation {
  public:
   explicit AppliedLoads(const Multibody::Impl* impl) : m_(impl) {}
 
   void calcForce(const SimTK::State& state, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                  SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
-    const auto& mb = *m_;
-    for (const auto& w : mb.weights) {
-      const SimTK::Vec3 force(0, 0, -kGravity_m_s2 * w.mass_kg);
-      const SimTK::Vec3 com_G =
-          mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
-      body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
-    }
-    add_wrenches(mb.wrenches, body_forces);
-    if (mb.contact_wrenches_used) add_wrenches(mb.substep_wrenches, body_forces);
-    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
-      if (mb.axis_forces[a] != 0.0)
-        apply_axis_load(mb, state, a, mb.axis_forces[a], body_forces, mobility_forces);
-    for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
-      if (mb.sliding[a]) {  // clearly sliding: Coulomb's law as it is, no impulse needed
-        const double v = axis_rate(mb, state, a);
-        apply_axis_load(mb, state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a],
-                        body_forces, mobility_forces);
-      }
-    // The axis drives (motors, viscous friction, the loop axes' regularised Coulomb friction)
-    // at their values for this substep; solve_axes (implicit_axes.cpp)
-    // makes them implicit after the kick.
-    for (const auto& row : mb.rows)
-      if (row.applied != 0.0)
-        apply_axis_load(mb, state, static_cast<std::size_t>(row.axis), row.applied, body_forces,
-                        mobility_forces);
-    for (std::size_t a = 0; a < mb.explicit_drive.size(); ++a)
-      if (mb.explicit_drive[a] != 0.0)
-        apply_axis_load(mb, state, a, mb.explicit_drive[a], body_forces, mobility_forces);
-    for (const auto& stop : mb.stops) {
-      const auto a = static_cast<std::size_t>(stop.axis);
-      const double q = axis_value(mb, state, a);
-      if (q <= stop.high && q >= stop.low) continue;
-      const double limit = q > stop.high ? stop.high : stop.low;
-      const double f = -stop.stiffness * (q - limit) - stop.damping * axis_rate(mb, state, a);
-      // A stop pushes back into the range, never pulls toward the limit.
-      const double push = q > stop.high ? std::min(0.0, f) : std::max(0.0, f);
-      if (push != 0.0) apply_axis_load(mb, state, a, push, body_forces, mobility_forces);
-    }
+    add_applied_loads(*m_, state, body_forces, mobility_forces);
   }
 
- public:
   SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0; }
-
- private:
-  /// Per-kernel-body wrenches (about each body origin, world frame) on Simbody's bodies; the
-  /// loose bodies take theirs in LooseBodies::kick.
-  void add_wrenches(const std::vector<Wrench>& wrenches,
-                    SimTK::Vector_<SimTK::SpatialVec>& body_forces) const {
-    for (std::size_t b = 1; b < wrenches.size(); ++b) {
-      if (!m_->mobod_of_body[b].isValid()) continue;
-      const Wrench& w = wrenches[b];
-      body_forces[m_->mobod_of_body[b]] +=
-          SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
-    }
-  }
 
  private:
   const Multibody::Impl* m_;
@@ -145,8 +106,49 @@ double loop_friction_speed() {
   return kLoopFrictionSpeed;
 }
 
-void add_applied_loads(Multibody::Impl& m) {
-  SimTK::Force::Custom(m.forces, new AppliedLoads(&m));
+void add_applied_loads(const Multibody::Impl& mb, const SimTK::State& state,
+                       SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                       SimTK::Vector& mobility_forces) {
+  for (const auto& w : mb.weights) {
+    const SimTK::Vec3 force(0, 0, -kGravity_m_s2 * w.mass_kg);
+    const SimTK::Vec3 com_G = mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
+    body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
+  }
+  add_wrenches(mb, mb.wrenches, body_forces);
+  if (mb.contact_wrenches_used) add_wrenches(mb, mb.substep_wrenches, body_forces);
+  for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+    if (mb.axis_forces[a] != 0.0)
+      apply_axis_load(mb, state, a, mb.axis_forces[a], body_forces, mobility_forces);
+  for (std::size_t a = 0; a < mb.axis_impl.size(); ++a)
+    if (mb.sliding[a]) {  // clearly sliding: Coulomb's law as it is, no impulse needed
+      const double v = axis_rate(mb, state, a);
+      apply_axis_load(mb, state, a, v > 0 ? -mb.axis_friction[a] : mb.axis_friction[a], body_forces,
+                      mobility_forces);
+    }
+  // The axis drives (motors, viscous friction, the loop axes' regularised Coulomb friction)
+  // at their values for this substep; solve_axes (implicit_axes.cpp) makes them implicit after
+  // the kick.
+  for (const auto& row : mb.rows)
+    if (row.applied != 0.0)
+      apply_axis_load(mb, state, static_cast<std::size_t>(row.axis), row.applied, body_forces,
+                      mobility_forces);
+  for (std::size_t a = 0; a < mb.explicit_drive.size(); ++a)
+    if (mb.explicit_drive[a] != 0.0)
+      apply_axis_load(mb, state, a, mb.explicit_drive[a], body_forces, mobility_forces);
+  for (const auto& stop : mb.stops) {
+    const auto a = static_cast<std::size_t>(stop.axis);
+    const double q = axis_value(mb, state, a);
+    if (q <= stop.high && q >= stop.low) continue;
+    const double limit = q > stop.high ? stop.high : stop.low;
+    const double f = -stop.stiffness * (q - limit) - stop.damping * axis_rate(mb, state, a);
+    // A stop pushes back into the range, never pulls toward the limit.
+    const double push = q > stop.high ? std::min(0.0, f) : std::max(0.0, f);
+    if (push != 0.0) apply_axis_load(mb, state, a, push, body_forces, mobility_forces);
+  }
+}
+
+void register_applied_loads(Multibody::Impl& m) {
+  m.applied_loads_force = SimTK::Force::Custom(m.forces, new AppliedLoads(&m)).getForceIndex();
 }
 
 }  // namespace s2sim::model

@@ -68,14 +68,29 @@ void Multibody::forces() {
   m.bodies_fresh = false;
   if (!m.axis_friction.empty()) classify_sliding(m, m.current, substep_s());
   if (!m.axes.empty()) prepare_drives(m, m.current);
-  // The applied loads changed outside Simbody's knowledge: drop any cached forces.
-  m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+}
+
+void realize_accelerations(Multibody::Impl& m) {
+  SimTK::State& s = m.current;
+  // The loads changed outside Simbody's knowledge: drop what was realized from them.
+  s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
+  if (!m.has_constraints) {
+    // The system's force arrays are zeroed at Dynamics; the loads go straight in, as a force
+    // subsystem would add them (its Force::Custom is disabled in these states).
+    m.system.realize(s, SimTK::Stage::Dynamics);
+    add_applied_loads(m, s, m.system.updRigidBodyForces(s, SimTK::Stage::Dynamics),
+                      m.system.updMobilityForces(s, SimTK::Stage::Dynamics));
+  }
+  m.system.realize(s, SimTK::Stage::Acceleration);
 }
 
 void Multibody::accelerations(bool last_substep) {
   Impl& m = *impl_;
   SimTK::State& s = m.current;
-  m.system.realize(s, SimTK::Stage::Acceleration);
+  // Only loose bodies (a pile of things): Simbody has nothing to integrate, and its realize
+  // chain would still cost its bookkeeping.
+  if (!m.has_mobilized_bodies) return;
+  realize_accelerations(m);
   m.udot = 0.0;
   add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
   // The reactions of the tick's last acceleration evaluation: no extra realize, and the
@@ -93,7 +108,7 @@ void Multibody::kick() {
   const double kick = m.half_kick_pending ? 0.5 * h : h;
   m.half_kick_pending = false;
   m.last_kick_s = kick;
-  add_scaled(m.current.updU(), kick, m.udot);
+  if (m.has_mobilized_bodies) add_scaled(m.current.updU(), kick, m.udot);
   m.loose.kick(m.wrenches.data(), m.contact_wrenches_used ? m.substep_wrenches.data() : nullptr,
                kick);
 }
@@ -113,6 +128,10 @@ void Multibody::drift(int substep) {
   SimTK::State& s = m.current;
   const double h = substep_s();
   m.loose.drift(h);
+  // Simbody's time stays at zero (Multibody::Impl::current): advancing it would invalidate
+  // and realize the Time stage of every subsystem each substep, for nothing that reads it.
+  m.substep = substep + 1;
+  if (!m.has_mobilized_bodies) return;  // updQ would invalidate Simbody's empty state
   if (m.own_n) {
     calc_qdot(m, s.getU(), s.getQ(), m.qdot);
   } else {
@@ -128,10 +147,6 @@ void Multibody::drift(int substep) {
     for (int c = 0; c < 4; ++c)
       q[first + c] *= inverse_norm;
   }
-  s.updTime() =
-      (static_cast<double>(m.ticks) + static_cast<double>(substep + 1) / m.substeps) * m.tick_s;
-  m.system.realize(s, SimTK::Stage::Time);
-  m.substep = substep + 1;
 }
 
 void Multibody::project() {
@@ -155,12 +170,16 @@ void Multibody::finish_tick() {
   if (m.reactions_wanted) carry_joint_reactions(m, m.substep_poses.data());
   // A NaN anywhere poisons the sums: one cheap check per tick.
   double sum = m.loose.checksum();
-  const SimTK::Vector& q = s.getQ();
-  const SimTK::Vector& u = s.getU();
-  for (int i = 0; i < q.size(); ++i)
-    sum += q[i];
-  for (int i = 0; i < u.size(); ++i)
-    sum += u[i];
+  for (const SimTK::Vector* v : {&s.getQ(), &s.getU()}) {
+    if (v->hasContiguousData()) {  // element access goes through a non-inline helper
+      const double* x = v->getContiguousScalarData();
+      for (int i = 0; i < v->size(); ++i)
+        sum += x[i];
+    } else {
+      for (int i = 0; i < v->size(); ++i)
+        sum += (*v)[i];
+    }
+  }
   if (!std::isfinite(sum)) {
     const int body = first_non_finite_body();
     throw Error(ErrorKind::runtime,

@@ -117,8 +117,7 @@ void Multibody::reset() {
     std::fill(m.axis_friction.begin(), m.axis_friction.end(), 0.0);
     m.drive_count = 0;
     std::fill(m.sliding.begin(), m.sliding.end(), 0);
-    m.current.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
-    m.system.realize(m.current, SimTK::Stage::Acceleration);
+    realize_accelerations(m);
     compute_joint_reactions(m, m.current);
   }
 }
@@ -258,7 +257,6 @@ void Multibody::restored() {
   Impl& m = *impl_;
   m.bodies_fresh = false;
   m.substep = 0;
-  m.current.setTime(time_s());
   try {
     m.system.realize(m.current, SimTK::Stage::Velocity);
   } catch (const std::exception& e) {  // e.g. a zero quaternion: a NaN inertia

@@ -297,6 +297,9 @@ void build_initial_state(Multibody::Impl& m, const Build& b, double tick_s, int 
   try {
     m.system.realizeTopology();
     SimTK::State state = m.system.getDefaultState();
+    // Without constraints the loads bypass Simbody's force subsystem (realize_accelerations).
+    if (m.matter.getNumConstraints() == 0)
+      m.forces.setForceIsDisabled(state, m.applied_loads_force, true);
     for (int body : b.free_bodies)
       m.mobod(kernel_index(body)).setQToFitTransform(state, pose_of(b.scene, body));
     m.system.realize(state, SimTK::Stage::Position);
@@ -330,6 +333,7 @@ void prepare_stepping(Multibody::Impl& m) {
     }
   }
   m.has_constraints = m.matter.getNumConstraints() > 0;
+  m.has_mobilized_bodies = m.matter.getNumBodies() > 1;
   find_mass_matrix_coordinates(m);
   m.udot.resize(m.initial_state.getNU());
   m.substep_poses.assign(m.mobod_of_body.size(), Pose{});
@@ -516,7 +520,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   m.wrenches.assign(n_bodies + 1, Wrench{});
   m.axis_forces.assign(m.axes.size(), 0.0);
   m.axis_friction.assign(m.axes.size(), 0.0);
-  add_applied_loads(m);
+  register_applied_loads(m);
   add_stops(m, scene);
   build_initial_state(m, b, tick_s, substeps);
   m.substeps = substeps;

@@ -118,7 +118,12 @@ struct Multibody::Impl {
   std::vector<FreeCoordinates> free_coordinates;
   std::vector<std::pair<int, int>> direct_coordinates;  // (q, u) of mobilizers with q' = u
   bool own_n = true;
+  // The Force::Custom carrying the loads through Simbody's force subsystem: disabled in the
+  // states of a system without constraints, whose loads realize_accelerations writes into the
+  // system's force arrays itself.
+  SimTK::ForceIndex applied_loads_force;
   bool has_constraints = false;
+  bool has_mobilized_bodies = true;  // false: every body is loose (Simbody holds only Ground)
   double tick_s = 1e-3;
   int substeps = 1;
 
@@ -126,8 +131,10 @@ struct Multibody::Impl {
   // multibody/time
   std::int64_t ticks = 0;
   bool half_kick_pending = true;
-  // multibody/q, multibody/u, multibody/z: the Simbody state's variables (its time follows
-  // from ticks; its cache is rebuilt by realize).
+  // multibody/q, multibody/u, multibody/z: the Simbody state's variables (its cache is rebuilt
+  // by realize). Its time stays at zero: nothing in the system depends on time (no prescribed
+  // motion, no time-dependent force or constraint; the loads are the kernel's), the kernel's
+  // clock is `ticks`, and advancing Simbody's would cost a Time-stage realization per substep.
   SimTK::State current;
   // multibody/columns. Per axis: g, the generalized force of a unit load on the axis (tree axis:
   // ±e_u; loop axis: the torque or force pair on its bodies through Jᵀ), and M^-1·g, of the
@@ -223,8 +230,19 @@ void group_rows_by_tree(Multibody::Impl& m);
 void apply_axis_load(const Multibody::Impl& m, const SimTK::State& state, std::size_t a, double f,
                      SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                      SimTK::Vector& mobility_forces);
-/// Registers the kernel's loads (gravity, wrenches, axis forces, stops) as a Simbody force.
-void add_applied_loads(Multibody::Impl& m);
+/// Adds the kernel's loads for this substep (gravity, wrenches, axis forces, sliding friction,
+/// drives, stops) to `body_forces` (per mobilized body, world frame) and `mobility_forces`;
+/// `state` realized to Velocity. Both the Simbody force below and the unconstrained systems
+/// (realize_accelerations) apply them through this one function.
+void add_applied_loads(const Multibody::Impl& m, const SimTK::State& state,
+                       SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                       SimTK::Vector& mobility_forces);
+/// Registers the kernel's loads as a Simbody Force::Custom (add_applied_loads).
+void register_applied_loads(Multibody::Impl& m);
+/// Realizes `m.current` to Acceleration with this substep's loads (Multibody::accelerations,
+/// and reset for the first joint reactions): without constraints the loads go straight into
+/// the system's force arrays after Dynamics, with constraints through the Force::Custom.
+void realize_accelerations(Multibody::Impl& m);
 
 /// Axis Coulomb friction (implicit_axes.cpp): marks the axes that slide clearly, which get a
 /// plain force, before the accelerations are computed.
