@@ -17,6 +17,25 @@ void ScriptController::not_provided(HostFn fn, const char* why) {
 }
 
 namespace {
+std::string number_text(double v) {
+  if (std::isnan(v)) return "NaN";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.15g", v);
+  return buf;
+}
+/// A script error naming `fn` unless a[first..first+count) are all finite.
+void require_finite(const char* fn, const double* a, int first, int count) {
+  for (int k = first; k < first + count; ++k)
+    if (!std::isfinite(a[k]))
+      throw Error(ErrorKind::runtime, std::string(fn) + ": argument " + std::to_string(k + 1) +
+                                          " is " + number_text(a[k]));
+}
+double determinant(const Mat3& r) {
+  const auto& m = r.m;
+  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+         m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
 std::string index_error(double n) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "List index (%.0f) out of bounds", n);
@@ -377,7 +396,7 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
         const bool positive = k == kMotorGearRatio || (k == kMotorRi && a[2 + kMotorSimple] != 0 &&
                                                        a[2 + kMotorActive] != 0);
         if (!std::isfinite(v) || v < 0 || (positive && v == 0))
-          fail(std::string("SetMotorPars: ") + kMotorParNames[k] + " = " + std::to_string(v) +
+          fail(std::string("SetMotorPars: ") + kMotorParNames[k] + " = " + number_text(v) +
                (positive ? " must be positive" : " must be >= 0"));
       }
       for (int k = 0; k < kMotorParCount; ++k)
@@ -459,12 +478,22 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       return point(ctx.body_twist(solid(a[0], a[1]).body).linear_m_s);
     // One body teleported, its speeds kept (§3.3): ODE then pulls the joints together again;
     // S2Sim's joints cannot come apart, so a jointed body goes as close as its joint allows.
-    case HostFn::SetSolidPos: {
+    case HostFn::SetSolidPos:
+    case HostFn::SetSolidLinearVel:
+    case HostFn::SetSolidAngularVel: {
       need(5);
+      require_finite(kHostFnNames[static_cast<int>(fn)], a, 2, 3);
       const BodyHandle b = solid(a[0], a[1]).body;
-      Pose& pose = move_of(b);
-      pose.position = {a[2], a[3], a[4]};
-      ctx.request_move(b, pose);
+      const Vec3 v{a[2], a[3], a[4]};
+      if (fn == HostFn::SetSolidPos) {
+        Pose& pose = move_of(b);
+        pose.position = v;
+        ctx.request_move(b, pose);
+      } else {
+        Twist& twist = velocity_of(b);
+        (fn == HostFn::SetSolidLinearVel ? twist.linear_m_s : twist.angular_rad_s) = v;
+        ctx.request_velocity(b, twist);
+      }
       return 0;
     }
     case HostFn::SetSolidRotationMat: {
@@ -473,27 +502,20 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       if (a[2] < 3 || a[3] < 3 || n < 4 + static_cast<int>(a[2] * a[3]))
         fail("Invalid (row,col) value: SetSolidRotationMat needs a 3x3 matrix");
       const int cols = static_cast<int>(a[3]);
-      Pose& pose = move_of(b);
-      for (int r = 0; r < 3; ++r)
+      Mat3 rotation;
+      for (int r = 0; r < 3; ++r) {
+        require_finite("SetSolidRotationMat", a, 4 + r * cols, 3);
         for (int c = 0; c < 3; ++c)
-          pose.rotation.m[r][c] = a[4 + r * cols + c];
+          rotation.m[r][c] = a[4 + r * cols + c];
+      }
+      // Not checked for orthonormality, as in SimTwo (the kernel takes the nearest rotation),
+      // but a matrix that is no rotation at all (a mirror, a collapse) is refused.
+      if (determinant(rotation) < 0.1)
+        fail("SetSolidRotationMat: the matrix is not a rotation (determinant " +
+             number_text(determinant(rotation)) + ")");
+      Pose& pose = move_of(b);
+      pose.rotation = rotation;
       ctx.request_move(b, pose);
-      return 0;
-    }
-    case HostFn::SetSolidLinearVel: {
-      need(5);
-      const BodyHandle b = solid(a[0], a[1]).body;
-      Twist& twist = velocity_of(b);
-      twist.linear_m_s = {a[2], a[3], a[4]};
-      ctx.request_velocity(b, twist);
-      return 0;
-    }
-    case HostFn::SetSolidAngularVel: {
-      need(5);
-      const BodyHandle b = solid(a[0], a[1]).body;
-      Twist& twist = velocity_of(b);
-      twist.angular_rad_s = {a[2], a[3], a[4]};
-      ctx.request_velocity(b, twist);
       return 0;
     }
     case HostFn::SetSolidColor:  // bytes 0..255, opaque

@@ -150,6 +150,8 @@ struct Simulation::Impl {
   static void request_move(const void* impl, std::int32_t body, const Pose& pose);
   static void request_velocity(const void* impl, std::int32_t body, const Twist& twist);
   void apply_pending_places();
+  /// "'id'" of a body for messages, or "index N" for one that is not in the scene.
+  std::string body_label(int body) const;
 
   /// What components published for the people watching (WorldView::annotate,
   /// annotations.cpp); cleared by reset, not part of a snapshot.

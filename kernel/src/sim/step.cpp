@@ -196,30 +196,60 @@ void Simulation::Impl::request_velocity(const void* impl, std::int32_t body, con
   add_request(impl_of(impl).pending_velocities, body, twist);
 }
 
+namespace {
+bool finite(const Pose& p) {
+  double sum = p.position.x + p.position.y + p.position.z;
+  for (const auto& row : p.rotation.m)
+    for (double v : row)
+      sum += v;
+  return std::isfinite(sum);
+}
+bool finite(const Twist& t) {
+  return std::isfinite(t.linear_m_s.x + t.linear_m_s.y + t.linear_m_s.z + t.angular_rad_s.x +
+                       t.angular_rad_s.y + t.angular_rad_s.z);
+}
+}  // namespace
+
+std::string Simulation::Impl::body_label(int body) const {
+  const auto& bodies = scene.bodies;
+  return body > 0 && body <= static_cast<int>(bodies.size())
+             ? "'" + bodies[static_cast<std::size_t>(body - 1)].id + "'"
+             : "index " + std::to_string(body);
+}
+
 void Simulation::Impl::apply_pending_places() {
+  // Each list is emptied before a refusal is thrown, so that a caught error leaves no request
+  // behind for the next tick.
+  auto refuse = [&](const std::string& message) {
+    pending_places.clear();
+    pending_moves.clear();
+    pending_velocities.clear();
+    throw Error(ErrorKind::runtime, message);
+  };
   for (const auto& [body, pose] : pending_places) {
-    const auto& bodies = scene.bodies;
+    if (!finite(pose))
+      refuse("a component asked to place body " + body_label(body) + " at a non-finite pose");
     if (!multibody->place_free_body(body, pose))
-      throw Error(ErrorKind::runtime,
-                  "a component asked to place body " +
-                      (body > 0 && body <= static_cast<int>(bodies.size())
-                           ? "'" + bodies[static_cast<std::size_t>(body - 1)].id + "'"
-                           : "index " + std::to_string(body)) +
-                      ", which is not free on the world (only a thing or a robot's root body "
-                      "can be placed)");
+      refuse("a component asked to place body " + body_label(body) +
+             ", which is not free on the world (only a thing or a robot's root body can be "
+             "placed)");
   }
   pending_places.clear();
-  for (const auto& [body, pose] : pending_moves)
+  for (const auto& [body, pose] : pending_moves) {
+    if (!finite(pose))
+      refuse("a component asked to move body " + body_label(body) + " to a non-finite pose");
     if (!multibody->move_body(body, pose))
-      throw Error(ErrorKind::runtime, "a component asked to move body index " +
-                                          std::to_string(body) +
-                                          ", which is not a body of the scene");
+      refuse("a component asked to move body " + body_label(body) +
+             ", which is not a body of the scene");
+  }
   pending_moves.clear();
-  for (const auto& [body, twist] : pending_velocities)
+  for (const auto& [body, twist] : pending_velocities) {
+    if (!finite(twist))
+      refuse("a component asked to set body " + body_label(body) + " to a non-finite velocity");
     if (!multibody->set_body_velocity(body, twist))
-      throw Error(ErrorKind::runtime, "a component asked to set the velocity of body index " +
-                                          std::to_string(body) +
-                                          ", which is not a body of the scene");
+      refuse("a component asked to set the velocity of body " + body_label(body) +
+             ", which is not a body of the scene");
+  }
   pending_velocities.clear();
   refresh();
 }

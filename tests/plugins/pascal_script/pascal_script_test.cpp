@@ -386,6 +386,25 @@ TEST_F(PascalScript, SolidTeleportsPutAJointedRobotBackAtRestAndColourIt) {
   EXPECT_EQ(sim->annotations().body_color(pole), nullptr);
 }
 
+TEST_F(PascalScript, NonFiniteOrDegenerateTeleportsAreScriptErrorsNamingTheCall) {
+  if (std::system("fpc -iV > /dev/null 2>&1") != 0) GTEST_SKIP() << "no fpc";
+  for (const char* mode : {"0", "1"}) {
+    SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "teleport_bad.pas");
+    o.sheet_cells = {{1, 1, mode}};
+    auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/cartpole", o);
+    ::testing::internal::CaptureStderr();
+    sim->run_until(0.1);
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(sig(*sim, "controllers/script/error"), 1) << mode;
+    EXPECT_NE(
+        err.find(std::string(mode) == "0" ? "SetSolidPos: argument 3 is NaN"
+                                          : "SetSolidRotationMat: the matrix is not a rotation"),
+        std::string::npos)
+        << err;
+    EXPECT_TRUE(std::isfinite(sim->signal("robots/cartpole/axes/slide/pos")));
+  }
+}
+
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
