@@ -226,31 +226,25 @@ void Simulation::Impl::apply_pending_places() {
     pending_velocities.clear();
     throw Error(ErrorKind::runtime, message);
   };
-  for (const auto& [body, pose] : pending_places) {
-    if (!finite(pose))
-      refuse("a component asked to place body " + body_label(body) + " at a non-finite pose");
-    if (!multibody->place_free_body(body, pose))
-      refuse("a component asked to place body " + body_label(body) +
-             ", which is not free on the world (only a thing or a robot's root body can be "
-             "placed)");
-  }
-  pending_places.clear();
-  for (const auto& [body, pose] : pending_moves) {
-    if (!finite(pose))
-      refuse("a component asked to move body " + body_label(body) + " to a non-finite pose");
-    if (!multibody->move_body(body, pose))
-      refuse("a component asked to move body " + body_label(body) +
-             ", which is not a body of the scene");
-  }
-  pending_moves.clear();
-  for (const auto& [body, twist] : pending_velocities) {
-    if (!finite(twist))
-      refuse("a component asked to set body " + body_label(body) + " to a non-finite velocity");
-    if (!multibody->set_body_velocity(body, twist))
-      refuse("a component asked to set the velocity of body " + body_label(body) +
-             ", which is not a body of the scene");
-  }
-  pending_velocities.clear();
+  auto apply = [&](auto& list, const char* verb, const char* not_finite, const char* refused,
+                   auto&& act) {
+    for (const auto& [body, value] : list) {
+      auto asked = [&, b = body] {
+        return std::string("a component asked to ") + verb + " body " + body_label(b);
+      };
+      if (!finite(value)) refuse(asked() + not_finite);
+      if (!act(body, value)) refuse(asked() + refused);
+    }
+    list.clear();
+  };
+  apply(pending_places, "place", " at a non-finite pose",
+        ", which is not free on the world (only a thing or a robot's root body can be placed)",
+        [&](int body, const Pose& pose) { return multibody->place_free_body(body, pose); });
+  apply(pending_moves, "move", " to a non-finite pose", ", which is not a body of the scene",
+        [&](int body, const Pose& pose) { return multibody->move_body(body, pose); });
+  apply(pending_velocities, "set the velocity of", " to a non-finite value",
+        ", which is not a body of the scene",
+        [&](int body, const Twist& twist) { return multibody->set_body_velocity(body, twist); });
   refresh();
 }
 
