@@ -16,32 +16,21 @@ void ScriptController::not_provided(HostFn fn, const char* why) {
        (why && *why ? std::string(": ") + why : std::string()));
 }
 
-namespace {
 std::string number_text(double v) {
   if (std::isnan(v)) return "NaN";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.15g", v);
   return buf;
 }
-/// A script error naming `fn` unless a[first..first+count) are all finite.
-void require_finite(const char* fn, const double* a, int first, int count) {
-  for (int k = first; k < first + count; ++k)
-    if (!std::isfinite(a[k]))
-      throw Error(ErrorKind::runtime, std::string(fn) + ": argument " + std::to_string(k + 1) +
-                                          " is " + number_text(a[k]));
-}
-double determinant(const Mat3& r) {
-  const auto& m = r.m;
-  return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
-         m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-         m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-}
 std::string index_error(double n) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "List index (%.0f) out of bounds", n);
   return buf;
 }
-}  // namespace
+
+void ScriptController::require_arguments(HostFn fn, int have, int want) {
+  if (have < want) fail(std::string(kHostFnNames[static_cast<int>(fn)]) + ": missing arguments");
+}
 
 RobotRef& ScriptController::robot(double r) {
   if (r < 0 || r >= static_cast<double>(robots_.size())) fail(index_error(r));
@@ -52,19 +41,6 @@ AxisRef& ScriptController::axis(double r, double i) {
   if (i < 0 || i >= static_cast<double>(rb.axes.size())) fail(index_error(i));
   return rb.axes[static_cast<std::size_t>(i)];
 }
-Pose& ScriptController::move_of(BodyHandle b) {
-  for (auto& [body, pose] : moves_)
-    if (body == b.index) return pose;
-  moves_.emplace_back(b.index, ctx_->body_pose(b));
-  return moves_.back().second;
-}
-Twist& ScriptController::velocity_of(BodyHandle b) {
-  for (auto& [body, twist] : velocities_)
-    if (body == b.index) return twist;
-  velocities_.emplace_back(b.index, ctx_->body_twist(b));
-  return velocities_.back().second;
-}
-
 const AxisRef& ScriptController::motor(const AxisRef& ax) {
   if (!ax.has_motor) fail("axis " + ax.path + " has no motor");
   return ax;
@@ -152,20 +128,13 @@ std::int32_t ScriptController::host_result(void* host, std::int32_t kind, const 
 double ScriptController::call(HostFn fn, const double* a, int n, const std::string& s,
                               const std::string& s2) {
   StepContext& ctx = *ctx_;
-  auto need = [&](int count) {
-    if (n < count) fail(std::string(kHostFnNames[static_cast<int>(fn)]) + ": missing arguments");
-  };
+  auto need = [&](int count) { require_arguments(fn, n, count); };
   auto drive = [&](double r, double i) -> AxisRef& {
     AxisRef& ax = axis(r, i);
     if (ax.path.empty())
       fail("axis " + std::to_string(static_cast<int>(i)) + " of robot " +
            std::to_string(static_cast<int>(r)) + " is a Fixed or Ball joint");
     return ax;
-  };
-  auto pose_of = [&](BodyHandle b) -> const Pose& { return ctx.body_pose(b); };
-  auto point = [&](const Vec3& v) {
-    numbers_.assign({v.x, v.y, v.z});
-    return 0.0;
   };
   switch (fn) {
     case HostFn::WriteLn:
@@ -424,146 +393,31 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       need(1);
       sensor_values(global_sensor(a[0]));
       return static_cast<double>(numbers_.size()) * 65536 + 1;
-    case HostFn::SetRobotPos: {
-      need(5);
-      RobotRef& rb = robot(a[0]);
-      if (!rb.main.valid()) fail("robot '" + rb.id + "' has no main body");
-      // SimTwo's re-placement (§3.3, Q4): offsets to the file coordinates, yaw about the main
-      // body's file position; the file rotation is the load rotation without the scene's yaw.
-      Pose pose;
-      pose.position = rb.origin + Vec3{a[1], a[2], a[3]};
-      pose.rotation = rot_z(a[4]) * (rot_z(-rb.yaw) * rb.main_load_pose.rotation);
-      ctx.request_place(rb.main, pose);
-      return 0;
-    }
+    case HostFn::SetRobotPos:
     case HostFn::GetRobotX:
-      need(1);
-      return pose_of(robot(a[0]).main).position.x;
     case HostFn::GetRobotY:
-      need(1);
-      return pose_of(robot(a[0]).main).position.y;
-    case HostFn::GetRobotTheta: {
-      need(1);
-      const Mat3& R = pose_of(robot(a[0]).main).rotation;
-      return std::atan2(R.m[1][0], R.m[0][0]);
-    }
+    case HostFn::GetRobotTheta:
     case HostFn::GetRobotVx:
-      need(1);
-      return ctx.body_twist(robot(a[0]).main).linear_m_s.x;
     case HostFn::GetRobotVy:
-      need(1);
-      return ctx.body_twist(robot(a[0]).main).linear_m_s.y;
     case HostFn::GetRobotW:
-      need(1);
-      return ctx.body_twist(robot(a[0]).main).angular_rad_s.z;
     case HostFn::GetSolidPos:
-      need(2);
-      return point(pose_of(solid(a[0], a[1]).body).position);
-    case HostFn::GetSolidTheta: {
-      need(2);
-      const Mat3& R = pose_of(solid(a[0], a[1]).body).rotation;
-      return std::atan2(R.m[1][0], R.m[0][0]);
-    }
-    case HostFn::GetSolidRotMat: {
-      need(2);
-      const Mat3& R = pose_of(solid(a[0], a[1]).body).rotation;
-      numbers_.clear();
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-          numbers_.push_back(R.m[r][c]);
-      return 3 * 65536 + 3;
-    }
+    case HostFn::GetSolidTheta:
+    case HostFn::GetSolidRotMat:
     case HostFn::GetSolidLinearVel:
-      need(2);
-      return point(ctx.body_twist(solid(a[0], a[1]).body).linear_m_s);
-    // One body teleported, its speeds kept (§3.3): ODE then pulls the joints together again;
-    // S2Sim's joints cannot come apart, so a jointed body goes as close as its joint allows.
     case HostFn::SetSolidPos:
     case HostFn::SetSolidLinearVel:
-    case HostFn::SetSolidAngularVel: {
-      need(5);
-      require_finite(kHostFnNames[static_cast<int>(fn)], a, 2, 3);
-      const BodyHandle b = solid(a[0], a[1]).body;
-      const Vec3 v{a[2], a[3], a[4]};
-      if (fn == HostFn::SetSolidPos) {
-        Pose& pose = move_of(b);
-        pose.position = v;
-        ctx.request_move(b, pose);
-      } else {
-        Twist& twist = velocity_of(b);
-        (fn == HostFn::SetSolidLinearVel ? twist.linear_m_s : twist.angular_rad_s) = v;
-        ctx.request_velocity(b, twist);
-      }
-      return 0;
-    }
-    case HostFn::SetSolidRotationMat: {
-      need(4);
-      const BodyHandle b = solid(a[0], a[1]).body;
-      if (a[2] < 3 || a[3] < 3 || n < 4 + static_cast<int>(a[2] * a[3]))
-        fail("Invalid (row,col) value: SetSolidRotationMat needs a 3x3 matrix");
-      const int cols = static_cast<int>(a[3]);
-      Mat3 rotation;
-      for (int r = 0; r < 3; ++r) {
-        require_finite("SetSolidRotationMat", a, 4 + r * cols, 3);
-        for (int c = 0; c < 3; ++c)
-          rotation.m[r][c] = a[4 + r * cols + c];
-      }
-      // Not checked for orthonormality, as in SimTwo (the kernel takes the nearest rotation),
-      // but a matrix that is no rotation at all (a mirror, a collapse) is refused.
-      if (determinant(rotation) < 0.1)
-        fail("SetSolidRotationMat: the matrix is not a rotation (determinant " +
-             number_text(determinant(rotation)) + ")");
-      Pose& pose = move_of(b);
-      pose.rotation = rotation;
-      ctx.request_move(b, pose);
-      return 0;
-    }
-    case HostFn::SetSolidColor:  // bytes 0..255, opaque
-      need(5);
-      ctx.set_body_color(solid(a[0], a[1]).body, a[2] / 255, a[3] / 255, a[4] / 255);
-      return 0;
-    case HostFn::SetShellTag: {
-      need(2);
-      RobotRef& rb = robot(a[0]);
-      if (a[1] < 0) fail(index_error(a[1]));
-      const auto i = static_cast<std::size_t>(a[1]);
-      if (rb.shell_tags.size() <= i) rb.shell_tags.resize(i + 1);
-      rb.shell_tags[i] = s;
-      return 0;
-    }
-    case HostFn::GetShellTag: {
-      need(2);
-      RobotRef& rb = robot(a[0]);
-      const auto i = static_cast<std::size_t>(a[1] < 0 ? 0 : a[1]);
-      text_result_ = i < rb.shell_tags.size() ? rb.shell_tags[i] : std::string();
-      return 0;
-    }
-    case HostFn::SetThingPos: {
-      need(4);
-      ThingRef& th = thing(a[0]);
-      Pose pose = pose_of(th.body);
-      pose.position = {a[1], a[2], a[3]};
-      ctx.request_place(th.body, pose);
-      return 0;
-    }
+    case HostFn::SetSolidAngularVel:
+    case HostFn::SetSolidRotationMat:
+    case HostFn::SetSolidColor:
+    case HostFn::SetShellTag:
+    case HostFn::GetShellTag:
+    case HostFn::SetThingPos:
     case HostFn::GetThingPos:
-      need(1);
-      return point(pose_of(thing(a[0]).body).position);
-    case HostFn::GetThingColor: {
-      need(1);
-      const ThingRef& th = thing(a[0]);
-      numbers_.clear();
-      for (double v : th.rgba)
-        numbers_.push_back(std::round(v * 255));
-      return 0;
-    }
+    case HostFn::GetThingColor:
     case HostFn::GetObstaclePos:
-      need(1);
-      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      return point(obstacles_[static_cast<std::size_t>(a[0])]);
     case HostFn::AddOBstacleBox:
     case HostFn::ClearObstacles:
-      not_provided(fn, "obstacles are fixed at load");
+      return call_bodies(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
       need(2);
       (void)chart_series(a[0], 0);

@@ -46,6 +46,11 @@ inline constexpr int kMaxChartSeries = 100;  // a host function's numeric result
 /// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
 inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
 
+/// SimTwo's message for a bad index: "List index (n) out of bounds".
+std::string index_error(double n);
+/// A number as a script error shows it (NaN by name, 15 digits).
+std::string number_text(double v);
+
 struct AxisRef {
   std::string path;   // empty for a Fixed or Ball joint (SimTwo gives it an index too)
   std::string joint;  // the joint's ID (GetAxisIndex)
@@ -110,6 +115,10 @@ class ScriptController final : public Component {
 
  private:
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
+  /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
+  double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
+  /// A script error naming `fn` when it got fewer than `want` arguments.
+  void require_arguments(HostFn fn, int have, int want);
   [[noreturn]] void fail(const std::string& message);
   [[noreturn]] void not_provided(HostFn fn, const char* why);
   RobotRef& robot(double r);
