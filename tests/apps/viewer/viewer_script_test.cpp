@@ -6,6 +6,7 @@
 // Some runs save the pictures of docs/ (S2SIM_DOC_IMAGES names the folder; the test's own
 // folder otherwise).
 
+#include "viewer_png.hpp"
 #include "viewer_test_support.hpp"
 
 #include <chrono>
@@ -363,6 +364,40 @@ TEST_F(Viewer, SceneEditorValidatesAnEditBeforeWritingAndKeepsThePreviousVersion
   EXPECT_EQ(lines_with(applied.out, "editor-error ").at(0), "-1 ");
   EXPECT_NE(read_file(scene / "scene.xml").find("an applied edit"), std::string::npos);
   EXPECT_EQ(read_file(scene / "scene.xml~"), original);
+}
+
+// SetSolidColor through StepContext::set_body_color (issue 11): CartPole's reset script paints
+// its pole (255, 0, 51) at its 25th call; before, the pole shows its scene colour (200, 60, 60),
+// whose shades keep green at 0.3 of red; after, green is gone.
+TEST_F(ViewerScript, SetSolidColorPaintsTheSolidInTheWorldView) {
+  const std::string script =
+      (kSource / "tests/plugins/pascal_script/fixtures/teleport.pas").string();
+  auto count = [&](double until_s, const std::string& name) {
+    const fs::path png = dir_ / (name + ".png");
+    const Result r =
+        view((kSource / "scenes/cartpole").string(),
+             {"--script-file", script, "--do", "speed 0", "--do",
+              "run-until " + std::to_string(until_s), "--hide-ui", "--screenshot", png.string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    const Image image = read_png(png);
+    EXPECT_GT(image.width, 0) << name;
+    int painted = 0, scene_colour = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const unsigned char* p = image.at(x, y);
+        if (p[0] < 40) continue;
+        if (p[1] < 8 && p[0] > 3 * p[1]) ++painted;
+        if (std::abs(p[1] - 0.3 * p[0]) < 0.05 * p[0] && std::abs(p[2] - 0.3 * p[0]) < 0.05 * p[0])
+          ++scene_colour;
+      }
+    return std::pair{painted, scene_colour};
+  };
+  const auto [painted_before, scene_before] = count(0.45, "before");
+  const auto [painted_after, scene_after] = count(0.505, "after");
+  EXPECT_LT(painted_before, 50);
+  EXPECT_GT(scene_before, 1000);
+  EXPECT_GT(painted_after, 1000);
+  EXPECT_LT(scene_after, 50);
 }
 
 // The new options' bad values are usage errors (exit 4) naming the option.
