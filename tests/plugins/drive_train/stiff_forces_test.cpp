@@ -353,7 +353,7 @@ void expect_classic_wheels_still(const fs::path& scene) {
 // derivative over the 1 ms physics step is ten times stronger: the 0.05 rad/s the wheels turn
 // while the robot settles on the floor kicks it, the motor's reaction pitches the chassis
 // (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's back-EMF
-// K·ω/N as well). With kd = 0 the wheels hold to 1e-20 rad/s under both laws (the test
+// K·ω/N as well). With kd = 0 the wheels hold to 7.5e-14 rad/s under both laws (the test
 // below): what the stiff forces owe.
 TEST(SharedBase, DISABLED_ClassicRobotKeepsItsWheelsStillAtAZeroSpeedReference) {
   if (!fs::exists(kBase / "scene.xml"))
