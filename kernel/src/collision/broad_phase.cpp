@@ -32,7 +32,13 @@ std::uint64_t pack(std::int64_t ix, std::int64_t iy, std::int64_t iz) {
 /// floor(coordinate / cell) as an integer, inline (std::floor is a library call without
 /// SSE4.1): truncation, one less below zero when it rounded up.
 std::int64_t cell_index(double coordinate_m, double inverse_cell) {
-  const double x = coordinate_m * inverse_cell;
+  // Clamped first: converting a double outside the int64 range is undefined (a body flung to
+  // 1e20 m, found by the fuzzer). Cells ±2^52 away alias in pack() anyway, and every pair is
+  // checked for overlap, so the clamp only costs far boxes a shared cell. NaN goes to +2^52.
+  constexpr double kFar = 0x1p52;
+  double x = coordinate_m * inverse_cell;
+  if (!(x > -kFar)) x = -kFar;
+  if (!(x < kFar)) x = kFar;
   const auto truncated = static_cast<std::int64_t>(x);
   return truncated - (x < static_cast<double>(truncated) ? 1 : 0);
 }

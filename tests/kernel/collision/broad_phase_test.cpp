@@ -83,6 +83,29 @@ TEST(BroadPhase, KeptCellsGiveTheSamePairsAsAFreshSearch) {
 // Issue 16: boxes placed into one another ask for pairs quadratic in their number; past the
 // caller's limit the search stops (false) instead of growing without bound. Both paths: a few
 // boxes (tested pairwise) and many (the grid).
+// Fuzzer finding (CI, case pile-533): a box flung to 1e20 m made the cell index's conversion
+// overflow. Far boxes share a clamped cell and are still paired only when they overlap.
+TEST(BroadPhase, BoxesFarBeyondTheGridArePairedOnlyWhenTheyOverlap) {
+  std::vector<Aabb> boxes;
+  for (int i = 0; i < 60; ++i) {  // enough for the grid (not the brute-force path)
+    const Vec3 c{0.3 * i, 0, 0}, h{0.1, 0.1, 0.1};
+    boxes.push_back({c - h, c + h});
+  }
+  const Vec3 h{0.1, 0.1, 0.1};
+  for (double far : {1e20, -1e20, 1e300}) {
+    boxes.push_back({Vec3{far, 0, 0} - h, Vec3{far, 0, 0} + h});
+    boxes.push_back({Vec3{far, 0.05, 0} - h, Vec3{far, 0.05, 0} + h});  // overlaps the last
+    boxes.push_back({Vec3{0, far, far} - h, Vec3{0, far, far} + h});
+  }
+  BroadPhase bp;
+  bp.resize(static_cast<int>(boxes.size()));
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  for (int frame = 0; frame < 3; ++frame) {
+    bp.find_pairs(boxes.data(), pairs);
+    EXPECT_EQ(pairs, brute_force(boxes)) << "frame " << frame;
+  }
+}
+
 TEST(BroadPhase, StopsPastTheLimitOfPairs) {
   for (const int n : {40, 300}) {
     std::vector<Aabb> boxes(static_cast<std::size_t>(n), Aabb{{0, 0, 0}, {0.1, 0.1, 0.1}});
