@@ -1,15 +1,16 @@
 #pragma once
 /// \file
 /// The immersed part of a hull below a horizontal water surface: its volume and centroid, for
-/// a box (exact: the box cut into six tetrahedra, each clipped by the plane), a cylinder
-/// (slabs across its axis, each a disk cut by the waterline: exact when the axis is level) and
-/// a sphere (exact: a spherical cap). Header-only and free of allocation: the buoyancy
+/// a box (exact: the box cut into six tetrahedra, each clipped by the plane), a cylinder (the
+/// disks across its axis cut by the waterline, integrated along it: to round-off at any tilt)
+/// and a sphere (exact: a spherical cap). Header-only and free of allocation: the buoyancy
 /// component calls it every tick, the tests call it directly (docs/models/fluids.md).
 
 #include <s2sim/math.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace s2sim::fluids {
 
@@ -106,43 +107,115 @@ inline Immersion immersed_box(const Pose& hull, const Vec3& size_m, double surfa
   return detail::finish(m);
 }
 
-/// Slabs a cylinder is cut into across its axis.
-inline constexpr int kCylinderSlabs = 64;
+namespace detail {
+
+/// N-point Gauss–Legendre nodes and weights on [−1, 1] (Newton's method on P_N), computed
+/// once on first use (no allocation).
+template <int N>
+struct GaussLegendre {
+  double node[N], weight[N];
+};
+
+template <int N>
+const GaussLegendre<N>& gauss_legendre() {
+  static const GaussLegendre<N> rule = [] {
+    GaussLegendre<N> g{};
+    for (int i = 0; i < N; ++i) {
+      double x = std::cos(kPi * (i + 0.75) / (N + 0.5)), slope = 1;
+      for (int iteration = 0; iteration < 100; ++iteration) {
+        double p_prev = 1, p = x;  // P_0, P_1, then up to P_N
+        for (int k = 2; k <= N; ++k) {
+          const double p_next = ((2 * k - 1) * x * p - (k - 1) * p_prev) / k;
+          p_prev = p;
+          p = p_next;
+        }
+        slope = N * (x * p - p_prev) / (x * x - 1);
+        const double step = p / slope;
+        x -= step;
+        if (std::abs(step) < 1e-16) break;
+      }
+      g.node[i] = x;
+      g.weight[i] = 2 / ((1 - x * x) * slope * slope);
+    }
+    return g;
+  }();
+  return rule;
+}
+
+/// The part x < h of a disk of radius r (x across the disk): its area and its first moment
+/// about the centre along x.
+inline void disk_below(double r, double h, double& area, double& moment_x) {
+  const double c = std::clamp(h, -r, r), w2 = r * r - c * c, w = std::sqrt(w2);
+  area = r * r * std::acos(-c / r) + c * w;
+  moment_x = -2.0 / 3.0 * w2 * w;
+}
+
+}  // namespace detail
 
 /// A cylinder of `radius_m` and `length_m` along the hull's local Z, centred at `hull`.
+///
+/// With s along the axis a and x across it along e (the part of "up" within the disks), a
+/// point's height is c.z + a_z·s + sin θ·x, so the cross-section at s is the part x < h(s) of
+/// the disk, h linear in s. The volume ∫ A(h(s)) ds and its moments are integrated exactly
+/// where the disks are whole or dry, and by 16-point Gauss–Legendre where the waterline
+/// crosses them, after s = s1 + (s2 − s1)(1 − cos φ)/2, which makes the integrand analytic
+/// at the ends where the waterline touches the rim (A ~ (r − h)^{3/2} there): accurate to
+/// round-off at every tilt, level and upright included (immersion_test.cpp).
 inline Immersion immersed_cylinder(const Pose& hull, double radius_m, double length_m,
                                    double surface_z_m) {
   const Vec3 axis = hull.rotation.column(2);
-  const Vec3 up{0, 0, 1};
-  const Vec3 tilt = up - axis * axis.z;  // up within the disks' plane
-  const double sin_t = norm(tilt);
-  const double r = radius_m, ds = length_m / kCylinderSlabs, disk = kPi * r * r;
-  detail::Moments m;
-  for (int k = 0; k < kCylinderSlabs; ++k) {
-    const Vec3 c = hull.position + axis * ((k + 0.5) * ds - 0.5 * length_m);
-    double area = 0;
-    Vec3 centroid = c;
-    if (sin_t < 1e-12) {
-      area = c.z < surface_z_m ? disk : 0;
-    } else {
-      const Vec3 e = tilt / sin_t;
-      const double h = (surface_z_m - c.z) / sin_t;  // the waterline across the disk, along e
-      if (h >= r) {
-        area = disk;
-      } else if (h > -r) {
-        const double w = std::sqrt(r * r - h * h);
-        const double above = r * r * std::acos(h / r) - h * w;  // the segment beyond h
-        area = disk - above;
-        const double x_above = 2 * w * w * w / (3 * above);
-        centroid = c + e * (-above * x_above / area);
-      }
+  const Vec3 tilt = Vec3{0, 0, 1} - axis * axis.z;  // up within the disks' plane
+  const double sin_t = norm(tilt), r = radius_m, half = 0.5 * length_m, disk = kPi * r * r;
+  const double rise = surface_z_m - hull.position.z;  // the surface above the centre
+  Immersion out;
+  out.centroid_m = hull.position;
+  if (sin_t < 1e-12) {  // upright: whole disks up to the surface
+    const double s_surface = rise / axis.z;
+    const double s1 = axis.z > 0 ? -half : std::max(-half, s_surface);
+    const double s2 = axis.z > 0 ? std::min(half, s_surface) : half;
+    if (s2 <= s1) return out;
+    out.volume_m3 = disk * (s2 - s1);
+    out.centroid_m = hull.position + axis * (0.5 * (s1 + s2));
+    return out;
+  }
+  const Vec3 across = tilt / sin_t;
+  auto waterline = [&](double s) { return (rise - axis.z * s) / sin_t; };  // h(s)
+  // Cut [−L/2, L/2] where the waterline meets the rim (h = ±r).
+  double cuts[4] = {-half, half, 0, 0};
+  int n = 2;
+  if (axis.z != 0)
+    for (double rim : {r, -r}) {
+      const double s = (rise - rim * sin_t) / axis.z;
+      if (s > -half && s < half) cuts[n++] = s;
     }
-    if (area > 0) {
-      m.volume += area * ds;
-      m.moment += centroid * (area * ds);
+  for (int i = 1; i < n; ++i)  // insertion sort of at most four
+    for (int j = i; j > 0 && cuts[j] < cuts[j - 1]; --j)
+      std::swap(cuts[j], cuts[j - 1]);
+  const auto& rule = detail::gauss_legendre<16>();
+  double volume = 0, moment_s = 0, moment_x = 0;
+  for (int k = 0; k + 1 < n; ++k) {
+    const double s1 = cuts[k], s2 = cuts[k + 1], mid_h = waterline(0.5 * (s1 + s2));
+    if (s2 <= s1 || mid_h <= -r) continue;  // dry
+    if (mid_h >= r) {                       // whole disks
+      volume += disk * (s2 - s1);
+      moment_s += disk * (s2 - s1) * 0.5 * (s1 + s2);
+      continue;
+    }
+    for (int i = 0; i < 16; ++i) {
+      const double phi = 0.5 * kPi * (1 + rule.node[i]);
+      const double s = s1 + (s2 - s1) * 0.5 * (1 - std::cos(phi));
+      const double weight = rule.weight[i] * 0.5 * kPi * (s2 - s1) * 0.5 * std::sin(phi);
+      double area = 0, first_x = 0;
+      detail::disk_below(r, waterline(s), area, first_x);
+      volume += weight * area;
+      moment_s += weight * area * s;
+      moment_x += weight * first_x;
     }
   }
-  return detail::finish(m);
+  if (volume <= 0) return out;
+  out.volume_m3 = volume;
+  out.centroid_m = hull.position + axis * (moment_s / volume) + across * (moment_x / volume);
+  return out;
 }
 
 /// A sphere of `radius_m` centred at `centre_m`.

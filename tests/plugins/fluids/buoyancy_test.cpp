@@ -42,6 +42,19 @@ TEST(Buoyancy, FloatingBoxSettlesAtTheDraftWhereTheDisplacedWaterWeighsItsMass) 
   EXPECT_NEAR(sim->signal("robots/boat/actuators/float/force"), m * kGravity_m_s2, 0.01 * m * 9.81);
 }
 
+TEST(Buoyancy, UprightCylinderSettlesAtTheDraftWhereTheDisplacedWaterWeighsItsMass) {
+  // r = 0.3 m, L = 0.4 m: draft = m / (rho pi r^2); 0.09 m for this mass (GM = 0.095 m > 0).
+  const double r = 0.3, draft = 0.09, m = 1000 * kPi * r * r * draft;
+  auto sim = load("floating_cylinder", {{"buoy_mass", m}, {"start_z", 1.15}});
+  sim->run_until(20.0);
+  const double measured = 1 - (sim->signal("robots/buoy/solids/buoy/z") - 0.2);
+  std::printf("  spar buoy draft: %.6f m, computed %.6f m (%.4f %%)\n", measured, draft,
+              100 * (measured - draft) / draft);
+  EXPECT_NEAR(measured, draft, 1e-3 * draft);
+  EXPECT_NEAR(sim->signal("robots/buoy/actuators/float/force"), m * kGravity_m_s2,
+              1e-3 * m * kGravity_m_s2);
+}
+
 double roll_deg_after(double t, std::map<std::string, double> constants) {
   auto sim = load("floating_box", std::move(constants));
   sim->run_until(t);
