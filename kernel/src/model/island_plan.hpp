@@ -24,8 +24,9 @@ struct PartPlan {
 
 /// Deals the islands of `topology` into at most `parts` parts: islands in decreasing weight
 /// (bodies + axes; ties: the island of the lower body first), each to the part with the least
-/// weight so far (ties: the lower part). One part (the whole plan) when `parts` ≤ 1 or the
-/// scene has fewer than two islands.
+/// weight so far (ties: the lower part). One part (the whole plan) when `parts` ≤ 1, the scene
+/// has fewer than two islands, or it has a loop-closing joint or a Ball joint anywhere (one
+/// system's scene-wide policies then decide last bits: island_plan.cpp).
 std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,
                                  const std::vector<double>& axis_inertia, int parts);
 
