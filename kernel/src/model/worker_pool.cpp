@@ -9,10 +9,13 @@ namespace s2sim::model {
 
 namespace {
 
-/// Busy-wait iterations before yielding, and the time spent yielding before sleeping: between
-/// two runs (the serial stages of a tick) lie microseconds, while paused, forever.
-constexpr int kSpins = 2000;
-constexpr auto kYieldFor = std::chrono::microseconds(300);
+/// How long an idle worker busy-waits before sleeping, and the caller waits for the others
+/// before yielding: between two runs (the serial stages of a tick) lie tens of microseconds,
+/// while paused, forever. Not yield in between: on a core shared with another process (even a
+/// niced one) a yield hands it the core for a whole time slice, and the next run starts
+/// without the worker.
+constexpr auto kSpinFor = std::chrono::milliseconds(2);
+constexpr int kClockEvery = 64;  // spins between two reads of the clock
 constexpr std::size_t kMaxTasks = 0xffff;
 
 inline void cpu_relax() {
@@ -85,11 +88,15 @@ void WorkerPool::run(Task task, void* context, int count) {
     wake_.notify_all();
   }
   take_tasks(generation, 0);
-  for (int spin = 0; done_.load(std::memory_order_acquire) != count; ++spin) {
-    if (spin < kSpins) {
-      cpu_relax();
-    } else {
+  // The others are running their last tasks: wait for them, yielding only if it lasts.
+  const auto start = std::chrono::steady_clock::now();
+  bool yield = false;
+  for (int spin = 1; done_.load(std::memory_order_acquire) != count; ++spin) {
+    if (yield) {
       std::this_thread::yield();
+    } else {
+      cpu_relax();
+      if (spin % kClockEvery == 0) yield = std::chrono::steady_clock::now() - start > kSpinFor;
     }
   }
   for (int i = 0; i < count; ++i)
@@ -100,21 +107,11 @@ void WorkerPool::run(Task task, void* context, int count) {
 void WorkerPool::work(int thread) {
   std::uint32_t seen = 0;
   for (;;) {
-    // Wait for the next run: spin, yield, then sleep.
-    int spin = 0;
-    auto yield_start = std::chrono::steady_clock::time_point{};
-    while (generation_of(ticket_.load(std::memory_order_acquire)) == seen) {
-      if (spin < kSpins) {
-        ++spin;
-        cpu_relax();
-        continue;
-      }
-      const auto now = std::chrono::steady_clock::now();
-      if (spin++ == kSpins) yield_start = now;
-      if (now - yield_start < kYieldFor) {
-        std::this_thread::yield();
-        continue;
-      }
+    // Wait for the next run: spin, then sleep.
+    const auto start = std::chrono::steady_clock::now();
+    for (int spin = 1; generation_of(ticket_.load(std::memory_order_acquire)) == seen; ++spin) {
+      cpu_relax();
+      if (spin % kClockEvery != 0 || std::chrono::steady_clock::now() - start < kSpinFor) continue;
       std::unique_lock<std::mutex> lock(mutex_);
       sleepers_.fetch_add(1);
       wake_.wait(lock, [&] { return generation_of(ticket_.load()) != seen; });

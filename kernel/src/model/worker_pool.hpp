@@ -5,8 +5,7 @@
 /// The tasks of a run are taken, not assigned: the calling thread and every worker that is
 /// awake take the next task until none is left, so a worker the operating system has not
 /// scheduled yet (a loaded machine) delays nothing, the caller doing its share. Idle workers
-/// spin briefly, then yield, then sleep on a condition variable (a paused simulation costs no
-/// CPU).
+/// spin, then after 2 ms sleep on a condition variable (a paused simulation costs no CPU).
 
 #include <atomic>
 #include <condition_variable>
