@@ -1,6 +1,8 @@
 // The worker pool of the island-parallel step (worker_pool.hpp). No Simbody here.
 #include "model/worker_pool.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -78,6 +80,7 @@ void WorkerPool::run(Task task, void* context, int count) {
   for (int i = 0; i < count; ++i)
     errors_[static_cast<std::size_t>(i)] = nullptr;
   done_.store(0, std::memory_order_relaxed);
+  caller_cpu_.store(sched_getcpu(), std::memory_order_relaxed);
   const std::uint32_t generation = generation_of(ticket_.load()) + 1;
   // Sequentially consistent with the sleepers' count (a worker going to sleep increments it,
   // then reads the ticket): either it sees this generation or this run sees it asleep.
@@ -111,7 +114,12 @@ void WorkerPool::work(int thread) {
     const auto start = std::chrono::steady_clock::now();
     for (int spin = 1; generation_of(ticket_.load(std::memory_order_acquire)) == seen; ++spin) {
       cpu_relax();
-      if (spin % kClockEvery != 0 || std::chrono::steady_clock::now() - start < kSpinFor) continue;
+      if (spin % kClockEvery != 0) continue;
+      // Spinning on the caller's own core would take its time (a loaded machine put both
+      // there): sleep instead, and let the scheduler place the wake-up.
+      if (sched_getcpu() != caller_cpu_.load(std::memory_order_relaxed) &&
+          std::chrono::steady_clock::now() - start < kSpinFor)
+        continue;
       std::unique_lock<std::mutex> lock(mutex_);
       sleepers_.fetch_add(1);
       wake_.wait(lock, [&] { return generation_of(ticket_.load()) != seen; });
