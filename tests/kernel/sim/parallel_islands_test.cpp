@@ -85,6 +85,34 @@ TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
   EXPECT_THROW(serial->restore(snapshot), Error);
 }
 
+/// The error of a run whose robots in `blown` get an absurd torque (empty: none thrown).
+std::string divergence(int threads, const std::vector<std::string>& blown) {
+  SimulationOptions o;
+  o.threads = threads;
+  auto sim = Simulation::load(kRobots16, o);
+  for (const auto& robot : blown)
+    sim->set_input("robots/" + robot + "/axes/left/ref_torque", 1e300);
+  try {
+    sim->step(10);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    return e.message();
+  }
+  return {};
+}
+
+TEST(ParallelIslands, ADivergenceInAnyPartIsReportedAsTheSerialRunReportsIt) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Odd robots are dealt to part 1, even ones to part 0 (equal islands alternate).
+  for (const std::vector<std::string>& blown :
+       {std::vector<std::string>{"r9"}, {"r4", "r9"}, {"r9", "r4", "r12"}}) {
+    const std::string serial = divergence(1, blown);
+    ASSERT_FALSE(serial.empty());
+    EXPECT_EQ(divergence(2, blown), serial);
+  }
+  EXPECT_NE(divergence(2, {"r9", "r4"}).find("robot 'r4'"), std::string::npos);
+}
+
 TEST(ParallelIslands, ThreadCountsOutsideTheMachinesAreAUsageError) {
   SimulationOptions o;
   o.threads = 0;
@@ -124,6 +152,13 @@ TEST(ParallelIslands, IslandsAreDealtWholeAndBalanced) {
   EXPECT_EQ(axes, topology.axes.size());
   EXPECT_EQ(edges, topology.tree.size());
   EXPECT_EQ(parts[0].bodies.size(), parts[1].bodies.size());  // 8 robots each
+  // Equal islands alternate: robot k's bodies in part k % 2.
+  for (std::size_t p = 0; p < 2; ++p)
+    for (int b : parts[p].bodies) {
+      const int robot = scene.bodies[static_cast<std::size_t>(b - 1)].robot;
+      EXPECT_EQ(scene.robots[static_cast<std::size_t>(robot)].id, "r" + std::to_string(robot));
+      EXPECT_EQ(static_cast<std::size_t>(robot) % 2, p) << "body " << b;
+    }
   // One part for one thread, and for a scene of one island.
   EXPECT_EQ(model::plan_parts(scene, topology, {}, 1).size(), 1u);
   auto one = Simulation::load(std::filesystem::path(S2SIM_SOURCE_DIR) / "scenes/nxt");
