@@ -156,7 +156,7 @@ TEST(ParallelIslands, IslandsAreDealtWholeAndBalanced) {
   for (std::size_t p = 0; p < 2; ++p)
     for (int b : parts[p].bodies) {
       const int robot = scene.bodies[static_cast<std::size_t>(b - 1)].robot;
-      EXPECT_EQ(scene.robots[static_cast<std::size_t>(robot)].id, "r" + std::to_string(robot));
+      EXPECT_EQ(scene.robots[static_cast<std::size_t>(robot)].id.substr(1), std::to_string(robot));
       EXPECT_EQ(static_cast<std::size_t>(robot) % 2, p) << "body " << b;
     }
   // One part for one thread, and for a scene of one island.
