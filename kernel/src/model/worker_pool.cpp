@@ -55,6 +55,9 @@ void WorkerPool::take_tasks(std::uint32_t generation, int thread) noexcept {
   std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
   for (;;) {
     if (generation_of(ticket) != generation) return;
+    // A worker on the caller's core would only take the caller's time (and the caller would
+    // then wait for it): leave the tasks to the caller.
+    if (thread != 0 && sched_getcpu() == caller_cpu_.load(std::memory_order_relaxed)) return;
     const auto next = static_cast<int>(ticket & 0xffff);
     const auto count = static_cast<int>((ticket >> 16) & 0xffff);
     if (next >= count) return;
