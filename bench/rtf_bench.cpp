@@ -37,6 +37,7 @@ Options:
   --set I=V      hold input I at V (e.g. a motor voltage, to time a robot that drives);
                  repeatable; every scene must have the input
   --json FILE    also write the results as JSON
+  --threads N    step each scene's islands on N threads (SimulationOptions::threads)
   --profile      after the timed repeats, one more run with per-stage timing: wall time per
                  tick pipeline stage (sense ... finish, docs/architecture.md) in us/step
   --help
@@ -50,6 +51,7 @@ struct Options {
   std::string json_file;
   std::vector<std::pair<std::string, double>> inputs;  ///< --set
   bool profile = false;
+  int threads = 1;  ///< --threads
 };
 
 struct Result {
@@ -115,6 +117,10 @@ Options parse_options(int argc, char** argv) {
         usage_error("--set needs INPUT=VALUE, got '" + v + "'");
       o.inputs.emplace_back(v.substr(0, eq),
                             parse_number("--set " + v.substr(0, eq), v.substr(eq + 1)));
+    } else if (a == "--threads") {
+      const double n = parse_number(a, value());
+      if (n < 1 || n > 64 || n != std::floor(n)) usage_error("--threads must be 1 to 64");
+      o.threads = static_cast<int>(n);
     } else if (a == "--profile") {
       o.profile = true;
     } else if (a == "--help" || a == "-h") {
@@ -147,7 +153,9 @@ std::string scene_name(const fs::path& p) {
 }
 
 Result measure(const fs::path& path, const Options& o) {
-  auto sim = s2sim::Simulation::load(path);
+  s2sim::SimulationOptions options;
+  options.threads = o.threads;
+  auto sim = s2sim::Simulation::load(path, options);
   Result r;
   r.scene = scene_name(path);
   r.path = path;

@@ -7,6 +7,8 @@
 #   scripts/check-behaviour.sh [--bin DIR] --update        rewrite tests/golden/behaviour.sha256
 #   scripts/check-behaviour.sh [--bin DIR] --against REV   build REV in a worktree and compare the
 #                                                          files themselves (first differing line)
+#   scripts/check-behaviour.sh [--bin DIR] --threads N     run every case with --threads N: the
+#                                                          same hashes (results do not depend on it)
 #
 # A restructuring must leave the hashes unchanged; a deliberate change of physics updates them in
 # the same commit, which then shows which cases it changed. DIR defaults to build/bin. Cases whose
@@ -16,15 +18,21 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 bin="$root/build/bin"
 mode=check
 against=""
+threads=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --bin) bin="$(cd "$2" && pwd)"; shift 2 ;;
     --update) mode=update; shift ;;
     --against) mode=against; against="$2"; shift 2 ;;
+    --threads) threads="--threads $2"; shift 2 ;;
     *) echo "check-behaviour: unknown option '$1'" >&2; exit 2 ;;
   esac
 done
 golden="$root/tests/golden/behaviour.sha256"
+if [[ -n "$threads" && "$(nproc)" -lt "${threads#--threads }" ]]; then
+  echo "check-behaviour: skipped, $threads needs more than this machine's $(nproc) threads" >&2
+  exit 0
+fi
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
@@ -41,7 +49,7 @@ run_cases() {
       continue
     fi
     # shellcheck disable=SC2086
-    (cd "$root" && "$runner" "$scene" $args --quiet --no-timing --log "$out/$name.csv" \
+    (cd "$root" && "$runner" "$scene" $args $threads --quiet --no-timing --log "$out/$name.csv" \
       --summary "$out/$name.json") || { echo "check-behaviour: case $name failed (exit $?)" >&2; exit 1; }
   done < "$root/scripts/behaviour-cases.txt"
 }

@@ -1,8 +1,8 @@
 #pragma once
 /// \file
 /// The runner's and the viewer's command lines load a scene the same way: their options
-/// (`seed`, `physics_step_s`, `substeps`, `constants`, `plugin_path`,
-/// `default_plugin_path` where the command line has it) become the façade's.
+/// (`seed`, `physics_step_s`, `substeps`, `constants`, `plugin_path`, and `threads` and
+/// `default_plugin_path` where the command line has them) become the façade's.
 
 #include <s2sim/kernel/simulation.hpp>
 
@@ -15,6 +15,7 @@ SimulationOptions simulation_options(const CommandLine& o) {
   so.physics_step_s = o.physics_step_s;
   so.substeps = o.substeps;
   so.constants = o.constants;
+  if constexpr (requires { o.threads; }) so.threads = o.threads;
   for (const auto& p : o.plugin_path)
     so.plugin_path.emplace_back(p);
   if constexpr (requires { o.default_plugin_path; }) so.default_plugin_path = o.default_plugin_path;

@@ -2,10 +2,13 @@
 
 #include <s2sim/error.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <string>
 #include <string_view>
+#include <thread>
 
 namespace s2sim::runner {
 namespace {
@@ -67,6 +70,9 @@ Options:
   --define NAME=VALUE  a constant defined before scene.xml is read
   --physics-step S     override the physics step (seconds)
   --substeps N         override the physics substeps per step
+  --threads N          step the scene's islands (robots not jointed to each other) on N
+                       threads, 1 to the machine's hardware threads (default 1); the
+                       results are the same for every N
   --plugin-path DIR    search DIR for plugins before the default folders (repeatable;
                        the first library on the path that provides a kind wins)
   --no-default-plugin-path
@@ -146,6 +152,14 @@ Options parse_options(int argc, char** argv) {
       if (n < 1 || n != std::floor(n) || n > 1000)
         throw usage_error("--substeps must be an integer from 1 to 1000");
       o.substeps = static_cast<int>(n);
+    } else if (a == "--threads") {
+      const std::string& v = value();
+      const int hardware = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+      const double n = parse_number(a, v);
+      if (n < 1 || n != std::floor(n) || n > hardware)
+        throw usage_error("--threads must be an integer from 1 to " + std::to_string(hardware) +
+                          " (this machine's hardware threads), got '" + v + "'");
+      o.threads = static_cast<int>(n);
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value());
     } else if (a == "--no-default-plugin-path") {

@@ -1,7 +1,9 @@
 // s2sim-peers: S2Sim side by side with MuJoCo and ODE on the same scenes (docs/benchmarks.md,
 // "Peers"). Every engine steps each scene in turn, several rounds in a rotating order; the
 // report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's speed-up over
-// each peer, and each engine's physical outcome, so that a faster wrong answer shows.
+// each peer, and each engine's physical outcome, so that a faster wrong answer shows. The
+// engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two threads:
+// its speed-up column is the serial run's wall time over its own.
 //   s2sim-peers [--scenes A,B,...] [--engines A,B,...] [--duration S] [--warmup S]
 //               [--rounds N] [--csv FILE] [--markdown FILE] [--check]
 #include "engine.hpp"
@@ -16,6 +18,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace peers {
@@ -39,6 +42,7 @@ std::filesystem::path SceneSpec::ode_table() const {
 
 std::vector<EngineFactory> available_engines() {
   std::vector<EngineFactory> engines{{"s2sim", &make_s2sim}};
+  if (std::thread::hardware_concurrency() >= 2) engines.push_back({"s2sim-par2", &make_s2sim_par2});
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
   engines.push_back({"mujoco", &make_mujoco});
 #endif
@@ -160,6 +164,10 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
+bool is_parallel(const Result& r) {
+  return r.engine == "s2sim-par2";
+}
+
 const Result* s2sim_of(const std::vector<Result>& results, const std::string& scene) {
   for (const auto& r : results)
     if (r.scene == scene && r.engine == "s2sim" && r.error.empty()) return &r;
@@ -167,9 +175,12 @@ const Result* s2sim_of(const std::vector<Result>& results, const std::string& sc
 }
 
 /// S2Sim's speed-up over `r`: the peer's median CPU time per step over S2Sim's (> 1: S2Sim faster).
+/// For s2sim-par2, the parallel run's over the serial one in WALL time (serial / parallel: > 1,
+/// the threads pay); thread CPU time counts only the calling thread's share there.
 double speedup(const std::vector<Result>& results, const Result& r) {
   const Result* s = s2sim_of(results, r.scene);
   if (s == nullptr || r.cpu_us.empty() || s->cpu_us.empty()) return NAN;
+  if (is_parallel(r)) return median(s->wall_us) / median(r.wall_us);
   return median(r.cpu_us) / median(s->cpu_us);
 }
 
@@ -195,7 +206,9 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
     const auto& oc = r.outcome;
     md << "| " << r.scene << " | " << r.engine << " | " << fixed(cpu, 1) << " | " << fixed(*lo, 1)
        << "–" << fixed(*hi, 1) << " | " << fixed(wall, 1) << " | " << fixed(cpu / r.robots, 2)
-       << " | " << (r.engine == "s2sim" || std::isnan(up) ? std::string("") : fixed(up, 2) + "×")
+       << " | "
+       << (r.engine == "s2sim" || std::isnan(up) ? std::string("")
+                                                 : fixed(up, 2) + (is_parallel(r) ? "× wall" : "×"))
        << " | " << fixed(oc.distance_m, 4) << " | " << fixed(oc.lateral_m, 4) << " | "
        << fixed(oc.yaw_deg, 2) << " | " << fixed(oc.rise_m, 4) << " | "
        << fixed(oc.penetration_m * 1e3, 2) << " | " << fixed(oc.settled_penetration_m * 1e3, 2)

@@ -167,3 +167,20 @@ def test_the_gil_is_released_while_stepping():
     # Held through the step, the GIL would let the thread run only before and after it: none
     # inside. Released, it wakes about every millisecond (fewer on a loaded machine).
     assert len(inside) >= 5, (len(inside), end - start)
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="one hardware thread")
+def test_threads_keyword_gives_the_same_run():
+    robots = os.path.join(SOURCE, "bench", "peers", "scenes", "robots_4")
+    runs = []
+    for threads in (1, 2):
+        sim = s2sim.Simulation(robots, threads=threads)
+        for name in sim.list_inputs():
+            if name.endswith("/ref_voltage"):
+                sim.set_input(name, 4.0 if "right" in name else -3.0)
+        sim.step(300)
+        runs.append(sim.signals("*"))
+    assert np.array_equal(runs[0], runs[1])
+    assert runs[0].size > 50
+    with pytest.raises(Exception, match="threads"):
+        s2sim.Simulation(robots, threads=0)

@@ -85,6 +85,8 @@ void find_axis_trees(Multibody::Impl& m) {
   m.tree_cursor.assign(trees, 0);
   m.row_order.assign(m.next_row.size(), 0);
   m.tree_changed.assign(trees, 0);
+  m.tree_solve_start.assign(trees + 1, 0);
+  m.solve_order.assign(axes, 0);
   std::vector<std::size_t> axes_in_tree(trees, 0);
   for (std::size_t a = 0; a < axes; ++a)
     ++axes_in_tree[static_cast<std::size_t>(m.axis_tree[a])];
@@ -93,6 +95,20 @@ void find_axis_trees(Multibody::Impl& m) {
       axes_in_tree.empty() ? 0 : *std::max_element(axes_in_tree.begin(), axes_in_tree.end());
   const std::size_t max_rows = std::min(m.next_row.size(), m.drives.size() + most_axes);
   m.row_matrix.assign(max_rows * max_rows, 0.0);
+}
+
+void group_solve_list_by_tree(Multibody::Impl& m) {
+  auto& start = m.tree_solve_start;
+  std::fill(start.begin(), start.end(), 0);
+  for (int a : m.solve_list)
+    ++start[static_cast<std::size_t>(m.axis_tree[static_cast<std::size_t>(a)]) + 1];
+  for (std::size_t t = 0; t + 1 < start.size(); ++t)
+    start[t + 1] += start[t];
+  std::copy(start.begin(), start.end() - 1, m.tree_cursor.begin());
+  for (int a : m.solve_list) {  // stable: a tree's axes keep their order
+    const auto t = static_cast<std::size_t>(m.axis_tree[static_cast<std::size_t>(a)]);
+    m.solve_order[static_cast<std::size_t>(m.tree_cursor[t]++)] = a;
+  }
 }
 
 void group_rows_by_tree(Multibody::Impl& m) {

@@ -263,27 +263,34 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       }
     }
   }
-  // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves.
+  // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves; tree by
+  // tree, each until its own axes converge, so that a robot's sweeps (and its numbers) do not
+  // depend on how long another robot takes (issue 17: the parallel islands' parts).
   if (bounded || friction) {
-    const int sweeps = m.solve_list.size() == 1 ? 1 : 16;
-    for (int sweep = 0; sweep < sweeps; ++sweep) {
-      bool changed = false;
-      for (int a : m.solve_list) {
-        const auto axis = static_cast<std::size_t>(a);
-        const double w = m.axis_mobility[a];  // g·M^-1·g, kept with its column
-        if (!(w > 0)) continue;
-        const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
-        if (delta == 0.0) continue;
-        const auto tree = static_cast<std::size_t>(m.axis_tree[axis]);
-        add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
-        // A tree axis that sticks stands exactly still (no creep from rounding).
-        if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
-          u[m.axis_u[axis]] = 0.0;
-        // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
-        changed =
-            changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
+    group_solve_list_by_tree(m);
+    for (std::size_t tree = 0; tree + 1 < m.tree_solve_start.size(); ++tree) {
+      const int begin = m.tree_solve_start[tree], end = m.tree_solve_start[tree + 1];
+      if (begin == end) continue;
+      const int sweeps = end - begin == 1 ? 1 : 16;
+      for (int sweep = 0; sweep < sweeps; ++sweep) {
+        bool changed = false;
+        for (int i = begin; i < end; ++i) {
+          const int a = m.solve_order[static_cast<std::size_t>(i)];
+          const auto axis = static_cast<std::size_t>(a);
+          const double w = m.axis_mobility[a];  // g·M^-1·g, kept with its column
+          if (!(w > 0)) continue;
+          const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
+          if (delta == 0.0) continue;
+          add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
+          // A tree axis that sticks stands exactly still (no creep from rounding).
+          if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
+            u[m.axis_u[axis]] = 0.0;
+          // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
+          changed =
+              changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
+        }
+        if (!changed) break;
       }
-      if (!changed) break;
     }
   }
   for (const auto& row : m.rows)

@@ -173,7 +173,7 @@ double Multibody::potential_energy_J() const {
 namespace {
 
 /// A segment over a SimTK::Vector of the current state (q, u or z), written in place.
-void add_state_vector(sim::StateLayout& layout, const char* name, Multibody::Impl& m,
+void add_state_vector(sim::StateLayout& layout, const std::string& name, Multibody::Impl& m,
                       const SimTK::Vector& (SimTK::State::*get)() const,
                       SimTK::Vector& (SimTK::State::*upd)()) {
   layout.add(
@@ -209,10 +209,10 @@ void for_each_column_number(M& m, F&& f) {
 
 }  // namespace
 
-void Multibody::declare_state(sim::StateLayout& layout) {
+void Multibody::declare_state(sim::StateLayout& layout, const std::string& prefix) {
   Impl& m = *impl_;
   layout.add(
-      "multibody/time", 2,
+      prefix + "/time", 2,
       [&m](double* out) {
         out[0] = static_cast<double>(m.ticks);
         out[1] = m.half_kick_pending ? 1.0 : 0.0;
@@ -221,22 +221,22 @@ void Multibody::declare_state(sim::StateLayout& layout) {
         m.ticks = static_cast<std::int64_t>(in[0]);
         m.half_kick_pending = in[1] != 0.0;
       });
-  add_state_vector(layout, "multibody/q", m, &SimTK::State::getQ, &SimTK::State::updQ);
-  add_state_vector(layout, "multibody/u", m, &SimTK::State::getU, &SimTK::State::updU);
-  add_state_vector(layout, "multibody/z", m, &SimTK::State::getZ, &SimTK::State::updZ);
+  add_state_vector(layout, prefix + "/q", m, &SimTK::State::getQ, &SimTK::State::updQ);
+  add_state_vector(layout, prefix + "/u", m, &SimTK::State::getU, &SimTK::State::updU);
+  add_state_vector(layout, prefix + "/z", m, &SimTK::State::getZ, &SimTK::State::updZ);
   // The M^-1 columns kept across steps decide what the next steps compute (which axes slide,
   // the implicit solve's columns, reused until q moves by 1e-7): part of the state.
   std::size_t column_numbers = 0;
   for_each_column_number(m, [&](double&) { ++column_numbers; });
   layout.add(
-      "multibody/columns", column_numbers,
+      prefix + "/columns", column_numbers,
       [&m](double* out) { for_each_column_number(m, [&](double& x) { *out++ = x; }); },
       [&m](const double* in, std::size_t) {
         for_each_column_number(m, [&](double& x) { x = *in++; });
       });
   // The last reactions: what a joint sensor reads before the next step.
   layout.add(
-      "multibody/reactions", 6 * m.joint_reactions.size(),
+      prefix + "/reactions", 6 * m.joint_reactions.size(),
       [&m](double* out) {
         for (const Wrench& w : m.joint_reactions)
           for (const Vec3* v : {&w.torque_Nm, &w.force_N})
@@ -250,7 +250,7 @@ void Multibody::declare_state(sim::StateLayout& layout) {
             in += 3;
           }
       });
-  m.loose.declare_state(layout);
+  if (prefix == "multibody" || !m.loose.empty()) m.loose.declare_state(layout);
 }
 
 void Multibody::restored() {

@@ -153,8 +153,9 @@ class Multibody {
   /// `multibody/columns` (the M^-1 column cache: validity flags, columns, loop axes' unit
   /// forces, the q and root quaternions they were computed at, axis mobilities),
   /// `multibody/reactions` (6 per scene joint), then the loose bodies' segments. After the
-  /// layout restored them, call restored().
-  void declare_state(sim::StateLayout& layout);
+  /// layout restored them, call restored(). `prefix` replaces `multibody` in the names (one
+  /// part of several, multibody_islands.hpp); a part without loose bodies then declares none.
+  void declare_state(sim::StateLayout& layout, const std::string& prefix = "multibody");
   /// Makes the restored segments the current state (time, realized; mid-tick caches dropped).
   void restored();
 

@@ -191,6 +191,7 @@ struct Multibody::Impl {
   std::vector<int> axis_tree;
   std::vector<int> tree_u_begin, tree_u_end, tree_q_begin, tree_q_end;
   std::vector<int> row_order, tree_row_start, tree_cursor;
+  std::vector<int> solve_order, tree_solve_start;  // solve_list ordered by tree, each's first
   std::vector<char> tree_changed;
   int substep = 0;            // index of the current substep in the tick
   bool bodies_fresh = false;  // substep_poses/twists hold the current state
@@ -223,6 +224,8 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x);
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end);
 /// Partitions the axes into independent trees (axis_trees.cpp); after axis_u is known.
 void find_axis_trees(Multibody::Impl& m);
+/// Orders this substep's solve_list by tree (solve_order, tree_solve_start), stably.
+void group_solve_list_by_tree(Multibody::Impl& m);
 /// Orders this substep's rows by tree (row_order, tree_row_start), stably.
 void group_rows_by_tree(Multibody::Impl& m);
 /// Adds a load `f` (N·m or N) on axis a: a mobility force for a tree axis, equal and opposite

@@ -6,8 +6,11 @@
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <thread>
 
 namespace s2sim {
 
@@ -35,6 +38,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     throw Error(ErrorKind::usage, "substeps must be from 1 to " +
                                       std::to_string(scene::limits::kMaxSubsteps) + ", got " +
                                       std::to_string(m.scene.settings.substeps));
+  const int max_threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  if (options.threads < 1 || options.threads > max_threads)
+    throw Error(ErrorKind::usage, "threads must be from 1 to " + std::to_string(max_threads) +
+                                      " (this machine's hardware threads), got " +
+                                      std::to_string(options.threads));
   m.tick_s = m.scene.settings.physics_step_s;
 
   // The multibody's plan first: the components configure against its axes and may declare
@@ -139,8 +147,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.configure_components();
   m.warn_unread_plugin_attributes();
 
-  m.multibody = std::make_unique<model::Multibody>(m.scene, m.topology, m.axis_inertia, m.tick_s,
-                                                   m.scene.settings.substeps);
+  m.multibody = std::make_unique<model::MultibodyIslands>(
+      m.scene, m.topology, m.axis_inertia, m.tick_s, m.scene.settings.substeps, options.threads);
   if (m.joint_reactions_wanted) m.multibody->request_joint_reactions();
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());

@@ -15,6 +15,7 @@
 #include "collision/ray_caster.hpp"
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
+#include "model/multibody_islands.hpp"
 #include "plugin/plugin_loader.hpp"
 #include "scene/element_params.hpp"
 #include "sim/stage_profile.hpp"
@@ -114,7 +115,8 @@ struct Simulation::Impl {
   bool joint_reactions_wanted = false;  ///< a component looked up a joint
   /// (body, input) of every conveyor belt's `belt_speed`, for contact once it is built.
   std::vector<std::pair<std::int32_t, std::int32_t>> belt_speed_inputs;
-  std::unique_ptr<model::Multibody> multibody;
+  /// One Simbody system, or several stepped in parallel (SimulationOptions::threads).
+  std::unique_ptr<model::MultibodyIslands> multibody;
   std::unique_ptr<collision::ShapeTable> shapes;
   std::unique_ptr<contact::ContactWorld> contacts;
   std::vector<AxisView> axis_views;

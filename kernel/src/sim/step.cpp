@@ -33,16 +33,19 @@ const char* stage_name(PipelineStage stage) {
 
 namespace {
 
-/// One substep of the leapfrog (docs/models/multibody.md).
-void physics_substep(model::Multibody& mb, model::SubstepForces* contact, int substep,
-                     StageProfile* profile) {
-  if (contact) {
-    StageTimer timer(profile, PipelineStage::collide);
-    const Pose* poses = nullptr;
-    const Twist* twists = nullptr;
-    mb.current_bodies(poses, twists);
-    contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
-  }
+/// Contact at the substep's poses, written as the bodies' contact wrenches.
+template <class Model>
+void collide(Model& mb, model::SubstepForces* contact, StageProfile* profile) {
+  if (!contact) return;
+  StageTimer timer(profile, PipelineStage::collide);
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  mb.current_bodies(poses, twists);
+  contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+}
+
+/// The multibody's stages of one substep of the leapfrog (docs/models/multibody.md).
+void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) {
   {
     StageTimer timer(profile, PipelineStage::forces);
     mb.forces();
@@ -69,6 +72,28 @@ void physics_substep(model::Multibody& mb, model::SubstepForces* contact, int su
   }
 }
 
+/// One part's substep (MultibodyIslands::run_substep); only the parts the calling thread takes
+/// are profiled (StageProfile is not shared between threads).
+void part_stages(void* context, model::Multibody& mb, bool calling_thread, int substep) {
+  StageProfile* profile = calling_thread ? static_cast<StageProfile*>(context) : nullptr;
+  multibody_stages(mb, substep, profile);
+  if (substep == mb.substeps() - 1) {
+    StageTimer timer(profile, PipelineStage::finish);
+    mb.finish_tick();
+  }
+}
+
+/// Simbody refused a state that went non-finite inside the tick (a blow-up): say where.
+template <class Model>
+[[noreturn]] void throw_diverged(const Model& mb, const std::exception& e) {
+  const int body = mb.first_non_finite_body();
+  throw Error(ErrorKind::runtime,
+              "the simulation diverged at t = " + std::to_string(mb.time_s()) + " s" +
+                  (body > 0 ? ", first at body " + mb.body_name(body) : std::string()) + " (" +
+                  e.what() +
+                  "); the scene may need a smaller step, more substeps or saner parameters");
+}
+
 std::uint64_t fnv1a(std::string_view s) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
   for (unsigned char c : s) {
@@ -82,20 +107,31 @@ std::uint64_t fnv1a(std::string_view s) {
 
 void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProfile* profile) {
   try {
-    for (int k = 0; k < mb.substeps(); ++k)
-      physics_substep(mb, contact, k, profile);
+    for (int k = 0; k < mb.substeps(); ++k) {
+      collide(mb, contact, profile);
+      multibody_stages(mb, k, profile);
+    }
     StageTimer timer(profile, PipelineStage::finish);
     mb.finish_tick();
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    // Simbody refuses a state that went non-finite inside the tick (a blow-up): say where.
-    const int body = mb.first_non_finite_body();
-    throw Error(ErrorKind::runtime,
-                "the simulation diverged at t = " + std::to_string(mb.time_s()) + " s" +
-                    (body > 0 ? ", first at body " + mb.body_name(body) : std::string()) + " (" +
-                    e.what() +
-                    "); the scene may need a smaller step, more substeps or saner parameters");
+    throw_diverged(mb, e);
+  }
+}
+
+void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
+                  StageProfile* profile) {
+  if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
+  try {
+    for (int k = 0; k < mb.substeps(); ++k) {
+      collide(mb, contact, profile);
+      mb.run_substep(k, &part_stages, profile);
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw_diverged(mb, e);
   }
 }
 

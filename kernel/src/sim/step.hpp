@@ -5,6 +5,7 @@
 /// run it alone.
 
 #include "model/multibody.hpp"
+#include "model/multibody_islands.hpp"
 #include "model/substep_forces.hpp"
 #include "sim/stage_profile.hpp"
 
@@ -15,6 +16,12 @@ namespace s2sim::sim {
 /// check. Throws s2sim::Error (runtime) when the state becomes non-finite or Simbody refuses
 /// it. `profile` (may be null) accumulates the time per stage.
 void physics_tick(model::Multibody& multibody, model::SubstepForces* contact,
+                  StageProfile* profile = nullptr);
+/// The same tick over the scene's parts: one part is the call above; several run each
+/// substep's collide serially, then every part's forces … project (and the finish on the last
+/// substep) at once on the worker pool. `profile` then times collide and the stages of the parts
+/// the calling thread took, not the wait for the other threads' parts.
+void physics_tick(model::MultibodyIslands& multibody, model::SubstepForces* contact,
                   StageProfile* profile = nullptr);
 
 }  // namespace s2sim::sim

@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <new>
+#include <string>
+#include <thread>
 
 using s2sim::test::allocations;
 
@@ -91,6 +93,39 @@ TEST(Allocation, TheKernelAddsNoAllocationToSimbodysOwn) {
   }
   RecordProperty("simbody_allocations_per_step_components", std::to_string(a.simbody / 1000.0));
   RecordProperty("simbody_allocations_per_step_default", std::to_string(b.simbody / 1000.0));
+}
+
+}  // namespace
+}  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+/// Allocations in 1000 ticks of robots_16 after 500, every thread counted.
+long robots16_allocations(int threads) {
+  SimulationOptions o;
+  o.threads = threads;
+  auto sim =
+      Simulation::load(std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_16", o);
+  for (std::size_t i = 0; i < sim->input_count(); ++i)
+    if (sim->input_info(i).name.find("/ref_voltage") != std::string::npos) sim->set_input(i, 5.0);
+  sim->step(500);
+  const long before = allocations.load();
+  sim->step(1000);
+  return allocations.load() - before;
+}
+
+TEST(Allocation, TheParallelStepAddsOnlySimbodysOwnPerSystem) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one hardware thread";
+  // The pool, the parts' slices and the ticket allocate nothing; each Simbody system allocates
+  // its own temporaries per tick (2 on this scene, whatever its size), so two systems of 8
+  // robots allocate exactly twice what one of 16 does.
+  const long serial = robots16_allocations(1);
+  const long parallel = robots16_allocations(2);
+  RecordProperty("allocations_per_tick_serial", std::to_string(serial / 1000.0));
+  RecordProperty("allocations_per_tick_two_threads", std::to_string(parallel / 1000.0));
+  EXPECT_GT(serial, 0);
+  EXPECT_EQ(parallel, 2 * serial);
 }
 
 }  // namespace

@@ -31,6 +31,12 @@ struct SimulationOptions {
   std::uint64_t seed = 1;  ///< seeds every component's random stream
   std::optional<double> physics_step_s;
   std::optional<int> substeps;
+  /// Threads stepping the physics (docs/scheduling.md, "Parallel islands"): the scene's
+  /// islands (robots and mechanisms not jointed to each other) are dealt into this many
+  /// Simbody systems stepped at once; contact stays serial. From 1 (one system, the default)
+  /// to the machine's hardware threads (else s2sim::Error, usage). The results do not depend
+  /// on it, bit for bit; a snapshot restores only with the same number of parts.
+  int threads = 1;
   /// Plugin folders searched first, before the default ones (S2SIM_PLUGIN_PATH, then the
   /// plugin folder of the kernel's own prefix: docs/plugins.md). When two libraries provide
   /// one kind, the first on the path wins (a load warning names both).

@@ -1,0 +1,137 @@
+// The islands of the joint graph dealt into parts (island_plan.hpp). No Simbody here.
+#include "model/island_plan.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace s2sim::model {
+
+namespace {
+
+int find_root(std::vector<int>& parent, int x) {
+  while (parent[static_cast<std::size_t>(x)] != x) {
+    auto& p = parent[static_cast<std::size_t>(x)];
+    p = parent[static_cast<std::size_t>(p)];  // path halving
+    x = p;
+  }
+  return x;
+}
+
+}  // namespace
+
+std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,
+                                 const std::vector<double>& axis_inertia, int parts) {
+  auto whole = [&] {
+    PartPlan plan;
+    plan.topology = topology;
+    plan.axis_inertia = axis_inertia;
+    plan.global_axis.resize(topology.axes.size());
+    std::iota(plan.global_axis.begin(), plan.global_axis.end(), 0);
+    plan.bodies.resize(scene.bodies.size());
+    std::iota(plan.bodies.begin(), plan.bodies.end(), 1);
+    plan.joints.resize(scene.joints.size());
+    std::iota(plan.joints.begin(), plan.joints.end(), 0);
+    return std::vector<PartPlan>{std::move(plan)};
+  };
+  if (parts <= 1) return whole();
+  // Scene-wide policies of one Simbody system that a part would not share, so that its numbers
+  // would differ in the last bits: with a loop anywhere the M^-1 columns are recomputed when any
+  // coordinate moves and the axis solve is one block; with a Ball anywhere q' = N·u is Simbody's
+  // for every body (multibody_build.cpp). Such scenes keep one part.
+  if (!topology.loops.empty()) return whole();
+  for (const auto& e : topology.tree)
+    if (e.joint >= 0 &&
+        scene.joints[static_cast<std::size_t>(e.joint)].type == scene::JointType::ball)
+      return whole();
+
+  // Connected components over the scene bodies: tree edges and loop joints (the world joins
+  // nothing: robots standing on the floor are separate islands).
+  const std::size_t n_bodies = scene.bodies.size();
+  std::vector<int> parent(n_bodies);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto unite = [&](int a, int b) {
+    if (a < 0 || b < 0) return;
+    a = find_root(parent, a);
+    b = find_root(parent, b);
+    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  };
+  for (const auto& e : topology.tree)
+    unite(e.parent, e.child);
+  for (int j : topology.loops)
+    unite(scene.joints[static_cast<std::size_t>(j)].body1,
+          scene.joints[static_cast<std::size_t>(j)].body2);
+
+  // Islands numbered by their lowest body (the root after unite is the lowest index).
+  std::vector<int> island_of_body(n_bodies, -1);  // -1: loose
+  std::vector<int> weight;
+  std::vector<int> island_of_root(n_bodies, -1);
+  std::vector<char> in_tree(n_bodies, 0);
+  for (const auto& e : topology.tree)
+    in_tree[static_cast<std::size_t>(e.child)] = 1;
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    if (!in_tree[b]) continue;
+    const auto root = static_cast<std::size_t>(find_root(parent, static_cast<int>(b)));
+    if (island_of_root[root] < 0) {
+      island_of_root[root] = static_cast<int>(weight.size());
+      weight.push_back(0);
+    }
+    island_of_body[b] = island_of_root[root];
+    ++weight[static_cast<std::size_t>(island_of_body[b])];
+  }
+  const std::size_t islands = weight.size();
+  if (islands < 2) return whole();
+  auto island_of_joint = [&](int j) {
+    const auto& jt = scene.joints[static_cast<std::size_t>(j)];
+    return island_of_body[static_cast<std::size_t>(jt.body1 >= 0 ? jt.body1 : jt.body2)];
+  };
+  for (const auto& axis : topology.axes)
+    ++weight[static_cast<std::size_t>(island_of_joint(axis.joint))];
+
+  // Deal: heaviest island first to the lightest part.
+  std::vector<int> order(islands);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return weight[static_cast<std::size_t>(a)] > weight[static_cast<std::size_t>(b)];
+  });
+  const std::size_t n_parts = std::min(islands, static_cast<std::size_t>(parts));
+  std::vector<long> load(n_parts, 0);
+  std::vector<int> part_of_island(islands, 0);
+  for (int island : order) {
+    const auto lightest =
+        static_cast<std::size_t>(std::min_element(load.begin(), load.end()) - load.begin());
+    part_of_island[static_cast<std::size_t>(island)] = static_cast<int>(lightest);
+    load[lightest] += weight[static_cast<std::size_t>(island)];
+  }
+
+  std::vector<PartPlan> plans(n_parts);
+  for (auto& plan : plans)
+    plan.topology.joint_is_loop = topology.joint_is_loop;
+  plans[0].topology.loose = topology.loose;
+  auto part_of_body = [&](int b) -> PartPlan& {
+    return plans[static_cast<std::size_t>(
+        part_of_island[static_cast<std::size_t>(island_of_body[static_cast<std::size_t>(b)])])];
+  };
+  for (const auto& e : topology.tree)
+    part_of_body(e.child).topology.tree.push_back(e);
+  for (int j : topology.loops)
+    plans[static_cast<std::size_t>(part_of_island[static_cast<std::size_t>(island_of_joint(j))])]
+        .topology.loops.push_back(j);
+  for (std::size_t a = 0; a < topology.axes.size(); ++a) {
+    const auto& axis = topology.axes[a];
+    PartPlan& plan = plans[static_cast<std::size_t>(
+        part_of_island[static_cast<std::size_t>(island_of_joint(axis.joint))])];
+    plan.topology.axes.push_back(axis);
+    plan.axis_inertia.push_back(a < axis_inertia.size() ? axis_inertia[a] : 0.0);
+    plan.global_axis.push_back(static_cast<int>(a));
+  }
+  for (std::size_t b = 0; b < n_bodies; ++b)
+    (island_of_body[b] < 0 ? plans[0] : part_of_body(static_cast<int>(b)))
+        .bodies.push_back(static_cast<int>(b) + 1);
+  for (std::size_t j = 0; j < scene.joints.size(); ++j)
+    plans[static_cast<std::size_t>(
+              part_of_island[static_cast<std::size_t>(island_of_joint(static_cast<int>(j)))])]
+        .joints.push_back(static_cast<int>(j));
+  return plans;
+}
+
+}  // namespace s2sim::model

@@ -1,0 +1,329 @@
+// The multibody as parts stepped in parallel (multibody_islands.hpp). No Simbody here: the parts
+// are Multibody objects seen through their public interface.
+#include "model/multibody_islands.hpp"
+
+#include <s2sim/error.hpp>
+
+#include <algorithm>
+#include <string>
+
+namespace s2sim::model {
+
+MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& topology,
+                                   const std::vector<double>& axis_inertia, double tick_s,
+                                   int substeps, int threads)
+    : body_count_(static_cast<int>(scene.bodies.size()) + 1), axes_(topology.axes) {
+  std::vector<PartPlan> plans = plan_parts(scene, topology, axis_inertia, threads);
+  parts_.resize(plans.size());
+  for (std::size_t p = 0; p < plans.size(); ++p) {
+    Part& part = parts_[p];
+    part.plan = std::move(plans[p]);
+    part.multibody = std::make_unique<Multibody>(scene, part.plan.topology, part.plan.axis_inertia,
+                                                 tick_s, substeps);
+    for (const auto& w : part.multibody->warnings())
+      warnings_.push_back(w);
+  }
+  if (parts_.size() == 1) return;
+
+  const auto bodies = static_cast<std::size_t>(body_count_);
+  const std::size_t axes = axes_.size(), joints = scene.joints.size();
+  part_of_body_.assign(bodies, 0);
+  part_of_joint_.assign(joints, 0);
+  part_of_axis_.assign(axes, 0);
+  local_axis_.assign(axes, 0);
+  std::int32_t capacity = 0;
+  for (std::size_t p = 0; p < parts_.size(); ++p) {
+    Part& part = parts_[p];
+    for (int b : part.plan.bodies)
+      part_of_body_[static_cast<std::size_t>(b)] = static_cast<int>(p);
+    for (int j : part.plan.joints)
+      part_of_joint_[static_cast<std::size_t>(j)] = static_cast<int>(p);
+    for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a) {
+      const auto g = static_cast<std::size_t>(part.plan.global_axis[a]);
+      part_of_axis_[g] = static_cast<int>(p);
+      local_axis_[g] = static_cast<int>(a);
+    }
+    capacity += part.multibody->axis_drive_capacity();
+    part.poses.assign(bodies, Pose{});
+    part.twists.assign(bodies, Twist{});
+    part.axis_position.assign(part.plan.global_axis.size(), 0.0);
+    part.axis_velocity.assign(part.plan.global_axis.size(), 0.0);
+  }
+  loose_.assign(bodies, 0);
+  for (int b : topology.loose)
+    loose_[static_cast<std::size_t>(b) + 1] = 1;
+  wrenches_.assign(bodies, Wrench{});
+  contact_wrenches_.assign(bodies, Wrench{});
+  reactions_.assign(joints, Wrench{});
+  axis_forces_.assign(axes, 0.0);
+  axis_friction_.assign(axes, 0.0);
+  drive_applied_.assign(axes, 0.0);
+  drives_.assign(static_cast<std::size_t>(capacity), AxisDrive{});
+  poses_.assign(bodies, Pose{});
+  twists_.assign(bodies, Twist{});
+  gather_reactions();
+  pool_ = std::make_unique<WorkerPool>(parts(), parts());
+}
+
+MultibodyIslands::~MultibodyIslands() = default;
+
+Wrench* MultibodyIslands::applied_wrenches() {
+  return parts() == 1 ? parts_[0].multibody->applied_wrenches() : wrenches_.data();
+}
+double* MultibodyIslands::applied_axis_forces() {
+  return parts() == 1 ? parts_[0].multibody->applied_axis_forces() : axis_forces_.data();
+}
+double* MultibodyIslands::applied_axis_friction() {
+  return parts() == 1 ? parts_[0].multibody->applied_axis_friction() : axis_friction_.data();
+}
+AxisDrive* MultibodyIslands::axis_drives() {
+  return parts() == 1 ? parts_[0].multibody->axis_drives() : drives_.data();
+}
+std::int32_t* MultibodyIslands::axis_drive_count() {
+  return parts() == 1 ? parts_[0].multibody->axis_drive_count() : &drive_count_;
+}
+std::int32_t MultibodyIslands::axis_drive_capacity() const {
+  return parts() == 1 ? parts_[0].multibody->axis_drive_capacity()
+                      : static_cast<std::int32_t>(drives_.size());
+}
+const double* MultibodyIslands::drive_force_applied() const {
+  return parts() == 1 ? parts_[0].multibody->drive_force_applied() : drive_applied_.data();
+}
+void MultibodyIslands::request_joint_reactions() {
+  for (auto& part : parts_)
+    part.multibody->request_joint_reactions();
+  reactions_wanted_ = true;
+}
+const Wrench* MultibodyIslands::joint_reactions() const {
+  return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();
+}
+bool MultibodyIslands::joint_is_loop(int joint) const {
+  if (parts() == 1) return parts_[0].multibody->joint_is_loop(joint);
+  return parts_[static_cast<std::size_t>(part_of_joint_.at(static_cast<std::size_t>(joint)))]
+      .multibody->joint_is_loop(joint);
+}
+Wrench* MultibodyIslands::use_contact_wrenches() {
+  if (parts() == 1) return parts_[0].multibody->use_contact_wrenches();
+  if (!contact_used_)
+    for (auto& part : parts_)
+      part.contact_wrenches = part.multibody->use_contact_wrenches();
+  contact_used_ = true;
+  return contact_wrenches_.data();
+}
+
+std::vector<double> MultibodyIslands::apparent_mass_kg() const {
+  if (parts() == 1) return parts_[0].multibody->apparent_mass_kg();
+  std::vector<double> out(static_cast<std::size_t>(body_count_), 0.0);
+  for (const auto& part : parts_) {
+    const std::vector<double> mass = part.multibody->apparent_mass_kg();
+    for (int b : part.plan.bodies)
+      out[static_cast<std::size_t>(b)] = mass[static_cast<std::size_t>(b)];
+  }
+  return out;
+}
+
+void MultibodyIslands::reset() {
+  for (auto& part : parts_)
+    part.multibody->reset();
+  if (parts() == 1) return;
+  drive_count_ = 0;
+  std::fill(drive_applied_.begin(), drive_applied_.end(), 0.0);
+  gather_reactions();
+  bodies_fresh_ = read_fresh_ = false;
+}
+
+void MultibodyIslands::gather_reactions() {
+  for (const auto& part : parts_) {
+    const Wrench* reactions = part.multibody->joint_reactions();
+    for (int j : part.plan.joints)
+      reactions_[static_cast<std::size_t>(j)] = reactions[j];
+  }
+}
+
+void MultibodyIslands::current_bodies(const Pose*& poses, const Twist*& twists) {
+  if (parts() == 1) return parts_[0].multibody->current_bodies(poses, twists);
+  if (!bodies_fresh_) {
+    for (auto& part : parts_)
+      copy_bodies(part);
+    bodies_fresh_ = true;
+  }
+  poses = poses_.data();
+  twists = twists_.data();
+}
+
+void MultibodyIslands::copy_bodies(Part& part) {
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  part.multibody->current_bodies(poses, twists);
+  for (int b : part.plan.bodies) {
+    poses_[static_cast<std::size_t>(b)] = poses[b];
+    twists_[static_cast<std::size_t>(b)] = twists[b];
+  }
+}
+
+int MultibodyIslands::first_non_finite_body() const {
+  if (parts() == 1) return parts_[0].multibody->first_non_finite_body();
+  // As one system would say: the first mobilized body in kernel order, else a loose one.
+  int mobilized = -1, loose = -1;
+  for (const auto& part : parts_) {
+    const int b = part.multibody->first_non_finite_body();
+    if (b <= 0) continue;
+    int& first = loose_[static_cast<std::size_t>(b)] ? loose : mobilized;
+    if (first < 0 || b < first) first = b;
+  }
+  return mobilized > 0 ? mobilized : loose;
+}
+
+void MultibodyIslands::read(Pose* poses, Twist* twists, double* axis_position,
+                            double* axis_velocity) const {
+  if (parts() == 1) return parts_[0].multibody->read(poses, twists, axis_position, axis_velocity);
+  if (!read_fresh_) {
+    for (const auto& part : parts_)
+      part.multibody->read(part.poses.data(), part.twists.data(), part.axis_position.data(),
+                           part.axis_velocity.data());
+    read_fresh_ = true;
+  }
+  poses[0] = Pose{};
+  twists[0] = Twist{};
+  for (const auto& part : parts_) {
+    for (int b : part.plan.bodies) {
+      poses[b] = part.poses[static_cast<std::size_t>(b)];
+      twists[b] = part.twists[static_cast<std::size_t>(b)];
+    }
+    for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a) {
+      axis_position[part.plan.global_axis[a]] = part.axis_position[a];
+      axis_velocity[part.plan.global_axis[a]] = part.axis_velocity[a];
+    }
+  }
+}
+
+double MultibodyIslands::kinetic_energy_J() const {
+  double energy = 0;
+  for (const auto& part : parts_)
+    energy += part.multibody->kinetic_energy_J();
+  return energy;
+}
+
+double MultibodyIslands::potential_energy_J() const {
+  double energy = 0;
+  for (const auto& part : parts_)
+    energy += part.multibody->potential_energy_J();
+  return energy;
+}
+
+void MultibodyIslands::declare_state(sim::StateLayout& layout) {
+  if (parts() == 1) return parts_[0].multibody->declare_state(layout);
+  for (std::size_t p = 0; p < parts_.size(); ++p)
+    parts_[p].multibody->declare_state(layout, "multibody/part" + std::to_string(p));
+}
+
+void MultibodyIslands::restored() {
+  for (auto& part : parts_)
+    part.multibody->restored();
+  if (parts() == 1) return;
+  gather_reactions();
+  bodies_fresh_ = read_fresh_ = false;
+}
+
+int MultibodyIslands::owner(int body) const {
+  return body > 0 && body < body_count_ ? part_of_body_[static_cast<std::size_t>(body)] : 0;
+}
+
+bool MultibodyIslands::place_free_body(int body, const Pose& pose) {
+  if (parts() == 1) return parts_[0].multibody->place_free_body(body, pose);
+  bodies_fresh_ = read_fresh_ = false;
+  return parts_[static_cast<std::size_t>(owner(body))].multibody->place_free_body(body, pose);
+}
+bool MultibodyIslands::move_body(int body, const Pose& pose) {
+  if (parts() == 1) return parts_[0].multibody->move_body(body, pose);
+  bodies_fresh_ = read_fresh_ = false;
+  return parts_[static_cast<std::size_t>(owner(body))].multibody->move_body(body, pose);
+}
+bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
+  if (parts() == 1) return parts_[0].multibody->set_body_velocity(body, twist);
+  bodies_fresh_ = read_fresh_ = false;
+  return parts_[static_cast<std::size_t>(owner(body))].multibody->set_body_velocity(body, twist);
+}
+
+// --- The parallel substep ----------------------------------------------------------------------
+
+void MultibodyIslands::run_substep(int substep, PartStages stages, void* context) {
+  substep_ = substep;
+  stages_ = stages;
+  stages_context_ = context;
+  bodies_fresh_ = read_fresh_ = false;
+  try {
+    pool_->run(&MultibodyIslands::run_part, this, parts());
+  } catch (const Error& e) {
+    // A part's finish found its state non-finite: name the first body of the whole scene.
+    const int body = e.kind() == ErrorKind::runtime ? first_non_finite_body() : -1;
+    if (body <= 0) throw;
+    throw Error(ErrorKind::runtime,
+                "the simulation state became non-finite at t = " + std::to_string(time_s()) +
+                    " s, first at body " + body_name(body));
+  }
+  bodies_fresh_ = true;
+  read_fresh_ = substep == substeps() - 1;
+}
+
+void MultibodyIslands::run_part(void* self, int p, int thread) {
+  auto& me = *static_cast<MultibodyIslands*>(self);
+  Part& part = me.parts_[static_cast<std::size_t>(p)];
+  me.load_part(part, me.substep_);
+  me.stages_(me.stages_context_, *part.multibody, thread == 0, me.substep_);
+  me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)
+  if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
+}
+
+void MultibodyIslands::load_part(Part& part, int substep) {
+  Multibody& mb = *part.multibody;
+  if (substep == 0) {  // the tick's loads, held over its substeps
+    Wrench* wrenches = mb.applied_wrenches();
+    for (int b : part.plan.bodies)
+      wrenches[b] = wrenches_[static_cast<std::size_t>(b)];
+    double* forces = mb.applied_axis_forces();
+    double* friction = mb.applied_axis_friction();
+    for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a) {
+      forces[a] = axis_forces_[static_cast<std::size_t>(part.plan.global_axis[a])];
+      friction[a] = axis_friction_[static_cast<std::size_t>(part.plan.global_axis[a])];
+    }
+    // The drives on the part's axes, in the components' order.
+    const int p = static_cast<int>(&part - parts_.data());
+    AxisDrive* drives = mb.axis_drives();
+    std::int32_t count = 0;
+    const std::int32_t capacity = mb.axis_drive_capacity();
+    for (std::int32_t d = 0; d < drive_count_; ++d) {
+      const auto g = static_cast<std::size_t>(drives_[static_cast<std::size_t>(d)].axis);
+      if (g >= part_of_axis_.size() || part_of_axis_[g] != p) continue;
+      AxisDrive drive = drives_[static_cast<std::size_t>(d)];
+      drive.axis = local_axis_[g];
+      if (count < capacity) {
+        drives[count++] = drive;
+      } else {  // beyond the part's reserve: applied explicitly, as the SDK does past the kernel's
+        forces[drive.axis] += drive.force < drive.min_force   ? drive.min_force
+                              : drive.force > drive.max_force ? drive.max_force
+                                                              : drive.force;
+      }
+    }
+    *mb.axis_drive_count() = count;
+  }
+  if (contact_used_)
+    for (int b : part.plan.bodies)
+      part.contact_wrenches[b] = contact_wrenches_[static_cast<std::size_t>(b)];
+}
+
+void MultibodyIslands::publish_tick(Part& part) {
+  Multibody& mb = *part.multibody;
+  mb.read(part.poses.data(), part.twists.data(), part.axis_position.data(),
+          part.axis_velocity.data());
+  const double* applied = mb.drive_force_applied();
+  for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a)
+    drive_applied_[static_cast<std::size_t>(part.plan.global_axis[a])] = applied[a];
+  if (reactions_wanted_) {
+    const Wrench* reactions = mb.joint_reactions();
+    for (int j : part.plan.joints)
+      reactions_[static_cast<std::size_t>(j)] = reactions[j];
+  }
+}
+
+}  // namespace s2sim::model

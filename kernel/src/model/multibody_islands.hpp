@@ -1,0 +1,133 @@
+#pragma once
+/// \file
+/// The scene's multibody as P parts stepped in parallel (issue 17): each part is its own
+/// Simbody system holding whole islands of the joint graph (island_plan.hpp), and a persistent
+/// worker pool runs the parts' stages of a substep at once. The kernel still sees one body
+/// numbering and one axis table: the parts read their slices of the scene-wide load arrays and
+/// write their slices of the scene-wide poses, twists and axis values. P = 1 is one Multibody
+/// over the whole plan, exactly the serial model. An island's numbers do not depend on the
+/// others in its system (AxisTrees.ARobotMovesBitForBitAsAloneBesideOthersThatDoNotTouchIt), so
+/// the results do not depend on P (tests/kernel/sim/parallel_islands_test.cpp).
+
+#include "model/island_plan.hpp"
+#include "model/multibody.hpp"
+#include "model/worker_pool.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace s2sim::model {
+
+class MultibodyIslands {
+ public:
+  /// The work of one part in a substep (sim/step.cpp: forces … project, and the tick's finish
+  /// on its last substep), called on whichever thread takes the part; `calling_thread`: the
+  /// one that called run_substep.
+  using PartStages = void (*)(void* context, Multibody& multibody, bool calling_thread,
+                              int substep);
+
+  /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
+  /// has fewer islands; threads ≤ 1: one). Throws what Multibody's constructor throws.
+  MultibodyIslands(const scene::Scene& scene, const Topology& topology,
+                   const std::vector<double>& axis_inertia, double tick_s, int substeps,
+                   int threads);
+  ~MultibodyIslands();
+  MultibodyIslands(const MultibodyIslands&) = delete;
+  MultibodyIslands& operator=(const MultibodyIslands&) = delete;
+
+  /// The number of Simbody systems (and threads) stepping the scene.
+  int parts() const { return static_cast<int>(parts_.size()); }
+  Multibody& part(int p) { return *parts_[static_cast<std::size_t>(p)].multibody; }
+
+  // --- Multibody's interface, scene-wide (multibody.hpp says what each does) -----------------
+  int body_count() const { return body_count_; }
+  const std::vector<AxisInfo>& axes() const { return axes_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  Wrench* applied_wrenches();
+  double* applied_axis_forces();
+  double* applied_axis_friction();
+  AxisDrive* axis_drives();
+  std::int32_t* axis_drive_count();
+  std::int32_t axis_drive_capacity() const;
+  const double* drive_force_applied() const;
+  void request_joint_reactions();
+  const Wrench* joint_reactions() const;
+  bool joint_is_loop(int joint) const;
+  Wrench* use_contact_wrenches();
+  std::vector<double> apparent_mass_kg() const;
+  void reset();
+  double time_s() const { return parts_[0].multibody->time_s(); }
+  int substeps() const { return parts_[0].multibody->substeps(); }
+  double substep_s() const { return parts_[0].multibody->substep_s(); }
+  void current_bodies(const Pose*& poses, const Twist*& twists);
+  int first_non_finite_body() const;
+  const std::string& body_name(int body) const { return parts_[0].multibody->body_name(body); }
+  void read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity) const;
+  double kinetic_energy_J() const;
+  double potential_energy_J() const;
+  /// One part: Multibody's segments. Several: each part's, named `multibody/part<p>/…`
+  /// (a snapshot restores only into a simulation with as many parts).
+  void declare_state(sim::StateLayout& layout);
+  void restored();
+  bool place_free_body(int body, const Pose& pose);
+  bool move_body(int body, const Pose& pose);
+  bool set_body_velocity(int body, const Twist& twist);
+
+  /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
+  /// taken from the scene-wide arrays (on the first substep) and the contact wrenches, then
+  /// `stages`, then its bodies (and after the last substep its axes, drives and reactions)
+  /// written back. Exceptions: the lowest part's; a non-finite state names the first body in
+  /// kernel order, as the serial run does.
+  void run_substep(int substep, PartStages stages, void* context);
+
+ private:
+  struct Part {
+    std::unique_ptr<Multibody> multibody;
+    PartPlan plan;
+    Wrench* contact_wrenches = nullptr;  // the part's, when contact is used
+    // Scratch for read(): the part's view of every body and of its axes (read() is const).
+    mutable std::vector<Pose> poses;
+    mutable std::vector<Twist> twists;
+    mutable std::vector<double> axis_position, axis_velocity;
+  };
+  static void run_part(void* self, int part, int thread);
+  /// The part's slice of the scene-wide loads (the tick's on its first substep, the contact
+  /// wrenches on every one).
+  void load_part(Part& part, int substep);
+  /// The part's bodies into poses_/twists_.
+  void copy_bodies(Part& part);
+  /// After the tick's last substep: the part's read-out, drives applied and reactions.
+  void publish_tick(Part& part);
+  void gather_reactions();
+  int owner(int body) const;
+
+  int body_count_ = 0;
+  std::vector<AxisInfo> axes_;
+  std::vector<std::string> warnings_;
+  std::vector<Part> parts_;
+  std::vector<int> part_of_body_;   // kernel body -> part
+  std::vector<int> part_of_joint_;  // scene joint -> part
+  std::vector<int> part_of_axis_;   // scene-wide axis -> part
+  std::vector<int> local_axis_;     // scene-wide axis -> its index in its part
+  std::vector<char> loose_;         // kernel body -> integrated by LooseBodies
+  std::unique_ptr<WorkerPool> pool_;
+  // Scene-wide arrays (parts() > 1; with one part the part's own are handed out).
+  std::vector<Wrench> wrenches_, contact_wrenches_, reactions_;
+  std::vector<double> axis_forces_, axis_friction_, drive_applied_;
+  std::vector<AxisDrive> drives_;
+  std::int32_t drive_count_ = 0;
+  std::vector<Pose> poses_;
+  std::vector<Twist> twists_;
+  std::vector<double> axis_position_, axis_velocity_;
+  bool contact_used_ = false;
+  bool reactions_wanted_ = false;
+  bool bodies_fresh_ = false;        // poses_/twists_ hold the current state (for contact)
+  mutable bool read_fresh_ = false;  // the parts' read scratch holds it too (for read())
+  // The running substep (run_substep).
+  int substep_ = 0;
+  PartStages stages_ = nullptr;
+  void* stages_context_ = nullptr;
+};
+
+}  // namespace s2sim::model

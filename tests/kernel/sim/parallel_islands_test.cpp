@@ -1,0 +1,191 @@
+// Issue 17: the scene's islands stepped as parts on several threads give the serial run's
+// numbers bit for bit (signals, snapshots, errors), and the parts are whole islands.
+#include <s2sim/error.hpp>
+#include <s2sim/kernel/simulation.hpp>
+
+#include "model/island_plan.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace s2sim {
+namespace {
+
+const std::filesystem::path kRobots16 =
+    std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_16";
+
+bool two_threads_available() {
+  return std::thread::hardware_concurrency() >= 2;
+}
+
+std::unique_ptr<Simulation> load_driven(const std::filesystem::path& scene, int threads) {
+  SimulationOptions o;
+  o.threads = threads;
+  auto sim = Simulation::load(scene, o);
+  // Each robot's wheels at their own voltages: the robots turn on circles of their own.
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < sim->input_count(); ++i) {
+    const std::string& name = sim->input_info(i).name;
+    if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
+      sim->set_input(i, 2.0 + 0.37 * static_cast<double>(k++ % 23));
+  }
+  return sim;
+}
+
+/// Every signal's bits, in order.
+std::vector<double> signals(const Simulation& sim) {
+  std::vector<double> out(sim.signal_count());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = sim.signal(i);
+  return out;
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+TEST(ParallelIslands, SixteenRobotsGiveTheSerialSignalsBitForBitOnTwoThreads) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto serial = load_driven(kRobots16, 1);
+  auto parallel = load_driven(kRobots16, 2);
+  ASSERT_EQ(serial->signal_count(), parallel->signal_count());
+  ASSERT_GT(serial->signal_count(), 100u);
+  const Vec3 start = serial->body_pose(1).position;
+  for (int tick = 0; tick < 1500; ++tick) {
+    serial->step();
+    parallel->step();
+    ASSERT_TRUE(same_bits(signals(*serial), signals(*parallel))) << "tick " << tick;
+  }
+  // They moved: the check above compared motion, not rest.
+  const Vec3 end = serial->body_pose(1).position;
+  EXPECT_GT(std::hypot(end.x - start.x, end.y - start.y), 0.02);  // 56 mm in 1.5 s
+  EXPECT_GT(serial->kinetic_energy_J(), 0.0);
+  EXPECT_NEAR(parallel->kinetic_energy_J(), serial->kinetic_energy_J(),
+              1e-12 * serial->kinetic_energy_J());
+}
+
+TEST(ParallelIslands, SixtyFourRobotsMostlyHeldByFrictionGiveTheSerialSignalsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Two robots driven, 62 held by their motors' Coulomb friction: the friction sweeps of the
+  // axis solve once ran until every tree of the system converged, so a part's robots took
+  // other sweep counts than in the whole system (last digits from tick 252 on).
+  const auto robots64 = std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_64";
+  std::unique_ptr<Simulation> runs[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    SimulationOptions o;
+    o.threads = threads;
+    auto& sim = runs[threads - 1];
+    sim = Simulation::load(robots64, o);
+    sim->set_input("robots/r3/axes/left/ref_voltage", 5.0);
+    sim->set_input("robots/r40/axes/right/ref_voltage", -4.0);
+  }
+  for (int tick = 0; tick < 600; ++tick) {
+    runs[0]->step();
+    runs[1]->step();
+    ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1]))) << "tick " << tick;
+  }
+}
+
+TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto sim = load_driven(kRobots16, 2);
+  sim->step(300);
+  const Simulation::Snapshot snapshot = sim->save();
+  sim->step(300);
+  const std::vector<double> first = signals(*sim);
+  sim->restore(snapshot);
+  sim->step(300);
+  EXPECT_TRUE(same_bits(first, signals(*sim)));
+  // Its layout has a segment per part: a serial run's snapshot is refused, naming it.
+  auto serial = load_driven(kRobots16, 1);
+  EXPECT_THROW(serial->restore(snapshot), Error);
+}
+
+/// The error of a run whose robots in `blown` get an absurd torque (empty: none thrown).
+std::string divergence(int threads, const std::vector<std::string>& blown) {
+  SimulationOptions o;
+  o.threads = threads;
+  auto sim = Simulation::load(kRobots16, o);
+  for (const auto& robot : blown)
+    sim->set_input("robots/" + robot + "/axes/left/ref_torque", 1e300);
+  try {
+    sim->step(10);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    return e.message();
+  }
+  return {};
+}
+
+TEST(ParallelIslands, ADivergenceInAnyPartIsReportedAsTheSerialRunReportsIt) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Odd robots are dealt to part 1, even ones to part 0 (equal islands alternate).
+  for (const std::vector<std::string>& blown :
+       {std::vector<std::string>{"r9"}, {"r4", "r9"}, {"r9", "r4", "r12"}}) {
+    const std::string serial = divergence(1, blown);
+    ASSERT_FALSE(serial.empty());
+    EXPECT_EQ(divergence(2, blown), serial);
+  }
+  EXPECT_NE(divergence(2, {"r9", "r4"}).find("robot 'r4'"), std::string::npos);
+}
+
+TEST(ParallelIslands, ThreadCountsOutsideTheMachinesAreAUsageError) {
+  SimulationOptions o;
+  o.threads = 0;
+  try {
+    Simulation::load(kRobots16, o);
+    FAIL() << "threads = 0 was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::usage);
+    EXPECT_NE(e.message().find("got 0"), std::string::npos) << e.message();
+  }
+  o.threads = static_cast<int>(std::thread::hardware_concurrency()) + 1;
+  EXPECT_THROW(Simulation::load(kRobots16, o), Error);
+}
+
+TEST(ParallelIslands, IslandsAreDealtWholeAndBalanced) {
+  auto sim = Simulation::load(kRobots16);
+  const scene::Scene& scene = sim->scene();
+  const model::Topology topology = model::plan_topology(scene);
+  const auto parts = model::plan_parts(scene, topology, {}, 2);
+  ASSERT_EQ(parts.size(), 2u);
+  std::size_t bodies = 0, axes = 0, edges = 0;
+  for (const auto& part : parts) {
+    bodies += part.bodies.size();
+    axes += part.global_axis.size();
+    edges += part.topology.tree.size();
+    // Whole robots: every body of a robot in the same part as its first body.
+    for (int b : part.bodies) {
+      const int robot = scene.bodies[static_cast<std::size_t>(b - 1)].robot;
+      for (const auto& other : parts) {
+        if (&other == &part) continue;
+        for (int o : other.bodies)
+          EXPECT_NE(scene.bodies[static_cast<std::size_t>(o - 1)].robot, robot);
+      }
+    }
+  }
+  EXPECT_EQ(bodies, scene.bodies.size());
+  EXPECT_EQ(axes, topology.axes.size());
+  EXPECT_EQ(edges, topology.tree.size());
+  EXPECT_EQ(parts[0].bodies.size(), parts[1].bodies.size());  // 8 robots each
+  // Equal islands alternate: robot k's bodies in part k % 2.
+  for (std::size_t p = 0; p < 2; ++p)
+    for (int b : parts[p].bodies) {
+      const int robot = scene.bodies[static_cast<std::size_t>(b - 1)].robot;
+      EXPECT_EQ(scene.robots[static_cast<std::size_t>(robot)].id.substr(1), std::to_string(robot));
+      EXPECT_EQ(static_cast<std::size_t>(robot) % 2, p) << "body " << b;
+    }
+  // One part for one thread, and for a scene of one island.
+  EXPECT_EQ(model::plan_parts(scene, topology, {}, 1).size(), 1u);
+  auto one = Simulation::load(std::filesystem::path(S2SIM_SOURCE_DIR) / "scenes/nxt");
+  EXPECT_EQ(model::plan_parts(one->scene(), model::plan_topology(one->scene()), {}, 2).size(), 1u);
+}
+
+}  // namespace
+}  // namespace s2sim
