@@ -66,8 +66,12 @@ class Multibody {
   /// as a massless disk on the axis carried by the joint's child body (exact for the spin of
   /// the axis when the parent does not turn about it, docs/models/multibody.md); on a slider
   /// or a loop-closing axis it is not carried, with a warning.
+  /// `drive_slots`: room for that many axis drives per tick (0: four per axis); a part of a
+  /// partitioned scene takes the whole scene's, so that it integrates implicitly every drive
+  /// the serial run would (multibody_islands.hpp).
   Multibody(const scene::Scene& scene, const Topology& topology,
-            const std::vector<double>& axis_inertia, double tick_s, int substeps);
+            const std::vector<double>& axis_inertia, double tick_s, int substeps,
+            std::int32_t drive_slots = 0);
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;

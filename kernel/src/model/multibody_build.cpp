@@ -314,7 +314,7 @@ void build_initial_state(Multibody::Impl& m, const Build& b, double tick_s, int 
 
 /// The integrator's coordinate maps and every buffer stepping uses (stepping must not
 /// allocate).
-void prepare_stepping(Multibody::Impl& m) {
+void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   // Free and Ball mobilizers keep their orientation as a quaternion in their first four q's.
   // Normalising them here costs a fraction of Simbody's normalizeQuaternions(), which walks
   // the whole tree through its state digest.
@@ -347,9 +347,9 @@ void prepare_stepping(Multibody::Impl& m) {
     if (m.axes[a].loop) m.loop_unit_force[a].resize(m.initial_state.getNU());
   m.column_valid.assign(m.axes.size(), 0);
   m.unit_body_forces.resize(m.matter.getNumBodies());
-  // Room for four drives per axis (a motor and a viscous friction take two), and the rows of
-  // the implicit solve: every drive and every loop axis's friction.
-  m.drives.assign(4 * m.axes.size(), AxisDrive{});
+  // Room for the drives (by default four per axis: a motor and a viscous friction take two),
+  // and the rows of the implicit solve: every drive and every loop axis's friction.
+  m.drives.assign(drive_slots, AxisDrive{});
   const std::size_t max_rows = m.drives.size() + m.axes.size();
   m.rows.reserve(max_rows);
   m.next_row.assign(max_rows, -1);
@@ -474,7 +474,8 @@ Multibody::Multibody(const scene::Scene& scene, double tick_s, int substeps,
     : Multibody(scene, plan_topology(scene, lone_bodies_in_simbody), {}, tick_s, substeps) {}
 
 Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
-                     const std::vector<double>& axis_inertia, double tick_s, int substeps)
+                     const std::vector<double>& axis_inertia, double tick_s, int substeps,
+                     std::int32_t drive_slots)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.tick_s = tick_s;
@@ -524,7 +525,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   add_stops(m, scene);
   build_initial_state(m, b, tick_s, substeps);
   m.substeps = substeps;
-  prepare_stepping(m);
+  prepare_stepping(m, drive_slots > 0 ? static_cast<std::size_t>(drive_slots) : 4 * m.axes.size());
   reset();
 }
 

@@ -2,6 +2,8 @@
 // are Multibody objects seen through their public interface.
 #include "model/multibody_islands.hpp"
 
+#include "common/assert.hpp"
+
 #include <s2sim/error.hpp>
 
 #include <algorithm>
@@ -15,11 +17,16 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
     : body_count_(static_cast<int>(scene.bodies.size()) + 1), axes_(topology.axes) {
   std::vector<PartPlan> plans = plan_parts(scene, topology, axis_inertia, threads);
   parts_.resize(plans.size());
+  // The serial run's drive slots (four per axis of the scene), each part room for all of
+  // them: however the components spread their drives, a part integrates implicitly every drive
+  // the serial run would, and the SDK applies the same ones explicitly past that.
+  const auto scene_drive_slots = static_cast<std::int32_t>(4 * topology.axes.size());
   for (std::size_t p = 0; p < plans.size(); ++p) {
     Part& part = parts_[p];
     part.plan = std::move(plans[p]);
-    part.multibody = std::make_unique<Multibody>(scene, part.plan.topology, part.plan.axis_inertia,
-                                                 tick_s, substeps);
+    part.multibody =
+        std::make_unique<Multibody>(scene, part.plan.topology, part.plan.axis_inertia, tick_s,
+                                    substeps, plans.size() > 1 ? scene_drive_slots : 0);
     for (const auto& w : part.multibody->warnings())
       warnings_.push_back(w);
   }
@@ -31,7 +38,6 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
   part_of_joint_.assign(joints, 0);
   part_of_axis_.assign(axes, 0);
   local_axis_.assign(axes, 0);
-  std::int32_t capacity = 0;
   for (std::size_t p = 0; p < parts_.size(); ++p) {
     Part& part = parts_[p];
     for (int b : part.plan.bodies)
@@ -43,7 +49,6 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
       part_of_axis_[g] = static_cast<int>(p);
       local_axis_[g] = static_cast<int>(a);
     }
-    capacity += part.multibody->axis_drive_capacity();
     part.poses.assign(bodies, Pose{});
     part.twists.assign(bodies, Twist{});
     part.axis_position.assign(part.plan.global_axis.size(), 0.0);
@@ -58,7 +63,10 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
   axis_forces_.assign(axes, 0.0);
   axis_friction_.assign(axes, 0.0);
   drive_applied_.assign(axes, 0.0);
-  drives_.assign(static_cast<std::size_t>(capacity), AxisDrive{});
+  drives_.assign(static_cast<std::size_t>(scene_drive_slots), AxisDrive{});
+  for (const Part& part : parts_)
+    S2SIM_ASSERT(part.multibody->axis_drive_capacity() == scene_drive_slots,
+                 "a part without room for every drive of the scene");
   poses_.assign(bodies, Pose{});
   twists_.assign(bodies, Twist{});
   gather_reactions();
@@ -291,19 +299,12 @@ void MultibodyIslands::load_part(Part& part, int substep) {
     const int p = static_cast<int>(&part - parts_.data());
     AxisDrive* drives = mb.axis_drives();
     std::int32_t count = 0;
-    const std::int32_t capacity = mb.axis_drive_capacity();
     for (std::int32_t d = 0; d < drive_count_; ++d) {
       const auto g = static_cast<std::size_t>(drives_[static_cast<std::size_t>(d)].axis);
       if (g >= part_of_axis_.size() || part_of_axis_[g] != p) continue;
       AxisDrive drive = drives_[static_cast<std::size_t>(d)];
       drive.axis = local_axis_[g];
-      if (count < capacity) {
-        drives[count++] = drive;
-      } else {  // beyond the part's reserve: applied explicitly, as the SDK does past the kernel's
-        forces[drive.axis] += drive.force < drive.min_force   ? drive.min_force
-                              : drive.force > drive.max_force ? drive.max_force
-                                                              : drive.force;
-      }
+      drives[count++] = drive;  // room: a part has the scene's slots (the constructor)
     }
     *mb.axis_drive_count() = count;
   }
