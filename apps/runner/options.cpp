@@ -73,6 +73,8 @@ Options:
   --threads N          step the scene's islands (robots not jointed to each other) on N
                        threads, 1 to the machine's hardware threads (default 1); the
                        results are the same for every N
+  --simbody-dynamics   Simbody's realize chain for every system, not the small-tree fast
+                       path (the same dynamics to rounding, slower): for comparing the two
   --plugin-path DIR    search DIR for plugins before the default folders (repeatable;
                        the first library on the path that provides a kind wins)
   --no-default-plugin-path
@@ -160,6 +162,8 @@ Options parse_options(int argc, char** argv) {
         throw usage_error("--threads must be an integer from 1 to " + std::to_string(hardware) +
                           " (this machine's hardware threads), got '" + v + "'");
       o.threads = static_cast<int>(n);
+    } else if (a == "--simbody-dynamics") {
+      o.simbody_dynamics_only = true;
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value());
     } else if (a == "--no-default-plugin-path") {

@@ -111,7 +111,7 @@ void add_applied_loads(const Multibody::Impl& mb, const SimTK::State& state,
                        SimTK::Vector& mobility_forces) {
   for (const auto& w : mb.weights) {
     const SimTK::Vec3 force(0, 0, -kGravity_m_s2 * w.mass_kg);
-    const SimTK::Vec3 com_G = mb.matter.getMobilizedBody(w.mobod).getBodyRotation(state) * w.com_m;
+    const SimTK::Vec3 com_G = to_ground(mb, state, w.mobod, w.com_m);
     body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
   }
   add_wrenches(mb, mb.wrenches, body_forces);

@@ -73,7 +73,11 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
     if (!m.axes[a].loop) {
       m.unit_force = 0.0;
       m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;  // g: a unit load along the axis
-      m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
+      if (m.uses_tree())  // M factored by this substep's accelerations, at this q
+        m.tree->solve(m.unit_force.getContiguousScalarData(),
+                      m.minv_column[a].updContiguousScalarData());
+      else
+        m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
     } else {
       // g = Jᵀ·(the body loads of a unit axis load), then M^-1·g.
       SimTK::Vector& g = m.loop_unit_force[a];

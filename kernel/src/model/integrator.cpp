@@ -56,7 +56,7 @@ double Multibody::substep_s() const {
 void Multibody::current_bodies(const Pose*& poses, const Twist*& twists) {
   Impl& m = *impl_;
   if (!m.bodies_fresh) {
-    m.system.realize(m.current, SimTK::Stage::Velocity);
+    if (!m.uses_tree()) m.system.realize(m.current, SimTK::Stage::Velocity);
     read_bodies(m, m.current, m.substep_poses.data(), m.substep_twists.data());
   }
   poses = m.substep_poses.data();
@@ -90,6 +90,10 @@ void Multibody::accelerations(bool last_substep) {
   // Only loose bodies (a pile of things): Simbody has nothing to integrate, and its realize
   // chain would still cost its bookkeeping.
   if (!m.has_mobilized_bodies) return;
+  if (m.uses_tree()) {
+    tree_accelerations(m);
+    return;  // (joint reactions need Simbody's stages: uses_tree() is false when wanted)
+  }
   realize_accelerations(m);
   m.udot = 0.0;
   add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
@@ -163,7 +167,7 @@ void Multibody::finish_tick() {
     m.drive_applied[a] = m.drive_sum[a] / m.substeps;
     m.drive_sum[a] = 0.0;
   }
-  m.system.realize(s, SimTK::Stage::Velocity);
+  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
   // Read the bodies once here: for read() and for the next substep's contact.
   read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
   m.bodies_fresh = true;

@@ -50,6 +50,13 @@ const Wrench* Multibody::joint_reactions() const {
 bool Multibody::joint_is_loop(int joint) const {
   return !impl_->joint_reaction_source.at(static_cast<std::size_t>(joint)).mobod.isValid();
 }
+bool Multibody::uses_tree_fast_path() const {
+  return impl_->uses_tree();
+}
+void Multibody::set_tree_fast_path(bool enabled) {
+  impl_->tree_enabled = enabled;
+  impl_->bodies_fresh = false;
+}
 Wrench* Multibody::use_contact_wrenches() {
   impl_->contact_wrenches_used = true;
   return impl_->substep_wrenches.data();
@@ -125,6 +132,16 @@ void Multibody::reset() {
 void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists) {
   poses[0] = Pose{};
   twists[0] = Twist{};
+  if (m.uses_tree()) {
+    update_tree_kinematics(m);
+    for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+      if (!m.mobod_of_body[b].isValid()) continue;
+      poses[b] = m.tree->pose(m.mobod_of_body[b]);
+      twists[b] = m.tree->twist(m.mobod_of_body[b]);
+    }
+    m.loose.read(poses, twists);
+    return;
+  }
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
     if (!m.mobod_of_body[b].isValid()) continue;
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
@@ -140,7 +157,8 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
                      double* axis_velocity) const {
   const Impl& m = *impl_;
   const SimTK::State& s = m.state();
-  m.system.realize(s, SimTK::Stage::Velocity);
+  // The fast path's systems have no loop axis: the axes are read from q and u.
+  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
   if (m.bodies_fresh) {
     std::copy(m.substep_poses.begin(), m.substep_poses.end(), poses);
     std::copy(m.substep_twists.begin(), m.substep_twists.end(), twists);

@@ -105,6 +105,14 @@ class Multibody {
   /// Whether a scene joint closes a kinematic loop (constraints: no reaction reported).
   bool joint_is_loop(int joint) const;
 
+  /// Whether the small-tree fast path computes the dynamics (tree_dynamics.hpp): a system
+  /// without constraints whose joints are all free, hinge, slider or fixed, whose
+  /// accelerations matched Simbody's at load, while no joint reactions are read.
+  bool uses_tree_fast_path() const;
+  /// Switches the fast path off (Simbody's realize chain for everything) or back on where
+  /// it is possible: for tests and benchmarks that compare the two.
+  void set_tree_fast_path(bool enabled);
+
   /// The per-body wrenches recomputed from the state at every substep (contact), applied
   /// from now on; the caller writes them before each substep's forces().
   Wrench* use_contact_wrenches();

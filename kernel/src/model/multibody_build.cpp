@@ -375,6 +375,7 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   find_axis_trees(m);
   m.qdot.resize(m.initial_state.getNQ());
   m.reactions_at_M.resize(m.matter.getNumBodies());
+  build_fast_path(m);
 }
 
 }  // namespace

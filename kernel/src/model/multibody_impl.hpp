@@ -5,12 +5,14 @@
 
 #include "model/loose_bodies.hpp"
 #include "model/multibody.hpp"
+#include "model/tree_dynamics.hpp"
 
 #include <s2sim/component.hpp>
 
 #include <Simbody.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -126,6 +128,13 @@ struct Multibody::Impl {
   bool has_mobilized_bodies = true;  // false: every body is loose (Simbody holds only Ground)
   double tick_s = 1e-3;
   int substeps = 1;
+  // The small-tree fast path (tree_dynamics.hpp, fast_path.cpp): built at load when the system
+  // has no constraint and only Free, Pin, Slider and Weld mobilizers, and it agreed with
+  // Simbody on a probe state; used while no component reads joint reactions (those come from
+  // Simbody's Acceleration stage) and unless a test switched it off.
+  std::unique_ptr<TreeDynamics> tree;
+  bool tree_enabled = true;
+  bool uses_tree() const { return tree && tree_enabled && !reactions_wanted; }
 
   // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
   // multibody/time
@@ -202,6 +211,8 @@ struct Multibody::Impl {
   std::vector<Wrench> joint_reactions_in_body1;      // body1's frame, as computed
   SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
   SimTK::Vector udot, qdot;
+  SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the fast path's loads (uses_tree)
+  SimTK::Vector tree_mobility_forces;
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
 
   const SimTK::State& state() const { return current; }
@@ -246,6 +257,19 @@ void register_applied_loads(Multibody::Impl& m);
 /// and reset for the first joint reactions): without constraints the loads go straight into
 /// the system's force arrays after Dynamics, with constraints through the Force::Custom.
 void realize_accelerations(Multibody::Impl& m);
+
+/// The small-tree fast path (fast_path.cpp). Builds m.tree where the system allows it and the
+/// tree's accelerations match Simbody's on a probe state (else leaves it null, with a warning
+/// when they disagree); after prepare_stepping's maps.
+void build_fast_path(Multibody::Impl& m);
+/// The tree's kinematics for the current state (kept while q and u are unchanged).
+void update_tree_kinematics(const Multibody::Impl& m);
+/// m.udot for this substep's loads, through the tree (uses_tree()).
+void tree_accelerations(Multibody::Impl& m);
+/// A direction fixed in a mobilized body, in Ground: through the tree or Simbody (`state`
+/// realized to Position then).
+SimTK::Vec3 to_ground(const Multibody::Impl& m, const SimTK::State& state,
+                      SimTK::MobilizedBodyIndex body, const SimTK::Vec3& v_B);
 
 /// Axis Coulomb friction (implicit_axes.cpp): marks the axes that slide clearly, which get a
 /// plain force, before the accelerations are computed.

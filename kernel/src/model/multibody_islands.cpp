@@ -102,6 +102,11 @@ void MultibodyIslands::request_joint_reactions() {
     part.multibody->request_joint_reactions();
   reactions_wanted_ = true;
 }
+void MultibodyIslands::set_tree_fast_path(bool enabled) {
+  for (auto& part : parts_)
+    part.multibody->set_tree_fast_path(enabled);
+  bodies_fresh_ = read_fresh_ = false;
+}
 const Wrench* MultibodyIslands::joint_reactions() const {
   return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();
 }

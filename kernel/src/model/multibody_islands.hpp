@@ -52,6 +52,7 @@ class MultibodyIslands {
   std::int32_t axis_drive_capacity() const;
   const double* drive_force_applied() const;
   void request_joint_reactions();
+  void set_tree_fast_path(bool enabled);
   const Wrench* joint_reactions() const;
   bool joint_is_loop(int joint) const;
   Wrench* use_contact_wrenches();

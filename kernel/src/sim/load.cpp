@@ -150,6 +150,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.multibody = std::make_unique<model::MultibodyIslands>(
       m.scene, m.topology, m.axis_inertia, m.tick_s, m.scene.settings.substeps, options.threads);
   if (m.joint_reactions_wanted) m.multibody->request_joint_reactions();
+  if (options.simbody_dynamics_only) m.multibody->set_tree_fast_path(false);
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   for (const auto& [body, input] : m.belt_speed_inputs)

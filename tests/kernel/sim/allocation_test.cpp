@@ -102,9 +102,10 @@ namespace s2sim {
 namespace {
 
 /// Allocations in 1000 ticks of robots_16 after 500, every thread counted.
-long robots16_allocations(int threads) {
+long robots16_allocations(int threads, bool simbody_dynamics_only) {
   SimulationOptions o;
   o.threads = threads;
+  o.simbody_dynamics_only = simbody_dynamics_only;
   auto sim =
       Simulation::load(std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_16", o);
   for (std::size_t i = 0; i < sim->input_count(); ++i)
@@ -117,15 +118,18 @@ long robots16_allocations(int threads) {
 
 TEST(Allocation, TheParallelStepAddsOnlySimbodysOwnPerSystem) {
   if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one hardware thread";
-  // The pool, the parts' slices and the ticket allocate nothing; each Simbody system allocates
-  // its own temporaries per tick (2 on this scene, whatever its size), so two systems of 8
-  // robots allocate exactly twice what one of 16 does.
-  const long serial = robots16_allocations(1);
-  const long parallel = robots16_allocations(2);
+  // The pool, the parts' slices and the ticket allocate nothing. Through Simbody's realize
+  // chain each system allocates its own temporaries per tick (2 on this scene, whatever its
+  // size), so two systems of 8 robots allocate exactly twice what one of 16 does; through the
+  // small-tree fast path (the default here) nothing allocates at all.
+  const long serial = robots16_allocations(1, true);
+  const long parallel = robots16_allocations(2, true);
   RecordProperty("allocations_per_tick_serial", std::to_string(serial / 1000.0));
   RecordProperty("allocations_per_tick_two_threads", std::to_string(parallel / 1000.0));
   EXPECT_GT(serial, 0);
   EXPECT_EQ(parallel, 2 * serial);
+  EXPECT_EQ(robots16_allocations(1, false), 0);
+  EXPECT_EQ(robots16_allocations(2, false), 0);
 }
 
 }  // namespace

@@ -37,6 +37,10 @@ struct SimulationOptions {
   /// to the machine's hardware threads (else s2sim::Error, usage). The results do not depend
   /// on it, bit for bit; a snapshot restores only with the same number of parts.
   int threads = 1;
+  /// Simbody's realize chain for every system, also where the small-tree fast path would
+  /// compute the same dynamics without it (docs/models/multibody.md, "Small-tree fast path"):
+  /// for comparing the two. The results differ only by rounding.
+  bool simbody_dynamics_only = false;
   /// Plugin folders searched first, before the default ones (S2SIM_PLUGIN_PATH, then the
   /// plugin folder of the kernel's own prefix: docs/plugins.md). When two libraries provide
   /// one kind, the first on the path wins (a load warning names both).

@@ -1,0 +1,96 @@
+#pragma once
+/// \file
+/// The forward dynamics of a Simbody matter subsystem without constraints whose mobilizers are
+/// all Free, Pin, Slider or Weld, computed without Simbody: the small-tree fast path (issue 17).
+/// Simbody's realize chain costs three quarters of a small robot's step in stage bookkeeping
+/// and cache access (docs/benchmarks.md); the same equations here, over plain arrays, give
+/// its accelerations to rounding (tests/kernel/model/tree_dynamics_test.cpp compares them to
+/// 1e-12). The Simbody state keeps q and u: this class only reads them.
+///
+/// Conventions are Simbody's: body index 0 is Ground; a body's pose X_GB = X_GP·X_PF·X_FM(q)·X_MB;
+/// its velocity is (ω, v of its origin) in Ground; body loads are (torque about the body origin,
+/// force) in Ground; a Free mobilizer's q is the quaternion of R_FM then p_FM, its u is ω_FM
+/// then v_FM, both in F; a Pin turns about the common Z of F and M, a Slider moves along X.
+/// No Simbody header here (kernel/src/model's Simbody translation units are C++17).
+
+#include <s2sim/math.hpp>
+
+#include <vector>
+
+namespace s2sim::model {
+
+class TreeDynamics {
+ public:
+  enum class Joint { free, pin, slider, weld };
+
+  /// One mobilized body, in Simbody's order (parents first); `parent` 0 is Ground.
+  struct BodySpec {
+    int parent = 0;
+    Joint joint = Joint::weld;
+    Pose X_PF;           // the mobilizer's frame on the parent
+    Pose X_BM;           // and on the body
+    int q0 = 0, u0 = 0;  // its first coordinate and speed in the state
+    double mass_kg = 0;
+    Vec3 com_B;              // body frame
+    Mat3 central_inertia_B;  // about the centre of mass, body frame (kg·m²)
+  };
+
+  /// Builds the model from the bodies (Ground excluded) and the state's sizes.
+  TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu);
+
+  /// Poses and velocities of every body for the coordinates q and speeds u (Simbody's
+  /// Position and Velocity stages); nothing to do when q and u are those of the last call.
+  void kinematics(const double* q, const double* u);
+  /// A body's pose and velocity (index as Simbody's: 0 is Ground); after kinematics().
+  const Pose& pose(int body) const { return pose_[body]; }
+  const Twist& twist(int body) const { return twist_[body]; }
+
+  /// u' for the loads: `body_loads` six numbers per body (torque about its origin, then
+  /// force, Ground frame; Ground's first), `mobility_forces` one per speed. After kinematics();
+  /// factors the mass matrix for solve().
+  void accelerations(const double* body_loads, const double* mobility_forces, double* udot);
+  /// x = M^-1·g with the mass matrix of the last accelerations() (its configuration).
+  void solve(const double* g, double* x) const;
+
+ private:
+  struct Body : BodySpec {
+    int dofs = 0;  // speeds of its mobilizer
+    Pose X_MB;     // inverse of X_BM
+  };
+  struct Tree {
+    int u_begin, u_end;  // its speeds are contiguous (Simbody numbers them body by body)
+    int matrix;          // offset of its n x n block in mass_
+  };
+  std::vector<Body> bodies_;  // [0] is Ground
+  std::vector<Tree> trees_;
+  std::vector<int> tree_of_body_;
+  int nq_ = 0, nu_ = 0;
+  std::vector<double> last_q_, last_u_;  // of the last kinematics()
+  bool kinematics_valid_ = false;
+
+  // Scratch, sized at construction (stepping does not allocate).
+  std::vector<Pose> pose_;
+  std::vector<Twist> twist_;
+  std::vector<Vec3> joint_origin_;      // p_GM: the mobilizer's M origin in Ground
+  std::vector<Vec3> relative_angular_;  // ω of the body relative to its parent, Ground
+  std::vector<Vec3> relative_linear_;   // v of M's origin relative to F, Ground
+  std::vector<Twist> column_;           // per speed: the body's (ω, v) per unit speed
+  std::vector<Twist> bias_acceleration_;
+  std::vector<Wrench> subtree_load_;  // the force each subtree needs, about its body origin
+  // A subtree's mass and its first and second moments about its body's origin, Ground axes.
+  struct Composite {
+    double mass_kg = 0;
+    Vec3 first_moment;   // kg·m
+    Mat3 second_moment;  // kg·m², the inertia about the origin
+  };
+  std::vector<Composite> composite_;
+  std::vector<double> mass_;  // per tree its mass matrix block, then its Cholesky factor
+  std::vector<double> rhs_;
+
+  bool same_state(const double* q, const double* u) const;
+  void factor(const Tree& t);
+  /// x = M^-1·b within tree t (b and x point at its first speed); after factor(t).
+  void substitute(const Tree& t, const double* b, double* x) const;
+};
+
+}  // namespace s2sim::model
