@@ -146,11 +146,14 @@ void MultibodyIslands::reset() {
 }
 
 void MultibodyIslands::gather_reactions() {
-  for (const auto& part : parts_) {
-    const Wrench* reactions = part.multibody->joint_reactions();
-    for (int j : part.plan.joints)
-      reactions_[static_cast<std::size_t>(j)] = reactions[j];
-  }
+  for (const auto& part : parts_)
+    gather_reactions(part);
+}
+
+void MultibodyIslands::gather_reactions(const Part& part) {
+  const Wrench* reactions = part.multibody->joint_reactions();
+  for (int j : part.plan.joints)
+    reactions_[static_cast<std::size_t>(j)] = reactions[j];
 }
 
 void MultibodyIslands::current_bodies(const Pose*& poses, const Twist*& twists) {
@@ -325,11 +328,7 @@ void MultibodyIslands::publish_tick(Part& part) {
   const double* applied = mb.drive_force_applied();
   for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a)
     drive_applied_[static_cast<std::size_t>(part.plan.global_axis[a])] = applied[a];
-  if (reactions_wanted_) {
-    const Wrench* reactions = mb.joint_reactions();
-    for (int j : part.plan.joints)
-      reactions_[static_cast<std::size_t>(j)] = reactions[j];
-  }
+  if (reactions_wanted_) gather_reactions(part);
 }
 
 }  // namespace s2sim::model

@@ -100,7 +100,9 @@ class MultibodyIslands {
   void copy_bodies(Part& part);
   /// After the tick's last substep: the part's read-out, drives applied and reactions.
   void publish_tick(Part& part);
+  /// Every part's joint reactions (or one part's) into the scene-wide reactions_.
   void gather_reactions();
+  void gather_reactions(const Part& part);
   int owner(int body) const;
 
   int body_count_ = 0;
