@@ -329,9 +329,13 @@ void TreeDynamics::factor(const Tree& t) {
 void TreeDynamics::substitute(const Tree& t, const double* b, double* x) const {
   const int size = t.u_end - t.u_begin;
   const double* A = &mass_[static_cast<std::size_t>(t.matrix)];
-  for (int i = 0; i < size; ++i) {  // L·y = b
+  // y is zero up to b's first non-zero (an M^-1 column's b is a unit vector): start there.
+  int first = 0;
+  while (first < size && b[first] == 0.0)
+    x[first++] = 0.0;
+  for (int i = first; i < size; ++i) {  // L·y = b
     double v = b[i];
-    for (int k = 0; k < i; ++k)
+    for (int k = first; k < i; ++k)
       v -= A[i * size + k] * x[k];
     x[i] = v / A[i * size + i];
   }
