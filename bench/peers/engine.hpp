@@ -61,6 +61,9 @@ std::unique_ptr<Engine> make_s2sim(const SceneSpec& scene);
 /// S2Sim with SimulationOptions::threads = 2 (the islands stepped in parallel; wall time is
 /// its measure, its thread CPU time is only the calling thread's).
 std::unique_ptr<Engine> make_s2sim_par2(const SceneSpec& scene);
+/// S2Sim with SimulationOptions::simbody_dynamics_only: Simbody's realize chain where the
+/// small-tree fast path would run (what the fast path gains, in the same run).
+std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene);
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
 std::unique_ptr<Engine> make_mujoco(const SceneSpec& scene);
 #endif

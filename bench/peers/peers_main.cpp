@@ -3,7 +3,9 @@
 // report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's speed-up over
 // each peer, and each engine's physical outcome, so that a faster wrong answer shows. The
 // engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two threads:
-// its speed-up column is the serial run's wall time over its own.
+// its speed-up column is the serial run's wall time over its own. The engine s2sim-simbody is
+// S2Sim without the small-tree fast path (Simbody's realize chain): its speed-up column is
+// what the fast path gains.
 //   s2sim-peers [--scenes A,B,...] [--engines A,B,...] [--duration S] [--warmup S]
 //               [--rounds N] [--csv FILE] [--markdown FILE] [--check]
 #include "engine.hpp"
@@ -43,6 +45,7 @@ std::filesystem::path SceneSpec::ode_table() const {
 std::vector<EngineFactory> available_engines() {
   std::vector<EngineFactory> engines{{"s2sim", &make_s2sim}};
   if (std::thread::hardware_concurrency() >= 2) engines.push_back({"s2sim-par2", &make_s2sim_par2});
+  engines.push_back({"s2sim-simbody", &make_s2sim_simbody});
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
   engines.push_back({"mujoco", &make_mujoco});
 #endif
