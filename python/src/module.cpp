@@ -67,10 +67,12 @@ class PySimulation {
   PySimulation(const std::filesystem::path& scene, std::uint64_t seed,
                std::optional<double> physics_step_s, std::optional<int> substeps,
                const std::map<std::string, double>& defines,
-               const std::vector<std::filesystem::path>& plugin_path, int threads) {
+               const std::vector<std::filesystem::path>& plugin_path, int threads,
+               bool simbody_dynamics) {
     SimulationOptions options;
     options.seed = seed;
     options.threads = threads;
+    options.simbody_dynamics_only = simbody_dynamics;
     options.physics_step_s = physics_step_s;
     options.substeps = substeps;
     options.plugin_path = plugin_path.empty() ? default_plugin_path() : plugin_path;
@@ -226,13 +228,14 @@ PYBIND11_MODULE(_s2sim, m) {
   py::class_<PySimulation>(m, "Simulation",
                            "A loaded scene ready to step (docs/python.md). Simulation(scene, "
                            "seed=1, physics_step=None, substeps=None, defines={}, "
-                           "plugin_path=[], threads=1).")
+                           "plugin_path=[], threads=1, simbody_dynamics=False).")
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,
-                    const std::vector<std::filesystem::path>&, int>(),
+                    const std::vector<std::filesystem::path>&, int, bool>(),
            py::arg("scene"), py::arg("seed") = 1, py::arg("physics_step") = py::none(),
            py::arg("substeps") = py::none(), py::arg("defines") = std::map<std::string, double>{},
-           py::arg("plugin_path") = std::vector<std::filesystem::path>{}, py::arg("threads") = 1)
+           py::arg("plugin_path") = std::vector<std::filesystem::path>{}, py::arg("threads") = 1,
+           py::arg("simbody_dynamics") = false)
       .def("step", &PySimulation::step, py::arg("n") = 1,
            "Advances n ticks (physics steps); the GIL is released meanwhile.")
       .def("run_until", &PySimulation::run_until, py::arg("t"),
