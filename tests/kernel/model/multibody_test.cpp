@@ -252,19 +252,7 @@ TEST(Multibody, FixedUniversalAndBallJoints) {
 }
 
 TEST(Multibody, KinematicLoopIsClosedByConstraints) {
-  // A parallelogram four-bar: two cranks hinged to the world, joined by a coupler; the second
-  // coupler hinge closes the loop.
-  scene::Scene s;
-  const Vec3 y{0, 1, 0};
-  s.bodies.push_back(test::box("crank1", 1.0, {0.02, 0.02, 0.4}, {0, 0, 1.8}));
-  s.bodies.push_back(test::box("crank2", 1.0, {0.02, 0.02, 0.4}, {0.5, 0, 1.8}));
-  s.bodies.push_back(test::box("coupler", 1.0, {0.5, 0.02, 0.02}, {0.25, 0, 1.6}));
-  s.joints.push_back(test::joint("A", JointType::hinge, 0, -1, {0, 0, 2}, y));
-  s.joints.push_back(test::joint("B", JointType::hinge, 1, -1, {0.5, 0, 2}, y));
-  s.joints.push_back(test::joint("C", JointType::hinge, 2, 0, {0, 0, 1.6}, y));
-  s.joints.push_back(test::joint("D", JointType::hinge, 2, 1, {0.5, 0, 1.6}, y));
-  test::add_robot(s, "fourbar");
-  Runner r(s);
+  Runner r(test::four_bar());
   int loops = 0;
   for (const auto& a : r.mb.axes())
     loops += a.loop;

@@ -89,6 +89,22 @@ inline void add_robot(scene::Scene& s, const std::string& id) {
   s.robots.push_back(r);
 }
 
+/// A parallelogram four-bar: two cranks hinged to the world, joined by a coupler; the second
+/// coupler hinge (D) closes the loop.
+inline scene::Scene four_bar() {
+  scene::Scene s;
+  const Vec3 y{0, 1, 0};
+  s.bodies.push_back(box("crank1", 1.0, {0.02, 0.02, 0.4}, {0, 0, 1.8}));
+  s.bodies.push_back(box("crank2", 1.0, {0.02, 0.02, 0.4}, {0.5, 0, 1.8}));
+  s.bodies.push_back(box("coupler", 1.0, {0.5, 0.02, 0.02}, {0.25, 0, 1.6}));
+  s.joints.push_back(joint("A", scene::JointType::hinge, 0, -1, {0, 0, 2}, y));
+  s.joints.push_back(joint("B", scene::JointType::hinge, 1, -1, {0.5, 0, 2}, y));
+  s.joints.push_back(joint("C", scene::JointType::hinge, 2, 0, {0, 0, 1.6}, y));
+  s.joints.push_back(joint("D", scene::JointType::hinge, 2, 1, {0.5, 0, 1.6}, y));
+  add_robot(s, "fourbar");
+  return s;
+}
+
 /// Complete elliptic integral of the first kind K(k) by the arithmetic-geometric mean.
 inline double elliptic_k(double k) {
   double a = 1, b = std::sqrt(1 - k * k);

@@ -163,17 +163,7 @@ TEST(TreeDynamics, UniversalBallLoopsAndJointReactionsKeepSimbody) {
   test::Runner with_universal(cardan);
   EXPECT_FALSE(with_universal.mb.uses_tree_fast_path());
   // A loop: constraints, Simbody's.
-  scene::Scene fourbar;
-  const Vec3 y{0, 1, 0};
-  fourbar.bodies.push_back(test::box("crank1", 1.0, {0.02, 0.02, 0.4}, {0, 0, 1.8}));
-  fourbar.bodies.push_back(test::box("crank2", 1.0, {0.02, 0.02, 0.4}, {0.5, 0, 1.8}));
-  fourbar.bodies.push_back(test::box("coupler", 1.0, {0.5, 0.02, 0.02}, {0.25, 0, 1.6}));
-  fourbar.joints.push_back(test::joint("A", JointType::hinge, 0, -1, {0, 0, 2}, y));
-  fourbar.joints.push_back(test::joint("B", JointType::hinge, 1, -1, {0.5, 0, 2}, y));
-  fourbar.joints.push_back(test::joint("C", JointType::hinge, 2, 0, {0, 0, 1.6}, y));
-  fourbar.joints.push_back(test::joint("D", JointType::hinge, 2, 1, {0.5, 0, 1.6}, y));
-  test::add_robot(fourbar, "fourbar");
-  test::Runner with_loop(fourbar);
+  test::Runner with_loop(test::four_bar());
   EXPECT_FALSE(with_loop.mb.uses_tree_fast_path());
   // Joint reactions come from Simbody's Acceleration stage.
   test::Runner with_reactions(rover());
