@@ -203,6 +203,16 @@ void TreeDynamics::kinematics(const double* q, const double* u) {
 
 void TreeDynamics::accelerations(const double* body_loads, const double* mobility_forces,
                                  double* udot) {
+  bias_accelerations();
+  subtree_loads(body_loads);
+  mass_matrix_and_right_side(mobility_forces);
+  for (const Tree& t : trees_) {
+    factor(t);
+    substitute(t, &rhs_[static_cast<std::size_t>(t.u_begin)], udot + t.u_begin);
+  }
+}
+
+void TreeDynamics::bias_accelerations() {
   const std::size_t n = bodies_.size();
   // Velocity-product accelerations, base to tip (u' = 0): the time derivative of
   // V_B = shift(V_P) + V_rel, the mobilizer's axes turning with the parent and the arm d from
@@ -221,6 +231,10 @@ void TreeDynamics::accelerations(const double* body_loads, const double* mobilit
                                  cross(w_P, relative_linear_[i]) + cross(w_P_x_w_rel, d) +
                                  cross(w_rel, cross(twist_[i].angular_rad_s, d))};
   }
+}
+
+void TreeDynamics::subtree_loads(const double* body_loads) {
+  const std::size_t n = bodies_.size();
   for (std::size_t i = 1; i < n; ++i) {
     subtree_load_[i] = Wrench{};
     composite_[i] = Composite{0.0, Vec3{}, Mat3{{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}}};
@@ -266,6 +280,10 @@ void TreeDynamics::accelerations(const double* body_loads, const double* mobilit
         J.m[r][k] += (r == k ? 2 * s_dot_d : 0.0) - (S[r] * D[k] + D[r] * S[k]);
     parent.second_moment = parent.second_moment + J;
   }
+}
+
+void TreeDynamics::mass_matrix_and_right_side(const double* mobility_forces) {
+  const std::size_t n = bodies_.size();
   // Entries between speeds of different branches are zero in M but not in its factor: the
   // blocks are cleared before they are filled.
   std::fill(mass_.begin(), mass_.end(), 0.0);
@@ -299,10 +317,6 @@ void TreeDynamics::accelerations(const double* body_loads, const double* mobilit
                                dot(column_[static_cast<std::size_t>(k)].linear_m_s, L);
       }
     }
-  }
-  for (const Tree& t : trees_) {
-    factor(t);
-    substitute(t, &rhs_[static_cast<std::size_t>(t.u_begin)], udot + t.u_begin);
   }
 }
 

@@ -88,6 +88,12 @@ class TreeDynamics {
   std::vector<double> rhs_;
 
   bool same_state(const double* q, const double* u) const;
+  /// The stages of accelerations(): the velocity-product accelerations (base to tip); the
+  /// loads each subtree needs for them less the applied ones, and the composite bodies (tip to
+  /// base); the mass matrix's lower triangle and the right side τ − bias.
+  void bias_accelerations();
+  void subtree_loads(const double* body_loads);
+  void mass_matrix_and_right_side(const double* mobility_forces);
   void factor(const Tree& t);
   /// x = M^-1·b within tree t (b and x point at its first speed); after factor(t).
   void substitute(const Tree& t, const double* b, double* x) const;
