@@ -56,7 +56,7 @@ double Multibody::substep_s() const {
 void Multibody::current_bodies(const Pose*& poses, const Twist*& twists) {
   Impl& m = *impl_;
   if (!m.bodies_fresh) {
-    if (!m.uses_tree()) m.system.realize(m.current, SimTK::Stage::Velocity);
+    realize_velocity(m, m.current);
     read_bodies(m, m.current, m.substep_poses.data(), m.substep_twists.data());
   }
   poses = m.substep_poses.data();
@@ -68,6 +68,11 @@ void Multibody::forces() {
   m.bodies_fresh = false;
   if (!m.axis_friction.empty()) classify_sliding(m, m.current, substep_s());
   if (!m.axes.empty()) prepare_drives(m, m.current);
+}
+
+void realize_velocity(const Multibody::Impl& m, const SimTK::State& s) {
+  // The fast path's systems have no loop axis: bodies come from the tree, axes from q and u.
+  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
 }
 
 void realize_accelerations(Multibody::Impl& m) {
@@ -167,7 +172,7 @@ void Multibody::finish_tick() {
     m.drive_applied[a] = m.drive_sum[a] / m.substeps;
     m.drive_sum[a] = 0.0;
   }
-  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
+  realize_velocity(m, s);
   // Read the bodies once here: for read() and for the next substep's contact.
   read_bodies(m, s, m.substep_poses.data(), m.substep_twists.data());
   m.bodies_fresh = true;

@@ -132,18 +132,15 @@ void Multibody::reset() {
 void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists) {
   poses[0] = Pose{};
   twists[0] = Twist{};
-  if (m.uses_tree()) {
-    update_tree_kinematics(m);
-    for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-      if (!m.mobod_of_body[b].isValid()) continue;
-      poses[b] = m.tree->pose(m.mobod_of_body[b]);
-      twists[b] = m.tree->twist(m.mobod_of_body[b]);
-    }
-    m.loose.read(poses, twists);
-    return;
-  }
+  const bool tree = m.uses_tree();
+  if (tree) update_tree_kinematics(m);
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
     if (!m.mobod_of_body[b].isValid()) continue;
+    if (tree) {
+      poses[b] = m.tree->pose(m.mobod_of_body[b]);
+      twists[b] = m.tree->twist(m.mobod_of_body[b]);
+      continue;
+    }
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
     const SimTK::Transform& X = mob.getBodyTransform(s);
     poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
@@ -157,8 +154,7 @@ void Multibody::read(Pose* poses, Twist* twists, double* axis_position,
                      double* axis_velocity) const {
   const Impl& m = *impl_;
   const SimTK::State& s = m.state();
-  // The fast path's systems have no loop axis: the axes are read from q and u.
-  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
+  realize_velocity(m, s);
   if (m.bodies_fresh) {
     std::copy(m.substep_poses.begin(), m.substep_poses.end(), poses);
     std::copy(m.substep_twists.begin(), m.substep_twists.end(), twists);

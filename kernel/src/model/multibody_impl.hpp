@@ -253,6 +253,9 @@ void add_applied_loads(const Multibody::Impl& m, const SimTK::State& state,
                        SimTK::Vector& mobility_forces);
 /// Registers the kernel's loads as a Simbody Force::Custom (add_applied_loads).
 void register_applied_loads(Multibody::Impl& m);
+/// Simbody's Velocity stage for reading bodies and axes (read_bodies, axis_value, axis_rate),
+/// unless the fast path computes them (uses_tree()).
+void realize_velocity(const Multibody::Impl& m, const SimTK::State& s);
 /// Realizes `m.current` to Acceleration with this substep's loads (Multibody::accelerations,
 /// and reset for the first joint reactions): without constraints the loads go straight into
 /// the system's force arrays after Dynamics, with constraints through the Force::Custom.
