@@ -18,6 +18,7 @@
 // An axis alone: its speed change is the explicit one divided by 1 + κ·c·w, never
 // overshooting, whatever c·κ/inertia; a motor stronger than its friction turns, a weaker one
 // sticks.
+#include "model/cholesky.hpp"
 #include "model/multibody_impl.hpp"
 
 #include <algorithm>
@@ -35,34 +36,6 @@ double current_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t
 
 double law(const Multibody::Impl::DriveRow& r, double rate) {
   return std::clamp(r.force - r.damping * (rate - r.rate0), r.low, r.high);
-}
-
-/// Solves A·x = b in place (A symmetric positive definite, n x n, row-major; b becomes x) by
-/// Cholesky: n is the number of rows, a handful.
-void solve_spd(double* A, double* b, std::size_t n) {
-  for (std::size_t j = 0; j < n; ++j) {
-    double d = A[j * n + j];
-    for (std::size_t k = 0; k < j; ++k)
-      d -= A[j * n + k] * A[j * n + k];
-    d = std::sqrt(d);
-    A[j * n + j] = d;
-    for (std::size_t i = j + 1; i < n; ++i) {
-      double v = A[i * n + j];
-      for (std::size_t k = 0; k < j; ++k)
-        v -= A[i * n + k] * A[j * n + k];
-      A[i * n + j] = v / d;
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) {  // L·y = b
-    for (std::size_t k = 0; k < i; ++k)
-      b[i] -= A[i * n + k] * b[k];
-    b[i] /= A[i * n + i];
-  }
-  for (std::size_t i = n; i-- > 0;) {  // Lᵀ·x = y
-    for (std::size_t k = i + 1; k < n; ++k)
-      b[i] -= A[k * n + i] * b[k];
-    b[i] /= A[i * n + i];
-  }
 }
 
 }  // namespace
@@ -250,7 +223,8 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
         const double v = axis_dot(m, static_cast<std::size_t>(ri.axis), u);
         b[i] = (ri.force - ri.damping * (v - ri.rate0) - ri.applied) / si;
       }
-      solve_spd(A, b, n);
+      cholesky_factor(A, static_cast<int>(n));  // SPD: I + κ·S·W·S
+      cholesky_substitute(A, static_cast<int>(n), b, b);
       for (std::size_t i = 0; i < n; ++i) {
         auto& row = m.rows[order[i]];
         const double wanted = row.applied + std::sqrt(row.damping) * b[i];

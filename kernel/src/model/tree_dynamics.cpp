@@ -3,6 +3,8 @@
 // Newton-Euler), the mass matrix from composite bodies, and a Cholesky factor per tree.
 #include "model/tree_dynamics.hpp"
 
+#include "model/cholesky.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -321,44 +323,13 @@ void TreeDynamics::mass_matrix_and_right_side(const double* mobility_forces) {
 }
 
 void TreeDynamics::factor(const Tree& t) {
-  // Cholesky in place, lower triangle (filled in between branches: a few dozen speeds).
-  const int size = t.u_end - t.u_begin;
-  double* A = &mass_[static_cast<std::size_t>(t.matrix)];
-  for (int j = 0; j < size; ++j) {
-    double diagonal = A[j * size + j];
-    for (int k = 0; k < j; ++k)
-      diagonal -= A[j * size + k] * A[j * size + k];
-    if (!(diagonal > 0)) throw std::runtime_error("the mass matrix is not positive definite");
-    diagonal = std::sqrt(diagonal);
-    A[j * size + j] = diagonal;
-    for (int i = j + 1; i < size; ++i) {
-      double v = A[i * size + j];
-      for (int k = 0; k < j; ++k)
-        v -= A[i * size + k] * A[j * size + k];
-      A[i * size + j] = v / diagonal;
-    }
-  }
+  // Filled in between branches: the whole block (a few dozen speeds).
+  if (!cholesky_factor(&mass_[static_cast<std::size_t>(t.matrix)], t.u_end - t.u_begin))
+    throw std::runtime_error("the mass matrix is not positive definite");
 }
 
 void TreeDynamics::substitute(const Tree& t, const double* b, double* x) const {
-  const int size = t.u_end - t.u_begin;
-  const double* A = &mass_[static_cast<std::size_t>(t.matrix)];
-  // y is zero up to b's first non-zero (an M^-1 column's b is a unit vector): start there.
-  int first = 0;
-  while (first < size && b[first] == 0.0)
-    x[first++] = 0.0;
-  for (int i = first; i < size; ++i) {  // L·y = b
-    double v = b[i];
-    for (int k = first; k < i; ++k)
-      v -= A[i * size + k] * x[k];
-    x[i] = v / A[i * size + i];
-  }
-  for (int i = size; i-- > 0;) {  // Lᵀ·x = y
-    double v = x[i];
-    for (int k = i + 1; k < size; ++k)
-      v -= A[k * size + i] * x[k];
-    x[i] = v / A[i * size + i];
-  }
+  cholesky_substitute(&mass_[static_cast<std::size_t>(t.matrix)], t.u_end - t.u_begin, b, x);
 }
 
 void TreeDynamics::solve(const double* g, double* x) const {
