@@ -10,7 +10,6 @@ constexpr int kBruteForceBelow = 48;
 constexpr double kLargeOverPercentile = 2.0;  // boxes above twice the 90th percentile are large
 constexpr double kCellHeadroom = 1.125;       // a new cell: this much above the largest box
 constexpr double kCellSlack = 1.25;           // the last cell is kept up to this coarse
-constexpr std::size_t kInsertionSortBelow = 16;
 
 bool overlap(const Aabb& a, const Aabb& b) {
   return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
@@ -64,8 +63,7 @@ void BroadPhase::resize(int count) {
   moved_.assign(n, 0);
   large_.reserve(n);
   is_large_.reserve(n);
-  first_of_.reserve(n + 1);
-  sorted_.reserve(64 + 16 * n);  // as many pairs as ContactQuery reserves for
+  sorter_.reserve(count, 64 + 16 * n);  // as many pairs as ContactQuery reserves for
 }
 
 void BroadPhase::choose_cell(const Aabb* boxes) {
@@ -148,37 +146,6 @@ void BroadPhase::update_entries(const Aabb* boxes) {
   entries_.swap(merged_);
 }
 
-void BroadPhase::sort_pairs(std::vector<std::pair<std::int32_t, std::int32_t>>& out) {
-  const auto n = static_cast<std::size_t>(count_);
-  first_of_.assign(n + 1, 0);
-  for (const auto& p : out)
-    ++first_of_[static_cast<std::size_t>(p.first) + 1];
-  for (std::size_t i = 1; i <= n; ++i)
-    first_of_[i] += first_of_[i - 1];
-  sorted_.resize(out.size());
-  for (const auto& p : out)
-    sorted_[first_of_[static_cast<std::size_t>(p.first)]++] = p;
-  // first_of_[i] is now where i's pairs end; each i has a few, in discovery order.
-  std::size_t begin = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t end = first_of_[i];
-    if (end - begin < kInsertionSortBelow) {
-      for (std::size_t a = begin + 1; a < end; ++a) {
-        const auto p = sorted_[a];
-        std::size_t b = a;
-        for (; b > begin && sorted_[b - 1].second > p.second; --b)
-          sorted_[b] = sorted_[b - 1];
-        sorted_[b] = p;
-      }
-    } else {
-      std::sort(sorted_.begin() + static_cast<std::ptrdiff_t>(begin),
-                sorted_.begin() + static_cast<std::ptrdiff_t>(end));
-    }
-    begin = end;
-  }
-  std::copy(sorted_.begin(), sorted_.end(), out.begin());
-}
-
 bool BroadPhase::find_pairs(const Aabb* boxes,
                             std::vector<std::pair<std::int32_t, std::int32_t>>& out,
                             std::size_t max_pairs) {
@@ -232,7 +199,7 @@ bool BroadPhase::find_pairs(const Aabb* boxes,
   }
   // The result must not depend on the order of discovery (a restored snapshot repeats the run
   // bit for bit, so forces must be summed in the same order).
-  sort_pairs(out);
+  sorter_.sort(out);
   return true;
 }
 

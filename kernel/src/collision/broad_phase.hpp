@@ -13,6 +13,7 @@
 /// merged back in, so a settled scene costs no sort at all. The result never depends on what
 /// was kept: the sorted array is the same as a full sort's.
 
+#include "collision/pair_sorter.hpp"
 #include "collision/shape.hpp"
 
 #include <cstddef>
@@ -53,8 +54,6 @@ class BroadPhase {
   /// Brings entries_ to this call's cells: the entries of boxes that changed cells are
   /// dropped and their new ones merged in. Fills large_ and is_large_.
   void update_entries(const Aabb* boxes);
-  /// Sorts `out` by (i, j): a counting sort on i, then each i's few j in place.
-  void sort_pairs(std::vector<std::pair<std::int32_t, std::int32_t>>& out);
 
   int count_ = 0;
   double cell_m_ = 0;  // 0: none chosen yet
@@ -65,8 +64,7 @@ class BroadPhase {
   std::vector<char> moved_;
   std::vector<std::int32_t> large_;
   std::vector<char> is_large_;
-  std::vector<std::uint32_t> first_of_;  // sort_pairs: where each i's pairs start
-  std::vector<std::pair<std::int32_t, std::int32_t>> sorted_;
+  PairSorter sorter_;
 };
 
 }  // namespace s2sim::collision

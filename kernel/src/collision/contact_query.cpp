@@ -10,11 +10,23 @@ ContactQuery::ContactQuery(const ShapeTable& table)
 
 void ContactQuery::reset() {
   broad_phase_.resize(count_);
+  islands_.reset();
+}
+
+void ContactQuery::group_by_islands(
+    const std::vector<std::int32_t>& island_of_shape,
+    const std::function<bool(std::int32_t, std::int32_t)>& may_touch) {
+  by_islands_ = islands_.build(island_of_shape, may_touch);
 }
 
 const std::vector<std::pair<std::int32_t, std::int32_t>>& ContactQuery::overlapping_pairs(
     const Placement& placement) {
-  if (!broad_phase_.find_pairs(placement.boxes(), pairs_, max_pairs_))
+  using Found = IslandBroadPhase::Found;
+  const Found found = by_islands_ ? islands_.find_pairs(placement.boxes(), pairs_, max_pairs_)
+                                  : Found::too_many_groups;
+  if (found == Found::too_many_pairs ||
+      (found == Found::too_many_groups &&
+       !broad_phase_.find_pairs(placement.boxes(), pairs_, max_pairs_)))
     throw TooManyPairs{max_pairs_, pairs_.front().first, pairs_.front().second};
   return pairs_;
 }

@@ -9,11 +9,13 @@
 #include "collision/contact_point.hpp"
 #include "collision/contact_primitives.hpp"
 #include "collision/fcl_pairs.hpp"
+#include "collision/island_broad_phase.hpp"
 #include "collision/placement.hpp"
 #include "collision/shape_table.hpp"
 
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -34,13 +36,20 @@ class ContactQuery {
   /// Forgets what the buffers learnt (sizes back to those at load).
   void reset();
 
+  /// Finds the pairs by islands from now on (island_broad_phase.hpp) where that pays:
+  /// `island_of_shape` per shape (−1: static), `may_touch` for two shapes of one island.
+  /// overlapping_pairs() then leaves out the pairs within an island that may not touch.
+  void group_by_islands(const std::vector<std::int32_t>& island_of_shape,
+                        const std::function<bool(std::int32_t, std::int32_t)>& may_touch);
+
   /// Points of shape `s` against each static plane p of the table its box reaches: calls
   /// `sink(p, points, count)` with the points written to `buffer` (kMaxPointsPerPair).
   template <class Sink>
   static void plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
                            ContactPoint* buffer, Sink&& sink);
 
-  /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order. Allocates
+  /// The pairs (i, j), i < j, of shapes whose boxes overlap, in increasing order (by islands:
+  /// but for those group_by_islands() leaves out). Allocates
   /// only when more pairs overlap than ever before. Throws TooManyPairs past max_pairs().
   const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs(
       const Placement& placement);
@@ -58,6 +67,8 @@ class ContactQuery {
   int count_ = 0;
   std::size_t max_pairs_ = 0;
   BroadPhase broad_phase_;
+  IslandBroadPhase islands_;
+  bool by_islands_ = false;
   FclPairs fcl_;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
 };

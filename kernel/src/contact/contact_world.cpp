@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <numeric>
 
 namespace s2sim::contact {
 namespace {
@@ -99,11 +100,34 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   for (const double m : apparent_mass_kg_)
     inverse_apparent_mass_.push_back(1 / m);
   tabulate_materials();
+  group_islands(scene);
 
   const std::size_t reserve = 64 + 16 * static_cast<std::size_t>(table_.size());
   memory_.reserve(reserve);
   next_memory_.reserve(reserve);
   info_.reserve(reserve);
+}
+
+void ContactWorld::group_islands(const scene::Scene& scene) {
+  // Union–find over the joints between bodies (a joint to the world joins nothing).
+  std::vector<std::int32_t> root(scene.bodies.size() + 1);
+  std::iota(root.begin(), root.end(), 0);
+  auto find = [&](std::int32_t b) {
+    while (root[static_cast<std::size_t>(b)] != b)
+      b = root[static_cast<std::size_t>(b)] =
+          root[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
+    return b;
+  };
+  for (const auto& j : scene.joints)
+    if (j.body1 >= 0 && j.body2 >= 0)
+      root[static_cast<std::size_t>(find(j.body1 + 1))] = find(j.body2 + 1);
+  const auto& body = table_.bodies();
+  std::vector<std::int32_t> island_of_shape(body.size());
+  for (std::size_t s = 0; s < body.size(); ++s)
+    island_of_shape[s] = body[s] == 0 ? -1 : find(body[s]);
+  query_.group_by_islands(island_of_shape, [&](std::int32_t i, std::int32_t j) {
+    return !excluded(body[static_cast<std::size_t>(i)], body[static_cast<std::size_t>(j)]);
+  });
 }
 
 void ContactWorld::tabulate_materials() {

@@ -73,6 +73,8 @@ class ContactWorld final : public model::SubstepForces {
                                     PairMaterial& scratch) const;
   /// Builds material_of_ and pair_materials_ (at load).
   void tabulate_materials();
+  /// Groups the shapes by island for the broad phase (at load, after the exclusions).
+  void group_islands(const scene::Scene& scene);
   void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points, int count);
   /// The first remembered point whose key is not below `key` (memory_.end() if none), found
   /// forward from the last one asked for: the points come in nearly increasing key order.
