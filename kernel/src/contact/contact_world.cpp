@@ -224,40 +224,162 @@ void ContactWorld::reset() {
   query_.reset();
 }
 
-void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
-                           Wrench* wrenches) {
+void ContactWorld::place(const Pose* poses) {
   const std::size_t body_count = apparent_mass_kg_.size();
-  std::fill(wrenches, wrenches + body_count, Wrench{});
   for (std::size_t b = 1; b < body_count; ++b)
     to_body_[b] = poses[b].rotation.transposed();
   placement_.update(table_, poses);
+  pairs_ = &query_.overlapping_pairs(placement_);
+}
+
+void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
+                           Wrench* wrenches) {
+  place(poses);
+  whole_contacts(poses, twists, step_s, wrenches);
+}
+
+void ContactWorld::whole_contacts(const Pose* poses, const Twist* twists, double step_s,
+                                  Wrench* wrenches) {
+  std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
   next_memory_.clear();
   info_.clear();
   memory_cursor_ = 0;
-
-  const std::int32_t* body = table_.bodies().data();
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  // Moving shapes against the ground and the walls.
-  for (const std::int32_t s : table_.moving()) {
-    if (fixed_to_world_[body[s]]) continue;
-    collision::ContactQuery::plane_points(
-        table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
-          for (int k = 0; k < n; ++k)
-            add_point(s, p, true, found[k], poses, twists, step_s, wrenches);
-        });
-  }
-  // Shape pairs.
+  Sink sink{next_memory_, info_, nullptr, memory_cursor_};
+  // Moving shapes against the ground and the walls, then the shape pairs.
+  const auto& moving = table_.moving();
+  for (std::size_t k = 0; k < moving.size(); ++k)
+    plane_contacts(sink, static_cast<std::int32_t>(k), moving[k], poses, twists, step_s, wrenches);
   const std::size_t pair_run_begin = next_memory_.size();
-  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
+  for (std::size_t k = 0; k < pairs_->size(); ++k)
+    pair_contacts(sink, 0, static_cast<std::int32_t>(k), nullptr, poses, twists, step_s, wrenches);
+  keep_sorted_memory(pair_run_begin);
+  info_count_ = static_cast<std::int32_t>(info_.size());
+}
+
+void ContactWorld::plane_contacts(Sink& sink, std::int32_t order, std::int32_t s, const Pose* poses,
+                                  const Twist* twists, double step_s, Wrench* wrenches) {
+  if (fixed_to_world_[table_.bodies()[static_cast<std::size_t>(s)]]) return;
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  collision::ContactQuery::plane_points(
+      table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
+        for (int k = 0; k < n; ++k)
+          add_point(sink, order, s, p, true, found[k], poses, twists, step_s, wrenches);
+      });
+}
+
+void ContactWorld::pair_contacts(Sink& sink, std::int32_t order, std::int32_t pair,
+                                 collision::FclPairs* fcl, const Pose* poses, const Twist* twists,
+                                 double step_s, Wrench* wrenches) {
+  const auto [i, j] = (*pairs_)[static_cast<std::size_t>(pair)];
+  const std::int32_t* body = table_.bodies().data();
+  if (excluded(body[i], body[j])) return;
+  // Shape a must move: a static shape is always b.
+  const bool swap = body[i] == 0;
+  const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
+  bool renumbered = false;
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered, fcl);
+  if (renumbered && n > 0) match_features(ia, ib, points, n, sink.cursor);
+  for (int k = 0; k < n; ++k)
+    add_point(sink, order, ia, ib, false, points[k], poses, twists, step_s, wrenches);
+}
+
+void ContactWorld::split_by_parts(const std::vector<int>& part_of_body, int parts) {
+  parts_.clear();
+  if (parts < 2) return;
+  parts_.resize(static_cast<std::size_t>(parts));
+  part_of_body_.assign(part_of_body.begin(), part_of_body.end());
+  part_of_body_.resize(apparent_mass_kg_.size(), 0);
+  const auto& moving = table_.moving();
+  for (std::size_t k = 0; k < moving.size(); ++k) {
+    const std::int32_t b = table_.bodies()[static_cast<std::size_t>(moving[k])];
+    parts_[static_cast<std::size_t>(part_of_body_[static_cast<std::size_t>(b)])].moving.push_back(
+        static_cast<std::int32_t>(k));
+  }
+  for (std::size_t b = 1; b < part_of_body_.size(); ++b)
+    parts_[static_cast<std::size_t>(part_of_body_[b])].bodies.push_back(
+        static_cast<std::int32_t>(b));
+  for (auto& part : parts_) {
+    part.pairs.reserve(query_.max_pairs() + 1);
+    part.memory.reserve(next_memory_.capacity());
+    part.info.reserve(info_.capacity());
+    part.order.reserve(info_.capacity());
+    part.fcl = std::make_unique<collision::FclPairs>();
+  }
+  merge_next_.assign(parts_.size(), 0);
+}
+
+bool ContactWorld::deal_pairs() {
+  for (auto& part : parts_)
+    part.pairs.clear();
+  const std::int32_t* body = table_.bodies().data();
+  for (std::size_t k = 0; k < pairs_->size(); ++k) {
+    const auto [i, j] = (*pairs_)[k];
     if (excluded(body[i], body[j])) continue;
-    // Shape a must move: a static shape is always b.
-    const bool swap = body[i] == 0;
-    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    bool renumbered = false;
-    const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
-    if (renumbered && n > 0) match_features(ia, ib, points, n);
-    for (int k = 0; k < n; ++k)
-      add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
+    const std::int32_t a = body[i] == 0 ? body[j] : body[i], b = body[i] == 0 ? 0 : body[j];
+    const std::int32_t part = part_of_body_[static_cast<std::size_t>(a)];
+    if (b != 0 && part_of_body_[static_cast<std::size_t>(b)] != part) return false;
+    parts_[static_cast<std::size_t>(part)].pairs.push_back(static_cast<std::int32_t>(k));
+  }
+  return true;
+}
+
+bool ContactWorld::begin_parts(const Pose* poses, const Twist* twists, double step_s,
+                               Wrench* wrenches) {
+  place(poses);
+  if (parts_.empty() || !deal_pairs()) {
+    whole_contacts(poses, twists, step_s, wrenches);
+    return false;
+  }
+  wrenches[0] = Wrench{};
+  part_poses_ = poses;
+  part_twists_ = twists;
+  part_step_s_ = step_s;
+  part_wrenches_ = wrenches;
+  return true;
+}
+
+void ContactWorld::part(int p) {
+  PartContacts& part = parts_[static_cast<std::size_t>(p)];
+  for (const std::int32_t b : part.bodies)
+    part_wrenches_[b] = Wrench{};
+  part.memory.clear();
+  part.info.clear();
+  part.order.clear();
+  part.cursor = 0;
+  Sink sink{part.memory, part.info, &part.order, part.cursor};
+  const auto& moving = table_.moving();
+  for (const std::int32_t k : part.moving)
+    plane_contacts(sink, k, moving[static_cast<std::size_t>(k)], part_poses_, part_twists_,
+                   part_step_s_, part_wrenches_);
+  const auto past_planes = static_cast<std::int32_t>(moving.size());
+  for (const std::int32_t k : part.pairs)
+    pair_contacts(sink, past_planes + k, k, part.fcl.get(), part_poses_, part_twists_, part_step_s_,
+                  part_wrenches_);
+}
+
+void ContactWorld::end_parts() {
+  // The parts' contacts in the whole order: each part's come in that order, and no two parts
+  // share a shape or a pair, so taking the lowest next one gives whole_contacts()' lists.
+  next_memory_.clear();
+  info_.clear();
+  std::fill(merge_next_.begin(), merge_next_.end(), 0);
+  const auto past_planes = static_cast<std::int32_t>(table_.moving().size());
+  std::size_t pair_run_begin = 0;
+  for (;;) {
+    std::size_t best = parts_.size();
+    for (std::size_t p = 0; p < parts_.size(); ++p) {
+      const std::size_t next = merge_next_[p];
+      if (next < parts_[p].order.size() &&
+          (best == parts_.size() || parts_[p].order[next] < parts_[best].order[merge_next_[best]]))
+        best = p;
+    }
+    if (best == parts_.size()) break;
+    const PartContacts& part = parts_[best];
+    const std::size_t next = merge_next_[best]++;
+    if (part.order[next] < past_planes) ++pair_run_begin;
+    next_memory_.push_back(part.memory[next]);
+    info_.push_back(part.info[next]);
   }
   keep_sorted_memory(pair_run_begin);
   info_count_ = static_cast<std::int32_t>(info_.size());
@@ -274,9 +396,10 @@ void ContactWorld::keep_sorted_memory(std::size_t pair_run_begin) {
   std::merge(next_memory_.begin(), middle, middle, next_memory_.end(), memory_.begin(), less);
 }
 
-std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(std::uint64_t key) {
+std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(
+    std::uint64_t key, std::size_t& cursor) const {
   // Everything before `lo` is below key; gallop forward, then search the last stride.
-  std::size_t lo = memory_cursor_;
+  std::size_t lo = cursor;
   if (lo > memory_.size() || (lo > 0 && memory_[lo - 1].key >= key)) lo = 0;
   std::size_t hi = lo, stride = 1;
   while (hi < memory_.size() && memory_[hi].key < key) {
@@ -288,17 +411,17 @@ std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(std::
   const auto found = std::lower_bound(memory_.cbegin() + static_cast<std::ptrdiff_t>(lo),
                                       memory_.cbegin() + static_cast<std::ptrdiff_t>(hi), key,
                                       [](const Memory& m, std::uint64_t k) { return m.key < k; });
-  memory_cursor_ = static_cast<std::size_t>(found - memory_.cbegin());
+  cursor = static_cast<std::size_t>(found - memory_.cbegin());
   return found;
 }
 
 void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
-                                  int count) {
+                                  int count, std::size_t& cursor) const {
   // FCL numbers its points by its own clipping order, which changes as the overlap changes:
   // give each point the id of the remembered point of this pair nearest to it (in a's frame),
   // so that friction memory follows the material point.
   const std::uint64_t prefix = pair_key(shape_a, static_cast<std::uint64_t>(shape_b), 0);
-  const auto first = remembered(prefix);
+  const auto first = remembered(prefix, cursor);
   auto last = first;
   while (last != memory_.end() && (last->key >> 16) == (prefix >> 16))
     ++last;
@@ -328,9 +451,10 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   }
 }
 
-void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
-                             const ContactPoint& p, const Pose* poses, const Twist* twists,
-                             double step_s, Wrench* wrenches) {
+void ContactWorld::add_point(Sink& sink, std::int32_t order, std::int32_t shape_a,
+                             std::int32_t other, bool other_is_plane, const ContactPoint& p,
+                             const Pose* poses, const Twist* twists, double step_s,
+                             Wrench* wrenches) {
   const auto& surfaces = table_.surfaces();
   const auto& bodies = table_.bodies();
   const Pose* world = placement_.world();
@@ -375,12 +499,12 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  const auto found = remembered(key);
+  const auto found = remembered(key, sink.cursor);
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
   const Vec3 force = contact_force(p, material, kin, law_, !known, state);
   state.local_point_m = world[ia].inverse() * p.point_m;
-  next_memory_.push_back({key, state});
+  sink.memory.push_back({key, state});
 
   Wrench& wa = wrenches[body_a];
   wa.force_N += force;
@@ -397,7 +521,8 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   info.normal = p.normal;
   info.force_N = force;
   info.depth_m = p.depth_m;
-  info_.push_back(info);
+  sink.info.push_back(info);
+  if (sink.order) sink.order->push_back(order);
 }
 
 void ContactWorld::declare_state(sim::StateLayout& layout) {

@@ -263,9 +263,11 @@ bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
 
 // --- The parallel substep ----------------------------------------------------------------------
 
-void MultibodyIslands::run_substep(int substep, PartStages stages, void* context) {
+void MultibodyIslands::run_substep(int substep, PartStages stages, PartContacts contacts,
+                                   void* context) {
   substep_ = substep;
   stages_ = stages;
+  contacts_ = contacts;
   stages_context_ = context;
   bodies_fresh_ = read_fresh_ = false;
   try {
@@ -285,6 +287,7 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
 void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
+  if (me.contacts_) me.contacts_(me.stages_context_, p, thread == 0);
   me.load_part(part, me.substep_);
   me.stages_(me.stages_context_, *part.multibody, thread == 0, me.substep_);
   me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)

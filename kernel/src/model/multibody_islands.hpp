@@ -26,6 +26,9 @@ class MultibodyIslands {
   /// one that called run_substep.
   using PartStages = void (*)(void* context, Multibody& multibody, bool calling_thread,
                               int substep);
+  /// A part's contacts in a substep (SubstepForces::part), called before the part takes its
+  /// loads, on the same thread as its stages.
+  using PartContacts = void (*)(void* context, int part, bool calling_thread);
 
   /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
   /// has fewer islands; threads ≤ 1: one). Throws what Multibody's constructor throws.
@@ -39,6 +42,8 @@ class MultibodyIslands {
   /// The number of Simbody systems (and threads) stepping the scene.
   int parts() const { return static_cast<int>(parts_.size()); }
   Multibody& part(int p) { return *parts_[static_cast<std::size_t>(p)].multibody; }
+  /// Per kernel body, the part that integrates it (parts() > 1; empty with one part).
+  const std::vector<int>& part_of_body() const { return part_of_body_; }
 
   // --- Multibody's interface, scene-wide (multibody.hpp says what each does) -----------------
   int body_count() const { return body_count_; }
@@ -75,12 +80,12 @@ class MultibodyIslands {
   bool move_body(int body, const Pose& pose);
   bool set_body_velocity(int body, const Twist& twist);
 
-  /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
-  /// taken from the scene-wide arrays (on the first substep) and the contact wrenches, then
-  /// `stages`, then its bodies (and after the last substep its axes, drives and reactions)
-  /// written back. Exceptions: the lowest part's; a non-finite state names the first body in
-  /// kernel order, as the serial run does.
-  void run_substep(int substep, PartStages stages, void* context);
+  /// Substep `substep` of the tick for every part at once (parts() > 1): `contacts` (when not
+  /// null) for the part, its loads taken from the scene-wide arrays (on the first substep) and
+  /// the contact wrenches, then `stages`, then its bodies (and after the last substep its axes,
+  /// drives and reactions) written back. Exceptions: the lowest part's; a non-finite state
+  /// names the first body in kernel order, as the serial run does.
+  void run_substep(int substep, PartStages stages, PartContacts contacts, void* context);
 
  private:
   struct Part {
@@ -130,6 +135,7 @@ class MultibodyIslands {
   // The running substep (run_substep).
   int substep_ = 0;
   PartStages stages_ = nullptr;
+  PartContacts contacts_ = nullptr;
   void* stages_context_ = nullptr;
 };
 

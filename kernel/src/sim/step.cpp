@@ -72,10 +72,23 @@ void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) 
   }
 }
 
+/// What the parts' callbacks need (MultibodyIslands::run_substep).
+struct PartContext {
+  model::SubstepForces* contact;
+  StageProfile* profile;
+};
+
+/// One part's contacts, when the substep's contacts split by parts (SubstepForces::part).
+void part_collide(void* context, int part, bool calling_thread) {
+  const auto& c = *static_cast<PartContext*>(context);
+  StageTimer timer(calling_thread ? c.profile : nullptr, PipelineStage::collide);
+  c.contact->part(part);
+}
+
 /// One part's substep (MultibodyIslands::run_substep); only the parts the calling thread takes
 /// are profiled (StageProfile is not shared between threads).
 void part_stages(void* context, model::Multibody& mb, bool calling_thread, int substep) {
-  StageProfile* profile = calling_thread ? static_cast<StageProfile*>(context) : nullptr;
+  StageProfile* profile = calling_thread ? static_cast<PartContext*>(context)->profile : nullptr;
   multibody_stages(mb, substep, profile);
   if (substep == mb.substeps() - 1) {
     StageTimer timer(profile, PipelineStage::finish);
@@ -123,10 +136,23 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
 void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
                   StageProfile* profile) {
   if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
+  PartContext context{contact, profile};
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
-      collide(mb, contact, profile);
-      mb.run_substep(k, &part_stages, profile);
+      // Contact by parts when no pair lies across two (begin_parts), else whole, here.
+      bool by_parts = false;
+      if (contact) {
+        StageTimer timer(profile, PipelineStage::collide);
+        const Pose* poses = nullptr;
+        const Twist* twists = nullptr;
+        mb.current_bodies(poses, twists);
+        by_parts = contact->begin_parts(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+      }
+      mb.run_substep(k, &part_stages, by_parts ? &part_collide : nullptr, &context);
+      if (by_parts) {
+        StageTimer timer(profile, PipelineStage::collide);
+        contact->end_parts();
+      }
     }
   } catch (const Error&) {
     throw;

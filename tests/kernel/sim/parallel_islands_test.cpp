@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -105,6 +106,59 @@ TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
   // Its layout has a segment per part: a serial run's snapshot is refused, naming it.
   auto serial = load_driven(kRobots16, 1);
   EXPECT_THROW(serial->restore(snapshot), Error);
+}
+
+// Contact by parts: a substep where no pair of shapes lies across two parts computes each
+// part's contacts on its own thread, and merges them in the serial order; one where two parts'
+// bodies meet is computed whole. Robots driven into each other (across the parts), into a wall
+// (FCL's box–box within a part) and into loose boxes and a ball: every signal and every
+// contact (bodies, point, normal, force, depth, in order) equal the serial run's, and both
+// kinds of substep happened.
+TEST(ParallelIslands, ContactsSplitByPartsOrWholeGiveTheSerialContactsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  const auto scene =
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/robots_meeting";
+  std::unique_ptr<Simulation> runs[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    SimulationOptions o;
+    o.threads = threads;
+    auto& sim = runs[threads - 1];
+    sim = Simulation::load(scene, o);
+    for (std::size_t i = 0; i < sim->input_count(); ++i) {
+      const std::string& name = sim->input_info(i).name;
+      if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
+        sim->set_input(i, name.find("/left/") != std::string::npos ? -6.0 : 6.0);  // ahead
+    }
+  }
+  runs[1]->set_profiling(true);
+  std::size_t robot_pairs = 0, most_contacts = 0;
+  const int ticks = 2500;
+  for (int tick = 0; tick < ticks; ++tick) {
+    runs[0]->step();
+    runs[1]->step();
+    ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1]))) << "tick " << tick;
+    ASSERT_EQ(runs[0]->contact_count(), runs[1]->contact_count()) << "tick " << tick;
+    for (std::size_t c = 0; c < runs[0]->contact_count(); ++c) {
+      const ContactInfo &a = runs[0]->contact(c), &b = runs[1]->contact(c);
+      ASSERT_TRUE(a.body_a.index == b.body_a.index && a.body_b.index == b.body_b.index &&
+                  std::memcmp(&a.point_m, &b.point_m, sizeof(Vec3)) == 0 &&
+                  std::memcmp(&a.normal, &b.normal, sizeof(Vec3)) == 0 &&
+                  std::memcmp(&a.force_N, &b.force_N, sizeof(Vec3)) == 0 &&
+                  std::memcmp(&a.depth_m, &b.depth_m, sizeof(double)) == 0)
+          << "tick " << tick << ", contact " << c;
+      if (a.body_a.index > 0 && a.body_b.index > 0) ++robot_pairs;
+    }
+    most_contacts = std::max(most_contacts, runs[0]->contact_count());
+  }
+  EXPECT_GT(robot_pairs, 100u) << "the robots must meet each other and the things";
+  // Collide's calls: one per whole substep, at least three per split one (begin, the parts
+  // the calling thread took, end).
+  std::size_t calls = 0;
+  for (const auto& stage : runs[1]->stage_times())
+    if (stage.stage == "collide") calls = static_cast<std::size_t>(stage.calls);
+  EXPECT_GT(calls, static_cast<std::size_t>(ticks)) << "no substep split its contacts";
+  EXPECT_LT(calls, static_cast<std::size_t>(3 * ticks)) << "no substep was computed whole";
+  EXPECT_GT(most_contacts, 18u);
 }
 
 /// The error of a run whose robots in `blown` get an absurd torque (empty: none thrown).
