@@ -45,6 +45,21 @@ void sort_nearly_sorted(It first, It last, Less less) {
   }
 }
 
+/// Merges runs r = 0 … next.size() − 1, each sorted by key(r, i) for i < size(r), calling
+/// take(r, i) in increasing key order (keys distinct across runs).
+template <class Size, class Key, class Take>
+void merge_runs(std::vector<std::size_t>& next, Size size, Key key, Take take) {
+  std::fill(next.begin(), next.end(), 0);
+  const std::size_t runs = next.size();
+  for (;;) {
+    std::size_t best = runs;
+    for (std::size_t r = 0; r < runs; ++r)
+      if (next[r] < size(r) && (best == runs || key(r, next[r]) < key(best, next[best]))) best = r;
+    if (best == runs) return;
+    take(best, next[best]++);
+  }
+}
+
 bool off_diagonal_zero(const Mat3& m) {
   return m.m[0][1] == 0 && m.m[0][2] == 0 && m.m[1][0] == 0 && m.m[1][2] == 0 && m.m[2][0] == 0 &&
          m.m[2][1] == 0;
@@ -217,6 +232,7 @@ bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
 }
 
 void ContactWorld::reset() {
+  placed_by_parts_ = false;
   memory_.clear();
   next_memory_.clear();
   info_.clear();
@@ -230,6 +246,13 @@ void ContactWorld::place(const Pose* poses) {
     to_body_[b] = poses[b].rotation.transposed();
   placement_.update(table_, poses);
   pairs_ = &query_.overlapping_pairs(placement_);
+}
+
+void ContactWorld::place_part(int p, const Pose* poses) {
+  const PartContacts& part = parts_[static_cast<std::size_t>(p)];
+  for (const std::int32_t b : part.bodies)
+    to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
+  placement_.update(table_, poses, part.shapes);
 }
 
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
@@ -252,7 +275,7 @@ void ContactWorld::whole_contacts(const Pose* poses, const Twist* twists, double
   const std::size_t pair_run_begin = next_memory_.size();
   for (std::size_t k = 0; k < pairs_->size(); ++k)
     pair_contacts(sink, 0, static_cast<std::int32_t>(k), nullptr, poses, twists, step_s, wrenches);
-  keep_sorted_memory(pair_run_begin);
+  sort_memory(next_memory_, pair_run_begin, memory_);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
@@ -293,8 +316,10 @@ void ContactWorld::split_by_parts(const std::vector<int>& part_of_body, int part
   const auto& moving = table_.moving();
   for (std::size_t k = 0; k < moving.size(); ++k) {
     const std::int32_t b = table_.bodies()[static_cast<std::size_t>(moving[k])];
-    parts_[static_cast<std::size_t>(part_of_body_[static_cast<std::size_t>(b)])].moving.push_back(
-        static_cast<std::int32_t>(k));
+    PartContacts& part =
+        parts_[static_cast<std::size_t>(part_of_body_[static_cast<std::size_t>(b)])];
+    part.moving.push_back(static_cast<std::int32_t>(k));
+    part.shapes.push_back(moving[k]);
   }
   for (std::size_t b = 1; b < part_of_body_.size(); ++b)
     parts_[static_cast<std::size_t>(part_of_body_[b])].bodies.push_back(
@@ -304,6 +329,7 @@ void ContactWorld::split_by_parts(const std::vector<int>& part_of_body, int part
     part.memory.reserve(next_memory_.capacity());
     part.info.reserve(info_.capacity());
     part.order.reserve(info_.capacity());
+    part.sorted.reserve(next_memory_.capacity());
     part.fcl = std::make_unique<collision::FclPairs>();
   }
   merge_next_.assign(parts_.size(), 0);
@@ -325,8 +351,13 @@ bool ContactWorld::deal_pairs() {
 }
 
 bool ContactWorld::begin_parts(const Pose* poses, const Twist* twists, double step_s,
-                               Wrench* wrenches) {
-  place(poses);
+                               Wrench* wrenches, bool bodies_unmoved) {
+  if (bodies_unmoved && placed_by_parts_) {
+    pairs_ = &query_.overlapping_pairs(placement_);
+  } else {
+    place(poses);
+  }
+  placed_by_parts_ = !parts_.empty();  // the coming pool run places them for the next substep
   if (parts_.empty() || !deal_pairs()) {
     whole_contacts(poses, twists, step_s, wrenches);
     return false;
@@ -352,48 +383,41 @@ void ContactWorld::part(int p) {
   for (const std::int32_t k : part.moving)
     plane_contacts(sink, k, moving[static_cast<std::size_t>(k)], part_poses_, part_twists_,
                    part_step_s_, part_wrenches_);
+  const std::size_t pair_run_begin = part.memory.size();
   const auto past_planes = static_cast<std::int32_t>(moving.size());
   for (const std::int32_t k : part.pairs)
     pair_contacts(sink, past_planes + k, k, part.fcl.get(), part_poses_, part_twists_, part_step_s_,
                   part_wrenches_);
+  sort_memory(part.memory, pair_run_begin, part.sorted);
 }
 
 void ContactWorld::end_parts() {
-  // The parts' contacts in the whole order: each part's come in that order, and no two parts
-  // share a shape or a pair, so taking the lowest next one gives whole_contacts()' lists.
-  next_memory_.clear();
+  // The parts' contacts in the whole order, and their memory by key: each part's come in
+  // those orders, and no two parts share a shape, a pair or a key, so taking the lowest next
+  // one gives whole_contacts()' lists.
   info_.clear();
-  std::fill(merge_next_.begin(), merge_next_.end(), 0);
-  const auto past_planes = static_cast<std::int32_t>(table_.moving().size());
-  std::size_t pair_run_begin = 0;
-  for (;;) {
-    std::size_t best = parts_.size();
-    for (std::size_t p = 0; p < parts_.size(); ++p) {
-      const std::size_t next = merge_next_[p];
-      if (next < parts_[p].order.size() &&
-          (best == parts_.size() || parts_[p].order[next] < parts_[best].order[merge_next_[best]]))
-        best = p;
-    }
-    if (best == parts_.size()) break;
-    const PartContacts& part = parts_[best];
-    const std::size_t next = merge_next_[best]++;
-    if (part.order[next] < past_planes) ++pair_run_begin;
-    next_memory_.push_back(part.memory[next]);
-    info_.push_back(part.info[next]);
-  }
-  keep_sorted_memory(pair_run_begin);
+  merge_runs(
+      merge_next_, [&](std::size_t p) { return parts_[p].order.size(); },
+      [&](std::size_t p, std::size_t i) { return parts_[p].order[i]; },
+      [&](std::size_t p, std::size_t i) { info_.push_back(parts_[p].info[i]); });
+  memory_.clear();
+  merge_runs(
+      merge_next_, [&](std::size_t p) { return parts_[p].sorted.size(); },
+      [&](std::size_t p, std::size_t i) { return parts_[p].sorted[i].key; },
+      [&](std::size_t p, std::size_t i) { memory_.push_back(parts_[p].sorted[i]); });
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
-void ContactWorld::keep_sorted_memory(std::size_t pair_run_begin) {
+void ContactWorld::sort_memory(std::vector<Memory>& runs, std::size_t pair_run_begin,
+                               std::vector<Memory>& sorted) {
   // The plane run comes shape by shape, corner by corner: sorted. The pair run follows the
   // sorted pair list but for pairs with a static first shape and FCL's renumbered points.
   auto less = [](const Memory& x, const Memory& y) { return x.key < y.key; };
-  const auto middle = next_memory_.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
-  sort_nearly_sorted(next_memory_.begin(), middle, less);
-  sort_nearly_sorted(middle, next_memory_.end(), less);
-  memory_.resize(next_memory_.size());
-  std::merge(next_memory_.begin(), middle, middle, next_memory_.end(), memory_.begin(), less);
+  const auto middle = runs.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
+  sort_nearly_sorted(runs.begin(), middle, less);
+  sort_nearly_sorted(middle, runs.end(), less);
+  sorted.resize(runs.size());
+  std::merge(runs.begin(), middle, middle, runs.end(), sorted.begin(), less);
 }
 
 std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(

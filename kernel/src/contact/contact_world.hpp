@@ -47,9 +47,10 @@ class ContactWorld final : public model::SubstepForces {
   /// pair across parts) is computed whole, serially; either way the forces, the memory and the
   /// contact list are compute()'s to the bit (contacts are gathered in its order).
   void split_by_parts(const std::vector<int>& part_of_body, int parts);
-  bool begin_parts(const Pose* poses, const Twist* twists, double step_s,
-                   Wrench* wrenches) override;
+  bool begin_parts(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches,
+                   bool bodies_unmoved) override;
   void part(int part) override;
+  void place_part(int part, const Pose* poses) override;
   void end_parts() override;
 
   /// Contacts of the last substep.
@@ -84,11 +85,13 @@ class ContactWorld final : public model::SubstepForces {
   /// One part's contacts of the substep (split_by_parts).
   struct PartContacts {
     std::vector<std::int32_t> moving;  // the part's indices into table_.moving()
+    std::vector<std::int32_t> shapes;  // and those shapes
     std::vector<std::int32_t> bodies;  // the part's kernel bodies
     std::vector<std::int32_t> pairs;   // this substep: the part's indices into the pair list
     std::vector<Memory> memory;
     std::vector<ContactInfo> info;
     std::vector<std::int32_t> order;
+    std::vector<Memory> sorted;  // memory by key
     std::size_t cursor = 0;
     std::unique_ptr<collision::FclPairs> fcl;  // the narrow phase's buffers, the part's own
   };
@@ -125,8 +128,9 @@ class ContactWorld final : public model::SubstepForces {
   /// forward from `cursor`, the last one asked for: the points come in nearly increasing key
   /// order.
   std::vector<Memory>::const_iterator remembered(std::uint64_t key, std::size_t& cursor) const;
-  /// Sorts next_memory_ (its plane run, then its pair run, each nearly sorted) into memory_.
-  void keep_sorted_memory(std::size_t pair_run_begin);
+  /// Sorts `runs` (its plane run, then its pair run, each nearly sorted) into `sorted`.
+  static void sort_memory(std::vector<Memory>& runs, std::size_t pair_run_begin,
+                          std::vector<Memory>& sorted);
 
   const collision::ShapeTable& table_;
   std::vector<double> restitution_beta_;        // per shape
@@ -162,6 +166,7 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<PartContacts> parts_;
   std::vector<std::int32_t> part_of_body_;
   std::vector<std::size_t> merge_next_;  // end_parts(): per part, its next contact
+  bool placed_by_parts_ = false;         // the last pool run placed the shapes ahead
   const Pose* part_poses_ = nullptr;
   const Twist* part_twists_ = nullptr;
   double part_step_s_ = 0;

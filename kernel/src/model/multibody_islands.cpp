@@ -263,12 +263,9 @@ bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
 
 // --- The parallel substep ----------------------------------------------------------------------
 
-void MultibodyIslands::run_substep(int substep, PartStages stages, PartContacts contacts,
-                                   void* context) {
+void MultibodyIslands::run_substep(int substep, const PartWork& work) {
   substep_ = substep;
-  stages_ = stages;
-  contacts_ = contacts;
-  stages_context_ = context;
+  work_ = work;
   bodies_fresh_ = read_fresh_ = false;
   try {
     pool_->run(&MultibodyIslands::run_part, this, parts());
@@ -287,11 +284,13 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, PartContacts 
 void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
-  if (me.contacts_) me.contacts_(me.stages_context_, p, thread == 0);
+  const PartWork& work = me.work_;
+  if (work.before) work.before(work.context, p, thread == 0);
   me.load_part(part, me.substep_);
-  me.stages_(me.stages_context_, *part.multibody, thread == 0, me.substep_);
+  work.stages(work.context, *part.multibody, thread == 0, me.substep_);
   me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)
   if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
+  if (work.after) work.after(work.context, p, thread == 0);
 }
 
 void MultibodyIslands::load_part(Part& part, int substep) {
