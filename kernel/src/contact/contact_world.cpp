@@ -46,17 +46,35 @@ void sort_nearly_sorted(It first, It last, Less less) {
 }
 
 /// Merges runs r = 0 … next.size() − 1, each sorted by key(r, i) for i < size(r), calling
-/// take(r, i) in increasing key order (keys distinct across runs).
+/// take(r, i) in increasing key order (keys distinct across runs). The parts interleave by
+/// island, so a run is taken for as long as it stays below the others' next key.
 template <class Size, class Key, class Take>
 void merge_runs(std::vector<std::size_t>& next, Size size, Key key, Take take) {
   std::fill(next.begin(), next.end(), 0);
   const std::size_t runs = next.size();
   for (;;) {
-    std::size_t best = runs;
-    for (std::size_t r = 0; r < runs; ++r)
-      if (next[r] < size(r) && (best == runs || key(r, next[r]) < key(best, next[best]))) best = r;
+    std::size_t best = runs, second = runs;  // the lowest next key and the one after it
+    for (std::size_t r = 0; r < runs; ++r) {
+      if (next[r] >= size(r)) continue;
+      if (best == runs || key(r, next[r]) < key(best, next[best])) {
+        second = best;
+        best = r;
+      } else if (second == runs || key(r, next[r]) < key(second, next[second])) {
+        second = r;
+      }
+    }
     if (best == runs) return;
-    take(best, next[best]++);
+    const std::size_t end = size(best);
+    std::size_t& i = next[best];
+    if (second == runs) {
+      for (; i < end; ++i)
+        take(best, i);
+      return;
+    }
+    const auto limit = key(second, next[second]);
+    do
+      take(best, i++);
+    while (i < end && key(best, i) < limit);
   }
 }
 
