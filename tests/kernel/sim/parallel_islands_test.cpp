@@ -25,10 +25,14 @@ bool two_threads_available() {
   return std::thread::hardware_concurrency() >= 2;
 }
 
-std::unique_ptr<Simulation> load_driven(const std::filesystem::path& scene, int threads) {
+std::unique_ptr<Simulation> load_on(const std::filesystem::path& scene, int threads) {
   SimulationOptions o;
   o.threads = threads;
-  auto sim = Simulation::load(scene, o);
+  return Simulation::load(scene, o);
+}
+
+std::unique_ptr<Simulation> load_driven(const std::filesystem::path& scene, int threads) {
+  auto sim = load_on(scene, threads);
   // Each robot's wheels at their own voltages: the robots turn on circles of their own.
   std::size_t k = 0;
   for (std::size_t i = 0; i < sim->input_count(); ++i) {
@@ -77,12 +81,8 @@ TEST(ParallelIslands, SixtyFourRobotsMostlyHeldByFrictionGiveTheSerialSignalsBit
   // axis solve once ran until every tree of the system converged, so a part's robots took
   // other sweep counts than in the whole system (last digits from tick 252 on).
   const auto robots64 = std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_64";
-  std::unique_ptr<Simulation> runs[2];
-  for (int threads = 1; threads <= 2; ++threads) {
-    SimulationOptions o;
-    o.threads = threads;
-    auto& sim = runs[threads - 1];
-    sim = Simulation::load(robots64, o);
+  std::unique_ptr<Simulation> runs[2] = {load_on(robots64, 1), load_on(robots64, 2)};
+  for (auto& sim : runs) {
     sim->set_input("robots/r3/axes/left/ref_voltage", 5.0);
     sim->set_input("robots/r40/axes/right/ref_voltage", -4.0);
   }
@@ -118,12 +118,8 @@ TEST(ParallelIslands, ContactsSplitByPartsOrWholeGiveTheSerialContactsBitForBit)
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   const auto scene =
       std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/robots_meeting";
-  std::unique_ptr<Simulation> runs[2];
-  for (int threads = 1; threads <= 2; ++threads) {
-    SimulationOptions o;
-    o.threads = threads;
-    auto& sim = runs[threads - 1];
-    sim = Simulation::load(scene, o);
+  std::unique_ptr<Simulation> runs[2] = {load_on(scene, 1), load_on(scene, 2)};
+  for (auto& sim : runs) {
     for (std::size_t i = 0; i < sim->input_count(); ++i) {
       const std::string& name = sim->input_info(i).name;
       if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
@@ -176,9 +172,7 @@ TEST(ParallelIslands, ContactsSplitByPartsOrWholeGiveTheSerialContactsBitForBit)
 
 /// The error of a run whose robots in `blown` get an absurd torque (empty: none thrown).
 std::string divergence(int threads, const std::vector<std::string>& blown) {
-  SimulationOptions o;
-  o.threads = threads;
-  auto sim = Simulation::load(kRobots16, o);
+  auto sim = load_on(kRobots16, threads);
   for (const auto& robot : blown)
     sim->set_input("robots/" + robot + "/axes/left/ref_torque", 1e300);
   try {
