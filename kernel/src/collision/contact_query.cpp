@@ -32,7 +32,7 @@ const std::vector<std::pair<std::int32_t, std::int32_t>>& ContactQuery::overlapp
 }
 
 int ContactQuery::pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
-                              std::int32_t b, ContactPoint* out, bool& renumbered, FclPairs* fcl) {
+                              std::int32_t b, ContactPoint* out, bool& renumbered) {
   const Shape& sa = table.shapes()[static_cast<std::size_t>(a)];
   const Shape& sb = table.shapes()[static_cast<std::size_t>(b)];
   const Pose& pa = placement.world()[a];
@@ -48,7 +48,7 @@ int ContactQuery::pair_points(const ShapeTable& table, const Placement& placemen
     return n;
   }
   renumbered = true;
-  return (fcl ? *fcl : fcl_).collide(sa, pa, sb, pb, out);
+  return fcl_.collide(sa, pa, sb, pb, out);
 }
 
 }  // namespace s2sim::collision

@@ -59,10 +59,9 @@ class ContactQuery {
 
   /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
   /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
-  /// gives them stable feature ids. `fcl`: the narrow phase's buffers to use (a thread's own),
-  /// nullptr for the query's.
+  /// gives them stable feature ids.
   int pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
-                  std::int32_t b, ContactPoint* out, bool& renumbered, FclPairs* fcl = nullptr);
+                  std::int32_t b, ContactPoint* out, bool& renumbered);
 
  private:
   int count_ = 0;

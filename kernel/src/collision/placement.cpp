@@ -14,16 +14,11 @@ Placement::Placement(const ShapeTable& table, double margin)
 }
 
 void Placement::update(const ShapeTable& table, const Pose* poses) {
-  update(table, poses, table.moving());
-}
-
-void Placement::update(const ShapeTable& table, const Pose* poses,
-                       const std::vector<std::int32_t>& moving) {
   const Shape* shapes = table.shapes().data();
   const std::int32_t* body = table.bodies().data();
   const Pose* local = table.local_poses().data();
   const char* identity = table.local_identity().data();
-  for (const std::int32_t s : moving) {
+  for (const std::int32_t s : table.moving()) {
     const auto i = static_cast<std::size_t>(s);
     world_[i] = identity[i] ? poses[body[i]] : poses[body[i]] * local[i];
     box_[i] = bounds(shapes[i], world_[i], margin_);

@@ -20,8 +20,6 @@ class Placement {
 
   /// `poses` per kernel body (0 = world).
   void update(const ShapeTable& table, const Pose* poses);
-  /// Places only `shapes` (moving ones; a part of the scene, from its own thread).
-  void update(const ShapeTable& table, const Pose* poses, const std::vector<std::int32_t>& shapes);
 
   const Pose* world() const { return world_.data(); }
   const Aabb* boxes() const { return box_.data(); }

@@ -45,39 +45,6 @@ void sort_nearly_sorted(It first, It last, Less less) {
   }
 }
 
-/// Merges runs r = 0 … next.size() − 1, each sorted by key(r, i) for i < size(r), calling
-/// take(r, i) in increasing key order (keys distinct across runs). The parts interleave by
-/// island, so a run is taken for as long as it stays below the others' next key.
-template <class Size, class Key, class Take>
-void merge_runs(std::vector<std::size_t>& next, Size size, Key key, Take take) {
-  std::fill(next.begin(), next.end(), 0);
-  const std::size_t runs = next.size();
-  for (;;) {
-    std::size_t best = runs, second = runs;  // the lowest next key and the one after it
-    for (std::size_t r = 0; r < runs; ++r) {
-      if (next[r] >= size(r)) continue;
-      if (best == runs || key(r, next[r]) < key(best, next[best])) {
-        second = best;
-        best = r;
-      } else if (second == runs || key(r, next[r]) < key(second, next[second])) {
-        second = r;
-      }
-    }
-    if (best == runs) return;
-    const std::size_t end = size(best);
-    std::size_t& i = next[best];
-    if (second == runs) {
-      for (; i < end; ++i)
-        take(best, i);
-      return;
-    }
-    const auto limit = key(second, next[second]);
-    do
-      take(best, i++);
-    while (i < end && key(best, i) < limit);
-  }
-}
-
 bool off_diagonal_zero(const Mat3& m) {
   return m.m[0][1] == 0 && m.m[0][2] == 0 && m.m[1][0] == 0 && m.m[1][2] == 0 && m.m[2][0] == 0 &&
          m.m[2][1] == 0;
@@ -250,7 +217,6 @@ bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
 }
 
 void ContactWorld::reset() {
-  placed_by_parts_ = false;
   memory_.clear();
   next_memory_.clear();
   info_.clear();
@@ -258,190 +224,59 @@ void ContactWorld::reset() {
   query_.reset();
 }
 
-void ContactWorld::place(const Pose* poses) {
+void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
+                           Wrench* wrenches) {
   const std::size_t body_count = apparent_mass_kg_.size();
+  std::fill(wrenches, wrenches + body_count, Wrench{});
   for (std::size_t b = 1; b < body_count; ++b)
     to_body_[b] = poses[b].rotation.transposed();
   placement_.update(table_, poses);
-  pairs_ = &query_.overlapping_pairs(placement_);
-}
-
-void ContactWorld::place_part(int p, const Pose* poses) {
-  const PartContacts& part = parts_[static_cast<std::size_t>(p)];
-  for (const std::int32_t b : part.bodies)
-    to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
-  placement_.update(table_, poses, part.shapes);
-}
-
-void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
-                           Wrench* wrenches) {
-  place(poses);
-  whole_contacts(poses, twists, step_s, wrenches);
-}
-
-void ContactWorld::whole_contacts(const Pose* poses, const Twist* twists, double step_s,
-                                  Wrench* wrenches) {
-  std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
   next_memory_.clear();
   info_.clear();
   memory_cursor_ = 0;
-  Sink sink{next_memory_, info_, nullptr, memory_cursor_};
-  // Moving shapes against the ground and the walls, then the shape pairs.
-  const auto& moving = table_.moving();
-  for (std::size_t k = 0; k < moving.size(); ++k)
-    plane_contacts(sink, static_cast<std::int32_t>(k), moving[k], poses, twists, step_s, wrenches);
+
+  const std::int32_t* body = table_.bodies().data();
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  // Moving shapes against the ground and the walls.
+  for (const std::int32_t s : table_.moving()) {
+    if (fixed_to_world_[body[s]]) continue;
+    collision::ContactQuery::plane_points(
+        table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
+          for (int k = 0; k < n; ++k)
+            add_point(s, p, true, found[k], poses, twists, step_s, wrenches);
+        });
+  }
+  // Shape pairs.
   const std::size_t pair_run_begin = next_memory_.size();
-  for (std::size_t k = 0; k < pairs_->size(); ++k)
-    pair_contacts(sink, 0, static_cast<std::int32_t>(k), nullptr, poses, twists, step_s, wrenches);
-  sort_memory(next_memory_, pair_run_begin, memory_);
-  info_count_ = static_cast<std::int32_t>(info_.size());
-}
-
-void ContactWorld::plane_contacts(Sink& sink, std::int32_t order, std::int32_t s, const Pose* poses,
-                                  const Twist* twists, double step_s, Wrench* wrenches) {
-  if (fixed_to_world_[table_.bodies()[static_cast<std::size_t>(s)]]) return;
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  collision::ContactQuery::plane_points(
-      table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
-        for (int k = 0; k < n; ++k)
-          add_point(sink, order, s, p, true, found[k], poses, twists, step_s, wrenches);
-      });
-}
-
-void ContactWorld::pair_contacts(Sink& sink, std::int32_t order, std::int32_t pair,
-                                 collision::FclPairs* fcl, const Pose* poses, const Twist* twists,
-                                 double step_s, Wrench* wrenches) {
-  const auto [i, j] = (*pairs_)[static_cast<std::size_t>(pair)];
-  const std::int32_t* body = table_.bodies().data();
-  if (excluded(body[i], body[j])) return;
-  // Shape a must move: a static shape is always b.
-  const bool swap = body[i] == 0;
-  const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-  bool renumbered = false;
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered, fcl);
-  if (renumbered && n > 0) match_features(ia, ib, points, n, sink.cursor);
-  for (int k = 0; k < n; ++k)
-    add_point(sink, order, ia, ib, false, points[k], poses, twists, step_s, wrenches);
-}
-
-void ContactWorld::split_by_parts(const std::vector<int>& part_of_body, int parts) {
-  parts_.clear();
-  if (parts < 2) return;
-  parts_.resize(static_cast<std::size_t>(parts));
-  part_of_body_.assign(part_of_body.begin(), part_of_body.end());
-  part_of_body_.resize(apparent_mass_kg_.size(), 0);
-  const auto& moving = table_.moving();
-  for (std::size_t k = 0; k < moving.size(); ++k) {
-    const std::int32_t b = table_.bodies()[static_cast<std::size_t>(moving[k])];
-    PartContacts& part =
-        parts_[static_cast<std::size_t>(part_of_body_[static_cast<std::size_t>(b)])];
-    part.moving.push_back(static_cast<std::int32_t>(k));
-    part.shapes.push_back(moving[k]);
-  }
-  for (std::size_t b = 1; b < part_of_body_.size(); ++b)
-    parts_[static_cast<std::size_t>(part_of_body_[b])].bodies.push_back(
-        static_cast<std::int32_t>(b));
-  for (auto& part : parts_) {
-    part.pairs.reserve(query_.max_pairs() + 1);
-    part.memory.reserve(next_memory_.capacity());
-    part.info.reserve(info_.capacity());
-    part.order.reserve(info_.capacity());
-    part.sorted.reserve(next_memory_.capacity());
-    part.fcl = std::make_unique<collision::FclPairs>();
-  }
-  merge_next_.assign(parts_.size(), 0);
-}
-
-bool ContactWorld::deal_pairs() {
-  for (auto& part : parts_)
-    part.pairs.clear();
-  const std::int32_t* body = table_.bodies().data();
-  for (std::size_t k = 0; k < pairs_->size(); ++k) {
-    const auto [i, j] = (*pairs_)[k];
+  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
-    const std::int32_t a = body[i] == 0 ? body[j] : body[i], b = body[i] == 0 ? 0 : body[j];
-    const std::int32_t part = part_of_body_[static_cast<std::size_t>(a)];
-    if (b != 0 && part_of_body_[static_cast<std::size_t>(b)] != part) return false;
-    parts_[static_cast<std::size_t>(part)].pairs.push_back(static_cast<std::int32_t>(k));
+    // Shape a must move: a static shape is always b.
+    const bool swap = body[i] == 0;
+    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
+    bool renumbered = false;
+    const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
+    if (renumbered && n > 0) match_features(ia, ib, points, n);
+    for (int k = 0; k < n; ++k)
+      add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
   }
-  return true;
-}
-
-bool ContactWorld::begin_parts(const Pose* poses, const Twist* twists, double step_s,
-                               Wrench* wrenches, bool bodies_unmoved) {
-  if (bodies_unmoved && placed_by_parts_) {
-    pairs_ = &query_.overlapping_pairs(placement_);
-  } else {
-    place(poses);
-  }
-  placed_by_parts_ = !parts_.empty();  // the coming pool run places them for the next substep
-  if (parts_.empty() || !deal_pairs()) {
-    whole_contacts(poses, twists, step_s, wrenches);
-    return false;
-  }
-  wrenches[0] = Wrench{};
-  part_poses_ = poses;
-  part_twists_ = twists;
-  part_step_s_ = step_s;
-  part_wrenches_ = wrenches;
-  return true;
-}
-
-void ContactWorld::part(int p) {
-  PartContacts& part = parts_[static_cast<std::size_t>(p)];
-  for (const std::int32_t b : part.bodies)
-    part_wrenches_[b] = Wrench{};
-  part.memory.clear();
-  part.info.clear();
-  part.order.clear();
-  part.cursor = 0;
-  Sink sink{part.memory, part.info, &part.order, part.cursor};
-  const auto& moving = table_.moving();
-  for (const std::int32_t k : part.moving)
-    plane_contacts(sink, k, moving[static_cast<std::size_t>(k)], part_poses_, part_twists_,
-                   part_step_s_, part_wrenches_);
-  const std::size_t pair_run_begin = part.memory.size();
-  const auto past_planes = static_cast<std::int32_t>(moving.size());
-  for (const std::int32_t k : part.pairs)
-    pair_contacts(sink, past_planes + k, k, part.fcl.get(), part_poses_, part_twists_, part_step_s_,
-                  part_wrenches_);
-  sort_memory(part.memory, pair_run_begin, part.sorted);
-}
-
-void ContactWorld::end_parts() {
-  // The parts' contacts in the whole order, and their memory by key: each part's come in
-  // those orders, and no two parts share a shape, a pair or a key, so taking the lowest next
-  // one gives whole_contacts()' lists.
-  info_.clear();
-  merge_runs(
-      merge_next_, [&](std::size_t p) { return parts_[p].order.size(); },
-      [&](std::size_t p, std::size_t i) { return parts_[p].order[i]; },
-      [&](std::size_t p, std::size_t i) { info_.push_back(parts_[p].info[i]); });
-  memory_.clear();
-  merge_runs(
-      merge_next_, [&](std::size_t p) { return parts_[p].sorted.size(); },
-      [&](std::size_t p, std::size_t i) { return parts_[p].sorted[i].key; },
-      [&](std::size_t p, std::size_t i) { memory_.push_back(parts_[p].sorted[i]); });
+  keep_sorted_memory(pair_run_begin);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
-void ContactWorld::sort_memory(std::vector<Memory>& runs, std::size_t pair_run_begin,
-                               std::vector<Memory>& sorted) {
+void ContactWorld::keep_sorted_memory(std::size_t pair_run_begin) {
   // The plane run comes shape by shape, corner by corner: sorted. The pair run follows the
   // sorted pair list but for pairs with a static first shape and FCL's renumbered points.
   auto less = [](const Memory& x, const Memory& y) { return x.key < y.key; };
-  const auto middle = runs.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
-  sort_nearly_sorted(runs.begin(), middle, less);
-  sort_nearly_sorted(middle, runs.end(), less);
-  sorted.resize(runs.size());
-  std::merge(runs.begin(), middle, middle, runs.end(), sorted.begin(), less);
+  const auto middle = next_memory_.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
+  sort_nearly_sorted(next_memory_.begin(), middle, less);
+  sort_nearly_sorted(middle, next_memory_.end(), less);
+  memory_.resize(next_memory_.size());
+  std::merge(next_memory_.begin(), middle, middle, next_memory_.end(), memory_.begin(), less);
 }
 
-std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(
-    std::uint64_t key, std::size_t& cursor) const {
+std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(std::uint64_t key) {
   // Everything before `lo` is below key; gallop forward, then search the last stride.
-  std::size_t lo = cursor;
+  std::size_t lo = memory_cursor_;
   if (lo > memory_.size() || (lo > 0 && memory_[lo - 1].key >= key)) lo = 0;
   std::size_t hi = lo, stride = 1;
   while (hi < memory_.size() && memory_[hi].key < key) {
@@ -453,17 +288,17 @@ std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(
   const auto found = std::lower_bound(memory_.cbegin() + static_cast<std::ptrdiff_t>(lo),
                                       memory_.cbegin() + static_cast<std::ptrdiff_t>(hi), key,
                                       [](const Memory& m, std::uint64_t k) { return m.key < k; });
-  cursor = static_cast<std::size_t>(found - memory_.cbegin());
+  memory_cursor_ = static_cast<std::size_t>(found - memory_.cbegin());
   return found;
 }
 
 void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points,
-                                  int count, std::size_t& cursor) const {
+                                  int count) {
   // FCL numbers its points by its own clipping order, which changes as the overlap changes:
   // give each point the id of the remembered point of this pair nearest to it (in a's frame),
   // so that friction memory follows the material point.
   const std::uint64_t prefix = pair_key(shape_a, static_cast<std::uint64_t>(shape_b), 0);
-  const auto first = remembered(prefix, cursor);
+  const auto first = remembered(prefix);
   auto last = first;
   while (last != memory_.end() && (last->key >> 16) == (prefix >> 16))
     ++last;
@@ -493,10 +328,9 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   }
 }
 
-void ContactWorld::add_point(Sink& sink, std::int32_t order, std::int32_t shape_a,
-                             std::int32_t other, bool other_is_plane, const ContactPoint& p,
-                             const Pose* poses, const Twist* twists, double step_s,
-                             Wrench* wrenches) {
+void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
+                             const ContactPoint& p, const Pose* poses, const Twist* twists,
+                             double step_s, Wrench* wrenches) {
   const auto& surfaces = table_.surfaces();
   const auto& bodies = table_.bodies();
   const Pose* world = placement_.world();
@@ -541,12 +375,12 @@ void ContactWorld::add_point(Sink& sink, std::int32_t order, std::int32_t shape_
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  const auto found = remembered(key, sink.cursor);
+  const auto found = remembered(key);
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
   const Vec3 force = contact_force(p, material, kin, law_, !known, state);
   state.local_point_m = world[ia].inverse() * p.point_m;
-  sink.memory.push_back({key, state});
+  next_memory_.push_back({key, state});
 
   Wrench& wa = wrenches[body_a];
   wa.force_N += force;
@@ -563,8 +397,7 @@ void ContactWorld::add_point(Sink& sink, std::int32_t order, std::int32_t shape_
   info.normal = p.normal;
   info.force_N = force;
   info.depth_m = p.depth_m;
-  sink.info.push_back(info);
-  if (sink.order) sink.order->push_back(order);
+  info_.push_back(info);
 }
 
 void ContactWorld::declare_state(sim::StateLayout& layout) {

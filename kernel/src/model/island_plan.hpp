@@ -22,9 +22,11 @@ struct PartPlan {
   std::vector<int> joints;           ///< scene joints the part realises, ascending
 };
 
-/// Deals the islands of `topology` into at most `parts` parts: islands in decreasing weight
-/// (bodies + axes; ties: the island of the lower body first), each to the part with the least
-/// weight so far (ties: the lower part). One part (the whole plan) when `parts` ≤ 1, the scene
+/// Deals the islands of `topology` into at most `parts` parts: islands in kernel order cut into
+/// runs of about equal weight (bodies + axes), so that a part's bodies lie together, when no
+/// part is then heavier than by the greedy deal; else the greedy deal: islands in decreasing
+/// weight (ties: the island of the lower body first), each to the part with the least weight
+/// so far (ties: the lower part). One part (the whole plan) when `parts` ≤ 1, the scene
 /// has fewer than two islands, or it has a loop-closing joint or a Ball joint anywhere (one
 /// system's scene-wide policies then decide last bits: island_plan.cpp).
 std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,

@@ -263,9 +263,10 @@ bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
 
 // --- The parallel substep ----------------------------------------------------------------------
 
-void MultibodyIslands::run_substep(int substep, const PartWork& work) {
+void MultibodyIslands::run_substep(int substep, PartStages stages, void* context) {
   substep_ = substep;
-  work_ = work;
+  stages_ = stages;
+  stages_context_ = context;
   bodies_fresh_ = read_fresh_ = false;
   try {
     pool_->run(&MultibodyIslands::run_part, this, parts());
@@ -284,13 +285,10 @@ void MultibodyIslands::run_substep(int substep, const PartWork& work) {
 void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
-  const PartWork& work = me.work_;
-  if (work.before) work.before(work.context, p, thread == 0);
   me.load_part(part, me.substep_);
-  work.stages(work.context, *part.multibody, thread == 0, me.substep_);
+  me.stages_(me.stages_context_, *part.multibody, thread == 0, me.substep_);
   me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)
   if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
-  if (work.after) work.after(work.context, p, thread == 0);
 }
 
 void MultibodyIslands::load_part(Part& part, int substep) {

@@ -26,16 +26,6 @@ class MultibodyIslands {
   /// one that called run_substep.
   using PartStages = void (*)(void* context, Multibody& multibody, bool calling_thread,
                               int substep);
-  /// Work on a part's contacts in a substep (SubstepForces::part, place_part), on the same
-  /// thread as its stages.
-  using PartContacts = void (*)(void* context, int part, bool calling_thread);
-  /// What a substep's pool run does for each part, in this order (null hooks are skipped).
-  struct PartWork {
-    PartContacts before = nullptr;  ///< before the part takes its loads: its contacts
-    PartStages stages = nullptr;
-    PartContacts after = nullptr;  ///< after its bodies are written back (current_bodies())
-    void* context = nullptr;
-  };
 
   /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
   /// has fewer islands; threads ≤ 1: one). Throws what Multibody's constructor throws.
@@ -49,8 +39,6 @@ class MultibodyIslands {
   /// The number of Simbody systems (and threads) stepping the scene.
   int parts() const { return static_cast<int>(parts_.size()); }
   Multibody& part(int p) { return *parts_[static_cast<std::size_t>(p)].multibody; }
-  /// Per kernel body, the part that integrates it (parts() > 1; empty with one part).
-  const std::vector<int>& part_of_body() const { return part_of_body_; }
 
   // --- Multibody's interface, scene-wide (multibody.hpp says what each does) -----------------
   int body_count() const { return body_count_; }
@@ -87,15 +75,12 @@ class MultibodyIslands {
   bool move_body(int body, const Pose& pose);
   bool set_body_velocity(int body, const Twist& twist);
 
-  /// Substep `substep` of the tick for every part at once (parts() > 1): `work.before`, the
-  /// part's loads taken from the scene-wide arrays (on the first substep) and the contact
-  /// wrenches, then `work.stages`, then its bodies (and after the last substep its axes,
-  /// drives and reactions) written back, then `work.after`. Exceptions: the lowest part's; a
-  /// non-finite state names the first body in kernel order, as the serial run does.
-  void run_substep(int substep, const PartWork& work);
-  /// Whether current_bodies() holds the state without copying it again: nothing moved a body
-  /// since the last substep (a place, a move, a velocity set, a reset or a restore).
-  bool bodies_fresh() const { return parts() > 1 && bodies_fresh_; }
+  /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
+  /// taken from the scene-wide arrays (on the first substep) and the contact wrenches, then
+  /// `stages`, then its bodies (and after the last substep its axes, drives and reactions)
+  /// written back. Exceptions: the lowest part's; a non-finite state names the first body in
+  /// kernel order, as the serial run does.
+  void run_substep(int substep, PartStages stages, void* context);
 
  private:
   struct Part {
@@ -144,7 +129,8 @@ class MultibodyIslands {
   mutable bool read_fresh_ = false;  // the parts' read scratch holds it too (for read())
   // The running substep (run_substep).
   int substep_ = 0;
-  PartWork work_;
+  PartStages stages_ = nullptr;
+  void* stages_context_ = nullptr;
 };
 
 }  // namespace s2sim::model

@@ -155,7 +155,6 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   for (const auto& [body, input] : m.belt_speed_inputs)
     m.contacts->set_belt_speed_input(body, input);
-  m.contacts->split_by_parts(m.multibody->part_of_body(), m.multibody->parts());
   m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);

@@ -72,31 +72,10 @@ void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) 
   }
 }
 
-/// What the parts' callbacks need (MultibodyIslands::run_substep).
-struct PartContext {
-  model::SubstepForces* contact;
-  StageProfile* profile;
-  const Pose* poses;  // the scene-wide bodies the parts write back (current_bodies())
-};
-
-/// One part's contacts, when the substep's contacts split by parts (SubstepForces::part).
-void part_collide(void* context, int part, bool calling_thread) {
-  const auto& c = *static_cast<PartContext*>(context);
-  StageTimer timer(calling_thread ? c.profile : nullptr, PipelineStage::collide);
-  c.contact->part(part);
-}
-
-/// After a part's substep: its shapes placed at its new poses, for the next substep's collide
-/// (not profiled: about a microsecond, in whichever thread).
-void part_place(void* context, int part, bool /*calling_thread*/) {
-  const auto& c = *static_cast<PartContext*>(context);
-  c.contact->place_part(part, c.poses);
-}
-
 /// One part's substep (MultibodyIslands::run_substep); only the parts the calling thread takes
 /// are profiled (StageProfile is not shared between threads).
 void part_stages(void* context, model::Multibody& mb, bool calling_thread, int substep) {
-  StageProfile* profile = calling_thread ? static_cast<PartContext*>(context)->profile : nullptr;
+  StageProfile* profile = calling_thread ? static_cast<StageProfile*>(context) : nullptr;
   multibody_stages(mb, substep, profile);
   if (substep == mb.substeps() - 1) {
     StageTimer timer(profile, PipelineStage::finish);
@@ -144,29 +123,10 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
 void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
                   StageProfile* profile) {
   if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
-  PartContext context{contact, profile, nullptr};
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
-      // Contact by parts when no pair lies across two (begin_parts), else whole, here.
-      bool by_parts = false;
-      if (contact) {
-        StageTimer timer(profile, PipelineStage::collide);
-        const bool unmoved = mb.bodies_fresh();
-        const Twist* twists = nullptr;
-        mb.current_bodies(context.poses, twists);
-        by_parts = contact->begin_parts(context.poses, twists, mb.substep_s(),
-                                        mb.use_contact_wrenches(), unmoved);
-      }
-      model::MultibodyIslands::PartWork work;
-      work.before = by_parts ? &part_collide : nullptr;
-      work.stages = &part_stages;
-      work.after = contact ? &part_place : nullptr;
-      work.context = &context;
-      mb.run_substep(k, work);
-      if (by_parts) {
-        StageTimer timer(profile, PipelineStage::collide);
-        contact->end_parts();
-      }
+      collide(mb, contact, profile);
+      mb.run_substep(k, &part_stages, profile);
     }
   } catch (const Error&) {
     throw;

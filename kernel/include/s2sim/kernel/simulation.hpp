@@ -33,8 +33,7 @@ struct SimulationOptions {
   std::optional<int> substeps;
   /// Threads stepping the physics (docs/scheduling.md, "Parallel islands"): the scene's
   /// islands (robots and mechanisms not jointed to each other) are dealt into this many
-  /// Simbody systems stepped at once, each with its own contacts while they do not touch each
-  /// other. From 1 (one system, the default)
+  /// Simbody systems stepped at once; contact stays serial. From 1 (one system, the default)
   /// to the machine's hardware threads (else s2sim::Error, usage). The results do not depend
   /// on it, bit for bit; a snapshot restores only with the same number of parts.
   int threads = 1;
