@@ -9,14 +9,15 @@ namespace {
 /// Below this tangential share of the normal, a cylinder's cap counts as flat on a plane.
 constexpr double kFlatCap = 1e-3;
 
-int box_plane(const Vec3& half, const Pose& pose, const Plane& plane, ContactPoint* out) {
+int box_plane(const Vec3& half, const Pose& pose, const Plane& plane, double margin,
+              ContactPoint* out) {
   int n = 0;
   for (int corner = 0; corner < 8; ++corner) {
     const Vec3 local{corner & 1 ? half.x : -half.x, corner & 2 ? half.y : -half.y,
                      corner & 4 ? half.z : -half.z};
     const Vec3 p = pose * local;
     const double depth = plane.offset_m - dot(plane.normal, p);
-    if (depth > 0) out[n++] = {p, plane.normal, depth, corner};
+    if (depth > -margin) out[n++] = {p, plane.normal, depth, corner};
   }
   return n;
 }
@@ -24,7 +25,7 @@ int box_plane(const Vec3& half, const Pose& pose, const Plane& plane, ContactPoi
 /// Per cap, the deepest rim point and the two rim points 120 degrees either side of it: one
 /// point for a rolling wheel's edge, a stable tripod for a cylinder standing on a cap.
 int cylinder_plane(double radius, double half_length, const Pose& pose, const Plane& plane,
-                   bool mid_plane, ContactPoint* out) {
+                   bool mid_plane, double margin, ContactPoint* out) {
   const Vec3 axis = pose.rotation.column(2);
   const Vec3 tangential = plane.normal - dot(plane.normal, axis) * axis;
   const double t = norm(tangential);
@@ -36,7 +37,7 @@ int cylinder_plane(double radius, double half_length, const Pose& pose, const Pl
   if (mid_plane && t > kFlatCap) {
     const Vec3 p = pose.position + down * radius;
     const double depth = plane.offset_m - dot(plane.normal, p);
-    if (depth > 0) out[n++] = {p, plane.normal, depth, 6};
+    if (depth > -margin) out[n++] = {p, plane.normal, depth, 6};
     return n;
   }
   for (int cap = 0; cap < 2; ++cap) {
@@ -44,7 +45,7 @@ int cylinder_plane(double radius, double half_length, const Pose& pose, const Pl
     for (int k = 0; k < 3; ++k) {
       const Vec3 p = center + rim[k] * radius;
       const double depth = plane.offset_m - dot(plane.normal, p);
-      if (depth > 0) out[n++] = {p, plane.normal, depth, cap * 3 + k};
+      if (depth > -margin) out[n++] = {p, plane.normal, depth, cap * 3 + k};
     }
   }
   return n;
@@ -52,17 +53,19 @@ int cylinder_plane(double radius, double half_length, const Pose& pose, const Pl
 
 }  // namespace
 
-int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out) {
+int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out,
+                   double margin_m) {
   switch (shape.kind) {
     case ShapeKind::box:
-      return box_plane(shape.half_extents_m, pose, plane, out);
+      return box_plane(shape.half_extents_m, pose, plane, margin_m, out);
     case ShapeKind::cylinder:
       // Omni and mecanum wheels touch on their rollers' crowns, in the wheel's mid-plane: one
       // point (two tread edges would scrub against each other when the robot turns).
-      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane, shape.mid_plane, out);
+      return cylinder_plane(shape.radius_m, shape.half_length_m, pose, plane, shape.mid_plane,
+                            margin_m, out);
     case ShapeKind::sphere: {
       const double depth = shape.radius_m - (dot(plane.normal, pose.position) - plane.offset_m);
-      if (depth <= 0) return 0;
+      if (depth <= -margin_m) return 0;
       out[0] = {pose.position - plane.normal * shape.radius_m, plane.normal, depth, 0};
       return 1;
     }
@@ -71,18 +74,18 @@ int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, Con
 }
 
 int sphere_sphere(double radius_a, const Vec3& center_a, double radius_b, const Vec3& center_b,
-                  ContactPoint* out) {
+                  ContactPoint* out, double margin_m) {
   const Vec3 d = center_a - center_b;
   const double distance = norm(d);
   const double depth = radius_a + radius_b - distance;
-  if (depth <= 0) return 0;
+  if (depth <= -margin_m) return 0;
   const Vec3 n = distance > 1e-12 ? d / distance : Vec3{0, 0, 1};
   out[0] = {center_a - n * radius_a, n, depth, 0};
   return 1;
 }
 
 int sphere_box(double radius_a, const Vec3& center_a, const Vec3& half_b, const Pose& pose_b,
-               ContactPoint* out) {
+               ContactPoint* out, double margin_m) {
   const Vec3 c = pose_b.rotation.transposed() * (center_a - pose_b.position);
   const Vec3 q{std::clamp(c.x, -half_b.x, half_b.x), std::clamp(c.y, -half_b.y, half_b.y),
                std::clamp(c.z, -half_b.z, half_b.z)};
@@ -103,7 +106,7 @@ int sphere_box(double radius_a, const Vec3& center_a, const Vec3& half_b, const 
               (coordinate < 0 ? -1.0 : 1.0);
     depth = radius_a + gaps[axis];
   }
-  if (depth <= 0) return 0;
+  if (depth <= -margin_m) return 0;
   const Vec3 n = pose_b.rotation * n_local;
   out[0] = {center_a - n * radius_a, n, depth, 0};
   return 1;

@@ -37,18 +37,19 @@ int ContactQuery::pair_points(const ShapeTable& table, const Placement& placemen
   const Shape& sb = table.shapes()[static_cast<std::size_t>(b)];
   const Pose& pa = placement.world()[a];
   const Pose& pb = placement.world()[b];
+  const double margin = placement.margins()[a] + placement.margins()[b];
   renumbered = false;
   if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::sphere)
-    return sphere_sphere(sa.radius_m, pa.position, sb.radius_m, pb.position, out);
+    return sphere_sphere(sa.radius_m, pa.position, sb.radius_m, pb.position, out, margin);
   if (sa.kind == ShapeKind::sphere && sb.kind == ShapeKind::box)
-    return sphere_box(sa.radius_m, pa.position, sb.half_extents_m, pb, out);
+    return sphere_box(sa.radius_m, pa.position, sb.half_extents_m, pb, out, margin);
   if (sa.kind == ShapeKind::box && sb.kind == ShapeKind::sphere) {
-    const int n = sphere_box(sb.radius_m, pb.position, sa.half_extents_m, pa, out);
+    const int n = sphere_box(sb.radius_m, pb.position, sa.half_extents_m, pa, out, margin);
     swap_roles(out, n);
     return n;
   }
   renumbered = true;
-  return fcl_.collide(sa, pa, sb, pb, out);
+  return fcl_.collide(sa, pa, sb, pb, out, margin);
 }
 
 }  // namespace s2sim::collision

@@ -43,7 +43,9 @@ class ContactQuery {
                         const std::function<bool(std::int32_t, std::int32_t)>& may_touch);
 
   /// Points of shape `s` against each static plane p of the table its box reaches: calls
-  /// `sink(p, points, count)` with the points written to `buffer` (kMaxPointsPerPair).
+  /// `sink(p, points, count)` with the points written to `buffer` (kMaxPointsPerPair). With the
+  /// placement's speculative margins, also the points within the shape's margin of the plane
+  /// (negative depth).
   template <class Sink>
   static void plane_points(const ShapeTable& table, const Placement& placement, std::int32_t s,
                            ContactPoint* buffer, Sink&& sink);
@@ -59,7 +61,9 @@ class ContactQuery {
 
   /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
   /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
-  /// gives them stable feature ids.
+  /// gives them stable feature ids. Points within the sum of the two shapes' speculative
+  /// margins are reported with a negative depth, except for pairs with a cylinder (GJK/EPA
+  /// reports touching points only).
   int pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
                   std::int32_t b, ContactPoint* out, bool& renumbered);
 
@@ -85,7 +89,7 @@ void ContactQuery::plane_points(const ShapeTable& table, const Placement& placem
                          std::abs(plane.normal.z) * half.z;
     if (dot(plane.normal, center) - reach >= plane.offset_m) continue;
     const int n = plane_contacts(table.shapes()[static_cast<std::size_t>(s)], placement.world()[s],
-                                 plane, buffer);
+                                 plane, buffer, placement.margins()[s]);
     sink(static_cast<std::int32_t>(p), buffer, n);
   }
 }

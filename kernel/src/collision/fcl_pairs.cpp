@@ -37,7 +37,7 @@ FclPairs::FclPairs() : impl_(std::make_unique<Impl>()) {
 FclPairs::~FclPairs() = default;
 
 int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
-                      ContactPoint* out) {
+                      ContactPoint* out, double margin_m) {
   auto& points = impl_->points;
   points.clear();
   const fcl::Transform3d ta = to_fcl(pose_a), tb = to_fcl(pose_b);
@@ -46,14 +46,16 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
   };
   auto cylinder = [](const Shape& s) { return fcl::Cylinderd(s.radius_m, 2 * s.half_length_m); };
   auto sphere = [](const Shape& s) { return fcl::Sphered(s.radius_m); };
+  double grown = 0;  // b's box grown by this on every side: depths come out that much deeper
   if (a.kind == ShapeKind::box && b.kind == ShapeKind::box) {
     fcl::Vector3d normal;
     double depth = 0;
     int code = 0;
+    grown = margin_m;
+    const Vec3 b_side = (b.half_extents_m + Vec3{grown, grown, grown}) * 2.0;
     fcl::detail::boxBox2(
         fcl::Vector3d(2 * a.half_extents_m.x, 2 * a.half_extents_m.y, 2 * a.half_extents_m.z), ta,
-        fcl::Vector3d(2 * b.half_extents_m.x, 2 * b.half_extents_m.y, 2 * b.half_extents_m.z), tb,
-        normal, &depth, &code, 4, points);
+        fcl::Vector3d(b_side.x, b_side.y, b_side.z), tb, normal, &depth, &code, 4, points);
     if (code == 0) points.clear();
   } else {
     auto dispatch = [&](const auto& sa) {
@@ -83,14 +85,15 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
         break;
     }
   }
-  // FCL: normal from a to b, position midway through the overlap.
+  // FCL: normal from a to b, position midway through the overlap (a's surface point is the
+  // same whether b was grown or not).
   int n = 0;
   for (const auto& p : points) {
     if (n == 4) break;
     if (!(p.penetration_depth > 0)) continue;
     const Vec3 normal_ab = from_fcl(p.normal);
     out[n] = {from_fcl(p.pos) + normal_ab * (0.5 * p.penetration_depth), -normal_ab,
-              p.penetration_depth, n};
+              p.penetration_depth - grown, n};
     ++n;
   }
   return n;

@@ -20,8 +20,10 @@ class FclPairs {
 
   /// Contacts of shape a at `pose_a` against shape b at `pose_b` (world poses); writes at
   /// most 4 points to `out` with the conventions of contact_primitives.hpp and returns the count.
+  /// Two boxes within `margin_m` of each other give their speculative points (negative depth,
+  /// from b's box grown by the margin); other pairs report touching points only.
   int collide(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
-              ContactPoint* out);
+              ContactPoint* out, double margin_m = 0);
 
  private:
   struct Impl;

@@ -20,14 +20,26 @@ class Placement {
 
   /// `poses` per kernel body (0 = world).
   void update(const ShapeTable& table, const Pose* poses);
+  /// The same, and each moving shape's speculative margin (docs/models/contact.md,
+  /// "Speculative contact"): the distance its surface can travel in `step_s` at the speed its
+  /// body's `twists` give it (body origin's velocity, world frame), at most `max_margin_m`,
+  /// and 0 when below `min_margin_m` (slow shapes are placed exactly as by the plain update);
+  /// its box grows by that margin, so that the pairs and planes it may reach within the step
+  /// are found before they touch.
+  void update(const ShapeTable& table, const Pose* poses, const Twist* twists, double step_s,
+              double min_margin_m, double max_margin_m);
 
   const Pose* world() const { return world_.data(); }
   const Aabb* boxes() const { return box_.data(); }
+  /// Per shape, its speculative margin (0 for static shapes and after the plain `update`).
+  const double* margins() const { return speculative_m_.data(); }
 
  private:
   double margin_ = 0;
   std::vector<Pose> world_;
   std::vector<Aabb> box_;
+  std::vector<double> speculative_m_;
+  std::vector<double> reach2_m2_;  // per shape: (its farthest point from its body origin)²
 };
 
 }  // namespace s2sim::collision

@@ -113,34 +113,71 @@ PairMaterial combine_surfaces(const Surface& a, double beta_a, const Surface* b,
 
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
-                   PointState& state) {
+                   PointState& state, PointRole& role) {
   const Vec3& n = point.normal;
   const double m = kin.mass_kg;
+  const double h = kin.step_s;
+  const double approach = -dot(kin.relative_velocity_m_s, n);  // > 0 when closing
+  // The restitution an impact at approach speed v_in rebounds with.
+  auto restitution_at = [&material](double v_in) {
+    return material.restitution > 0 && v_in >= material.restitution_threshold_m_s
+               ? material.restitution
+               : 0.0;
+  };
+  role = PointRole::contact;
+  double normal = 0;
+  bool impact_completed = false;
+  if (state.impact_pending && !new_point) {
+    // Second half of an impact caught before touching: the normal speed becomes e·v_in away
+    // from the surface (0 when plastic), v_in the approach speed before the stop.
+    state.impact_pending = false;
+    const double v_in = state.approach_speed_m_s;
+    normal = std::max(0.0, m * (restitution_at(v_in) * v_in + approach) / h);
+    impact_completed = true;
+    role = PointRole::impact;
+  } else if (point.depth_m <= 0) {
+    // Speculative: a point short of the surface by `gap`. If it cannot reach it within the
+    // step, or is too slow to matter (min_speculative_speed_m_s), it takes no part. Else it is
+    // stopped where it would touch: its normal speed after the step's kick is gap/h, which
+    // brings it to the surface by the step's end (so the next step finds it there, touching or
+    // within its margin, for the impact's second half).
+    const double gap = -point.depth_m;
+    if (approach * h <= gap || approach < law.min_speculative_speed_m_s) {
+      role = PointRole::apart;
+      return {};
+    }
+    state = PointState{};
+    state.approach_speed_m_s = approach;
+    state.impact_pending = true;
+    role = PointRole::speculative;
+    return n * (m * (approach - gap / h) / h);
+  }
   // Stiffness: the surface's own, k_s = ERP / (CFM · reference step) (ODE's softness read at
   // the project's ERP), but never stiffer than the step can integrate:
   // omega_c = frequency_ratio / h.
-  const double omega_max = law.frequency_ratio / kin.step_s;
+  const double omega_max = law.frequency_ratio / h;
   const double k_surface = law.erp / (std::max(material.softness, 1e-12) * law.reference_step_s);
   const double k = std::min(k_surface, m * omega_max * omega_max);
-  const double critical = 2 * std::sqrt(k * m);
 
   // Normal: Hunt–Crossley, F = k·d·(1 + alpha·v) with the damping capped at critical, alpha
   // from the restitution e and the approach speed v_in so that this very law rebounds at e·v_in
   // (restitution_beta); e = 0, or an approach slower than the threshold, is plastic. Never pulls.
-  const double approach = -dot(kin.relative_velocity_m_s, n);  // > 0 when closing
-  if (new_point) state.approach_speed_m_s = std::max(approach, 1e-3);
-  double damping = critical;
-  const double e = material.restitution;
-  if (e > 0 && state.approach_speed_m_s >= material.restitution_threshold_m_s) {
-    const double alpha = material.restitution_beta / state.approach_speed_m_s;
-    damping = std::min(critical, k * alpha * point.depth_m);
+  if (!impact_completed) {
+    const double critical = 2 * std::sqrt(k * m);
+    if (new_point) state.approach_speed_m_s = std::max(approach, 1e-3);
+    double damping = critical;
+    const double e = material.restitution;
+    if (e > 0 && state.approach_speed_m_s >= material.restitution_threshold_m_s) {
+      const double alpha = material.restitution_beta / state.approach_speed_m_s;
+      damping = std::min(critical, k * alpha * point.depth_m);
+    }
+    normal = std::max(0.0, k * point.depth_m + damping * approach);
   }
-  const double normal = std::max(0.0, k * point.depth_m + damping * approach);
 
   // Tangential: slip velocity in the tangent plane, bristle deflection carried along it.
   const Vec3 v_t = kin.relative_velocity_m_s - dot(kin.relative_velocity_m_s, n) * n;
   Vec3 bristle = new_point ? Vec3{} : state.bristle_m - dot(state.bristle_m, n) * n;
-  bristle += v_t * kin.step_s;
+  bristle += v_t * h;
   // The bristle may not ring faster than the normal spring, whatever the tangential mass (a
   // wheel's rim is light across the normal).
   const double k_t = law.bristle_ratio * std::min(k, kin.tangent_mass_kg * omega_max * omega_max);
@@ -150,7 +187,7 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   const double m_t = kin.tangent_mass_kg;
   auto slope = [&](double mu) {
     const double c = std::min(mu * normal / law.transition_speed_m_s, 2 * std::sqrt(k_t * m_t));
-    return c / (1 + c * kin.step_s / m_t);
+    return c / (1 + c * h / m_t);
   };
   // One direction of friction: the bristle and the slope, within ±mu·N; a direction that
   // slides keeps its bristle at exactly the force it carries.
@@ -184,6 +221,21 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   }
   state.bristle_m = bristle;
   return n * normal + friction;
+}
+
+void stop_impulses(const double* coupling, int row_stride, const double* wanted, int count,
+                   double* impulse) {
+  constexpr int kSweeps = 64;
+  for (int i = 0; i < count; ++i)
+    impulse[i] = 0;
+  for (int sweep = 0; sweep < (count == 1 ? 1 : kSweeps); ++sweep)
+    for (int i = 0; i < count; ++i) {
+      const double* row = coupling + i * row_stride;
+      double achieved = 0;
+      for (int j = 0; j < count; ++j)
+        achieved += row[j] * impulse[j];
+      impulse[i] = std::max(0.0, impulse[i] + (wanted[i] - achieved) / row[i]);
+    }
 }
 
 }  // namespace s2sim::contact

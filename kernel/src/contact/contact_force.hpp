@@ -6,6 +6,8 @@
 
 #include "collision/contact_point.hpp"
 
+#include <cstdint>
+
 namespace s2sim::contact {
 
 using collision::Anisotropy;
@@ -36,6 +38,13 @@ PairMaterial combine_surfaces(const Surface& a, double beta_a, const Surface* b,
 
 /// Numbers of the force law shared by every contact of the run.
 struct ForceLawSettings {
+  /// Largest speculative margin (docs/models/contact.md, "Speculative contact"): a shape's
+  /// points are looked for this far at most before they touch.
+  double max_speculative_margin_m = 0.05;
+  /// Slower points are left to the force law, which lands them less than about 2.2·v·h deep
+  /// (1.1 mm at 1 ms): speculative contact applies to points closing at least this fast, so
+  /// that slow scenes (robots set down on the floor, resting stacks) keep their numbers.
+  double min_speculative_speed_m_s = 0.5;
   double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
   double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
@@ -48,6 +57,19 @@ struct PointState {
   Vec3 bristle_m;                 ///< elastic tangential deflection, world frame
   double approach_speed_m_s = 0;  ///< normal speed when the point first touched
   Vec3 local_point_m;             ///< where it touched, in shape a's frame (matching)
+  /// Caught before touching (a speculative stop) last step: the impact's second half, the
+  /// rebound at e·approach_speed_m_s, is due this step.
+  bool impact_pending = false;
+};
+
+/// What a point found by the narrow phase is this step (speculative contact).
+enum class PointRole : std::uint8_t {
+  apart,        ///< not touching, and its closing speed cannot cross the gap: no force, forgotten
+  speculative,  ///< not touching but would cross within the step: stopped at the surface, a
+                ///< normal force only, not reported as a contact
+  impact,       ///< completing an impact caught the step before: a contact whose normal
+                ///< force is a velocity change (solved with the pair's other stops)
+  contact,      ///< touching
 };
 
 /// Inputs of the force law for one point.
@@ -59,9 +81,19 @@ struct PointKinematics {
   double step_s = 1e-3;        ///< physics substep
 };
 
-/// Force on shape a at the point (world frame). Updates `state`.
+/// Force on shape a at the point (world frame). Updates `state` and says what the point is:
+/// a point with depth <= 0 (within the speculative margin) gets the force that brings it to the
+/// surface by the step's end if it would cross it, else none (`apart`); the step after such a
+/// stop gives back e times the approach speed it had before the stop.
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
-                   PointState& state);
+                   PointState& state, PointRole& role);
+
+/// Speculative stops of one pair solved together: the impulses lambda_i >= 0 (N·s) with
+/// sum_j coupling[i][j]·lambda_j = wanted[i] where that is possible without pulling (projected
+/// Gauss–Seidel, `count` <= row_stride points; coupling is row-major with `row_stride`
+/// columns). One point alone gets wanted / coupling exactly.
+void stop_impulses(const double* coupling, int row_stride, const double* wanted, int count,
+                   double* impulse);
 
 }  // namespace s2sim::contact

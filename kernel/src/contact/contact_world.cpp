@@ -230,7 +230,8 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
   std::fill(wrenches, wrenches + body_count, Wrench{});
   for (std::size_t b = 1; b < body_count; ++b)
     to_body_[b] = poses[b].rotation.transposed();
-  placement_.update(table_, poses);
+  placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
+                    law_.max_speculative_margin_m);
   next_memory_.clear();
   info_.clear();
   memory_cursor_ = 0;
@@ -259,6 +260,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
     for (int k = 0; k < n; ++k)
       add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
   }
+  apply_stops(poses, step_s, wrenches);
   keep_sorted_memory(pair_run_begin);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
@@ -375,20 +377,38 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
+  if (stop_count_ > 0 && (key >> 16) != stop_pair_) apply_stops(poses, step_s, wrenches);
   const auto found = remembered(key);
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
-  const Vec3 force = contact_force(p, material, kin, law_, !known, state);
+  // Speculative contact: a point not touching that cannot cross the gap within the step
+  // leaves no trace; one that would is stopped at the surface but is not a contact (not in
+  // info_). Its memory carries its approach speed to the impact's second half.
+  PointRole role = PointRole::contact;
+  const Vec3 force = contact_force(p, material, kin, law_, !known, state, role);
+  if (role == PointRole::apart) return;
   state.local_point_m = world[ia].inverse() * p.point_m;
   next_memory_.push_back({key, state});
+  Vec3 applied = force;
+  if (role == PointRole::speculative || role == PointRole::impact) {
+    // The normal part is a change of the point's closing speed, applied with the pair's
+    // other stops; an impact's friction is applied now.
+    const double normal = dot(force, p.normal);
+    stops_[stop_count_++] = {p.point_m, p.normal, normal * step_s / kin.mass_kg};
+    stop_pair_ = key >> 16;
+    stop_body_a_ = body_a;
+    stop_body_b_ = body_b;
+    if (role == PointRole::speculative) return;
+    applied = force - p.normal * normal;
+  }
 
   Wrench& wa = wrenches[body_a];
-  wa.force_N += force;
-  wa.torque_Nm += cross(p.point_m - poses[body_a].position, force);
+  wa.force_N += applied;
+  wa.torque_Nm += cross(p.point_m - poses[body_a].position, applied);
   if (body_b > 0) {
     Wrench& wb = wrenches[body_b];
-    wb.force_N -= force;
-    wb.torque_Nm -= cross(p.point_m - poses[body_b].position, force);
+    wb.force_N -= applied;
+    wb.torque_Nm -= cross(p.point_m - poses[body_b].position, applied);
   }
   ContactInfo info;
   info.body_a = BodyHandle{body_a};
@@ -396,25 +416,60 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   info.point_m = p.point_m;
   info.normal = p.normal;
   info.force_N = force;
-  info.depth_m = p.depth_m;
+  info.depth_m = std::max(p.depth_m, 0.0);  // an impact completed just short of the surface
   info_.push_back(info);
 }
 
+void ContactWorld::apply_stops(const Pose* poses, double step_s, Wrench* wrenches) {
+  const int n = stop_count_;
+  if (n == 0) return;
+  stop_count_ = 0;
+  // coupling[i][j]: the change of point i's closing speed per unit impulse at point j, through
+  // both bodies (a pushed along the normal, b against it).
+  constexpr int kMax = collision::kMaxPointsPerPair;
+  double coupling[kMax][kMax] = {};
+  for (const std::int32_t body : {stop_body_a_, stop_body_b_}) {
+    if (body == 0) continue;
+    const auto b = static_cast<std::size_t>(body);
+    const Mat3& rt = to_body_[b];
+    Vec3 w[kMax];
+    for (int i = 0; i < n; ++i)
+      w[i] =
+          cross(rt * (stops_[i].point_m - poses[body].position) - com_m_[b], rt * stops_[i].normal);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        coupling[i][j] += inverse_apparent_mass_[b] * dot(stops_[i].normal, stops_[j].normal) +
+                          dot(w[i], inverse_inertia_[b] * w[j]);
+  }
+  double impulse[kMax];
+  double wanted[kMax];
+  for (int i = 0; i < n; ++i)
+    wanted[i] = stops_[i].closing_change_m_s;
+  stop_impulses(&coupling[0][0], kMax, wanted, n, impulse);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 force = stops_[i].normal * (impulse[i] / step_s);
+    Wrench& wa = wrenches[stop_body_a_];
+    wa.force_N += force;
+    wa.torque_Nm += cross(stops_[i].point_m - poses[stop_body_a_].position, force);
+    if (stop_body_b_ > 0) {
+      Wrench& wb = wrenches[stop_body_b_];
+      wb.force_N -= force;
+      wb.torque_Nm -= cross(stops_[i].point_m - poses[stop_body_b_].position, force);
+    }
+  }
+}
+
 void ContactWorld::declare_state(sim::StateLayout& layout) {
-  constexpr std::size_t kPer = 8;
+  constexpr std::size_t kPer = 9;
   layout.add_variable(
       "contact/memory", kPer, [this] { return kPer * memory_.size(); },
       [this](double* out) {
         for (const Memory& m : memory_) {
           const PointState& p = m.state;
-          const double v[kPer] = {std::bit_cast<double>(m.key),
-                                  p.bristle_m.x,
-                                  p.bristle_m.y,
-                                  p.bristle_m.z,
-                                  p.approach_speed_m_s,
-                                  p.local_point_m.x,
-                                  p.local_point_m.y,
-                                  p.local_point_m.z};
+          const double v[kPer] = {
+              std::bit_cast<double>(m.key), p.bristle_m.x,     p.bristle_m.y,     p.bristle_m.z,
+              p.approach_speed_m_s,         p.local_point_m.x, p.local_point_m.y, p.local_point_m.z,
+              p.impact_pending ? 1.0 : 0.0};
           out = std::copy(v, v + kPer, out);
         }
       },
@@ -426,6 +481,7 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
           m.state.bristle_m = {in[1], in[2], in[3]};
           m.state.approach_speed_m_s = in[4];
           m.state.local_point_m = {in[5], in[6], in[7]};
+          m.state.impact_pending = in[8] != 0;
           memory_.push_back(m);
         }
       });

@@ -50,7 +50,7 @@ class ContactWorld final : public model::SubstepForces {
   /// Forgets every contact (back to t = 0).
   void reset();
   /// Registers the state segments (snapshots), both variable: `contact/memory`, the contact
-  /// points' memory, 8 numbers per point (its key's bits, then its PointState), and
+  /// points' memory, 9 numbers per point (its key's bits, then its PointState), and
   /// `contact/points`, the last substep's contacts (what the touch sensors and the contact
   /// signals read before the next one), 12 numbers per ContactInfo.
   void declare_state(sim::StateLayout& layout);
@@ -81,6 +81,19 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<Memory>::const_iterator remembered(std::uint64_t key);
   /// Sorts next_memory_ (its plane run, then its pair run, each nearly sorted) into memory_.
   void keep_sorted_memory(std::size_t pair_run_begin);
+
+  // Speculative stops (docs/models/contact.md): the stops of one pair act on the same two
+  // bodies, so they are solved together (each point's own share would add up to several
+  // times the stop on a body caught on four corners) and applied when the pair is done.
+  struct Stop {
+    Vec3 point_m, normal;
+    double closing_change_m_s;  ///< how much of its closing speed the point is to lose
+  };
+  void apply_stops(const Pose* poses, double step_s, Wrench* wrenches);
+  Stop stops_[collision::kMaxPointsPerPair];
+  int stop_count_ = 0;
+  std::uint64_t stop_pair_ = 0;  // key bits of the pair the stops belong to
+  std::int32_t stop_body_a_ = 0, stop_body_b_ = 0;
 
   const collision::ShapeTable& table_;
   std::vector<double> restitution_beta_;        // per shape
