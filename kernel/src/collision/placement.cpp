@@ -25,15 +25,7 @@ Placement::Placement(const ShapeTable& table, double margin)
 }
 
 void Placement::update(const ShapeTable& table, const Pose* poses) {
-  const Shape* shapes = table.shapes().data();
-  const std::int32_t* body = table.bodies().data();
-  const Pose* local = table.local_poses().data();
-  const char* identity = table.local_identity().data();
-  for (const std::int32_t s : table.moving()) {
-    const auto i = static_cast<std::size_t>(s);
-    world_[i] = identity[i] ? poses[body[i]] : poses[body[i]] * local[i];
-    box_[i] = bounds(shapes[i], world_[i], margin_);
-  }
+  update(table, poses, nullptr, 0, 0, 0);
 }
 
 void Placement::update(const ShapeTable& table, const Pose* poses, const Twist* twists,
@@ -46,16 +38,18 @@ void Placement::update(const ShapeTable& table, const Pose* poses, const Twist* 
     const auto i = static_cast<std::size_t>(s);
     const Pose& pose = poses[body[i]];
     world_[i] = identity[i] ? pose : pose * local[i];
-    // A bound on the speed of any point of the shape: its body origin's, plus the spin times
-    // the shape's reach from that origin. (a + b)² <= 2·(a² + b²): most shapes are slow, and
-    // need no root.
-    const Twist& t = twists[body[i]];
-    const double linear2 = dot(t.linear_m_s, t.linear_m_s);
-    const double spin2 = dot(t.angular_rad_s, t.angular_rad_s) * reach2_m2_[i];
     speculative_m_[i] = 0;
-    if (2 * (linear2 + spin2) * step_s * step_s >= min_margin_m * min_margin_m) {
-      const double travel = (std::sqrt(linear2) + std::sqrt(spin2)) * step_s;
-      if (travel >= min_margin_m) speculative_m_[i] = std::min(travel, max_margin_m);
+    if (twists) {
+      // A bound on the speed of any point of the shape: its body origin's, plus the spin times
+      // the shape's reach from that origin. (a + b)² <= 2·(a² + b²): most shapes are slow, and
+      // need no root.
+      const Twist& t = twists[body[i]];
+      const double linear2 = dot(t.linear_m_s, t.linear_m_s);
+      const double spin2 = dot(t.angular_rad_s, t.angular_rad_s) * reach2_m2_[i];
+      if (2 * (linear2 + spin2) * step_s * step_s >= min_margin_m * min_margin_m) {
+        const double travel = (std::sqrt(linear2) + std::sqrt(spin2)) * step_s;
+        if (travel >= min_margin_m) speculative_m_[i] = std::min(travel, max_margin_m);
+      }
     }
     box_[i] = bounds(shapes[i], world_[i], margin_ + speculative_m_[i]);
   }

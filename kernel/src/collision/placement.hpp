@@ -23,7 +23,8 @@ class Placement {
   /// The same, and each moving shape's speculative margin (docs/models/contact.md,
   /// "Speculative contact"): the distance its surface can travel in `step_s` at the speed its
   /// body's `twists` give it (body origin's velocity, world frame), at most `max_margin_m`,
-  /// and 0 when below `min_margin_m` (slow shapes are placed exactly as by the plain update);
+  /// and 0 when below `min_margin_m` (slow shapes are placed exactly as by the plain update,
+  /// which is this one without `twists`);
   /// its box grows by that margin, so that the pairs and planes it may reach within the step
   /// are found before they touch.
   void update(const ShapeTable& table, const Pose* poses, const Twist* twists, double step_s,
