@@ -11,11 +11,6 @@ constexpr double kLargeOverPercentile = 2.0;  // boxes above twice the 90th perc
 constexpr double kCellHeadroom = 1.125;       // a new cell: this much above the largest box
 constexpr double kCellSlack = 1.25;           // the last cell is kept up to this coarse
 
-bool overlap(const Aabb& a, const Aabb& b) {
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-         a.min.z <= b.max.z && b.min.z <= a.max.z;
-}
-
 double largest_side(const Aabb& b) {
   return std::max({b.max.x - b.min.x, b.max.y - b.min.y, b.max.z - b.min.z});
 }

@@ -12,11 +12,6 @@ constexpr double kMaxGroupsPerShape = 0.75;
 // finds a shape's few neighbours for less than testing more).
 constexpr std::size_t kMaxWithinPerShape = 8;
 
-bool overlap(const Aabb& a, const Aabb& b) {
-  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
-         a.min.z <= b.max.z && b.min.z <= a.max.z;
-}
-
 }  // namespace
 
 bool IslandBroadPhase::build(const std::vector<std::int32_t>& island_of_shape,

@@ -45,6 +45,12 @@ struct Aabb {
   Vec3 min, max;
 };
 
+/// Whether two boxes overlap (touching counts).
+inline bool overlap(const Aabb& a, const Aabb& b) {
+  return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
+         a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
 /// A static half-space boundary: points p with dot(normal, p) < offset_m are inside matter.
 struct Plane {
   Vec3 normal;  ///< unit, pointing out of the matter

@@ -1,11 +1,11 @@
 #include "contact/contact_world.hpp"
 
+#include "scene/joint_islands.hpp"
 #include "sim/state_layout.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <numeric>
 
 namespace s2sim::contact {
 namespace {
@@ -109,22 +109,11 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
 }
 
 void ContactWorld::group_islands(const scene::Scene& scene) {
-  // Union–find over the joints between bodies (a joint to the world joins nothing).
-  std::vector<std::int32_t> root(scene.bodies.size() + 1);
-  std::iota(root.begin(), root.end(), 0);
-  auto find = [&](std::int32_t b) {
-    while (root[static_cast<std::size_t>(b)] != b)
-      b = root[static_cast<std::size_t>(b)] =
-          root[static_cast<std::size_t>(root[static_cast<std::size_t>(b)])];
-    return b;
-  };
-  for (const auto& j : scene.joints)
-    if (j.body1 >= 0 && j.body2 >= 0)
-      root[static_cast<std::size_t>(find(j.body1 + 1))] = find(j.body2 + 1);
+  const std::vector<int> island_root = scene::joint_island_roots(scene);
   const auto& body = table_.bodies();
   std::vector<std::int32_t> island_of_shape(body.size());
   for (std::size_t s = 0; s < body.size(); ++s)
-    island_of_shape[s] = body[s] == 0 ? -1 : find(body[s]);
+    island_of_shape[s] = body[s] == 0 ? -1 : island_root[static_cast<std::size_t>(body[s] - 1)];
   query_.group_by_islands(island_of_shape, [&](std::int32_t i, std::int32_t j) {
     return !excluded(body[static_cast<std::size_t>(i)], body[static_cast<std::size_t>(j)]);
   });

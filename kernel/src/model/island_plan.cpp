@@ -1,23 +1,12 @@
 // The islands of the joint graph dealt into parts (island_plan.hpp). No Simbody here.
 #include "model/island_plan.hpp"
 
+#include "scene/joint_islands.hpp"
+
 #include <algorithm>
 #include <numeric>
 
 namespace s2sim::model {
-
-namespace {
-
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[static_cast<std::size_t>(x)] != x) {
-    auto& p = parent[static_cast<std::size_t>(x)];
-    p = parent[static_cast<std::size_t>(p)];  // path halving
-    x = p;
-  }
-  return x;
-}
-
-}  // namespace
 
 std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,
                                  const std::vector<double>& axis_inertia, int parts) {
@@ -44,24 +33,12 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
         scene.joints[static_cast<std::size_t>(e.joint)].type == scene::JointType::ball)
       return whole();
 
-  // Connected components over the scene bodies: tree edges and loop joints (the world joins
-  // nothing: robots standing on the floor are separate islands).
+  // Connected components over the scene bodies (the world joins nothing: robots standing on
+  // the floor are separate islands).
   const std::size_t n_bodies = scene.bodies.size();
-  std::vector<int> parent(n_bodies);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto unite = [&](int a, int b) {
-    if (a < 0 || b < 0) return;
-    a = find_root(parent, a);
-    b = find_root(parent, b);
-    if (a != b) parent[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  };
-  for (const auto& e : topology.tree)
-    unite(e.parent, e.child);
-  for (int j : topology.loops)
-    unite(scene.joints[static_cast<std::size_t>(j)].body1,
-          scene.joints[static_cast<std::size_t>(j)].body2);
+  const std::vector<int> island_root = scene::joint_island_roots(scene);
 
-  // Islands numbered by their lowest body (the root after unite is the lowest index).
+  // Islands numbered by their lowest body (their root).
   std::vector<int> island_of_body(n_bodies, -1);  // -1: loose
   std::vector<int> weight;
   std::vector<int> island_of_root(n_bodies, -1);
@@ -70,7 +47,7 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
     in_tree[static_cast<std::size_t>(e.child)] = 1;
   for (std::size_t b = 0; b < n_bodies; ++b) {
     if (!in_tree[b]) continue;
-    const auto root = static_cast<std::size_t>(find_root(parent, static_cast<int>(b)));
+    const auto root = static_cast<std::size_t>(island_root[b]);
     if (island_of_root[root] < 0) {
       island_of_root[root] = static_cast<int>(weight.size());
       weight.push_back(0);

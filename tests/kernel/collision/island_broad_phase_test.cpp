@@ -11,7 +11,7 @@ namespace {
 
 using Pairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
 
-bool overlap(const Aabb& a, const Aabb& b) {
+bool boxes_overlap(const Aabb& a, const Aabb& b) {
   return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
          a.min.z <= b.max.z && b.min.z <= a.max.z;
 }
@@ -67,7 +67,7 @@ TEST(IslandBroadPhase, GivesTheFullSearchsPairsButTheExcludedOnes) {
           const std::int32_t a = island_of_shape[static_cast<std::size_t>(i)],
                              b = island_of_shape[static_cast<std::size_t>(j)];
           if ((a < 0 && b < 0) || (a == b && !may_touch(i, j))) continue;
-          if (overlap(boxes[static_cast<std::size_t>(i)], boxes[static_cast<std::size_t>(j)]))
+          if (boxes_overlap(boxes[static_cast<std::size_t>(i)], boxes[static_cast<std::size_t>(j)]))
             expected.emplace_back(i, j);
         }
       ASSERT_EQ(search.find_pairs(boxes.data(), found), IslandBroadPhase::Found::pairs);
