@@ -135,12 +135,21 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     normal = std::max(0.0, m * (restitution_at(v_in) * v_in + approach) / h);
     impact_completed = true;
     role = PointRole::impact;
+  } else if (point.depth_m > 0 && approach >= law.min_speculative_speed_m_s) {
+    // Touching and closing fast: a point the margins did not catch before it touched (a
+    // tumbling box's face, a pair with a cylinder). Stopped now as a caught point would have
+    // been, a step late; the rebound at e·v_in is due next step.
+    state.approach_speed_m_s = approach;
+    state.impact_pending = true;
+    normal = m * approach / h;
+    impact_completed = true;
+    role = PointRole::impact;
   } else if (point.depth_m <= 0) {
     // Speculative: a point short of the surface by `gap`. If it cannot reach it within the
     // step, or is too slow to matter (min_speculative_speed_m_s), it takes no part. Else it is
-    // stopped where it would touch: its normal speed after the step's kick is gap/h, which
-    // brings it to the surface by the step's end (so the next step finds it there, touching or
-    // within its margin, for the impact's second half).
+    // stopped where it would touch: its normal speed after the step's kick is (gap + landing)/h,
+    // which brings it just past the surface by the step's end (so the next step finds it
+    // touching, whatever its margin then, for the impact's second half).
     const double gap = -point.depth_m;
     if (approach * h <= gap || approach < law.min_speculative_speed_m_s) {
       role = PointRole::apart;
@@ -150,7 +159,7 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     state.approach_speed_m_s = approach;
     state.impact_pending = true;
     role = PointRole::speculative;
-    return n * (m * (approach - gap / h) / h);
+    return n * (m * (approach - (gap + law.speculative_landing_depth_m) / h) / h);
   }
   // Stiffness: the surface's own, k_s = ERP / (CFM · reference step) (ODE's softness read at
   // the project's ERP), but never stiffer than the step can integrate:
@@ -171,8 +180,16 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
       const double alpha = material.restitution_beta / state.approach_speed_m_s;
       damping = std::min(critical, k * alpha * point.depth_m);
     }
+    // The dampers of the points on one body act on its speed together: each takes at most its
+    // share of it per step, or a box on four corners would overshoot every step and ring.
+    damping = std::min(damping, m / (h * kin.points_sharing));
     normal = std::max(0.0, k * point.depth_m + damping * approach);
   }
+
+  // Friction bounds the whole normal load: the spring's and what a hold carried last step.
+  const double normal_spring = normal;
+  normal += state.held_force_N;
+  state.held_force_N = 0;
 
   // Tangential: slip velocity in the tangent plane, bristle deflection carried along it.
   const Vec3 v_t = kin.relative_velocity_m_s - dot(kin.relative_velocity_m_s, n) * n;
@@ -182,12 +199,15 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   // wheel's rim is light across the normal).
   const double k_t = law.bristle_ratio * std::min(k, kin.tangent_mass_kg * omega_max * omega_max);
   // Regularised Coulomb: viscous slope mu·N/v_tr, capped where explicit stepping stays stable
-  // and solved implicitly for the point's mass, c/(1 + c·h/m): the slope is steep and many
-  // contacts may share a body.
+  // and solved implicitly for the point's share of its body's mass, c/(1 + c·h·n/m) with n the
+  // points sharing the body: the slope is steep, and the points of a box's face brake the same
+  // rocking together (each solved for itself alone, four of them overshoot: the box rocks at
+  // the friction limit every other step and walks).
   const double m_t = kin.tangent_mass_kg;
+  const double share_h = h * kin.points_sharing;
   auto slope = [&](double mu) {
     const double c = std::min(mu * normal / law.transition_speed_m_s, 2 * std::sqrt(k_t * m_t));
-    return c / (1 + c * h / m_t);
+    return c / (1 + c * share_h / m_t);
   };
   // One direction of friction: the bristle and the slope, within ±mu·N; a direction that
   // slides keeps its bristle at exactly the force it carries.
@@ -220,22 +240,7 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     }
   }
   state.bristle_m = bristle;
-  return n * normal + friction;
-}
-
-void stop_impulses(const double* coupling, int row_stride, const double* wanted, int count,
-                   double* impulse) {
-  constexpr int kSweeps = 64;
-  for (int i = 0; i < count; ++i)
-    impulse[i] = 0;
-  for (int sweep = 0; sweep < (count == 1 ? 1 : kSweeps); ++sweep)
-    for (int i = 0; i < count; ++i) {
-      const double* row = coupling + i * row_stride;
-      double achieved = 0;
-      for (int j = 0; j < count; ++j)
-        achieved += row[j] * impulse[j];
-      impulse[i] = std::max(0.0, impulse[i] + (wanted[i] - achieved) / row[i]);
-    }
+  return n * normal_spring + friction;
 }
 
 }  // namespace s2sim::contact

@@ -45,6 +45,12 @@ struct ForceLawSettings {
   /// (1.1 mm at 1 ms): speculative contact applies to points closing at least this fast, so
   /// that slow scenes (robots set down on the floor, resting stacks) keep their numbers.
   double min_speculative_speed_m_s = 0.5;
+  /// How far past the surface a stopped point is brought: the next step must find it touching
+  /// (a point slower than min_speculative_speed_m_s has no margin to be found within).
+  double speculative_landing_depth_m = 1e-5;
+  /// A resting contact between jointless bodies (or one and a static shape) deeper than this
+  /// closes no further: the spring carries what it can, an impulse the rest (stop_graph.hpp).
+  double hold_depth_m = 0.001;
   double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
   double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
@@ -60,6 +66,9 @@ struct PointState {
   /// Caught before touching (a speculative stop) last step: the impact's second half, the
   /// rebound at e·approach_speed_m_s, is due this step.
   bool impact_pending = false;
+  /// The normal force a hold or a stop's reach added to the point last step (stop_graph.hpp):
+  /// part of the load the friction cone bounds, besides the spring's.
+  double held_force_N = 0;
 };
 
 /// What a point found by the narrow phase is this step (speculative contact).
@@ -79,6 +88,9 @@ struct PointKinematics {
   double mass_kg = 1;          ///< the pair's effective mass at the point, along the normal
   double tangent_mass_kg = 1;  ///< the same across the normal (the smaller of two directions)
   double step_s = 1e-3;        ///< physics substep
+  /// Touching points on the more crowded of the two bodies (at least 1): the dampers of points
+  /// on one body act together, each may take only its share of the body's speed per step.
+  int points_sharing = 1;
 };
 
 /// Force on shape a at the point (world frame). Updates `state` and says what the point is:
@@ -88,12 +100,5 @@ struct PointKinematics {
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
                    PointState& state, PointRole& role);
-
-/// Speculative stops of one pair solved together: the impulses lambda_i >= 0 (N·s) with
-/// sum_j coupling[i][j]·lambda_j = wanted[i] where that is possible without pulling (projected
-/// Gauss–Seidel, `count` <= row_stride points; coupling is row-major with `row_stride`
-/// columns). One point alone gets wanted / coupling exactly.
-void stop_impulses(const double* coupling, int row_stride, const double* wanted, int count,
-                   double* impulse);
 
 }  // namespace s2sim::contact

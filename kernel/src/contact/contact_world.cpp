@@ -95,6 +95,14 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
     }
   }
   std::sort(joined_pairs_.begin(), joined_pairs_.end());
+  jointless_.assign(scene.bodies.size() + 1, 1);
+  jointless_[0] = 0;
+  for (const auto& j : scene.joints)
+    for (const int body : {j.body1, j.body2})
+      if (body >= 0) jointless_[static_cast<std::size_t>(body) + 1] = 0;
+  falls_m_s2_.assign(jointless_.size(), 0.0);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    if (jointless_[i + 1] && scene.bodies[i].gravity) falls_m_s2_[i + 1] = kGravity_m_s2;
   for (double& m : apparent_mass_kg_)
     if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
   for (const double m : apparent_mass_kg_)
@@ -106,6 +114,9 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   memory_.reserve(reserve);
   next_memory_.reserve(reserve);
   info_.reserve(reserve);
+  found_.reserve(reserve);
+  touching_points_.assign(apparent_mass_kg_.size(), 0);
+  stops_.reserve(apparent_mass_kg_.size(), reserve);
 }
 
 void ContactWorld::group_islands(const scene::Scene& scene) {
@@ -223,21 +234,26 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
                     law_.max_speculative_margin_m);
   next_memory_.clear();
   info_.clear();
+  stops_.clear();
   memory_cursor_ = 0;
 
+  // First every point, then the forces: a point's damping is shared with the other points on
+  // its bodies (docs/models/contact.md, "Stiff terms at any step"), so each body's count of
+  // touching points must be known before any force.
   const std::int32_t* body = table_.bodies().data();
+  found_.clear();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
   // Moving shapes against the ground and the walls.
   for (const std::int32_t s : table_.moving()) {
     if (fixed_to_world_[body[s]]) continue;
-    collision::ContactQuery::plane_points(
-        table_, placement_, s, points, [&](std::int32_t p, const ContactPoint* found, int n) {
-          for (int k = 0; k < n; ++k)
-            add_point(s, p, true, found[k], poses, twists, step_s, wrenches);
-        });
+    collision::ContactQuery::plane_points(table_, placement_, s, points,
+                                          [&](std::int32_t p, const ContactPoint* found, int n) {
+                                            for (int k = 0; k < n; ++k)
+                                              found_.push_back({s, p, true, found[k]});
+                                          });
   }
+  const std::size_t plane_point_count = found_.size();
   // Shape pairs.
-  const std::size_t pair_run_begin = next_memory_.size();
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
@@ -247,9 +263,37 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
     const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
     if (renumbered && n > 0) match_features(ia, ib, points, n);
     for (int k = 0; k < n; ++k)
-      add_point(ia, ib, false, points[k], poses, twists, step_s, wrenches);
+      found_.push_back({ia, ib, false, points[k]});
   }
-  apply_stops(poses, step_s, wrenches);
+  auto body_b = [&](const Found& f) { return f.plane ? 0 : body[f.other]; };
+  for (const Found& f : found_)
+    if (f.point.depth_m > 0) {
+      ++touching_points_[static_cast<std::size_t>(body[f.shape_a])];
+      ++touching_points_[static_cast<std::size_t>(body_b(f))];
+    }
+  memory_cursor_ = 0;
+  std::size_t pair_run_begin = next_memory_.size();
+  for (std::size_t k = 0; k < found_.size(); ++k) {
+    if (k == plane_point_count) pair_run_begin = next_memory_.size();
+    const Found& f = found_[k];
+    add_point(f.shape_a, f.other, f.plane, f.point, poses, twists, step_s, wrenches);
+  }
+  for (const Found& f : found_) {
+    touching_points_[static_cast<std::size_t>(body[f.shape_a])] = 0;
+    touching_points_[static_cast<std::size_t>(body_b(f))] = 0;
+  }
+  if (!stops_.empty()) {
+    const BodyInertiaView view{inverse_apparent_mass_.data(),
+                               inverse_inertia_.data(),
+                               to_body_.data(),
+                               com_m_.data(),
+                               poses,
+                               falls_m_s2_.data()};
+    stops_.solve(view, step_s, wrenches, info_.data());
+    stops_.resting_forces(step_s, [&](std::int32_t memory, double force_N) {
+      next_memory_[static_cast<std::size_t>(memory)].state.held_force_N = force_N;
+    });
+  }
   keep_sorted_memory(pair_run_begin);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
@@ -361,12 +405,15 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   kin.mass_kg = 1 / inverse_mass[0];
   kin.tangent_mass_kg = 1 / std::max(inverse_mass[1], inverse_mass[2]);
   kin.step_s = step_s;
+  // The world's count gathers every point on the ground: only moving bodies share.
+  kin.points_sharing =
+      std::max({1, touching_points_[static_cast<std::size_t>(body_a)],
+                body_b > 0 ? touching_points_[static_cast<std::size_t>(body_b)] : 0});
 
   const std::uint64_t other_id =
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  if (stop_count_ > 0 && (key >> 16) != stop_pair_) apply_stops(poses, step_s, wrenches);
   const auto found = remembered(key);
   const bool known = found != memory_.end() && found->key == key;
   PointState state = known ? found->state : PointState{};
@@ -374,19 +421,18 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   // leaves no trace; one that would is stopped at the surface but is not a contact (not in
   // info_). Its memory carries its approach speed to the impact's second half.
   PointRole role = PointRole::contact;
+  const double last_hold_N = state.held_force_N;
   const Vec3 force = contact_force(p, material, kin, law_, !known, state, role);
   if (role == PointRole::apart) return;
   state.local_point_m = world[ia].inverse() * p.point_m;
   next_memory_.push_back({key, state});
   Vec3 applied = force;
   if (role == PointRole::speculative || role == PointRole::impact) {
-    // The normal part is a change of the point's closing speed, applied with the pair's
-    // other stops; an impact's friction is applied now.
+    // The normal part is a change of the point's closing speed, solved with the substep's
+    // other stops and the resting points they reach (stop_graph.hpp); an impact's friction is
+    // applied now.
     const double normal = dot(force, p.normal);
-    stops_[stop_count_++] = {p.point_m, p.normal, normal * step_s / kin.mass_kg};
-    stop_pair_ = key >> 16;
-    stop_body_a_ = body_a;
-    stop_body_b_ = body_b;
+    stops_.add_stop(body_a, body_b, p.point_m, p.normal, normal * step_s / kin.mass_kg);
     if (role == PointRole::speculative) return;
     applied = force - p.normal * normal;
   }
@@ -407,49 +453,14 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   info.force_N = force;
   info.depth_m = std::max(p.depth_m, 0.0);  // an impact completed just short of the surface
   info_.push_back(info);
-}
-
-void ContactWorld::apply_stops(const Pose* poses, double step_s, Wrench* wrenches) {
-  const int n = stop_count_;
-  if (n == 0) return;
-  stop_count_ = 0;
-  // coupling[i][j]: the change of point i's closing speed per unit impulse at point j, through
-  // both bodies (a pushed along the normal, b against it).
-  constexpr int kMax = collision::kMaxPointsPerPair;
-  double coupling[kMax][kMax] = {};
-  for (const std::int32_t body : {stop_body_a_, stop_body_b_}) {
-    if (body == 0) continue;
-    const auto b = static_cast<std::size_t>(body);
-    const Mat3& rt = to_body_[b];
-    Vec3 w[kMax];
-    for (int i = 0; i < n; ++i)
-      w[i] =
-          cross(rt * (stops_[i].point_m - poses[body].position) - com_m_[b], rt * stops_[i].normal);
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < n; ++j)
-        coupling[i][j] += inverse_apparent_mass_[b] * dot(stops_[i].normal, stops_[j].normal) +
-                          dot(w[i], inverse_inertia_[b] * w[j]);
-  }
-  double impulse[kMax];
-  double wanted[kMax];
-  for (int i = 0; i < n; ++i)
-    wanted[i] = stops_[i].closing_change_m_s;
-  stop_impulses(&coupling[0][0], kMax, wanted, n, impulse);
-  for (int i = 0; i < n; ++i) {
-    const Vec3 force = stops_[i].normal * (impulse[i] / step_s);
-    Wrench& wa = wrenches[stop_body_a_];
-    wa.force_N += force;
-    wa.torque_Nm += cross(stops_[i].point_m - poses[stop_body_a_].position, force);
-    if (stop_body_b_ > 0) {
-      Wrench& wb = wrenches[stop_body_b_];
-      wb.force_N -= force;
-      wb.torque_Nm -= cross(stops_[i].point_m - poses[stop_body_b_].position, force);
-    }
-  }
+  if (role == PointRole::contact && jointless_[body_a] && (body_b == 0 || jointless_[body_b]))
+    stops_.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
+                       p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(info_.size() - 1),
+                       static_cast<std::int32_t>(next_memory_.size() - 1), last_hold_N * step_s);
 }
 
 void ContactWorld::declare_state(sim::StateLayout& layout) {
-  constexpr std::size_t kPer = 9;
+  constexpr std::size_t kPer = 10;
   layout.add_variable(
       "contact/memory", kPer, [this] { return kPer * memory_.size(); },
       [this](double* out) {
@@ -458,7 +469,7 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
           const double v[kPer] = {
               std::bit_cast<double>(m.key), p.bristle_m.x,     p.bristle_m.y,     p.bristle_m.z,
               p.approach_speed_m_s,         p.local_point_m.x, p.local_point_m.y, p.local_point_m.z,
-              p.impact_pending ? 1.0 : 0.0};
+              p.impact_pending ? 1.0 : 0.0, p.held_force_N};
           out = std::copy(v, v + kPer, out);
         }
       },
@@ -471,6 +482,7 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
           m.state.approach_speed_m_s = in[4];
           m.state.local_point_m = {in[5], in[6], in[7]};
           m.state.impact_pending = in[8] != 0;
+          m.state.held_force_N = in[9];
           memory_.push_back(m);
         }
       });

@@ -10,6 +10,7 @@
 #include "collision/placement.hpp"
 #include "collision/shape_table.hpp"
 #include "contact/contact_force.hpp"
+#include "contact/stop_graph.hpp"
 #include "model/substep_forces.hpp"
 
 #include <s2sim/component.hpp>
@@ -82,18 +83,9 @@ class ContactWorld final : public model::SubstepForces {
   /// Sorts next_memory_ (its plane run, then its pair run, each nearly sorted) into memory_.
   void keep_sorted_memory(std::size_t pair_run_begin);
 
-  // Speculative stops (docs/models/contact.md): the stops of one pair act on the same two
-  // bodies, so they are solved together (each point's own share would add up to several
-  // times the stop on a body caught on four corners) and applied when the pair is done.
-  struct Stop {
-    Vec3 point_m, normal;
-    double closing_change_m_s;  ///< how much of its closing speed the point is to lose
-  };
-  void apply_stops(const Pose* poses, double step_s, Wrench* wrenches);
-  Stop stops_[collision::kMaxPointsPerPair];
-  int stop_count_ = 0;
-  std::uint64_t stop_pair_ = 0;  // key bits of the pair the stops belong to
-  std::int32_t stop_body_a_ = 0, stop_body_b_ = 0;
+  // Speculative stops and the resting contacts they push on, solved together at the end of
+  // the substep (stop_graph.hpp).
+  StopGraph stops_;
 
   const collision::ShapeTable& table_;
   std::vector<double> restitution_beta_;        // per shape
@@ -104,6 +96,8 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<char> diagonal_inertia_;         // per body: inverse_inertia_ has no off-diagonal
   std::vector<double> inverse_apparent_mass_;  // per body, 1 / apparent_mass_kg_
   std::vector<char> fixed_to_world_;           // per body: jointed to the world
+  std::vector<char> jointless_;                // per body: no joint at all (0: the world)
+  std::vector<double> falls_m_s2_;             // per body: gravity if jointless, else 0
   std::vector<std::uint64_t> joined_pairs_;    // sorted body pairs that never collide
   double default_mu_ = 0.95;
   // Surfaces combined once per pair of distinct surfaces (plus each against the planes):
@@ -123,6 +117,13 @@ class ContactWorld final : public model::SubstepForces {
   std::size_t memory_cursor_ = 0;  // where remembered() last stopped
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;
+  struct Found {
+    std::int32_t shape_a, other;
+    bool plane;  ///< `other` is the ground or a wall
+    ContactPoint point;
+  };
+  std::vector<Found> found_;                   // the substep's points, in the order of their forces
+  std::vector<std::int32_t> touching_points_;  // per body, this substep (0 between substeps)
 };
 
 }  // namespace s2sim::contact

@@ -1,0 +1,177 @@
+#include "contact/stop_graph.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::contact {
+
+namespace {
+constexpr int kMaxSweeps = 16;
+/// Held points alone, warm-started: what a few sweeps leave is taken up next step.
+constexpr int kMaxSweepsHeldOnly = 4;
+/// Sweeps end once no row's separating speed moves by more than this.
+constexpr double kConverged_m_s = 1e-5;
+}  // namespace
+
+void StopGraph::reserve(std::size_t bodies, std::size_t rows) {
+  rows_.reserve(rows);
+  resting_.reserve(rows);
+  reached_.assign(bodies, 0);
+  linear_.assign(bodies, Vec3{});
+  angular_.assign(bodies, Vec3{});
+}
+
+void StopGraph::clear() {
+  rows_.clear();
+  resting_.clear();
+  held_count_ = 0;
+}
+
+void StopGraph::add_stop(std::int32_t body_a, std::int32_t body_b, const Vec3& point_m,
+                         const Vec3& normal, double wanted_change_m_s) {
+  rows_.push_back(
+      {body_a, body_b, point_m, normal, wanted_change_m_s, -1, -1, {}, {}, {}, {}, 0, 0});
+}
+
+void StopGraph::take(Resting& r, const ContactInfo* info) {
+  // Closing no faster than max(closing, 0): the separating speed may drop by -min(closing, 0)
+  // at most, i.e. change by at least min(closing, 0). A held point may not close at all.
+  const ContactInfo& c = info[r.info];
+  rows_.push_back({r.body_a,
+                   r.body_b,
+                   c.point_m,
+                   c.normal,
+                   r.held ? r.closing_m_s : std::min(r.closing_m_s, 0.0),
+                   r.info,
+                   r.memory,
+                   {},
+                   {},
+                   {},
+                   {},
+                   0,
+                   std::max(0.0, r.last_impulse_N_s)});
+  r.taken = 1;
+}
+
+std::size_t StopGraph::reach(const ContactInfo* info) {
+  // Stops reach; held points do not (their impulses are a spring's share of a load, which the
+  // springs around pass on well enough, and a settled pile holds everywhere).
+  for (const Row& r : rows_) {
+    reached_[static_cast<std::size_t>(r.body_a)] = 1;
+    reached_[static_cast<std::size_t>(r.body_b)] = 1;
+  }
+  reached_[0] = 0;  // the world passes nothing on
+  const bool stops = !rows_.empty();
+  stops_reached_ = stops;
+  if (held_count_ > 0)
+    for (Resting& r : resting_)
+      if (r.held) take(r, info);
+  // A resting point is reached when one of its bodies is; it then reaches its other body.
+  // Passes until nothing new (a stack of n bodies needs about n); taken rows keep their order.
+  for (bool grew = stops; grew;) {
+    grew = false;
+    for (Resting& r : resting_) {
+      if (r.taken) continue;
+      const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+      if (!reached_[a] && !reached_[b]) continue;
+      if (!reached_[a] || (b != 0 && !reached_[b])) grew = true;
+      reached_[a] = 1;
+      if (b != 0) reached_[b] = 1;
+      take(r, info);
+    }
+  }
+  return rows_.size();
+}
+
+void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wrenches,
+                      ContactInfo* info) {
+  if (empty()) return;
+  const std::size_t count = reach(info);
+  // Each row's lever arms and its own effective mass.
+  auto lever = [&](std::int32_t body, const Vec3& point, const Vec3& normal, Vec3& arm,
+                   Vec3& turn) {
+    if (body == 0) return 0.0;
+    const auto b = static_cast<std::size_t>(body);
+    const Mat3& rt = bodies.to_body[b];
+    arm = cross(rt * (point - bodies.poses[body].position) - bodies.com_m[b], rt * normal);
+    turn = bodies.inverse_inertia[b] * arm;
+    return bodies.inverse_mass[b] + dot(arm, turn);
+  };
+  // The velocity changes the forces found so far (the springs, the dampers, friction) and
+  // gravity give in this step: a stop or a held point must not be undone by a spring pushing
+  // its body on, nor a held point sink under its load.
+  auto start = [&](std::int32_t body) {
+    const auto b = static_cast<std::size_t>(body);
+    if (body == 0 || reached_[b] == 2) return;
+    reached_[b] = 2;
+    const Wrench& w = wrenches[b];
+    const Mat3& rt = bodies.to_body[b];
+    const Vec3 com_offset = bodies.poses[body].rotation * bodies.com_m[b];
+    const Vec3 torque_about_com = w.torque_Nm - cross(com_offset, w.force_N);
+    linear_[b] = w.force_N * (step_s * bodies.inverse_mass[b]);
+    linear_[b].z -= bodies.falls_m_s2[b] * step_s;
+    angular_[b] = bodies.inverse_inertia[b] * (rt * torque_about_com) * step_s;
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    start(rows_[i].body_a);
+    start(rows_[i].body_b);
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    Row& r = rows_[i];
+    const double inverse = lever(r.body_a, r.point_m, r.normal, r.lever_a, r.turn_a) +
+                           lever(r.body_b, r.point_m, r.normal, r.lever_b, r.turn_b);
+    r.mass_kg = inverse > 0 ? 1 / inverse : 0;
+    // Warm start: the resting rows begin with last step's impulse.
+    if (r.impulse_N_s == 0) continue;
+    const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+    linear_[a] += r.normal * (r.impulse_N_s * bodies.inverse_mass[a]);
+    angular_[a] += r.turn_a * r.impulse_N_s;
+    if (b != 0) {
+      linear_[b] -= r.normal * (r.impulse_N_s * bodies.inverse_mass[b]);
+      angular_[b] -= r.turn_b * r.impulse_N_s;
+    }
+  }
+  // Projected Gauss–Seidel on the velocity changes: each row in turn takes the impulse that
+  // gives it its wanted change, never pulling.
+  const int sweeps = stops_reached_ ? kMaxSweeps : kMaxSweepsHeldOnly;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    double largest = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      Row& r = rows_[i];
+      const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+      double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
+      if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
+      const double impulse = std::max(0.0, r.impulse_N_s + (r.wanted_m_s - change) * r.mass_kg);
+      const double d = impulse - r.impulse_N_s;
+      if (d == 0) continue;
+      r.impulse_N_s = impulse;
+      largest = std::max(largest, std::abs(d) / r.mass_kg);
+      linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
+      angular_[a] += r.turn_a * d;
+      if (b != 0) {
+        linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
+        angular_[b] -= r.turn_b * d;
+      }
+    }
+    if (largest < kConverged_m_s) break;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const Row& r = rows_[i];
+    const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+    linear_[a] = linear_[b] = angular_[a] = angular_[b] = Vec3{};
+    reached_[a] = reached_[b] = 0;
+    if (r.impulse_N_s == 0) continue;
+    const Vec3 force = r.normal * (r.impulse_N_s / step_s);
+    Wrench& wa = wrenches[a];
+    wa.force_N += force;
+    wa.torque_Nm += cross(r.point_m - bodies.poses[a].position, force);
+    if (b != 0) {
+      Wrench& wb = wrenches[b];
+      wb.force_N -= force;
+      wb.torque_Nm -= cross(r.point_m - bodies.poses[b].position, force);
+    }
+    if (r.info >= 0) info[r.info].force_N += force;
+  }
+}
+
+}  // namespace s2sim::contact
