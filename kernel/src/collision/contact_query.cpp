@@ -1,5 +1,7 @@
 #include "collision/contact_query.hpp"
 
+#include "collision/box_box.hpp"
+
 namespace s2sim::collision {
 
 ContactQuery::ContactQuery(const ShapeTable& table)
@@ -48,7 +50,10 @@ int ContactQuery::pair_points(const ShapeTable& table, const Placement& placemen
     swap_roles(out, n);
     return n;
   }
+  // The rest number their points by clipping order: ContactWorld matches them to its memory.
   renumbered = true;
+  if (sa.kind == ShapeKind::box && sb.kind == ShapeKind::box)
+    return box_box(sa.half_extents_m, pa, sb.half_extents_m, pb, out, margin);
   return fcl_.collide(sa, pa, sb, pb, out, margin);
 }
 

@@ -2,8 +2,9 @@
 /// \file
 /// The contact query on placed shapes: which shapes reach a static plane and their points
 /// there, which pairs of shapes have overlapping boxes (broad phase), and a pair's points
-/// (narrow phase: analytic for spheres, FCL for the rest). The query's buffers (the broad
-/// phase's, FCL's solver) belong to the caller's instance; the table is only read.
+/// (narrow phase: analytic for spheres, box_box.hpp for two boxes, FCL for pairs with a
+/// cylinder). The query's buffers (the broad phase's, FCL's solver) belong to the caller's
+/// instance; the table is only read.
 
 #include "collision/broad_phase.hpp"
 #include "collision/contact_point.hpp"
@@ -60,10 +61,10 @@ class ContactQuery {
   std::size_t max_pairs() const { return max_pairs_; }
 
   /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set
-  /// when the narrow phase numbers its points in its own, unstable order (FCL): the caller
-  /// gives them stable feature ids. Points within the sum of the two shapes' speculative
-  /// margins are reported with a negative depth, except for pairs with a cylinder (GJK/EPA
-  /// reports touching points only).
+  /// when the narrow phase numbers its points in its own, unstable order (box-box clipping,
+  /// FCL): the caller gives them stable feature ids. Points within the sum of the two shapes'
+  /// speculative margins are reported with a negative depth, except for pairs with a cylinder
+  /// (GJK/EPA reports touching points only).
   int pair_points(const ShapeTable& table, const Placement& placement, std::int32_t a,
                   std::int32_t b, ContactPoint* out, bool& renumbered);
 

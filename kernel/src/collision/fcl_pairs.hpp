@@ -1,9 +1,10 @@
 #pragma once
 /// \file
-/// Narrow phase by FCL for the pairs without an analytic path here: box-box (FCL's ODE-derived
-/// boxBox2, up to 4 points, called directly so that no vector is allocated), and pairs with a
-/// cylinder (GJK/EPA through libccd, one point). FCL and Eigen stay in fcl_pairs.cpp: Simbody's
-/// headers break Eigen's templates.
+/// Narrow phase by FCL for the pairs with a cylinder (GJK/EPA through libccd, one point), and
+/// box-box by FCL's ODE-derived boxBox2 (up to 4 points, called directly so that no vector is
+/// allocated): the contact query solves two boxes with box_box.hpp, which gives the same
+/// points, and keeps this path as its reference (tests/kernel/collision/box_box_test.cpp). FCL
+/// and Eigen stay in fcl_pairs.cpp: Simbody's headers break Eigen's templates.
 
 #include "collision/contact_point.hpp"
 
