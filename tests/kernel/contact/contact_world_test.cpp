@@ -1,7 +1,7 @@
 // The contact layer against analytic answers (docs/models/contact.md), at a 1 ms step.
 #include "contact/contact_world.hpp"
+#include "contact_runner.hpp"
 #include "model/multibody.hpp"
-#include "model_runner.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -16,15 +16,7 @@ using scene::JointType;
 constexpr double kG = kGravity_m_s2;
 
 /// A multibody model with the contact layer as its substep force.
-struct Runner : test::Runner {
-  explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
-      : test::Runner(s, dt, substeps), table(s), contacts(table, s, mb.apparent_mass_kg()) {
-    contact = &contacts;
-    mb.use_contact_wrenches();
-  }
-  collision::ShapeTable table;
-  ContactWorld contacts;
-};
+using Runner = test::ContactRunner;
 
 void set_mu(scene::Body& b, double mu, double bounce = 0) {
   for (auto& g : b.geoms) {

@@ -1,8 +1,8 @@
 // Speculative contact (docs/models/contact.md, "Speculative contact"): fast landings at a 1 ms
 // step without substeps stay shallow, and impacts still rebound at the surfaces' restitution.
 #include "contact/contact_world.hpp"
+#include "contact_runner.hpp"
 #include "model/multibody.hpp"
-#include "model_runner.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -17,22 +17,7 @@ namespace {
 
 constexpr double kG = kGravity_m_s2;
 
-struct Runner : test::Runner {
-  explicit Runner(const scene::Scene& s)
-      : test::Runner(s, 1e-3, 1), table(s), contacts(table, s, mb.apparent_mass_kg()) {
-    contact = &contacts;
-    mb.use_contact_wrenches();
-  }
-  /// The deepest point among the last substep's contacts.
-  double deepest_m() const {
-    double d = 0;
-    for (std::int32_t i = 0; i < *contacts.contact_count(); ++i)
-      d = std::max(d, contacts.contacts()[i].depth_m);
-    return d;
-  }
-  collision::ShapeTable table;
-  ContactWorld contacts;
-};
+using Runner = test::ContactRunner;
 
 void set_surface(scene::Body& b, double mu, double bounce) {
   for (auto& g : b.geoms) {

@@ -3,8 +3,8 @@
 // where a penalty spring alone sinks millimetres at 1 ms.
 #include "contact/stop_graph.hpp"
 #include "contact/contact_world.hpp"
+#include "contact_runner.hpp"
 #include "model/multibody.hpp"
-#include "model_runner.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -108,21 +108,7 @@ TEST(StopGraph, NeverPulls) {
   EXPECT_EQ(p.wrenches[1].force_N.z, 5000.0);
 }
 
-struct Runner : test::Runner {
-  explicit Runner(const scene::Scene& s)
-      : test::Runner(s, 1e-3, 1), table(s), contacts(table, s, mb.apparent_mass_kg()) {
-    contact = &contacts;
-    mb.use_contact_wrenches();
-  }
-  double deepest_m() const {
-    double d = 0;
-    for (std::int32_t i = 0; i < *contacts.contact_count(); ++i)
-      d = std::max(d, contacts.contacts()[i].depth_m);
-    return d;
-  }
-  collision::ShapeTable table;
-  ContactWorld contacts;
-};
+using Runner = test::ContactRunner;
 
 TEST(StopGraph, ABoxLandingOnABoxOnTheGroundStaysWithinTwoMillimetres) {
   // 0.5 kg onto 0.5 kg resting on the ground, from 0.5 m (3.1 m/s): the stop on the lower
