@@ -62,7 +62,6 @@ std::size_t StopGraph::reach(const ContactInfo* info) {
   }
   reached_[0] = 0;  // the world passes nothing on
   const bool stops = !rows_.empty();
-  stops_reached_ = stops;
   if (held_count_ > 0)
     for (Resting& r : resting_)
       if (r.held) take(r, info);
@@ -86,6 +85,7 @@ std::size_t StopGraph::reach(const ContactInfo* info) {
 void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wrenches,
                       ContactInfo* info) {
   if (empty()) return;
+  const bool stops = !rows_.empty();  // before reach() appends the held and reached points
   const std::size_t count = reach(info);
   // Each row's lever arms and its own effective mass.
   auto lever = [&](std::int32_t body, const Vec3& point, const Vec3& normal, Vec3& arm,
@@ -133,7 +133,7 @@ void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wren
   }
   // Projected Gauss–Seidel on the velocity changes: each row in turn takes the impulse that
   // gives it its wanted change, never pulling.
-  const int sweeps = stops_reached_ ? kMaxSweeps : kMaxSweepsHeldOnly;
+  const int sweeps = stops ? kMaxSweeps : kMaxSweepsHeldOnly;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
     double largest = 0;
     for (std::size_t i = 0; i < count; ++i) {

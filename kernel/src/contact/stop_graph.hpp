@@ -57,8 +57,8 @@ class StopGraph {
   /// Nothing to solve: no stop and no held point.
   bool empty() const { return rows_.empty() && held_count_ == 0; }
 
-  /// Solves the rows reached from the stops and adds their impulses / step_s to `wrenches`
-  /// (and the resting rows' to `info[...].force_N`).
+  /// Solves the stops, the held points and the resting points the stops reach, and adds
+  /// their impulses / step_s to `wrenches` (and the resting rows' to `info[...].force_N`).
   void solve(const BodyInertiaView& bodies, double step_s, Wrench* wrenches, ContactInfo* info);
 
   /// After solve(): f(memory, force_N) for each resting point that took an impulse, its force.
@@ -95,10 +95,9 @@ class StopGraph {
   std::vector<Row> rows_;         // stops (in order), then held, then reached resting points
   std::vector<Resting> resting_;  // candidates, in order
   std::size_t held_count_ = 0;
-  bool stops_reached_ = false;  // this solve has stops (else held points only)
-  std::vector<char> reached_;   // per body: 1 reached by a stop, 2 its velocity change begun
-  std::vector<Vec3> linear_;    // per body: velocity change, world
-  std::vector<Vec3> angular_;   // per body: angular velocity change, body axes
+  std::vector<char> reached_;  // per body: 1 reached by a stop, 2 its velocity change begun
+  std::vector<Vec3> linear_;   // per body: velocity change, world
+  std::vector<Vec3> angular_;  // per body: angular velocity change, body axes
 };
 
 }  // namespace s2sim::contact
