@@ -26,14 +26,18 @@ inline void cpu_relax() {
 #endif
 }
 
-inline std::uint32_t generation_of(std::uint64_t ticket) {
-  return static_cast<std::uint32_t>(ticket >> 32);
+inline std::uint64_t generation_of(std::uint64_t ticket) {
+  return ticket >> 16;
+}
+inline int count_of(std::uint64_t ticket) {
+  return static_cast<int>(ticket & 0xffff);
 }
 
 }  // namespace
 
 WorkerPool::WorkerPool(int threads, int max_tasks)
-    : errors_(std::min(kMaxTasks, static_cast<std::size_t>(max_tasks < 1 ? 1 : max_tasks))) {
+    : errors_(std::min(kMaxTasks, static_cast<std::size_t>(max_tasks < 1 ? 1 : max_tasks))),
+      claims_(std::make_unique<Claim[]>(errors_.size())) {
   const int workers = threads < 1 ? 0 : threads - 1;
   threads_.reserve(static_cast<std::size_t>(workers));
   for (int t = 1; t <= workers; ++t)
@@ -44,34 +48,44 @@ WorkerPool::~WorkerPool() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_.store(true);
-    ticket_.store((static_cast<std::uint64_t>(generation_of(ticket_.load()) + 1) << 32));
+    ticket_.store((generation_of(ticket_.load()) + 1) << 16);
   }
   wake_.notify_all();
   for (auto& t : threads_)
     t.join();
 }
 
-void WorkerPool::take_tasks(std::uint32_t generation, int thread) noexcept {
-  std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
-  for (;;) {
-    if (generation_of(ticket) != generation) return;
-    // A worker on the caller's core would only take the caller's time (and the caller would
-    // then wait for it): leave the tasks to the caller.
-    if (thread != 0 && sched_getcpu() == caller_cpu_.load(std::memory_order_relaxed)) return;
-    const auto next = static_cast<int>(ticket & 0xffff);
-    const auto count = static_cast<int>((ticket >> 16) & 0xffff);
-    if (next >= count) return;
-    if (!ticket_.compare_exchange_weak(ticket, ticket + 1, std::memory_order_acq_rel,
-                                       std::memory_order_acquire))
-      continue;  // `ticket` now holds the current value
-    try {
-      task_(context_, next, thread);
-    } catch (...) {
-      errors_[static_cast<std::size_t>(next)] = std::current_exception();
-    }
-    done_.fetch_add(1, std::memory_order_acq_rel);
-    ticket = ticket_.load(std::memory_order_acquire);
+bool WorkerPool::claim(int index, std::uint64_t generation) noexcept {
+  std::atomic<std::uint64_t>& claimed = claims_[static_cast<std::size_t>(index)].generation;
+  std::uint64_t seen = claimed.load(std::memory_order_relaxed);
+  while (seen < generation)
+    if (claimed.compare_exchange_weak(seen, generation, std::memory_order_acq_rel,
+                                      std::memory_order_relaxed))
+      return true;
+  return false;
+}
+
+void WorkerPool::run_task(int index, int thread) noexcept {
+  try {
+    task_(context_, index, thread);
+  } catch (...) {
+    errors_[static_cast<std::size_t>(index)] = std::current_exception();
   }
+  done_.fetch_add(1, std::memory_order_acq_rel);
+}
+
+void WorkerPool::take_tasks(std::uint64_t generation, int thread) noexcept {
+  const std::uint64_t ticket = ticket_.load(std::memory_order_acquire);
+  if (generation_of(ticket) != generation) return;
+  // A worker on the caller's core would only take the caller's time (and the caller would
+  // then wait for it): leave the tasks to the caller.
+  if (thread != 0 && sched_getcpu() == caller_cpu_.load(std::memory_order_relaxed)) return;
+  const int count = count_of(ticket);
+  const int threads = this->threads();
+  for (int i = thread; i < count; i += threads)  // home first
+    if (claim(i, generation)) run_task(i, thread);
+  for (int i = 0; i < count; ++i)  // then what the others have not taken
+    if (i % threads != thread && claim(i, generation)) run_task(i, thread);
 }
 
 void WorkerPool::run(Task task, void* context, int count) {
@@ -84,11 +98,11 @@ void WorkerPool::run(Task task, void* context, int count) {
     errors_[static_cast<std::size_t>(i)] = nullptr;
   done_.store(0, std::memory_order_relaxed);
   caller_cpu_.store(sched_getcpu(), std::memory_order_relaxed);
-  const std::uint32_t generation = generation_of(ticket_.load()) + 1;
+  const std::uint64_t generation = generation_of(ticket_.load()) + 1;
   // Sequentially consistent with the sleepers' count (a worker going to sleep increments it,
   // then reads the ticket): either it sees this generation or this run sees it asleep.
-  ticket_.store((static_cast<std::uint64_t>(generation) << 32) |
-                (static_cast<std::uint64_t>(count) << 16));  // publishes task_, context_
+  ticket_.store((generation << 16) |
+                static_cast<std::uint64_t>(count));  // publishes task_, context_
   if (sleepers_.load() > 0) {
     std::lock_guard<std::mutex> lock(mutex_);
     wake_.notify_all();
@@ -111,7 +125,7 @@ void WorkerPool::run(Task task, void* context, int count) {
 }
 
 void WorkerPool::work(int thread) {
-  std::uint32_t seen = 0;
+  std::uint64_t seen = 0;
   for (;;) {
     // Wait for the next run: spin, then sleep.
     const auto start = std::chrono::steady_clock::now();
