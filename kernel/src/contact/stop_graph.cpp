@@ -16,6 +16,11 @@ constexpr double kConverged_m_s = 1e-5;
 void StopGraph::reserve(std::size_t bodies, std::size_t rows) {
   rows_.reserve(rows);
   resting_.reserve(rows);
+  order_.reserve(rows);
+  group_begin_.reserve(rows + 1);
+  row_group_.reserve(rows);
+  parent_.assign(bodies, -1);
+  group_of_root_.assign(bodies, -1);
   reached_.assign(bodies, 0);
   linear_.assign(bodies, Vec3{});
   angular_.assign(bodies, Vec3{});
@@ -82,10 +87,60 @@ std::size_t StopGraph::reach(const ContactInfo* info) {
   return rows_.size();
 }
 
+std::int32_t StopGraph::root(std::int32_t body) {
+  auto& parent = parent_;
+  while (parent[static_cast<std::size_t>(body)] >= 0) {
+    const std::int32_t up = parent[static_cast<std::size_t>(body)];
+    if (parent[static_cast<std::size_t>(up)] >= 0)
+      parent[static_cast<std::size_t>(body)] = parent[static_cast<std::size_t>(up)];  // halving
+    body = up;
+  }
+  return body;
+}
+
+std::size_t StopGraph::group_rows(std::size_t count) {
+  // Union–find over the rows' bodies, then the rows grouped by their first row's order (a
+  // counting sort, stable: each group keeps its rows' order).
+  for (std::size_t i = 0; i < count; ++i) {
+    const Row& r = rows_[i];
+    if (r.body_b == 0) continue;
+    const std::int32_t a = root(r.body_a), b = root(r.body_b);
+    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+  row_group_.clear();
+  group_begin_.assign(1, 0);
+  std::size_t groups = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::int32_t& group = group_of_root_[static_cast<std::size_t>(root(rows_[i].body_a))];
+    if (group < 0) {
+      group = static_cast<std::int32_t>(groups++);
+      group_begin_.push_back(0);
+    }
+    row_group_.push_back(group);
+    ++group_begin_[static_cast<std::size_t>(group) + 1];
+  }
+  for (std::size_t g = 0; g < groups; ++g)
+    group_begin_[g + 1] += group_begin_[g];
+  order_.resize(count);
+  for (std::size_t i = 0; i < count; ++i)
+    order_[group_begin_[static_cast<std::size_t>(row_group_[i])]++] = i;
+  for (std::size_t g = groups; g > 0; --g)  // back to each group's first row
+    group_begin_[g] = group_begin_[g - 1];
+  group_begin_[0] = 0;
+  for (std::size_t i = 0; i < count; ++i) {  // forget, for the next solve
+    const Row& r = rows_[i];
+    group_of_root_[static_cast<std::size_t>(root(r.body_a))] = -1;
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    parent_[static_cast<std::size_t>(rows_[i].body_a)] = -1;
+    parent_[static_cast<std::size_t>(rows_[i].body_b)] = -1;
+  }
+  return groups;
+}
+
 void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wrenches,
                       ContactInfo* info) {
   if (empty()) return;
-  const bool stops = !rows_.empty();  // before reach() appends the held and reached points
   const std::size_t count = reach(info);
   // Each row's lever arms and its own effective mass.
   auto lever = [&](std::int32_t body, const Vec3& point, const Vec3& normal, Vec3& arm,
@@ -132,28 +187,38 @@ void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wren
     }
   }
   // Projected Gauss–Seidel on the velocity changes: each row in turn takes the impulse that
-  // gives it its wanted change, never pulling.
-  const int sweeps = stops ? kMaxSweeps : kMaxSweepsHeldOnly;
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
-    double largest = 0;
-    for (std::size_t i = 0; i < count; ++i) {
-      Row& r = rows_[i];
-      const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
-      double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
-      if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
-      const double impulse = std::max(0.0, r.impulse_N_s + (r.wanted_m_s - change) * r.mass_kg);
-      const double d = impulse - r.impulse_N_s;
-      if (d == 0) continue;
-      r.impulse_N_s = impulse;
-      largest = std::max(largest, std::abs(d) / r.mass_kg);
-      linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
-      angular_[a] += r.turn_a * d;
-      if (b != 0) {
-        linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
-        angular_[b] -= r.turn_b * d;
+  // gives it its wanted change, never pulling. Each group of rows joined through their bodies
+  // (the world joins nothing) sweeps until it converges, as it would alone: a part of the
+  // island-parallel step, which holds whole groups, then solves its own to the same bits.
+  const std::size_t groups = group_rows(count);
+  for (std::size_t g = 0; g < groups; ++g) {
+    const std::size_t* first = order_.data() + group_begin_[g];
+    const std::size_t* last = order_.data() + group_begin_[g + 1];
+    bool has_stop = false;
+    for (const std::size_t* i = first; i != last; ++i)
+      has_stop = has_stop || rows_[*i].info < 0;
+    const int sweeps = has_stop ? kMaxSweeps : kMaxSweepsHeldOnly;
+    for (int sweep = 0; sweep < sweeps; ++sweep) {
+      double largest = 0;
+      for (const std::size_t* i = first; i != last; ++i) {
+        Row& r = rows_[*i];
+        const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+        double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
+        if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
+        const double impulse = std::max(0.0, r.impulse_N_s + (r.wanted_m_s - change) * r.mass_kg);
+        const double d = impulse - r.impulse_N_s;
+        if (d == 0) continue;
+        r.impulse_N_s = impulse;
+        largest = std::max(largest, std::abs(d) / r.mass_kg);
+        linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
+        angular_[a] += r.turn_a * d;
+        if (b != 0) {
+          linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
+          angular_[b] -= r.turn_b * d;
+        }
       }
+      if (largest < kConverged_m_s) break;
     }
-    if (largest < kConverged_m_s) break;
   }
   for (std::size_t i = 0; i < count; ++i) {
     const Row& r = rows_[i];

@@ -7,7 +7,8 @@
 /// penalty spring alone would let sink by the stopped momentum (millimetres at 1 ms). Here the
 /// resting contacts of jointless bodies reached from a stop through other such contacts take
 /// part: they may not close faster than they already do. Projected Gauss–Seidel on the
-/// bodies' velocity changes, rows in the order they were added (deterministic).
+/// bodies' velocity changes, rows in the order they were added (deterministic), each group of
+/// rows joined through their bodies sweeping until it alone converges.
 
 #include <s2sim/component.hpp>
 #include <s2sim/math.hpp>
@@ -91,13 +92,22 @@ class StopGraph {
   /// points) to the stops; returns how many rows take part.
   std::size_t reach(const ContactInfo* info);
   void take(Resting& r, const ContactInfo* info);
+  /// Groups the first `count` rows by the bodies that join them: order_ lists the rows group
+  /// by group (each in row order, groups by their first row), group g spanning
+  /// [group_begin_[g], group_begin_[g + 1]). Returns the number of groups.
+  std::size_t group_rows(std::size_t count);
+  std::int32_t root(std::int32_t body);
 
   std::vector<Row> rows_;         // stops (in order), then held, then reached resting points
   std::vector<Resting> resting_;  // candidates, in order
   std::size_t held_count_ = 0;
-  std::vector<char> reached_;  // per body: 1 reached by a stop, 2 its velocity change begun
-  std::vector<Vec3> linear_;   // per body: velocity change, world
-  std::vector<Vec3> angular_;  // per body: angular velocity change, body axes
+  std::vector<char> reached_;         // per body: 1 reached by a stop, 2 its velocity change begun
+  std::vector<Vec3> linear_;          // per body: velocity change, world
+  std::vector<Vec3> angular_;         // per body: angular velocity change, body axes
+  std::vector<std::int32_t> parent_;  // per body: union–find parent (-1: a root)
+  std::vector<std::int32_t> group_of_root_;  // per body: its group while grouping (-1: none)
+  std::vector<std::int32_t> row_group_;      // per row
+  std::vector<std::size_t> order_, group_begin_;
 };
 
 }  // namespace s2sim::contact
