@@ -30,12 +30,19 @@ void Placement::update(const ShapeTable& table, const Pose* poses) {
 
 void Placement::update(const ShapeTable& table, const Pose* poses, const Twist* twists,
                        double step_s, double min_margin_m, double max_margin_m) {
+  const auto& moving = table.moving();
+  update(table, poses, twists, step_s, min_margin_m, max_margin_m, moving.data(), moving.size());
+}
+
+void Placement::update(const ShapeTable& table, const Pose* poses, const Twist* twists,
+                       double step_s, double min_margin_m, double max_margin_m,
+                       const std::int32_t* moving, std::size_t count) {
   const Shape* shapes = table.shapes().data();
   const std::int32_t* body = table.bodies().data();
   const Pose* local = table.local_poses().data();
   const char* identity = table.local_identity().data();
-  for (const std::int32_t s : table.moving()) {
-    const auto i = static_cast<std::size_t>(s);
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto i = static_cast<std::size_t>(moving[k]);
     const Pose& pose = poses[body[i]];
     world_[i] = identity[i] ? pose : pose * local[i];
     speculative_m_[i] = 0;

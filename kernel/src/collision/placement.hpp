@@ -29,6 +29,11 @@ class Placement {
   /// are found before they touch.
   void update(const ShapeTable& table, const Pose* poses, const Twist* twists, double step_s,
               double min_margin_m, double max_margin_m);
+  /// The same for the moving shapes `shapes[0 .. count)` only (one part of the island-parallel
+  /// step places its own); the others keep where they were.
+  void update(const ShapeTable& table, const Pose* poses, const Twist* twists, double step_s,
+              double min_margin_m, double max_margin_m, const std::int32_t* shapes,
+              std::size_t count);
 
   const Pose* world() const { return world_.data(); }
   const Aabb* boxes() const { return box_.data(); }

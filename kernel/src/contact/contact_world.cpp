@@ -13,6 +13,8 @@ namespace {
 constexpr double kMaxApparentMass = 1e12;           // a body that cannot move (welded to the world)
 constexpr double kBeltTopCosine = 0.7;              // contacts within 45° of the belt's +Z ride it
 constexpr std::size_t kMaxTabulatedMaterials = 64;  // distinct surfaces; beyond, per point
+constexpr std::uint64_t kPairRank = std::uint64_t{1} << 62;  // pairs' points after the planes'
+constexpr int kLaneShift = 24;  // a stop's memory reference: lane << 24 | index in the lane
 
 bool same_material(const Surface& a, const Surface& b) {
   return a.has_mu == b.has_mu && a.mu == b.mu && a.mu2 == b.mu2 && a.softness == b.softness &&
@@ -110,13 +112,23 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   tabulate_materials();
   group_islands(scene);
 
-  const std::size_t reserve = 64 + 16 * static_cast<std::size_t>(table_.size());
-  memory_.reserve(reserve);
-  next_memory_.reserve(reserve);
-  info_.reserve(reserve);
-  found_.reserve(reserve);
+  reserve_ = 64 + 16 * static_cast<std::size_t>(table_.size());
+  info_.reserve(reserve_);
+  found_.reserve(reserve_);
   touching_points_.assign(apparent_mass_kg_.size(), 0);
-  stops_.reserve(apparent_mass_kg_.size(), reserve);
+  stops_.reserve(apparent_mass_kg_.size(), reserve_);
+  // One lane, every body: the serial run (split() deals them to the parts).
+  lanes_.resize(1);
+  for (std::size_t b = 1; b < apparent_mass_kg_.size(); ++b)
+    lanes_[0].bodies.push_back(static_cast<std::int32_t>(b));
+  lanes_[0].moving = table_.moving();
+  lanes_[0].memory.reserve(reserve_);
+  lanes_[0].next_memory.reserve(reserve_);
+  lane_of_shape_.assign(static_cast<std::size_t>(table_.size()), 0);
+  lane_of_body_.assign(apparent_mass_kg_.size(), 0);
+  plane_rank_.assign(static_cast<std::size_t>(table_.size()), 0);
+  for (std::size_t k = 0; k < table_.moving().size(); ++k)
+    plane_rank_[static_cast<std::size_t>(table_.moving()[k])] = k;
 }
 
 void ContactWorld::group_islands(const scene::Scene& scene) {
@@ -217,11 +229,32 @@ bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
 }
 
 void ContactWorld::reset() {
-  memory_.clear();
-  next_memory_.clear();
+  for (Lane& lane : lanes_) {
+    lane.memory.clear();
+    lane.next_memory.clear();
+    lane.info.clear();
+    lane.info_rank.clear();
+  }
   info_.clear();
   info_count_ = 0;
   query_.reset();
+}
+
+void ContactWorld::plane_points(std::int32_t s, std::vector<Found>& out) {
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  const std::uint64_t rank = plane_rank_[static_cast<std::size_t>(s)];
+  collision::ContactQuery::plane_points(table_, placement_, s, points,
+                                        [&](std::int32_t p, const ContactPoint* found, int n) {
+                                          for (int k = 0; k < n; ++k)
+                                            out.push_back({s, p, true, found[k], rank});
+                                        });
+}
+
+int ContactWorld::pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points) {
+  bool renumbered = false;
+  const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
+  if (renumbered && n > 0) match_features(ia, ib, points, n);
+  return n;
 }
 
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
@@ -232,98 +265,120 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
     to_body_[b] = poses[b].rotation.transposed();
   placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
                     law_.max_speculative_margin_m);
-  next_memory_.clear();
   info_.clear();
   stops_.clear();
-  memory_cursor_ = 0;
+  for (Lane& lane : lanes_) {
+    lane.next_memory.clear();
+    lane.cursor = 0;
+  }
 
   // First every point, then the forces: a point's damping is shared with the other points on
   // its bodies (docs/models/contact.md, "Stiff terms at any step"), so each body's count of
   // touching points must be known before any force.
   const std::int32_t* body = table_.bodies().data();
   found_.clear();
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
   // Moving shapes against the ground and the walls.
-  for (const std::int32_t s : table_.moving()) {
-    if (fixed_to_world_[body[s]]) continue;
-    collision::ContactQuery::plane_points(table_, placement_, s, points,
-                                          [&](std::int32_t p, const ContactPoint* found, int n) {
-                                            for (int k = 0; k < n; ++k)
-                                              found_.push_back({s, p, true, found[k]});
-                                          });
-  }
-  const std::size_t plane_point_count = found_.size();
+  for (const std::int32_t s : table_.moving())
+    if (!fixed_to_world_[body[s]]) plane_points(s, found_);
+  const std::size_t plane_count = found_.size();
   // Shape pairs.
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  std::uint64_t rank = kPairRank;
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
     const bool swap = body[i] == 0;
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    bool renumbered = false;
-    const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
-    if (renumbered && n > 0) match_features(ia, ib, points, n);
+    const int n = pair_points(ia, ib, points);
     for (int k = 0; k < n; ++k)
-      found_.push_back({ia, ib, false, points[k]});
+      found_.push_back({ia, ib, false, points[k], rank++});
   }
+  for (Lane& lane : lanes_)
+    lane.cursor = 0;
+  forces(Sink{nullptr, &info_, nullptr, &stops_}, found_, plane_count, poses, twists, step_s,
+         wrenches);
+  info_count_ = static_cast<std::int32_t>(info_.size());
+}
+
+void ContactWorld::forces(const Sink& sink, const std::vector<Found>& found,
+                          std::size_t plane_count, const Pose* poses, const Twist* twists,
+                          double step_s, Wrench* wrenches) {
+  const std::int32_t* body = table_.bodies().data();
   auto body_b = [&](const Found& f) { return f.plane ? 0 : body[f.other]; };
-  for (const Found& f : found_)
+  // The world's count would gather every point on the ground: only moving bodies share.
+  for (const Found& f : found)
     if (f.point.depth_m > 0) {
       ++touching_points_[static_cast<std::size_t>(body[f.shape_a])];
-      ++touching_points_[static_cast<std::size_t>(body_b(f))];
+      if (const std::int32_t b = body_b(f); b != 0) ++touching_points_[static_cast<std::size_t>(b)];
     }
-  memory_cursor_ = 0;
-  std::size_t pair_run_begin = next_memory_.size();
-  for (std::size_t k = 0; k < found_.size(); ++k) {
-    if (k == plane_point_count) pair_run_begin = next_memory_.size();
-    const Found& f = found_[k];
-    add_point(f.shape_a, f.other, f.plane, f.point, poses, twists, step_s, wrenches);
+  auto mark_pair_run = [&] {
+    if (sink.lane) {
+      sink.lane->pair_run_begin = sink.lane->next_memory.size();
+    } else {
+      for (Lane& lane : lanes_)
+        lane.pair_run_begin = lane.next_memory.size();
+    }
+  };
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    if (k == plane_count) mark_pair_run();
+    add_point(sink, found[k], poses, twists, step_s, wrenches);
   }
-  for (const Found& f : found_) {
+  if (plane_count == found.size()) mark_pair_run();
+  for (const Found& f : found) {
     touching_points_[static_cast<std::size_t>(body[f.shape_a])] = 0;
     touching_points_[static_cast<std::size_t>(body_b(f))] = 0;
   }
-  if (!stops_.empty()) {
+  if (!sink.stops->empty()) {
     const BodyInertiaView view{inverse_apparent_mass_.data(),
                                inverse_inertia_.data(),
                                to_body_.data(),
                                com_m_.data(),
                                poses,
                                falls_m_s2_.data()};
-    stops_.solve(view, step_s, wrenches, info_.data());
-    stops_.resting_forces(step_s, [&](std::int32_t memory, double force_N) {
-      next_memory_[static_cast<std::size_t>(memory)].state.held_force_N = force_N;
+    sink.stops->solve(view, step_s, wrenches, sink.info->data());
+    sink.stops->resting_forces(step_s, [&](std::int32_t memory, double force_N) {
+      Lane& lane = lanes_[static_cast<std::size_t>(memory >> kLaneShift)];
+      lane.next_memory[static_cast<std::size_t>(memory & ((1 << kLaneShift) - 1))]
+          .state.held_force_N = force_N;
     });
   }
-  keep_sorted_memory(pair_run_begin);
-  info_count_ = static_cast<std::int32_t>(info_.size());
+  if (sink.lane) {
+    keep_sorted_memory(*sink.lane);
+  } else {
+    for (Lane& lane : lanes_)
+      keep_sorted_memory(lane);
+  }
 }
 
-void ContactWorld::keep_sorted_memory(std::size_t pair_run_begin) {
+void ContactWorld::keep_sorted_memory(Lane& lane) {
   // The plane run comes shape by shape, corner by corner: sorted. The pair run follows the
   // sorted pair list but for pairs with a static first shape and FCL's renumbered points.
   auto less = [](const Memory& x, const Memory& y) { return x.key < y.key; };
-  const auto middle = next_memory_.begin() + static_cast<std::ptrdiff_t>(pair_run_begin);
-  sort_nearly_sorted(next_memory_.begin(), middle, less);
-  sort_nearly_sorted(middle, next_memory_.end(), less);
-  memory_.resize(next_memory_.size());
-  std::merge(next_memory_.begin(), middle, middle, next_memory_.end(), memory_.begin(), less);
+  auto& next = lane.next_memory;
+  const auto middle = next.begin() + static_cast<std::ptrdiff_t>(lane.pair_run_begin);
+  sort_nearly_sorted(next.begin(), middle, less);
+  sort_nearly_sorted(middle, next.end(), less);
+  lane.memory.resize(next.size());
+  std::merge(next.begin(), middle, middle, next.end(), lane.memory.begin(), less);
 }
 
-std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(std::uint64_t key) {
+std::vector<ContactWorld::Memory>::const_iterator ContactWorld::remembered(Lane& lane,
+                                                                           std::uint64_t key) {
   // Everything before `lo` is below key; gallop forward, then search the last stride.
-  std::size_t lo = memory_cursor_;
-  if (lo > memory_.size() || (lo > 0 && memory_[lo - 1].key >= key)) lo = 0;
+  const std::vector<Memory>& memory = lane.memory;
+  std::size_t lo = lane.cursor;
+  if (lo > memory.size() || (lo > 0 && memory[lo - 1].key >= key)) lo = 0;
   std::size_t hi = lo, stride = 1;
-  while (hi < memory_.size() && memory_[hi].key < key) {
+  while (hi < memory.size() && memory[hi].key < key) {
     lo = hi + 1;
     hi += stride;
     stride *= 2;
   }
-  hi = std::min(hi, memory_.size());
-  const auto found = std::lower_bound(memory_.cbegin() + static_cast<std::ptrdiff_t>(lo),
-                                      memory_.cbegin() + static_cast<std::ptrdiff_t>(hi), key,
+  hi = std::min(hi, memory.size());
+  const auto found = std::lower_bound(memory.cbegin() + static_cast<std::ptrdiff_t>(lo),
+                                      memory.cbegin() + static_cast<std::ptrdiff_t>(hi), key,
                                       [](const Memory& m, std::uint64_t k) { return m.key < k; });
-  memory_cursor_ = static_cast<std::size_t>(found - memory_.cbegin());
+  lane.cursor = static_cast<std::size_t>(found - memory.cbegin());
   return found;
 }
 
@@ -333,9 +388,10 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   // give each point the id of the remembered point of this pair nearest to it (in a's frame),
   // so that friction memory follows the material point.
   const std::uint64_t prefix = pair_key(shape_a, static_cast<std::uint64_t>(shape_b), 0);
-  const auto first = remembered(prefix);
+  Lane& lane = lane_of(shape_a);
+  const auto first = remembered(lane, prefix);
   auto last = first;
-  while (last != memory_.end() && (last->key >> 16) == (prefix >> 16))
+  while (last != lane.memory.cend() && (last->key >> 16) == (prefix >> 16))
     ++last;
   const Pose inverse = placement_.world()[shape_a].inverse();
   const double tolerance =
@@ -363,9 +419,11 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   }
 }
 
-void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
-                             const ContactPoint& p, const Pose* poses, const Twist* twists,
-                             double step_s, Wrench* wrenches) {
+void ContactWorld::add_point(const Sink& sink, const Found& f, const Pose* poses,
+                             const Twist* twists, double step_s, Wrench* wrenches) {
+  const std::int32_t shape_a = f.shape_a, other = f.other;
+  const bool other_is_plane = f.plane;
+  const ContactPoint& p = f.point;
   const auto& surfaces = table_.surfaces();
   const auto& bodies = table_.bodies();
   const Pose* world = placement_.world();
@@ -414,8 +472,9 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  const auto found = remembered(key);
-  const bool known = found != memory_.end() && found->key == key;
+  Lane& lane = sink.lane ? *sink.lane : lane_of(shape_a);
+  const auto found = remembered(lane, key);
+  const bool known = found != lane.memory.cend() && found->key == key;
   PointState state = known ? found->state : PointState{};
   // Speculative contact: a point not touching that cannot cross the gap within the step
   // leaves no trace; one that would is stopped at the surface but is not a contact (not in
@@ -425,14 +484,17 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   const Vec3 force = contact_force(p, material, kin, law_, !known, state, role);
   if (role == PointRole::apart) return;
   state.local_point_m = world[ia].inverse() * p.point_m;
-  next_memory_.push_back({key, state});
+  lane.next_memory.push_back({key, state});
+  const auto memory_ref =
+      static_cast<std::int32_t>((static_cast<std::size_t>(&lane - lanes_.data()) << kLaneShift) |
+                                (lane.next_memory.size() - 1));
   Vec3 applied = force;
   if (role == PointRole::speculative || role == PointRole::impact) {
     // The normal part is a change of the point's closing speed, solved with the substep's
     // other stops and the resting points they reach (stop_graph.hpp); an impact's friction is
     // applied now.
     const double normal = dot(force, p.normal);
-    stops_.add_stop(body_a, body_b, p.point_m, p.normal, normal * step_s / kin.mass_kg);
+    sink.stops->add_stop(body_a, body_b, p.point_m, p.normal, normal * step_s / kin.mass_kg);
     if (role == PointRole::speculative) return;
     applied = force - p.normal * normal;
   }
@@ -452,19 +514,37 @@ void ContactWorld::add_point(std::int32_t shape_a, std::int32_t other, bool othe
   info.normal = p.normal;
   info.force_N = force;
   info.depth_m = std::max(p.depth_m, 0.0);  // an impact completed just short of the surface
-  info_.push_back(info);
+  sink.info->push_back(info);
+  if (sink.info_rank) sink.info_rank->push_back(f.rank);
   if (role == PointRole::contact && jointless_[body_a] && (body_b == 0 || jointless_[body_b]))
-    stops_.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
-                       p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(info_.size() - 1),
-                       static_cast<std::int32_t>(next_memory_.size() - 1), last_hold_N * step_s);
+    sink.stops->add_resting(
+        body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal), p.depth_m > law_.hold_depth_m,
+        static_cast<std::int32_t>(sink.info->size() - 1), memory_ref, last_hold_N * step_s);
 }
 
 void ContactWorld::declare_state(sim::StateLayout& layout) {
   constexpr std::size_t kPer = 10;
   layout.add_variable(
-      "contact/memory", kPer, [this] { return kPer * memory_.size(); },
+      "contact/memory", kPer,
+      [this] {
+        std::size_t count = 0;
+        for (const Lane& lane : lanes_)
+          count += lane.memory.size();
+        return kPer * count;
+      },
       [this](double* out) {
-        for (const Memory& m : memory_) {
+        // In key order whatever the lanes: the lanes' runs merged.
+        std::vector<std::size_t> at(lanes_.size(), 0);
+        for (;;) {
+          const Memory* next = nullptr;
+          std::size_t from = 0;
+          for (std::size_t l = 0; l < lanes_.size(); ++l)
+            if (at[l] < lanes_[l].memory.size() &&
+                (!next || lanes_[l].memory[at[l]].key < next->key))
+              next = &lanes_[l].memory[at[l]], from = l;
+          if (!next) break;
+          ++at[from];
+          const Memory& m = *next;
           const PointState& p = m.state;
           const double v[kPer] = {
               std::bit_cast<double>(m.key), p.bristle_m.x,     p.bristle_m.y,     p.bristle_m.z,
@@ -474,7 +554,8 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
         }
       },
       [this](const double* in, std::size_t count) {
-        memory_.clear();
+        for (Lane& lane : lanes_)
+          lane.memory.clear();
         for (std::size_t k = 0; k < count; k += kPer, in += kPer) {
           Memory m;
           m.key = std::bit_cast<std::uint64_t>(in[0]);
@@ -483,7 +564,10 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
           m.state.local_point_m = {in[5], in[6], in[7]};
           m.state.impact_pending = in[8] != 0;
           m.state.held_force_N = in[9];
-          memory_.push_back(m);
+          // A key names its first shape: its lane keeps it (a key from another scene: lane 0).
+          const std::uint64_t shape = m.key >> 40;
+          (shape < lane_of_shape_.size() ? lane_of(static_cast<std::int32_t>(shape)) : lanes_[0])
+              .memory.push_back(m);
         }
       });
   // The last substep's contacts: what touch sensors and the contact signals read next.

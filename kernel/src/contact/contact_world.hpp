@@ -41,6 +41,17 @@ class ContactWorld final : public model::SubstepForces {
 
   void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override;
 
+  // Part by part (model::SubstepForces; contact_parts.cpp): each part finds and computes the
+  // points on its own bodies (against the ground, the walls and its own bodies) on its own
+  // thread, with its own memory of them, when no two parts' bodies touch or come within a
+  // step of touching; the contact list is then merged in compute()'s order.
+  bool split(const std::vector<int>& part_of_body, int parts) override;
+  bool begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) override;
+  void compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
+                    Wrench* wrenches) override;
+  void end_parts() override;
+  void place_part(int part, const Pose* poses, const Twist* twists, double step_s) override;
+
   /// Contacts of the last substep.
   const ContactInfo* contacts() const { return info_.data(); }
   const std::int32_t* contact_count() const { return &info_count_; }
@@ -51,7 +62,8 @@ class ContactWorld final : public model::SubstepForces {
   /// Forgets every contact (back to t = 0).
   void reset();
   /// Registers the state segments (snapshots), both variable: `contact/memory`, the contact
-  /// points' memory, 9 numbers per point (its key's bits, then its PointState), and
+  /// points' memory in key order, 10 numbers per point (its key's bits, then its PointState),
+  /// and
   /// `contact/points`, the last substep's contacts (what the touch sensors and the contact
   /// signals read before the next one), 12 numbers per ContactInfo.
   void declare_state(sim::StateLayout& layout);
@@ -61,9 +73,48 @@ class ContactWorld final : public model::SubstepForces {
     std::uint64_t key;
     PointState state;
   };
-  void add_point(std::int32_t shape_a, std::int32_t other, bool other_is_plane,
-                 const ContactPoint& p, const Pose* poses, const Twist* twists, double step_s,
-                 Wrench* wrenches);
+  struct Found {
+    std::int32_t shape_a, other;
+    bool plane;  ///< `other` is the ground or a wall
+    ContactPoint point;
+    std::uint64_t rank;  ///< its place in compute()'s order (the contact list's)
+  };
+  /// One part's share (one for the serial run): its bodies, its shapes and the memory of the
+  /// points whose first shape is its own. A cache line apart: each part's thread writes its own.
+  struct alignas(64) Lane {
+    std::vector<std::int32_t> bodies;  ///< kernel bodies, ascending
+    std::vector<std::int32_t> moving;  ///< moving shapes, in the table's order
+    std::vector<Memory> memory, next_memory;
+    std::size_t cursor = 0;          ///< where remembered() last stopped
+    std::size_t pair_run_begin = 0;  ///< next_memory: where the pairs' points begin
+    // Part by part only:
+    std::vector<Found> found, pair_found;
+    std::vector<ContactInfo> info;
+    std::vector<std::uint64_t> info_rank;
+    StopGraph stops;
+  };
+  /// Where add_point() writes: the whole substep's lists, or one lane's.
+  struct Sink {
+    Lane* lane;  ///< part by part: the part's lane (else each point's memory is its shape's)
+    std::vector<ContactInfo>* info;
+    std::vector<std::uint64_t>* info_rank;  ///< part by part: each contact's rank
+    StopGraph* stops;
+  };
+  void add_point(const Sink& sink, const Found& f, const Pose* poses, const Twist* twists,
+                 double step_s, Wrench* wrenches);
+  /// The points of moving shape `s` against the ground and the walls, appended to `out`.
+  void plane_points(std::int32_t s, std::vector<Found>& out);
+  /// The force of each of `found`, in order (`plane_count` first against the planes), then
+  /// the stops, and the memory sorted.
+  void forces(const Sink& sink, const std::vector<Found>& found, std::size_t plane_count,
+              const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches);
+  /// The points of a pair (a must move), with stable feature ids: how many were written.
+  int pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points);
+  /// Deals the memory of every lane (or `memory`) to the lanes by their first shape.
+  void deal_memory(std::vector<Memory>& memory);
+  Lane& lane_of(std::int32_t shape) {
+    return lanes_[static_cast<std::size_t>(lane_of_shape_[static_cast<std::size_t>(shape)])];
+  }
   bool excluded(std::int32_t body_a, std::int32_t body_b) const;
   /// Adds the body's inverse effective mass at `point` along three directions.
   void inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
@@ -77,11 +128,12 @@ class ContactWorld final : public model::SubstepForces {
   /// Groups the shapes by island for the broad phase (at load, after the exclusions).
   void group_islands(const scene::Scene& scene);
   void match_features(std::int32_t shape_a, std::int32_t shape_b, ContactPoint* points, int count);
-  /// The first remembered point whose key is not below `key` (memory_.end() if none), found
-  /// forward from the last one asked for: the points come in nearly increasing key order.
-  std::vector<Memory>::const_iterator remembered(std::uint64_t key);
-  /// Sorts next_memory_ (its plane run, then its pair run, each nearly sorted) into memory_.
-  void keep_sorted_memory(std::size_t pair_run_begin);
+  /// The first point `lane` remembers whose key is not below `key` (its memory's end if none),
+  /// found forward from the last one asked for: the points come in nearly increasing key order.
+  static std::vector<Memory>::const_iterator remembered(Lane& lane, std::uint64_t key);
+  /// Sorts the lane's next memory (its plane run, then its pair run, each nearly sorted) into
+  /// its memory.
+  static void keep_sorted_memory(Lane& lane);
 
   // Speculative stops and the resting contacts they push on, solved together at the end of
   // the substep (stop_graph.hpp).
@@ -113,17 +165,15 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<Mat3> to_body_;  // per body: its rotation transposed (world to body axes)
   collision::Placement placement_;
   collision::ContactQuery query_;
-  std::vector<Memory> memory_, next_memory_;
-  std::size_t memory_cursor_ = 0;  // where remembered() last stopped
+  std::vector<Lane> lanes_;
+  std::vector<std::int32_t> lane_of_shape_;  // per shape (0 for static shapes)
+  std::vector<std::int32_t> lane_of_body_;   // per kernel body
+  std::vector<std::uint64_t> plane_rank_;    // per moving shape: its place in table_.moving()
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;
-  struct Found {
-    std::int32_t shape_a, other;
-    bool plane;  ///< `other` is the ground or a wall
-    ContactPoint point;
-  };
   std::vector<Found> found_;                   // the substep's points, in the order of their forces
   std::vector<std::int32_t> touching_points_;  // per body, this substep (0 between substeps)
+  std::size_t reserve_ = 0;                    // per list, at load
 };
 
 }  // namespace s2sim::contact

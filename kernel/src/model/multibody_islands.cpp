@@ -105,7 +105,7 @@ void MultibodyIslands::request_joint_reactions() {
 void MultibodyIslands::set_tree_fast_path(bool enabled) {
   for (auto& part : parts_)
     part.multibody->set_tree_fast_path(enabled);
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
 }
 const Wrench* MultibodyIslands::joint_reactions() const {
   return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();
@@ -142,7 +142,7 @@ void MultibodyIslands::reset() {
   drive_count_ = 0;
   std::fill(drive_applied_.begin(), drive_applied_.end(), 0.0);
   gather_reactions();
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
 }
 
 void MultibodyIslands::gather_reactions() {
@@ -238,7 +238,7 @@ void MultibodyIslands::restored() {
     part.multibody->restored();
   if (parts() == 1) return;
   gather_reactions();
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
 }
 
 int MultibodyIslands::owner(int body) const {
@@ -247,27 +247,35 @@ int MultibodyIslands::owner(int body) const {
 
 bool MultibodyIslands::place_free_body(int body, const Pose& pose) {
   if (parts() == 1) return parts_[0].multibody->place_free_body(body, pose);
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->place_free_body(body, pose);
 }
 bool MultibodyIslands::move_body(int body, const Pose& pose) {
   if (parts() == 1) return parts_[0].multibody->move_body(body, pose);
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->move_body(body, pose);
 }
 bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
   if (parts() == 1) return parts_[0].multibody->set_body_velocity(body, twist);
-  bodies_fresh_ = read_fresh_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_body_velocity(body, twist);
 }
 
 // --- The parallel substep ----------------------------------------------------------------------
 
-void MultibodyIslands::run_substep(int substep, PartStages stages, void* context) {
+bool MultibodyIslands::split_forces(SubstepForces& forces) {
+  if (parts() == 1 || !forces.split(part_of_body_, parts())) return false;
+  split_forces_ = &forces;
+  return true;
+}
+
+void MultibodyIslands::run_substep(int substep, PartStages stages, void* context,
+                                   bool contact_in_parts) {
   substep_ = substep;
   stages_ = stages;
   stages_context_ = context;
-  bodies_fresh_ = read_fresh_ = false;
+  contact_in_parts_ = contact_in_parts;
+  bodies_fresh_ = read_fresh_ = untouched_ = false;
   try {
     pool_->run(&MultibodyIslands::run_part, this, parts());
   } catch (const Error& e) {
@@ -278,7 +286,7 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
                 "the simulation state became non-finite at t = " + std::to_string(time_s()) +
                     " s, first at body " + body_name(body));
   }
-  bodies_fresh_ = true;
+  bodies_fresh_ = untouched_ = true;
   read_fresh_ = substep == substeps() - 1;
 }
 
@@ -286,7 +294,7 @@ void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
   me.load_part(part, me.substep_);
-  me.stages_(me.stages_context_, *part.multibody, thread == 0, me.substep_);
+  me.stages_(me.stages_context_, p, *part.multibody, thread == 0, me.substep_);
   me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)
   if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
 }
@@ -316,7 +324,7 @@ void MultibodyIslands::load_part(Part& part, int substep) {
     }
     *mb.axis_drive_count() = count;
   }
-  if (contact_used_)
+  if (contact_used_ && !contact_in_parts_)
     for (int b : part.plan.bodies)
       part.contact_wrenches[b] = contact_wrenches_[static_cast<std::size_t>(b)];
 }

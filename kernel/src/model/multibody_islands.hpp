@@ -11,6 +11,7 @@
 
 #include "model/island_plan.hpp"
 #include "model/multibody.hpp"
+#include "model/substep_forces.hpp"
 #include "model/worker_pool.hpp"
 
 #include <memory>
@@ -24,7 +25,7 @@ class MultibodyIslands {
   /// The work of one part in a substep (sim/step.cpp: forces … project, and the tick's finish
   /// on its last substep), called on whichever thread takes the part; `calling_thread`: the
   /// one that called run_substep.
-  using PartStages = void (*)(void* context, Multibody& multibody, bool calling_thread,
+  using PartStages = void (*)(void* context, int part, Multibody& multibody, bool calling_thread,
                               int substep);
 
   /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
@@ -76,11 +77,21 @@ class MultibodyIslands {
   bool set_body_velocity(int body, const Twist& twist);
 
   /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
-  /// taken from the scene-wide arrays (on the first substep) and the contact wrenches, then
-  /// `stages`, then its bodies (and after the last substep its axes, drives and reactions)
+  /// taken from the scene-wide arrays (on the first substep) and the contact wrenches (unless
+  /// `contact_in_parts`: `stages` then write the part's own, Multibody::use_contact_wrenches),
+  /// then `stages`, then its bodies (and after the last substep its axes, drives and reactions)
   /// written back. Exceptions: the lowest part's; a non-finite state names the first body in
   /// kernel order, as the serial run does.
-  void run_substep(int substep, PartStages stages, void* context);
+  void run_substep(int substep, PartStages stages, void* context, bool contact_in_parts = false);
+
+  /// Lets `forces` (contact) be computed part by part (SubstepForces::split) with this
+  /// object's parts; true if it accepted.
+  bool split_forces(SubstepForces& forces);
+  /// The forces split_forces() accepted, else null.
+  SubstepForces* split_forces() const { return split_forces_; }
+  /// Whether the state is the one the last run_substep() left (no body placed, moved or
+  /// given a velocity since, no reset or restore): what the parts computed from it holds.
+  bool untouched_since_substep() const { return untouched_; }
 
  private:
   struct Part {
@@ -124,6 +135,9 @@ class MultibodyIslands {
   std::vector<Twist> twists_;
   std::vector<double> axis_position_, axis_velocity_;
   bool contact_used_ = false;
+  SubstepForces* split_forces_ = nullptr;
+  bool untouched_ = false;
+  bool contact_in_parts_ = false;  // the running substep's
   bool reactions_wanted_ = false;
   bool bodies_fresh_ = false;        // poses_/twists_ hold the current state (for contact)
   mutable bool read_fresh_ = false;  // the parts' read scratch holds it too (for read())

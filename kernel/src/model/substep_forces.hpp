@@ -5,6 +5,8 @@
 
 #include <s2sim/math.hpp>
 
+#include <vector>
+
 namespace s2sim::model {
 
 class SubstepForces {
@@ -13,6 +15,49 @@ class SubstepForces {
   /// `poses`, `twists` per kernel body (0 = world); writes `wrenches` (about each body origin,
   /// world frame) for every body, zero where nothing acts. Must not allocate.
   virtual void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) = 0;
+
+  // --- Part by part (MultibodyIslands): each part computes the loads on its own bodies on its
+  // own thread, where they are used, when no load couples two parts. The results must be those
+  // of compute() to the bit. Forces that cannot be split keep these defaults.
+
+  /// Deals the kernel bodies into `parts` parts (`part_of_body[0]`, the world's, is ignored);
+  /// false: these forces cannot be computed part by part.
+  virtual bool split(const std::vector<int>& part_of_body, int parts) {
+    (void)part_of_body;
+    (void)parts;
+    return false;
+  }
+  /// Before a substep, on the calling thread: true if it can be computed part by part (then
+  /// compute_part() for each part, and end_parts()); false: compute() instead. `placed`: every
+  /// part's place_part() ran with the substep's poses; if not, `poses`/`twists` (all bodies)
+  /// are used.
+  virtual bool begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) {
+    (void)placed;
+    (void)poses;
+    (void)twists;
+    (void)step_s;
+    return false;
+  }
+  /// The loads on part `part`'s bodies into `wrenches` (per kernel body; only the part's own
+  /// bodies are written and read), from `poses`/`twists` (only the part's bodies are read).
+  virtual void compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
+                            Wrench* wrenches) {
+    (void)part;
+    (void)poses;
+    (void)twists;
+    (void)step_s;
+    (void)wrenches;
+  }
+  /// After every compute_part() of a substep, on the calling thread.
+  virtual void end_parts() {}
+  /// After a part's substep, on its thread: prepares the next substep from the part's new
+  /// poses (read as compute_part reads them).
+  virtual void place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
+    (void)part;
+    (void)poses;
+    (void)twists;
+    (void)step_s;
+  }
 };
 
 }  // namespace s2sim::model

@@ -155,7 +155,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   for (const auto& [body, input] : m.belt_speed_inputs)
     m.contacts->set_belt_speed_input(body, input);
-  m.multibody->use_contact_wrenches();  // written by contact at every substep (sim/step.cpp)
+  m.multibody->use_contact_wrenches();     // written by contact at every substep (sim/step.cpp)
+  m.multibody->split_forces(*m.contacts);  // with several parts, each computes its own contact
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);
 

@@ -72,15 +72,51 @@ void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) 
   }
 }
 
-/// One part's substep (MultibodyIslands::run_substep); only the parts the calling thread takes
-/// are profiled (StageProfile is not shared between threads).
-void part_stages(void* context, model::Multibody& mb, bool calling_thread, int substep) {
-  StageProfile* profile = calling_thread ? static_cast<StageProfile*>(context) : nullptr;
+/// What the parts of a substep share (physics_tick below).
+struct PartsContext {
+  StageProfile* profile = nullptr;
+  model::SubstepForces* contact = nullptr;  // split part by part (MultibodyIslands::split_forces)
+  bool contact_in_parts = false;            // this substep's contact is computed in the parts
+};
+
+/// One part's substep (MultibodyIslands::run_substep): its contact when the substep is split,
+/// its stages, and the placing of its shapes for the next substep's contact. Only the parts
+/// the calling thread takes are profiled (StageProfile is not shared between threads).
+void part_stages(void* context, int part, model::Multibody& mb, bool calling_thread, int substep) {
+  const auto& parts = *static_cast<const PartsContext*>(context);
+  StageProfile* profile = calling_thread ? parts.profile : nullptr;
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  if (parts.contact_in_parts) {
+    StageTimer timer(profile, PipelineStage::collide);
+    mb.current_bodies(poses, twists);
+    parts.contact->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+  }
   multibody_stages(mb, substep, profile);
   if (substep == mb.substeps() - 1) {
     StageTimer timer(profile, PipelineStage::finish);
     mb.finish_tick();
   }
+  if (parts.contact) {
+    StageTimer timer(profile, PipelineStage::collide);
+    mb.current_bodies(poses, twists);
+    parts.contact->place_part(part, poses, twists, mb.substep_s());
+  }
+}
+
+/// The substep's contact when it is split part by part: the calling thread's share (the pairs;
+/// the whole contact when two parts' bodies meet). Returns whether the parts compute the rest.
+bool begin_contact_in_parts(model::MultibodyIslands& mb, model::SubstepForces& contact,
+                            StageProfile* profile) {
+  StageTimer timer(profile, PipelineStage::collide);
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  const bool placed = mb.untouched_since_substep();  // the parts placed their shapes
+  if (!placed) mb.current_bodies(poses, twists);
+  if (contact.begin_parts(placed, poses, twists, mb.substep_s())) return true;
+  mb.current_bodies(poses, twists);
+  contact.compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+  return false;
 }
 
 /// Simbody refused a state that went non-finite inside the tick (a blow-up): say where.
@@ -123,10 +159,21 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
 void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
                   StageProfile* profile) {
   if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
+  PartsContext parts;
+  parts.profile = profile;
+  parts.contact = contact && mb.split_forces() == contact ? contact : nullptr;
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
-      collide(mb, contact, profile);
-      mb.run_substep(k, &part_stages, profile);
+      if (parts.contact) {
+        parts.contact_in_parts = begin_contact_in_parts(mb, *contact, profile);
+      } else {
+        collide(mb, contact, profile);
+      }
+      mb.run_substep(k, &part_stages, &parts, parts.contact_in_parts);
+      if (parts.contact_in_parts) {
+        StageTimer timer(profile, PipelineStage::collide);
+        contact->end_parts();
+      }
     }
   } catch (const Error&) {
     throw;

@@ -1,0 +1,132 @@
+// The contact layer part by part (contact_world.hpp, model::SubstepForces): the island-parallel
+// step's parts each find and compute the points on their own bodies, on their own threads.
+//
+// Bit for bit compute()'s results: a point's force depends only on the point, its memory and
+// the counts of touching points on its bodies, all of which a part holds whole when no pair of
+// shapes joins two parts; each body's wrench sums its points in compute()'s order; the stops
+// are solved per connected group of bodies (stop_graph.hpp), so a part's groups come out as
+// in the scene-wide solve; the contact list is merged back into compute()'s order by rank.
+#include "contact/contact_world.hpp"
+
+#include "common/assert.hpp"
+
+#include <algorithm>
+
+namespace s2sim::contact {
+
+bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
+  if (parts < 2) return false;
+  S2SIM_ASSERT(part_of_body.size() == apparent_mass_kg_.size(), "a part for every body");
+  std::vector<Memory> memory;  // what the lanes remembered, dealt again below
+  for (const Lane& lane : lanes_)
+    memory.insert(memory.end(), lane.memory.begin(), lane.memory.end());
+  std::sort(memory.begin(), memory.end(),
+            [](const Memory& x, const Memory& y) { return x.key < y.key; });
+  lanes_.clear();
+  lanes_.resize(static_cast<std::size_t>(parts));
+  for (std::size_t b = 1; b < part_of_body.size(); ++b) {
+    const int p = part_of_body[b];
+    S2SIM_ASSERT(p >= 0 && p < parts, "a body's part out of range");
+    lane_of_body_[b] = p;
+    lanes_[static_cast<std::size_t>(p)].bodies.push_back(static_cast<std::int32_t>(b));
+  }
+  const auto& body = table_.bodies();
+  for (std::size_t s = 0; s < body.size(); ++s)
+    lane_of_shape_[s] = lane_of_body_[static_cast<std::size_t>(body[s])];
+  for (const std::int32_t s : table_.moving())
+    lane_of(s).moving.push_back(s);
+  for (Lane& lane : lanes_) {
+    lane.memory.reserve(reserve_);
+    lane.next_memory.reserve(reserve_);
+    lane.found.reserve(reserve_);
+    lane.pair_found.reserve(reserve_);
+    lane.info.reserve(reserve_);
+    lane.info_rank.reserve(reserve_);
+    lane.stops.reserve(apparent_mass_kg_.size(), reserve_);
+  }
+  for (const Memory& m : memory)
+    lane_of(static_cast<std::int32_t>(m.key >> 40)).memory.push_back(m);
+  return true;
+}
+
+bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) {
+  if (lanes_.size() < 2) return false;
+  if (!placed) {
+    for (std::size_t b = 1; b < to_body_.size(); ++b)
+      to_body_[b] = poses[b].rotation.transposed();
+    placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
+                      law_.max_speculative_margin_m);
+  }
+  for (Lane& lane : lanes_) {
+    lane.pair_found.clear();
+    lane.cursor = 0;
+  }
+  // The pairs here, on the calling thread (the broad phase needs every shape; the narrow
+  // phase's buffers are the query's): each to the lane of its shapes' part.
+  const std::int32_t* body = table_.bodies().data();
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  std::uint64_t rank = std::uint64_t{1} << 62;  // compute()'s kPairRank
+  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
+    if (excluded(body[i], body[j])) continue;
+    const bool swap = body[i] == 0;
+    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
+    const int n = pair_points(ia, ib, points);
+    if (n == 0) continue;
+    // Two parts' bodies touch, or may within the step: the whole substep on this thread.
+    if (body[ib] != 0 && lane_of_shape_[static_cast<std::size_t>(ib)] !=
+                             lane_of_shape_[static_cast<std::size_t>(ia)])
+      return false;
+    Lane& lane = lane_of(ia);
+    for (int k = 0; k < n; ++k)
+      lane.pair_found.push_back({ia, ib, false, points[k], rank++});
+  }
+  return true;
+}
+
+void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
+                                Wrench* wrenches) {
+  Lane& lane = lanes_[static_cast<std::size_t>(part)];
+  for (const std::int32_t b : lane.bodies)
+    wrenches[b] = Wrench{};
+  lane.next_memory.clear();
+  lane.info.clear();
+  lane.info_rank.clear();
+  lane.stops.clear();
+  lane.cursor = 0;
+  lane.found.clear();
+  const std::int32_t* body = table_.bodies().data();
+  for (const std::int32_t s : lane.moving)
+    if (!fixed_to_world_[body[s]]) plane_points(s, lane.found);
+  const std::size_t plane_count = lane.found.size();
+  lane.found.insert(lane.found.end(), lane.pair_found.begin(), lane.pair_found.end());
+  forces(Sink{&lane, &lane.info, &lane.info_rank, &lane.stops}, lane.found, plane_count, poses,
+         twists, step_s, wrenches);
+}
+
+void ContactWorld::end_parts() {
+  // The lanes' contacts, each list in rank order, merged: compute()'s contact list.
+  info_.clear();
+  const std::size_t lanes = lanes_.size();
+  std::size_t at[64] = {};
+  S2SIM_ASSERT(lanes <= 64, "at most 64 parts");
+  for (;;) {
+    std::size_t from = lanes;
+    for (std::size_t l = 0; l < lanes; ++l)
+      if (at[l] < lanes_[l].info.size() &&
+          (from == lanes || lanes_[l].info_rank[at[l]] < lanes_[from].info_rank[at[from]]))
+        from = l;
+    if (from == lanes) break;
+    info_.push_back(lanes_[from].info[at[from]++]);
+  }
+  info_count_ = static_cast<std::int32_t>(info_.size());
+}
+
+void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
+  const Lane& lane = lanes_[static_cast<std::size_t>(part)];
+  for (const std::int32_t b : lane.bodies)
+    to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
+  placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
+                    law_.max_speculative_margin_m, lane.moving.data(), lane.moving.size());
+}
+
+}  // namespace s2sim::contact

@@ -1,0 +1,92 @@
+// The contact layer part by part (kernel/src/contact/contact_parts.cpp): on every substep the
+// parts' results equal compute()'s to the bit, whether the substep splits or two parts' bodies
+// meet and it runs whole.
+#include "contact/contact_world.hpp"
+#include "contact_runner.hpp"
+#include "scene_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <vector>
+
+namespace s2sim::contact {
+namespace {
+
+/// Computes the whole contact for the runner and, on the same poses, a second contact world
+/// part by part; counts the substeps that split and every number that differs.
+struct SideBySide final : model::SubstepForces {
+  SideBySide(ContactWorld& whole_world, ContactWorld& by_parts, int body_count)
+      : whole(whole_world), parts(by_parts), split_wrenches(static_cast<std::size_t>(body_count)) {}
+
+  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override {
+    whole.compute(poses, twists, step_s, wrenches);
+    // Placed by the parts after the first substep, as the island-parallel step does.
+    if (parts.begin_parts(substeps > 0, poses, twists, step_s)) {
+      for (int p = 0; p < 2; ++p)
+        parts.compute_part(p, poses, twists, step_s, split_wrenches.data());
+      parts.end_parts();
+      ++split;
+    } else {
+      parts.compute(poses, twists, step_s, split_wrenches.data());
+    }
+    ++substeps;
+    for (std::size_t b = 1; b < split_wrenches.size(); ++b)
+      differing += std::memcmp(&split_wrenches[b], &wrenches[b], sizeof(Wrench)) != 0;
+    const std::int32_t count = *whole.contact_count();
+    if (*parts.contact_count() != count) {
+      ++differing;
+      return;
+    }
+    deepest_count = std::max(deepest_count, count);
+    for (std::int32_t i = 0; i < count; ++i) {
+      const ContactInfo &a = whole.contacts()[i], &b = parts.contacts()[i];
+      const double va[] = {a.point_m.x, a.point_m.y, a.point_m.z, a.normal.x,  a.normal.y,
+                           a.normal.z,  a.force_N.x, a.force_N.y, a.force_N.z, a.depth_m};
+      const double vb[] = {b.point_m.x, b.point_m.y, b.point_m.z, b.normal.x,  b.normal.y,
+                           b.normal.z,  b.force_N.x, b.force_N.y, b.force_N.z, b.depth_m};
+      differing += a.body_a.index != b.body_a.index || a.body_b.index != b.body_b.index ||
+                   std::memcmp(va, vb, sizeof va) != 0;
+    }
+    // The parts place their shapes for the next substep from the new poses, after it.
+  }
+  ContactWorld& whole;
+  ContactWorld& parts;
+  std::vector<Wrench> split_wrenches;
+  int substeps = 0, split = 0, differing = 0;
+  std::int32_t deepest_count = 0;
+};
+
+// Two stacks a metre apart, one per part, each hit by a falling box at the same instant (stops
+// and held points in both parts at once), and later a box of part 0 landing on part 1's stack
+// and staying there (the substeps then run whole).
+TEST(ContactParts, ThePartsGiveTheWholeContactBitForBit) {
+  scene::Scene s;
+  const double size = 0.1;
+  s.bodies.push_back(test::box("a_below", 0.5, {size, size, size}, {0, 0, size / 2}));
+  s.bodies.push_back(test::box("a_above", 0.5, {size, size, size}, {0.01, 0, 1.5 * size + 0.3}));
+  s.bodies.push_back(test::box("b_below", 2.0, {size, size, size}, {1, 0, size / 2}));
+  s.bodies.push_back(test::box("b_above", 0.3, {size, size, size}, {1.02, 0, 1.5 * size + 0.3}));
+  s.bodies.push_back(test::box("late", 0.4, {size, size, size}, {1.01, 0.01, 2.5 * size + 0.8}));
+  test::ContactRunner run(s);
+  ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
+  ASSERT_TRUE(parts.split({0, 0, 0, 1, 1, 0}, 2));
+  SideBySide side(run.contacts, parts, run.mb.body_count());
+  run.contact = &side;
+  for (int n = 0; n < 1200; ++n) {
+    run.step();
+    const Pose* poses = nullptr;
+    const Twist* twists = nullptr;
+    run.mb.current_bodies(poses, twists);
+    for (int p = 0; p < 2; ++p)
+      parts.place_part(p, poses, twists, 1e-3);
+  }
+  EXPECT_EQ(side.differing, 0);
+  EXPECT_GT(side.split, 200) << "of " << side.substeps << " substeps";
+  EXPECT_GT(side.substeps - side.split, 200) << "the late box never met part 1's stack";
+  EXPECT_GT(side.deepest_count, 12);
+  EXPECT_NEAR(run.poses[5].position.z, 2.5 * size, 2e-3) << "the late box is not on the stack";
+}
+
+}  // namespace
+}  // namespace s2sim::contact
