@@ -39,7 +39,6 @@ bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
     lane.memory.reserve(reserve_);
     lane.next_memory.reserve(reserve_);
     lane.found.reserve(reserve_);
-    lane.pair_found.reserve(reserve_);
     lane.info.reserve(reserve_);
     lane.info_rank.reserve(reserve_);
     lane.stops.reserve(apparent_mass_kg_.size(), reserve_);
@@ -57,12 +56,11 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
     placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
                       law_.max_speculative_margin_m);
   }
-  for (Lane& lane : lanes_) {
-    lane.pair_found.clear();
-    lane.cursor = 0;
-  }
   // The pairs here, on the calling thread (the broad phase needs every shape; the narrow
-  // phase's buffers are the query's): each to the lane of its shapes' part.
+  // phase's buffers are the query's), into found_, which the parts then read for their own:
+  // nothing of the lanes is written here (a line the caller writes costs the part's thread a
+  // trip between the cores to read).
+  found_.clear();
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
   std::uint64_t rank = std::uint64_t{1} << 62;  // compute()'s kPairRank
@@ -76,9 +74,8 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
     if (body[ib] != 0 && lane_of_shape_[static_cast<std::size_t>(ib)] !=
                              lane_of_shape_[static_cast<std::size_t>(ia)])
       return false;
-    Lane& lane = lane_of(ia);
     for (int k = 0; k < n; ++k)
-      lane.pair_found.push_back({ia, ib, false, points[k], rank++});
+      found_.push_back({ia, ib, false, points[k], rank++});
   }
   return true;
 }
@@ -98,7 +95,8 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   for (const std::int32_t s : lane.moving)
     if (!fixed_to_world_[body[s]]) plane_points(s, lane.found);
   const std::size_t plane_count = lane.found.size();
-  lane.found.insert(lane.found.end(), lane.pair_found.begin(), lane.pair_found.end());
+  for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
+    if (lane_of_shape_[static_cast<std::size_t>(f.shape_a)] == part) lane.found.push_back(f);
   forces(Sink{&lane, &lane.info, &lane.info_rank, &lane.stops}, lane.found, plane_count, poses,
          twists, step_s, wrenches);
 }

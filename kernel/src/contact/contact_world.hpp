@@ -88,7 +88,7 @@ class ContactWorld final : public model::SubstepForces {
     std::size_t cursor = 0;          ///< where remembered() last stopped
     std::size_t pair_run_begin = 0;  ///< next_memory: where the pairs' points begin
     // Part by part only:
-    std::vector<Found> found, pair_found;
+    std::vector<Found> found;
     std::vector<ContactInfo> info;
     std::vector<std::uint64_t> info_rank;
     StopGraph stops;
@@ -171,7 +171,8 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<std::uint64_t> plane_rank_;    // per moving shape: its place in table_.moving()
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;
-  std::vector<Found> found_;                   // the substep's points, in the order of their forces
+  std::vector<Found>
+      found_;  // the substep's points in the order of their forces (by parts: pairs')
   std::vector<std::int32_t> touching_points_;  // per body, this substep (0 between substeps)
   std::size_t reserve_ = 0;                    // per list, at load
 };

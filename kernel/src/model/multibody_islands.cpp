@@ -105,7 +105,7 @@ void MultibodyIslands::request_joint_reactions() {
 void MultibodyIslands::set_tree_fast_path(bool enabled) {
   for (auto& part : parts_)
     part.multibody->set_tree_fast_path(enabled);
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
 }
 const Wrench* MultibodyIslands::joint_reactions() const {
   return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();
@@ -142,7 +142,7 @@ void MultibodyIslands::reset() {
   drive_count_ = 0;
   std::fill(drive_applied_.begin(), drive_applied_.end(), 0.0);
   gather_reactions();
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
 }
 
 void MultibodyIslands::gather_reactions() {
@@ -201,16 +201,30 @@ void MultibodyIslands::read(Pose* poses, Twist* twists, double* axis_position,
   }
   poses[0] = Pose{};
   twists[0] = Twist{};
-  for (const auto& part : parts_) {
-    for (int b : part.plan.bodies) {
-      poses[b] = part.poses[static_cast<std::size_t>(b)];
-      twists[b] = part.twists[static_cast<std::size_t>(b)];
-    }
-    for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a) {
-      axis_position[part.plan.global_axis[a]] = part.axis_position[a];
-      axis_velocity[part.plan.global_axis[a]] = part.axis_velocity[a];
-    }
+  // The parts wrote the bound arrays themselves at the end of the tick (publish_tick).
+  if (published_ && poses == bound_.poses && twists == bound_.twists &&
+      axis_position == bound_.axis_position && axis_velocity == bound_.axis_velocity)
+    return;
+  const ReadTargets targets{poses, twists, axis_position, axis_velocity};
+  for (const auto& part : parts_)
+    copy_read(part, targets);
+}
+
+void MultibodyIslands::copy_read(const Part& part, const ReadTargets& to) const {
+  for (int b : part.plan.bodies) {
+    to.poses[b] = part.poses[static_cast<std::size_t>(b)];
+    to.twists[b] = part.twists[static_cast<std::size_t>(b)];
   }
+  for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a) {
+    to.axis_position[part.plan.global_axis[a]] = part.axis_position[a];
+    to.axis_velocity[part.plan.global_axis[a]] = part.axis_velocity[a];
+  }
+}
+
+void MultibodyIslands::bind_read(Pose* poses, Twist* twists, double* axis_position,
+                                 double* axis_velocity) {
+  bound_ = {poses, twists, axis_position, axis_velocity};
+  published_ = false;
 }
 
 double MultibodyIslands::kinetic_energy_J() const {
@@ -238,7 +252,7 @@ void MultibodyIslands::restored() {
     part.multibody->restored();
   if (parts() == 1) return;
   gather_reactions();
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
 }
 
 int MultibodyIslands::owner(int body) const {
@@ -247,17 +261,17 @@ int MultibodyIslands::owner(int body) const {
 
 bool MultibodyIslands::place_free_body(int body, const Pose& pose) {
   if (parts() == 1) return parts_[0].multibody->place_free_body(body, pose);
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->place_free_body(body, pose);
 }
 bool MultibodyIslands::move_body(int body, const Pose& pose) {
   if (parts() == 1) return parts_[0].multibody->move_body(body, pose);
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->move_body(body, pose);
 }
 bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
   if (parts() == 1) return parts_[0].multibody->set_body_velocity(body, twist);
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_body_velocity(body, twist);
 }
 
@@ -275,7 +289,7 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
   stages_ = stages;
   stages_context_ = context;
   contact_in_parts_ = contact_in_parts;
-  bodies_fresh_ = read_fresh_ = untouched_ = false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   try {
     pool_->run(&MultibodyIslands::run_part, this, parts());
   } catch (const Error& e) {
@@ -288,6 +302,7 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
   }
   bodies_fresh_ = untouched_ = true;
   read_fresh_ = substep == substeps() - 1;
+  published_ = read_fresh_ && bound_.poses;
 }
 
 void MultibodyIslands::run_part(void* self, int p, int thread) {
@@ -333,6 +348,7 @@ void MultibodyIslands::publish_tick(Part& part) {
   Multibody& mb = *part.multibody;
   mb.read(part.poses.data(), part.twists.data(), part.axis_position.data(),
           part.axis_velocity.data());
+  if (bound_.poses) copy_read(part, bound_);  // here, on the part's thread
   const double* applied = mb.drive_force_applied();
   for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a)
     drive_applied_[static_cast<std::size_t>(part.plan.global_axis[a])] = applied[a];

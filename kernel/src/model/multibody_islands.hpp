@@ -66,6 +66,10 @@ class MultibodyIslands {
   int first_non_finite_body() const;
   const std::string& body_name(int body) const { return parts_[0].multibody->body_name(body); }
   void read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity) const;
+  /// The arrays read() will fill (the kernel's own): with several parts, each part writes its
+  /// bodies and axes there itself at the end of a tick, on its own thread, and read() of the
+  /// same arrays then only sets the world's entry.
+  void bind_read(Pose* poses, Twist* twists, double* axis_position, double* axis_velocity);
   double kinetic_energy_J() const;
   double potential_energy_J() const;
   /// One part: Multibody's segments. Several: each part's, named `multibody/part<p>/…`
@@ -111,6 +115,13 @@ class MultibodyIslands {
   void copy_bodies(Part& part);
   /// After the tick's last substep: the part's read-out, drives applied and reactions.
   void publish_tick(Part& part);
+  struct ReadTargets {
+    Pose* poses = nullptr;
+    Twist* twists = nullptr;
+    double *axis_position = nullptr, *axis_velocity = nullptr;
+  };
+  /// The part's bodies and axes from its read scratch into `to`.
+  void copy_read(const Part& part, const ReadTargets& to) const;
   /// Every part's joint reactions (or one part's) into the scene-wide reactions_.
   void gather_reactions();
   void gather_reactions(const Part& part);
@@ -141,6 +152,8 @@ class MultibodyIslands {
   bool reactions_wanted_ = false;
   bool bodies_fresh_ = false;        // poses_/twists_ hold the current state (for contact)
   mutable bool read_fresh_ = false;  // the parts' read scratch holds it too (for read())
+  ReadTargets bound_;                // bind_read()
+  bool published_ = false;           // the parts wrote the current state into bound_
   // The running substep (run_substep).
   int substep_ = 0;
   PartStages stages_ = nullptr;

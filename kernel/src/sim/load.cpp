@@ -157,6 +157,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
     m.contacts->set_belt_speed_input(body, input);
   m.multibody->use_contact_wrenches();     // written by contact at every substep (sim/step.cpp)
   m.multibody->split_forces(*m.contacts);  // with several parts, each computes its own contact
+  m.multibody->bind_read(m.poses.data(), m.twists.data(), m.axis_position.data(),
+                         m.axis_velocity.data());  // and writes its own read-out (refresh())
   for (const auto& w : m.multibody->warnings())
     m.warnings.push_back(w);
 
