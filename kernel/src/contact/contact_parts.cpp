@@ -63,7 +63,7 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
   found_.clear();
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
-  std::uint64_t rank = std::uint64_t{1} << 62;  // compute()'s kPairRank
+  std::uint64_t rank = kPairRank;
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
     const bool swap = body[i] == 0;

@@ -13,7 +13,6 @@ namespace {
 constexpr double kMaxApparentMass = 1e12;           // a body that cannot move (welded to the world)
 constexpr double kBeltTopCosine = 0.7;              // contacts within 45° of the belt's +Z ride it
 constexpr std::size_t kMaxTabulatedMaterials = 64;  // distinct surfaces; beyond, per point
-constexpr std::uint64_t kPairRank = std::uint64_t{1} << 62;  // pairs' points after the planes'
 constexpr int kLaneShift = 24;  // a stop's memory reference: lane << 24 | index in the lane
 
 bool same_material(const Surface& a, const Surface& b) {
@@ -324,9 +323,9 @@ void ContactWorld::forces(const Sink& sink, const std::vector<Found>& found,
     add_point(sink, found[k], poses, twists, step_s, wrenches);
   }
   if (plane_count == found.size()) mark_pair_run();
-  for (const Found& f : found) {
+  for (const Found& f : found) {  // the world's entry is never counted (parts run at once)
     touching_points_[static_cast<std::size_t>(body[f.shape_a])] = 0;
-    touching_points_[static_cast<std::size_t>(body_b(f))] = 0;
+    if (const std::int32_t b = body_b(f); b != 0) touching_points_[static_cast<std::size_t>(b)] = 0;
   }
   if (!sink.stops->empty()) {
     const BodyInertiaView view{inverse_apparent_mass_.data(),

@@ -73,6 +73,9 @@ class ContactWorld final : public model::SubstepForces {
     std::uint64_t key;
     PointState state;
   };
+  /// A pair's points rank after every plane point (a plane point's rank: its shape's place in
+  /// the table's moving shapes).
+  static constexpr std::uint64_t kPairRank = std::uint64_t{1} << 62;
   struct Found {
     std::int32_t shape_a, other;
     bool plane;  ///< `other` is the ground or a wall
