@@ -300,7 +300,8 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
                 "the simulation state became non-finite at t = " + std::to_string(time_s()) +
                     " s, first at body " + body_name(body));
   }
-  bodies_fresh_ = untouched_ = true;
+  bodies_fresh_ = split_forces_ == nullptr;
+  untouched_ = true;
   read_fresh_ = substep == substeps() - 1;
   published_ = read_fresh_ && bound_.poses;
 }
@@ -310,7 +311,9 @@ void MultibodyIslands::run_part(void* self, int p, int thread) {
   Part& part = me.parts_[static_cast<std::size_t>(p)];
   me.load_part(part, me.substep_);
   me.stages_(me.stages_context_, p, *part.multibody, thread == 0, me.substep_);
-  me.copy_bodies(part);  // for the next substep's contact (its realize runs here, in parallel)
+  // For the next substep's contact (its realize runs here, in parallel); split forces read
+  // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
+  if (!me.split_forces_) me.copy_bodies(part);
   if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
 }
 
