@@ -193,12 +193,38 @@ void ContactWorld::set_belt_speed_input(std::int32_t body, std::int32_t input) {
   }
 }
 
+void ContactWorld::set_mobility(const std::vector<model::Multibody::Mobility>& mobility) {
+  mobility_.assign(apparent_mass_kg_.size(), model::Multibody::Mobility{});
+  for (std::size_t b = 1; b < mobility.size() && b < mobility_.size(); ++b)
+    mobility_[b] = mobility[b];
+}
+
 void ContactWorld::inverse_masses(std::int32_t body, const Vec3& point, const Pose* poses,
                                   const Vec3* directions, double* inverse_mass) const {
-  // Along each direction d: 1/m + wᵀ I⁻¹ w with w = r × d in body axes. The body's own inertia
-  // stands for its rotation, its apparent mass for its translation.
   if (body == 0) return;
   const auto b = static_cast<std::size_t>(body);
+  if (!mobility_.empty() && mobility_[b].root > 0) {
+    // Along each direction d: Fᵀ Φ F, F = (r × d; d) the unit push at the point as a wrench at
+    // the COM, in the axes of the tree's base, in which Φ was taken.
+    const model::Multibody::Mobility& m = mobility_[b];
+    const Mat3& to_root = to_body_[static_cast<std::size_t>(m.root)];
+    const Vec3 r = point - (poses[body].position + poses[body].rotation * com_m_[b]);
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 torque = to_root * cross(r, directions[k]), force = to_root * directions[k];
+      const double f[6] = {torque.x, torque.y, torque.z, force.x, force.y, force.z};
+      double sum = 0;
+      for (int i = 0; i < 6; ++i) {
+        double row = 0;
+        for (int j = 0; j < 6; ++j)
+          row += m.phi[i][j] * f[j];
+        sum += f[i] * row;
+      }
+      inverse_mass[k] += std::max(sum, 1 / kMaxApparentMass);
+    }
+    return;
+  }
+  // Along each direction d: 1/m + wᵀ I⁻¹ w with w = r × d in body axes. The body's own inertia
+  // stands for its rotation, its apparent mass for its translation.
   const Mat3& rt = to_body_[b];
   const Vec3 r = rt * (point - poses[body].position) - com_m_[b];  // from the COM, body axes
   const double translation = inverse_apparent_mass_[b];

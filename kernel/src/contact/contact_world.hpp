@@ -11,6 +11,7 @@
 #include "collision/shape_table.hpp"
 #include "contact/contact_force.hpp"
 #include "contact/stop_graph.hpp"
+#include "model/multibody.hpp"
 #include "model/substep_forces.hpp"
 
 #include <s2sim/component.hpp>
@@ -32,6 +33,12 @@ class ContactWorld final : public model::SubstepForces {
   /// centre of mass meets, which sets each contact's stiffness.
   ContactWorld(const collision::ShapeTable& shapes, const scene::Scene& scene,
                const std::vector<double>& apparent_mass_kg, const ForceLawSettings& law = {});
+
+  /// Per kernel body, its mobility with its joints free (model::Multibody::contact_mobility):
+  /// a jointed body's effective mass at a point then counts the whole tree it drags (a wheel's
+  /// sideways push turns the robot, not the wheel alone about its diameter). Bodies without
+  /// one keep their apparent mass and their own inertia.
+  void set_mobility(const std::vector<model::Multibody::Mobility>& mobility);
 
   /// Where the belt speeds live (the kernel's input array), read at every substep.
   void set_inputs(const double* inputs) { inputs_ = inputs; }
@@ -150,6 +157,7 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<Mat3> inverse_inertia_;          // per body, about the COM, body axes
   std::vector<char> diagonal_inertia_;         // per body: inverse_inertia_ has no off-diagonal
   std::vector<double> inverse_apparent_mass_;  // per body, 1 / apparent_mass_kg_
+  std::vector<model::Multibody::Mobility> mobility_;  // per body (root 0: none), set_mobility()
   std::vector<char> fixed_to_world_;           // per body: jointed to the world
   std::vector<char> jointless_;                // per body: no joint at all (0: the world)
   std::vector<double> falls_m_s2_;             // per body: gravity if jointless, else 0

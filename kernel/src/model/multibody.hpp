@@ -120,6 +120,17 @@ class Multibody {
   /// of mass meets in the initial configuration, over the three world axes (a free body: its
   /// mass; a wheel: its share of the robot's). Infinite for a body welded to the world.
   std::vector<double> apparent_mass_kg() const;
+  /// How a jointed body answers a push at its centre of mass, its joints free (contact's
+  /// effective mass at a point): per kernel body, the 6×6 mobility Φ that maps a wrench at the
+  /// COM (torque; force) to the body's (angular; COM linear) acceleration in the initial
+  /// configuration, Φ = J M⁻¹ Jᵀ, expressed in the axes of its tree's base body (`root`, a
+  /// kernel body), so that a robot turning carries it along. root = 0 for the world, loose
+  /// bodies (their own mass and inertia say it) and trees whose base is not free.
+  struct Mobility {
+    int root = 0;
+    double phi[6][6] = {};
+  };
+  std::vector<Mobility> contact_mobility() const;
 
   /// Back to the initial configuration at rest, t = 0.
   void reset();

@@ -135,6 +135,17 @@ std::vector<double> MultibodyIslands::apparent_mass_kg() const {
   return out;
 }
 
+std::vector<Multibody::Mobility> MultibodyIslands::contact_mobility() const {
+  if (parts() == 1) return parts_[0].multibody->contact_mobility();
+  std::vector<Multibody::Mobility> out(static_cast<std::size_t>(body_count_));
+  for (const auto& part : parts_) {
+    const auto mobility = part.multibody->contact_mobility();
+    for (int b : part.plan.bodies)
+      out[static_cast<std::size_t>(b)] = mobility[static_cast<std::size_t>(b)];
+  }
+  return out;
+}
+
 void MultibodyIslands::reset() {
   for (auto& part : parts_)
     part.multibody->reset();

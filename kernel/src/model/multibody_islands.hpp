@@ -58,6 +58,7 @@ class MultibodyIslands {
   bool joint_is_loop(int joint) const;
   Wrench* use_contact_wrenches();
   std::vector<double> apparent_mass_kg() const;
+  std::vector<Multibody::Mobility> contact_mobility() const;
   void reset();
   double time_s() const { return parts_[0].multibody->time_s(); }
   int substeps() const { return parts_[0].multibody->substeps(); }

@@ -153,6 +153,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   if (options.simbody_dynamics_only) m.multibody->set_tree_fast_path(false);
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
+  m.contacts->set_mobility(m.multibody->contact_mobility());
   for (const auto& [body, input] : m.belt_speed_inputs)
     m.contacts->set_belt_speed_input(body, input);
   m.multibody->use_contact_wrenches();     // written by contact at every substep (sim/step.cpp)

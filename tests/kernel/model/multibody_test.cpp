@@ -344,3 +344,39 @@ TEST(LooseBodies, MatchSimbodysFreeMobilizer) {
 
 }  // namespace
 }  // namespace s2sim::model
+
+namespace s2sim::model {
+namespace {
+
+// Multibody::contact_mobility (contact's effective mass at a point on a jointed body): a 1 kg
+// chassis, free, and a 0.1 kg wheel hinged to it about Y, their centres of mass at one point.
+// Analytic: a force at the wheel's COM moves both bodies, a/F = 1/1.1 kg along any axis; a
+// torque about the hinge spins the wheel alone, α/τ = 1/I_wheel,yy; a torque about X turns
+// both rigidly, α/τ = 1/(I_chassis,xx + I_wheel,xx). The wheel's own inertia, which the
+// contact used before, says 1/I_wheel,xx for the last: 78 times too free here.
+TEST(ContactMobility, AWheelHingedToAFreeChassisAnswersAsTheTreeItDrags) {
+  scene::Scene s;
+  const Vec3 centre{0, 0, 0.5};
+  s.bodies.push_back(test::box("chassis", 1.0, {0.2, 0.2, 0.2}, centre));
+  s.bodies.push_back(test::box("wheel", 0.1, {0.1, 0.02, 0.1}, centre));
+  s.joints.push_back(test::joint("axle", JointType::hinge, 1, 0, centre, {0, 1, 0}));
+  test::add_robot(s, "cart");
+  Runner r(s);
+  const auto mobility = r.mb.contact_mobility();
+  ASSERT_EQ(mobility.size(), 3u);
+  EXPECT_EQ(mobility[1].root, 1) << "the chassis is its own tree's base";
+  EXPECT_EQ(mobility[2].root, 1) << "the wheel's axes are the chassis's";
+  const auto& phi = mobility[2].phi;
+  const double chassis_xx = 1.0 * (0.04 + 0.04) / 12, wheel_xx = 0.1 * (0.0004 + 0.01) / 12,
+               wheel_yy = 0.1 * (0.01 + 0.01) / 12;
+  for (int axis = 3; axis < 6; ++axis)
+    EXPECT_NEAR(phi[axis][axis], 1 / 1.1, 1e-9) << "force along " << axis - 3;
+  EXPECT_NEAR(phi[1][1], 1 / wheel_yy, 1e-9 / wheel_yy) << "about the hinge";
+  EXPECT_NEAR(phi[0][0], 1 / (chassis_xx + wheel_xx), 1e-9 / chassis_xx) << "about X";
+  for (int i = 0; i < 6; ++i)
+    for (int j = 0; j < 6; ++j)
+      EXPECT_NEAR(phi[i][j], phi[j][i], 1e-9 * (1 + std::abs(phi[i][j]))) << "symmetric";
+}
+
+}  // namespace
+}  // namespace s2sim::model

@@ -344,12 +344,13 @@ void expect_classic_wheels_still(const fs::path& scene) {
   }
 }
 
-// The issue's point as written. Disabled: the controller as written is unstable on this robot
-// under either law, not the integrator. Under S2Sim's textbook law, sampled every T = 10 ms,
+// The issue's point as written. Disabled: at the scene's own 1 ms step the wheels do not hold
+// under either law (the test below; they hold at 0.5 ms and finer under the textbook law).
+// Before 2026-11-25 the analysis here was a plant of the wheel alone: sampled every T = 10 ms,
 // the wheel (DC gain 1/(N K) = 5.95 rad/s per V, time constant J/c ≈ 7..35 ms) under
-// V = −kp·ω − kd·(ω_n − ω_{n−1})/T with kd/T = 1 V per rad/s has a closed-loop pole below −1
-// (about −3.8 for a 7 ms plant, −1.9 for 35 ms): W1, W2 ring up to 5.25 rad/s at the 4 A limit,
-// the same at a 0.1 ms step. Under SimTwo's semantics, this file's default since issue 11, the
+// V = −kp·ω − kd·(ω_n − ω_{n−1})/T with kd/T = 1 V per rad/s has a closed-loop pole below −1;
+// a wheel standing on the floor drags the robot, which the contact now counts, and that loop
+// holds once the step resolves the contact. Under SimTwo's semantics, this file's default since issue 11, the
 // derivative over the 1 ms physics step is ten times stronger: the 0.05 rad/s the wheels turn
 // while the robot settles on the floor kicks it, the motor's reaction pitches the chassis
 // (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's back-EMF
@@ -369,12 +370,15 @@ TEST(SharedBase, ClassicRobotWithoutItsDTermKeepsItsWheelsStillAtAZeroSpeedRefer
 }
 
 // Why the point above is disabled, as a test. Under the textbook law (which does not depend on
-// the step) the wheels ring up with the scene's D term, and the ring-up converges as the step
-// shrinks: max |ω| 3.49 rad/s at 0.1 ms, 3.61 at 0.05 ms, 3.64 at 0.025 ms (9.16 at 1 ms, 1.96
-// at 0.5 ms), 70 times the 0.05 rad/s asked: the scene's controller is unstable on this robot,
-// and an integrator that converged to the right answer could not hold the wheels still. Under
-// SimTwo's law (D over the physics step, SimTwo's own semantics for this file) they run away.
-TEST(SharedBase, ClassicRobotWithItsDTermRingsUpAndTheRingUpConvergesWithTheStep) {
+// the step) the converged motion holds the wheels still with the scene's D term: max |ω| 0.000
+// rad/s at 0.5, 0.1 and 0.05 ms; at the 1 ms step the D term rings (7.8 rad/s), and under
+// SimTwo's law (D over the physics step, SimTwo's own semantics for this file) the wheels run
+// away at 1 ms (27.7 rad/s). Until 2026-11-25 the wheels rang up at every step (3.49 rad/s at
+// 0.1 ms, 3.64 at 0.025 ms): the contact took a wheel's sideways and rolling pushes at the
+// wheel's own inertia, so at the controller's frequencies the wheel turned almost free of the
+// robot it stands on; with the tree's mobility at the contact (docs/models/contact.md,
+// "Effective mass") it carries the robot, a slower plant the same D term holds.
+TEST(SharedBase, ClassicRobotWithItsDTermHoldsStillOnceTheStepResolvesTheContact) {
   if (!fs::exists(kBase / "scene.xml"))
     GTEST_SKIP() << "SimTwo's reference scenes are not at " << S2SIM_SHARED_SCENES;
   auto worst_speed = [](const fs::path& scene, double step_s) {
@@ -387,15 +391,17 @@ TEST(SharedBase, ClassicRobotWithItsDTermRingsUpAndTheRingUpConvergesWithTheStep
   };
   const fs::path textbook =
       edited_copy(kBase, "Differential2.xml", "kd='0.01'", "kd='0.01' law='textbook'");
-  const double fine = worst_speed(textbook, 1e-4), finer = worst_speed(textbook, 5e-5);
+  const double coarse = worst_speed(textbook, 1e-3), fine = worst_speed(textbook, 1e-4),
+               finer = worst_speed(textbook, 5e-5);
   const double simtwo = worst_speed(kBase, 1e-3);
   std::printf(
-      "  max |W1 speed| over 0.2..3 s, textbook law: %.3f rad/s at 0.1 ms, %.3f at "
-      "0.05 ms; SimTwo's law at 1 ms: %.3f\n",
-      fine, finer, simtwo);
-  EXPECT_GT(finer, 20 * 0.05) << "the converged motion holds the wheels";
-  EXPECT_NEAR(fine, finer, 0.05 * finer) << "not converged";
-  EXPECT_GT(simtwo, 20 * 0.05);
+      "  max |W1 speed| over 0.2..3 s, textbook law: %.3f rad/s at 1 ms, %.3f at 0.1 ms, %.3f "
+      "at 0.05 ms; SimTwo's law at 1 ms: %.3f\n",
+      coarse, fine, finer, simtwo);
+  EXPECT_LE(fine, 0.05) << "the converged motion holds the wheels";
+  EXPECT_LE(finer, 0.05) << "the converged motion holds the wheels";
+  EXPECT_GT(coarse, 20 * 0.05) << "the D term at the 1 ms step";
+  EXPECT_GT(simtwo, 20 * 0.05) << "SimTwo's law at 1 ms";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -450,7 +456,7 @@ TEST(FourBar, SpeedIntegralEqualsPositionChangeOnTheDrivenAxisAndTheLoopAxes) {
 // regularisation and bristle on the same light axis), the rotor isolates the motor. Over
 // (0.5 s, 1 s] everything stays finite, each axis's ripple is <= 1 %, each turns at the motor's
 // no-load speed V/(N K) = 0.12 rad/s within 1 % (the friction's share is 1e-8 of it). At 1 ms
-// and at 5 ms; at 1 ms the cart moves forward too (at 5 ms it stalls on its chassis, below).
+// and at 5 ms; the cart moves forward too, at 1 ms at r·ω within 15 % (below).
 class StiffAxes : public testing::TestWithParam<double> {};
 
 TEST_P(StiffAxes, LightAxesUnderTheStiffestMotorAndContactStayFiniteAndSteady) {
@@ -476,12 +482,14 @@ TEST_P(StiffAxes, LightAxesUnderTheStiffestMotorAndContactStayFiniteAndSteady) {
   const auto [a, b] = tr.window(t0, t1);
   const double travel_m = tr.x[3][b - 1] - tr.x[3][a - 1];
   std::printf("  cart travel over the window: %.6f mm\n", 1e3 * travel_m);
-  // At 5 ms the light wheels sink almost their radius (docs/models/contact.md, "Limits": a
-  // jointed wheel's normal stiffness is bounded by its own inertia about its diameter) and the
-  // chassis drags on the floor: the cart stalls within micrometres, either way. Its motion is
-  // checked where the contact holds it up.
+  // Until the contact took a jointed wheel's effective mass from its tree (2026-11-25) the 5 g
+  // wheels sank 18.9 of their 20 mm at 5 ms and the cart stalled on its chassis; at 1 ms it ran
+  // at 5 mm/s, twice its wheels' surface speed. Now 2.22 mm/s at 1 ms against r·ω = 2.4 mm/s;
+  // at 5 ms 4.0 mm/s (not understood: the wheels' surface turns at 2.4).
+  EXPECT_GT(travel_m, 0.0) << "the cart does not move forward";
   if (step <= 1e-3) {
-    EXPECT_GT(travel_m, 0.0) << "the cart does not move forward";
+    const double rolling_m = 0.02 * w * (t1 - t0);  // wheel radius 20 mm
+    EXPECT_NEAR(travel_m, rolling_m, 0.15 * rolling_m) << "the cart does not roll at r·ω";
   }
 }
 

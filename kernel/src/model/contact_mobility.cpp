@@ -1,0 +1,60 @@
+// A jointed body's mobility at its centre of mass for the contact layer (multibody.hpp,
+// Multibody::contact_mobility): unit wrenches through Simbody's M⁻¹ at load.
+#include "model/multibody_impl.hpp"
+
+#include <cmath>
+
+namespace s2sim::model {
+
+std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
+  const Impl& m = *impl_;
+  const SimTK::State& s = m.initial_state;
+  m.system.realize(s, SimTK::Stage::Position);
+  std::vector<Mobility> out(m.mobod_of_body.size());
+  std::vector<int> kernel_of_mobod(static_cast<std::size_t>(m.matter.getNumBodies()), 0);
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
+    if (m.mobod_of_body[b].isValid()) kernel_of_mobod[m.mobod_of_body[b]] = static_cast<int>(b);
+  const int nb = m.matter.getNumBodies();
+  SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
+  SimTK::Vector f, udot;
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
+    if (!m.mobod_of_body[b].isValid()) continue;  // loose
+    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const auto& base = mob.getBaseMobilizedBody();
+    const int root = kernel_of_mobod[base.getMobilizedBodyIndex()];
+    // Only trees whose base is free: a base jointed to the world answers some pushes not at
+    // all (an infinite effective mass); those keep the apparent mass and their own inertia.
+    if (root <= 0 || base.getNumU(s) != 6) continue;
+    const SimTK::Vec3 com_G =
+        mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
+    const SimTK::Rotation& R = base.getBodyRotation(s);  // root axes -> ground
+    Mobility& out_b = out[b];
+    out_b.root = root;
+    bool finite = true;
+    for (int column = 0; column < 6; ++column) {
+      // A unit torque (columns 0-2) or a unit force at the COM (3-5), along a root axis.
+      SimTK::Vec3 unit(0);
+      unit[column % 3] = 1;
+      const SimTK::Vec3 along = R * unit;
+      load.setToZero();
+      load[mob.getMobilizedBodyIndex()] =
+          column < 3 ? SimTK::SpatialVec(along, SimTK::Vec3(0))
+                     : SimTK::SpatialVec(SimTK::cross(com_G, along), along);
+      m.matter.multiplyBySystemJacobianTranspose(s, load, f);
+      m.matter.multiplyByMInv(s, f, udot);
+      m.matter.multiplyBySystemJacobian(s, udot, accel);
+      const SimTK::SpatialVec& A = accel[mob.getMobilizedBodyIndex()];
+      const SimTK::Vec3 angular = ~R * A[0];
+      const SimTK::Vec3 linear = ~R * (A[1] + SimTK::cross(A[0], com_G));
+      for (int row = 0; row < 3; ++row) {
+        out_b.phi[row][column] = angular[row];
+        out_b.phi[row + 3][column] = linear[row];
+        finite = finite && std::isfinite(angular[row]) && std::isfinite(linear[row]);
+      }
+    }
+    if (!finite) out_b = Mobility{};
+  }
+  return out;
+}
+
+}  // namespace s2sim::model
