@@ -70,6 +70,7 @@ TEST(ContactParts, ThePartsGiveTheWholeContactBitForBit) {
   s.bodies.push_back(test::box("late", 0.4, {size, size, size}, {1.01, 0.01, 2.5 * size + 0.8}));
   test::ContactRunner run(s);
   ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
+  parts.set_mobility(run.mb.contact_mobility());
   ASSERT_TRUE(parts.split({0, 0, 0, 1, 1, 0}, 2));
   SideBySide side(run.contacts, parts, run.mb.body_count());
   run.contact = &side;

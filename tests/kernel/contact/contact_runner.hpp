@@ -13,6 +13,7 @@ namespace s2sim::test {
 struct ContactRunner : Runner {
   explicit ContactRunner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
       : Runner(s, dt, substeps), table(s), contacts(table, s, mb.apparent_mass_kg()) {
+    contacts.set_mobility(mb.contact_mobility());  // as the simulation does (sim/load.cpp)
     contact = &contacts;
     mb.use_contact_wrenches();
   }
