@@ -61,23 +61,9 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
   // nothing of the lanes is written here (a line the caller writes costs the part's thread a
   // trip between the cores to read).
   found_.clear();
-  const std::int32_t* body = table_.bodies().data();
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  std::uint64_t rank = kPairRank;
-  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
-    if (excluded(body[i], body[j])) continue;
-    const bool swap = body[i] == 0;
-    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const int n = pair_points(ia, ib, points);
-    if (n == 0) continue;
-    // Two parts' bodies touch, or may within the step: the whole substep on this thread.
-    if (body[ib] != 0 && lane_of_shape_[static_cast<std::size_t>(ib)] !=
-                             lane_of_shape_[static_cast<std::size_t>(ia)])
-      return false;
-    for (int k = 0; k < n; ++k)
-      found_.push_back({ia, ib, false, points[k], rank++});
-  }
-  return true;
+  // False when two parts' bodies touch, or may within the step: the whole substep then runs on
+  // this thread (compute()).
+  return pair_points_into_found(true);
 }
 
 void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists, double step_s,

@@ -275,6 +275,27 @@ void ContactWorld::plane_points(std::int32_t s, std::vector<Found>& out) {
                                         });
 }
 
+bool ContactWorld::pair_points_into_found(bool within_lanes) {
+  const std::int32_t* body = table_.bodies().data();
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  std::uint64_t rank = kPairRank;
+  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
+    if (excluded(body[i], body[j])) continue;
+    // Shape a must move: a static shape is always b.
+    const bool swap = body[i] == 0;
+    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
+    const int n = pair_points(ia, ib, points);
+    if (n == 0) continue;
+    if (within_lanes && body[ib] != 0 &&
+        lane_of_shape_[static_cast<std::size_t>(ib)] !=
+            lane_of_shape_[static_cast<std::size_t>(ia)])
+      return false;
+    for (int k = 0; k < n; ++k)
+      found_.push_back({ia, ib, false, points[k], rank++});
+  }
+  return true;
+}
+
 int ContactWorld::pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points) {
   bool renumbered = false;
   const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
@@ -306,18 +327,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
   for (const std::int32_t s : table_.moving())
     if (!fixed_to_world_[body[s]]) plane_points(s, found_);
   const std::size_t plane_count = found_.size();
-  // Shape pairs.
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  std::uint64_t rank = kPairRank;
-  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
-    if (excluded(body[i], body[j])) continue;
-    // Shape a must move: a static shape is always b.
-    const bool swap = body[i] == 0;
-    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const int n = pair_points(ia, ib, points);
-    for (int k = 0; k < n; ++k)
-      found_.push_back({ia, ib, false, points[k], rank++});
-  }
+  pair_points_into_found(false);
   for (Lane& lane : lanes_)
     lane.cursor = 0;
   forces(Sink{nullptr, &info_, nullptr, &stops_}, found_, plane_count, poses, twists, step_s,

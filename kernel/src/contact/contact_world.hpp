@@ -118,6 +118,9 @@ class ContactWorld final : public model::SubstepForces {
   /// the stops, and the memory sorted.
   void forces(const Sink& sink, const std::vector<Found>& found, std::size_t plane_count,
               const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches);
+  /// The points of every overlapping pair that may touch, appended to found_ in rank order;
+  /// `within_lanes`: stops (false) at the first pair of two lanes' bodies with points.
+  bool pair_points_into_found(bool within_lanes);
   /// The points of a pair (a must move), with stable feature ids: how many were written.
   int pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points);
   /// Deals the memory of every lane (or `memory`) to the lanes by their first shape.
@@ -158,10 +161,10 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<char> diagonal_inertia_;         // per body: inverse_inertia_ has no off-diagonal
   std::vector<double> inverse_apparent_mass_;  // per body, 1 / apparent_mass_kg_
   std::vector<model::Multibody::Mobility> mobility_;  // per body (root 0: none), set_mobility()
-  std::vector<char> fixed_to_world_;           // per body: jointed to the world
-  std::vector<char> jointless_;                // per body: no joint at all (0: the world)
-  std::vector<double> falls_m_s2_;             // per body: gravity if jointless, else 0
-  std::vector<std::uint64_t> joined_pairs_;    // sorted body pairs that never collide
+  std::vector<char> fixed_to_world_;                  // per body: jointed to the world
+  std::vector<char> jointless_;                       // per body: no joint at all (0: the world)
+  std::vector<double> falls_m_s2_;                    // per body: gravity if jointless, else 0
+  std::vector<std::uint64_t> joined_pairs_;           // sorted body pairs that never collide
   double default_mu_ = 0.95;
   // Surfaces combined once per pair of distinct surfaces (plus each against the planes):
   // pair_materials_[material_of_[a] * (material_count_ + 1) + material_of_[b]], column
