@@ -456,7 +456,7 @@ TEST(FourBar, SpeedIntegralEqualsPositionChangeOnTheDrivenAxisAndTheLoopAxes) {
 // regularisation and bristle on the same light axis), the rotor isolates the motor. Over
 // (0.5 s, 1 s] everything stays finite, each axis's ripple is <= 1 %, each turns at the motor's
 // no-load speed V/(N K) = 0.12 rad/s within 1 % (the friction's share is 1e-8 of it). At 1 ms
-// and at 5 ms; the cart moves forward too, at 1 ms at r·ω within 15 % (below).
+// and at 5 ms; the cart rolls at the wheels' r·ω (below).
 class StiffAxes : public testing::TestWithParam<double> {};
 
 TEST_P(StiffAxes, LightAxesUnderTheStiffestMotorAndContactStayFiniteAndSteady) {
@@ -468,7 +468,7 @@ TEST_P(StiffAxes, LightAxesUnderTheStiffestMotorAndContactStayFiniteAndSteady) {
   const Trace tr = record(*sim,
                           {wheel("cart", "right", "speed"), wheel("cart", "left", "speed"),
                            wheel("rotor", "spin", "speed"), "robots/cart/x"},
-                          1.0);
+                          4.0);
   ASSERT_TRUE(tr.failure.empty()) << "at a " << 1e3 * step << " ms step: " << tr.failure
                                   << " (right wheel at that time " << tr.x[0].back() << " rad/s)";
   const double t0 = 0.5, t1 = 1.0, w = 12.0 / (100 * 1.0);
@@ -479,18 +479,17 @@ TEST_P(StiffAxes, LightAxesUnderTheStiffestMotorAndContactStayFiniteAndSteady) {
     EXPECT_LE(tr.ripple(s, t0, t1), 0.01) << names[s] << ": " << tr.describe(s, t0, t1);
     EXPECT_NEAR(tr.mean(s, t0, t1), signs[s] * w, 0.01 * w) << names[s];
   }
-  const auto [a, b] = tr.window(t0, t1);
+  // The cart: its speed swings slowly about r·ω (period about 1.5 s, damped): a tread point's
+  // tangential spring sees the wheel's spin inertia (an effective 2.5 g), not the motor that
+  // locks the wheel's speed (docs/models/contact.md, "Limits"). Over (2 s, 4 s] its mean is
+  // r·ω = 2.4 mm/s: 2.39 at 1 ms, 2.64 at 5 ms (measured).
+  const auto [a, b] = tr.window(2.0, 4.0);
   const double travel_m = tr.x[3][b - 1] - tr.x[3][a - 1];
-  std::printf("  cart travel over the window: %.6f mm\n", 1e3 * travel_m);
-  // Until the contact took a jointed wheel's effective mass from its tree (2026-11-25) the 5 g
-  // wheels sank 18.9 of their 20 mm at 5 ms and the cart stalled on its chassis; at 1 ms it ran
-  // at 5 mm/s, twice its wheels' surface speed. Now 2.22 mm/s at 1 ms against r·ω = 2.4 mm/s;
-  // at 5 ms 4.0 mm/s (not understood: the wheels' surface turns at 2.4).
-  EXPECT_GT(travel_m, 0.0) << "the cart does not move forward";
-  if (step <= 1e-3) {
-    const double rolling_m = 0.02 * w * (t1 - t0);  // wheel radius 20 mm
-    EXPECT_NEAR(travel_m, rolling_m, 0.15 * rolling_m) << "the cart does not roll at r·ω";
-  }
+  const double rolling_m = 0.02 * w * 2.0;  // wheel radius 20 mm
+  std::printf("  cart travel over (2 s, 4 s]: %.6f mm, r·ω·2 s %.6f mm\n", 1e3 * travel_m,
+              1e3 * rolling_m);
+  EXPECT_NEAR(travel_m, rolling_m, (step <= 1e-3 ? 0.05 : 0.2) * rolling_m)
+      << "the cart does not roll at r·ω";
 }
 
 std::string step_name(const testing::TestParamInfo<double>& param) {
