@@ -25,8 +25,7 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
     // Only trees whose base is free: a base jointed to the world answers some pushes not at
     // all (an infinite effective mass); those keep the apparent mass and their own inertia.
     if (root <= 0 || base.getNumU(s) != 6) continue;
-    const SimTK::Vec3 com_G =
-        mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
+    const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
     const SimTK::Rotation& R = base.getBodyRotation(s);  // root axes -> ground
     Mobility& out_b = out[b];
     out_b.root = root;

@@ -350,10 +350,10 @@ void expect_classic_wheels_still(const fs::path& scene) {
 // the wheel (DC gain 1/(N K) = 5.95 rad/s per V, time constant J/c ≈ 7..35 ms) under
 // V = −kp·ω − kd·(ω_n − ω_{n−1})/T with kd/T = 1 V per rad/s has a closed-loop pole below −1;
 // a wheel standing on the floor drags the robot, which the contact now counts, and that loop
-// holds once the step resolves the contact. Under SimTwo's semantics, this file's default since issue 11, the
-// derivative over the 1 ms physics step is ten times stronger: the 0.05 rad/s the wheels turn
-// while the robot settles on the floor kicks it, the motor's reaction pitches the chassis
-// (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's back-EMF
+// holds once the step resolves the contact. Under SimTwo's semantics, this file's default since
+// issue 11, the derivative over the 1 ms physics step is ten times stronger: the 0.05 rad/s the
+// wheels turn while the robot settles on the floor kicks it, the motor's reaction pitches the
+// chassis (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's back-EMF
 // K·ω/N as well). With kd = 0 the wheels hold to 7.5e-14 rad/s under both laws (the test
 // below): what the stiff forces owe.
 TEST(SharedBase, DISABLED_ClassicRobotKeepsItsWheelsStillAtAZeroSpeedReference) {
