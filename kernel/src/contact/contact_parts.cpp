@@ -24,25 +24,19 @@ bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
             [](const Memory& x, const Memory& y) { return x.key < y.key; });
   lanes_.clear();
   lanes_.resize(static_cast<std::size_t>(parts));
+  merge_at_.assign(lanes_.size(), 0);
   for (std::size_t b = 1; b < part_of_body.size(); ++b) {
     const int p = part_of_body[b];
     S2SIM_ASSERT(p >= 0 && p < parts, "a body's part out of range");
-    lane_of_body_[b] = p;
     lanes_[static_cast<std::size_t>(p)].bodies.push_back(static_cast<std::int32_t>(b));
   }
   const auto& body = table_.bodies();
-  for (std::size_t s = 0; s < body.size(); ++s)
-    lane_of_shape_[s] = lane_of_body_[static_cast<std::size_t>(body[s])];
+  for (std::size_t s = 0; s < body.size(); ++s)  // a static shape's (body 0) is never read
+    lane_of_shape_[s] = body[s] == 0 ? 0 : part_of_body[static_cast<std::size_t>(body[s])];
   for (const std::int32_t s : table_.moving())
     lane_of(s).moving.push_back(s);
-  for (Lane& lane : lanes_) {
-    lane.memory.reserve(reserve_);
-    lane.next_memory.reserve(reserve_);
-    lane.found.reserve(reserve_);
-    lane.info.reserve(reserve_);
-    lane.info_rank.reserve(reserve_);
-    lane.stops.reserve(apparent_mass_kg_.size(), reserve_);
-  }
+  for (Lane& lane : lanes_)
+    reserve(lane);
   for (const Memory& m : memory)
     lane_of(static_cast<std::int32_t>(m.key >> 40)).memory.push_back(m);
   return true;
@@ -50,12 +44,7 @@ bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
 
 bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) {
   if (lanes_.size() < 2) return false;
-  if (!placed) {
-    for (std::size_t b = 1; b < to_body_.size(); ++b)
-      to_body_[b] = poses[b].rotation.transposed();
-    placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
-                      law_.max_speculative_margin_m);
-  }
+  if (!placed) place(nullptr, poses, twists, step_s);
   // The pairs here, on the calling thread (the broad phase needs every shape; the narrow
   // phase's buffers are the query's), into found_, which the parts then read for their own:
   // nothing of the lanes is written here (a line the caller writes costs the part's thread a
@@ -83,34 +72,22 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   const std::size_t plane_count = lane.found.size();
   for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
     if (lane_of_shape_[static_cast<std::size_t>(f.shape_a)] == part) lane.found.push_back(f);
-  forces(Sink{&lane, &lane.info, &lane.info_rank, &lane.stops}, lane.found, plane_count, poses,
-         twists, step_s, wrenches);
+  forces(&lane, lane.found, plane_count, poses, twists, step_s, wrenches);
 }
 
 void ContactWorld::end_parts() {
   // The lanes' contacts, each list in rank order, merged: compute()'s contact list.
   info_.clear();
-  const std::size_t lanes = lanes_.size();
-  std::size_t at[64] = {};
-  S2SIM_ASSERT(lanes <= 64, "at most 64 parts");
-  for (;;) {
-    std::size_t from = lanes;
-    for (std::size_t l = 0; l < lanes; ++l)
-      if (at[l] < lanes_[l].info.size() &&
-          (from == lanes || lanes_[l].info_rank[at[l]] < lanes_[from].info_rank[at[from]]))
-        from = l;
-    if (from == lanes) break;
-    info_.push_back(lanes_[from].info[at[from]++]);
-  }
+  merge_lanes([&](std::size_t l) { return lanes_[l].info.size(); },
+              [&](std::size_t l, std::size_t i, std::size_t k, std::size_t j) {
+                return lanes_[l].info_rank[i] < lanes_[k].info_rank[j];
+              },
+              [&](std::size_t l, std::size_t i) { info_.push_back(lanes_[l].info[i]); });
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
 void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
-  const Lane& lane = lanes_[static_cast<std::size_t>(part)];
-  for (const std::int32_t b : lane.bodies)
-    to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
-  placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
-                    law_.max_speculative_margin_m, lane.moving.data(), lane.moving.size());
+  place(&lanes_[static_cast<std::size_t>(part)], poses, twists, step_s);
 }
 
 }  // namespace s2sim::contact

@@ -121,10 +121,9 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   for (std::size_t b = 1; b < apparent_mass_kg_.size(); ++b)
     lanes_[0].bodies.push_back(static_cast<std::int32_t>(b));
   lanes_[0].moving = table_.moving();
-  lanes_[0].memory.reserve(reserve_);
-  lanes_[0].next_memory.reserve(reserve_);
+  reserve(lanes_[0]);
+  merge_at_.assign(1, 0);
   lane_of_shape_.assign(static_cast<std::size_t>(table_.size()), 0);
-  lane_of_body_.assign(apparent_mass_kg_.size(), 0);
   plane_rank_.assign(static_cast<std::size_t>(table_.size()), 0);
   for (std::size_t k = 0; k < table_.moving().size(); ++k)
     plane_rank_[static_cast<std::size_t>(table_.moving()[k])] = k;
@@ -303,14 +302,33 @@ int ContactWorld::pair_points(std::int32_t ia, std::int32_t ib, collision::Conta
   return n;
 }
 
+void ContactWorld::reserve(Lane& lane) const {
+  lane.memory.reserve(reserve_);
+  lane.next_memory.reserve(reserve_);
+  lane.found.reserve(reserve_);
+  lane.info.reserve(reserve_);
+  lane.info_rank.reserve(reserve_);
+  lane.stops.reserve(apparent_mass_kg_.size(), reserve_);
+}
+
+void ContactWorld::place(const Lane* lane, const Pose* poses, const Twist* twists, double step_s) {
+  const double min_margin_m = law_.min_speculative_speed_m_s * step_s;
+  if (!lane) {
+    for (std::size_t b = 1; b < to_body_.size(); ++b)
+      to_body_[b] = poses[b].rotation.transposed();
+    placement_.update(table_, poses, twists, step_s, min_margin_m, law_.max_speculative_margin_m);
+    return;
+  }
+  for (const std::int32_t b : lane->bodies)
+    to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
+  placement_.update(table_, poses, twists, step_s, min_margin_m, law_.max_speculative_margin_m,
+                    lane->moving.data(), lane->moving.size());
+}
+
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
                            Wrench* wrenches) {
-  const std::size_t body_count = apparent_mass_kg_.size();
-  std::fill(wrenches, wrenches + body_count, Wrench{});
-  for (std::size_t b = 1; b < body_count; ++b)
-    to_body_[b] = poses[b].rotation.transposed();
-  placement_.update(table_, poses, twists, step_s, law_.min_speculative_speed_m_s * step_s,
-                    law_.max_speculative_margin_m);
+  std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
+  place(nullptr, poses, twists, step_s);
   info_.clear();
   stops_.clear();
   for (Lane& lane : lanes_) {
@@ -330,14 +348,12 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
   pair_points_into_found(false);
   for (Lane& lane : lanes_)
     lane.cursor = 0;
-  forces(Sink{nullptr, &info_, nullptr, &stops_}, found_, plane_count, poses, twists, step_s,
-         wrenches);
+  forces(nullptr, found_, plane_count, poses, twists, step_s, wrenches);
   info_count_ = static_cast<std::int32_t>(info_.size());
 }
 
-void ContactWorld::forces(const Sink& sink, const std::vector<Found>& found,
-                          std::size_t plane_count, const Pose* poses, const Twist* twists,
-                          double step_s, Wrench* wrenches) {
+void ContactWorld::forces(Lane* lane, const std::vector<Found>& found, std::size_t plane_count,
+                          const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) {
   const std::int32_t* body = table_.bodies().data();
   auto body_b = [&](const Found& f) { return f.plane ? 0 : body[f.other]; };
   // The world's count would gather every point on the ground: only moving bodies share.
@@ -347,41 +363,42 @@ void ContactWorld::forces(const Sink& sink, const std::vector<Found>& found,
       if (const std::int32_t b = body_b(f); b != 0) ++touching_points_[static_cast<std::size_t>(b)];
     }
   auto mark_pair_run = [&] {
-    if (sink.lane) {
-      sink.lane->pair_run_begin = sink.lane->next_memory.size();
+    if (lane) {
+      lane->pair_run_begin = lane->next_memory.size();
     } else {
-      for (Lane& lane : lanes_)
-        lane.pair_run_begin = lane.next_memory.size();
+      for (Lane& each : lanes_)
+        each.pair_run_begin = each.next_memory.size();
     }
   };
   for (std::size_t k = 0; k < found.size(); ++k) {
     if (k == plane_count) mark_pair_run();
-    add_point(sink, found[k], poses, twists, step_s, wrenches);
+    add_point(lane, found[k], poses, twists, step_s, wrenches);
   }
   if (plane_count == found.size()) mark_pair_run();
   for (const Found& f : found) {  // the world's entry is never counted (parts run at once)
     touching_points_[static_cast<std::size_t>(body[f.shape_a])] = 0;
     if (const std::int32_t b = body_b(f); b != 0) touching_points_[static_cast<std::size_t>(b)] = 0;
   }
-  if (!sink.stops->empty()) {
+  StopGraph& stops = lane ? lane->stops : stops_;
+  if (!stops.empty()) {
     const BodyInertiaView view{inverse_apparent_mass_.data(),
                                inverse_inertia_.data(),
                                to_body_.data(),
                                com_m_.data(),
                                poses,
                                falls_m_s2_.data()};
-    sink.stops->solve(view, step_s, wrenches, sink.info->data());
-    sink.stops->resting_forces(step_s, [&](std::int32_t memory, double force_N) {
-      Lane& lane = lanes_[static_cast<std::size_t>(memory >> kLaneShift)];
-      lane.next_memory[static_cast<std::size_t>(memory & ((1 << kLaneShift) - 1))]
+    stops.solve(view, step_s, wrenches, (lane ? lane->info : info_).data());
+    stops.resting_forces(step_s, [&](std::int32_t memory, double force_N) {
+      Lane& owner = lanes_[static_cast<std::size_t>(memory >> kLaneShift)];
+      owner.next_memory[static_cast<std::size_t>(memory & ((1 << kLaneShift) - 1))]
           .state.held_force_N = force_N;
     });
   }
-  if (sink.lane) {
-    keep_sorted_memory(*sink.lane);
+  if (lane) {
+    keep_sorted_memory(*lane);
   } else {
-    for (Lane& lane : lanes_)
-      keep_sorted_memory(lane);
+    for (Lane& each : lanes_)
+      keep_sorted_memory(each);
   }
 }
 
@@ -454,7 +471,7 @@ void ContactWorld::match_features(std::int32_t shape_a, std::int32_t shape_b, Co
   }
 }
 
-void ContactWorld::add_point(const Sink& sink, const Found& f, const Pose* poses,
+void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
                              const Twist* twists, double step_s, Wrench* wrenches) {
   const std::int32_t shape_a = f.shape_a, other = f.other;
   const bool other_is_plane = f.plane;
@@ -507,7 +524,9 @@ void ContactWorld::add_point(const Sink& sink, const Found& f, const Pose* poses
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
   const std::uint64_t key = pair_key(shape_a, other_id, p.feature);
-  Lane& lane = sink.lane ? *sink.lane : lane_of(shape_a);
+  Lane& lane = part_lane ? *part_lane : lane_of(shape_a);
+  std::vector<ContactInfo>& infos = part_lane ? part_lane->info : info_;
+  StopGraph& stops = part_lane ? part_lane->stops : stops_;
   const auto found = remembered(lane, key);
   const bool known = found != lane.memory.cend() && found->key == key;
   PointState state = known ? found->state : PointState{};
@@ -529,7 +548,7 @@ void ContactWorld::add_point(const Sink& sink, const Found& f, const Pose* poses
     // other stops and the resting points they reach (stop_graph.hpp); an impact's friction is
     // applied now.
     const double normal = dot(force, p.normal);
-    sink.stops->add_stop(body_a, body_b, p.point_m, p.normal, normal * step_s / kin.mass_kg);
+    stops.add_stop(body_a, body_b, p.point_m, p.normal, normal * step_s / kin.mass_kg);
     if (role == PointRole::speculative) return;
     applied = force - p.normal * normal;
   }
@@ -549,12 +568,12 @@ void ContactWorld::add_point(const Sink& sink, const Found& f, const Pose* poses
   info.normal = p.normal;
   info.force_N = force;
   info.depth_m = std::max(p.depth_m, 0.0);  // an impact completed just short of the surface
-  sink.info->push_back(info);
-  if (sink.info_rank) sink.info_rank->push_back(f.rank);
+  infos.push_back(info);
+  if (part_lane) part_lane->info_rank.push_back(f.rank);
   if (role == PointRole::contact && jointless_[body_a] && (body_b == 0 || jointless_[body_b]))
-    sink.stops->add_resting(
-        body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal), p.depth_m > law_.hold_depth_m,
-        static_cast<std::int32_t>(sink.info->size() - 1), memory_ref, last_hold_N * step_s);
+    stops.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
+                      p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(infos.size() - 1),
+                      memory_ref, last_hold_N * step_s);
 }
 
 void ContactWorld::declare_state(sim::StateLayout& layout) {
@@ -569,24 +588,25 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
       },
       [this](double* out) {
         // In key order whatever the lanes: the lanes' runs merged.
-        std::vector<std::size_t> at(lanes_.size(), 0);
-        for (;;) {
-          const Memory* next = nullptr;
-          std::size_t from = 0;
-          for (std::size_t l = 0; l < lanes_.size(); ++l)
-            if (at[l] < lanes_[l].memory.size() &&
-                (!next || lanes_[l].memory[at[l]].key < next->key))
-              next = &lanes_[l].memory[at[l]], from = l;
-          if (!next) break;
-          ++at[from];
-          const Memory& m = *next;
-          const PointState& p = m.state;
-          const double v[kPer] = {
-              std::bit_cast<double>(m.key), p.bristle_m.x,     p.bristle_m.y,     p.bristle_m.z,
-              p.approach_speed_m_s,         p.local_point_m.x, p.local_point_m.y, p.local_point_m.z,
-              p.impact_pending ? 1.0 : 0.0, p.held_force_N};
-          out = std::copy(v, v + kPer, out);
-        }
+        merge_lanes([&](std::size_t l) { return lanes_[l].memory.size(); },
+                    [&](std::size_t l, std::size_t i, std::size_t k, std::size_t j) {
+                      return lanes_[l].memory[i].key < lanes_[k].memory[j].key;
+                    },
+                    [&](std::size_t l, std::size_t i) {
+                      const Memory& m = lanes_[l].memory[i];
+                      const PointState& p = m.state;
+                      const double v[kPer] = {std::bit_cast<double>(m.key),
+                                              p.bristle_m.x,
+                                              p.bristle_m.y,
+                                              p.bristle_m.z,
+                                              p.approach_speed_m_s,
+                                              p.local_point_m.x,
+                                              p.local_point_m.y,
+                                              p.local_point_m.z,
+                                              p.impact_pending ? 1.0 : 0.0,
+                                              p.held_force_N};
+                      out = std::copy(v, v + kPer, out);
+                    });
       },
       [this](const double* in, std::size_t count) {
         for (Lane& lane : lanes_)

@@ -103,28 +103,41 @@ class ContactWorld final : public model::SubstepForces {
     std::vector<std::uint64_t> info_rank;
     StopGraph stops;
   };
-  /// Where add_point() writes: the whole substep's lists, or one lane's.
-  struct Sink {
-    Lane* lane;  ///< part by part: the part's lane (else each point's memory is its shape's)
-    std::vector<ContactInfo>* info;
-    std::vector<std::uint64_t>* info_rank;  ///< part by part: each contact's rank
-    StopGraph* stops;
-  };
-  void add_point(const Sink& sink, const Found& f, const Pose* poses, const Twist* twists,
-                 double step_s, Wrench* wrenches);
+  /// `lane`: part by part, the part's lane, whose lists take the results; null: the whole
+  /// substep's lists (info_, stops_), each point's memory its first shape's lane.
+  void add_point(Lane* lane, const Found& f, const Pose* poses, const Twist* twists, double step_s,
+                 Wrench* wrenches);
   /// The points of moving shape `s` against the ground and the walls, appended to `out`.
   void plane_points(std::int32_t s, std::vector<Found>& out);
   /// The force of each of `found`, in order (`plane_count` first against the planes), then
   /// the stops, and the memory sorted.
-  void forces(const Sink& sink, const std::vector<Found>& found, std::size_t plane_count,
+  void forces(Lane* lane, const std::vector<Found>& found, std::size_t plane_count,
               const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches);
   /// The points of every overlapping pair that may touch, appended to found_ in rank order;
   /// `within_lanes`: stops (false) at the first pair of two lanes' bodies with points.
   bool pair_points_into_found(bool within_lanes);
   /// The points of a pair (a must move), with stable feature ids: how many were written.
   int pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points);
-  /// Deals the memory of every lane (or `memory`) to the lanes by their first shape.
-  void deal_memory(std::vector<Memory>& memory);
+  /// Each shape of `lane` (null: every moving shape) and each of its bodies' rotations at the
+  /// substep's poses.
+  void place(const Lane* lane, const Pose* poses, const Twist* twists, double step_s);
+  /// Room in every list of `lane` for the scene's points (at load: stepping allocates nothing).
+  void reserve(Lane& lane) const;
+  /// Calls take(lane, index) for every element of the lanes' runs (each `size(lane)` long and
+  /// sorted by `less(lane, index, lane, index)`), merged in that order (no allocation).
+  template <class Size, class Less, class Take>
+  void merge_lanes(Size size, Less less, Take take) const {
+    std::fill(merge_at_.begin(), merge_at_.end(), 0);
+    for (;;) {
+      std::size_t from = lanes_.size();
+      for (std::size_t l = 0; l < lanes_.size(); ++l)
+        if (merge_at_[l] < size(l) &&
+            (from == lanes_.size() || less(l, merge_at_[l], from, merge_at_[from])))
+          from = l;
+      if (from == lanes_.size()) return;
+      take(from, merge_at_[from]++);
+    }
+  }
   Lane& lane_of(std::int32_t shape) {
     return lanes_[static_cast<std::size_t>(lane_of_shape_[static_cast<std::size_t>(shape)])];
   }
@@ -180,9 +193,9 @@ class ContactWorld final : public model::SubstepForces {
   collision::Placement placement_;
   collision::ContactQuery query_;
   std::vector<Lane> lanes_;
-  std::vector<std::int32_t> lane_of_shape_;  // per shape (0 for static shapes)
-  std::vector<std::int32_t> lane_of_body_;   // per kernel body
-  std::vector<std::uint64_t> plane_rank_;    // per moving shape: its place in table_.moving()
+  std::vector<std::int32_t> lane_of_shape_;    // per shape (0 for static shapes)
+  mutable std::vector<std::size_t> merge_at_;  // merge_lanes()'s cursor per lane
+  std::vector<std::uint64_t> plane_rank_;      // per moving shape: its place in table_.moving()
   std::vector<ContactInfo> info_;
   std::int32_t info_count_ = 0;
   std::vector<Found>
