@@ -6,6 +6,24 @@
 
 namespace s2sim::model {
 
+LoadResponse::LoadResponse(const Multibody::Impl& m)
+    : m_(m), load_(m.matter.getNumBodies()), accel_(m.matter.getNumBodies()) {}
+
+std::pair<SimTK::Vec3, SimTK::Vec3> LoadResponse::at_com(const SimTK::State& s,
+                                                         const SimTK::MobilizedBody& body,
+                                                         const SimTK::Vec3& com_G,
+                                                         const SimTK::Vec3& torque,
+                                                         const SimTK::Vec3& force) {
+  load_.setToZero();
+  load_[body.getMobilizedBodyIndex()] =
+      SimTK::SpatialVec(torque + SimTK::cross(com_G, force), force);  // about the body origin
+  m_.matter.multiplyBySystemJacobianTranspose(s, load_, f_);
+  m_.matter.multiplyByMInv(s, f_, udot_);
+  m_.matter.multiplyBySystemJacobian(s, udot_, accel_);
+  const SimTK::SpatialVec& A = accel_[body.getMobilizedBodyIndex()];
+  return {A[0], A[1] + SimTK::cross(A[0], com_G)};
+}
+
 std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
   const Impl& m = *impl_;
   const SimTK::State& s = m.initial_state;
@@ -14,9 +32,7 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
   std::vector<int> kernel_of_mobod(static_cast<std::size_t>(m.matter.getNumBodies()), 0);
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
     if (m.mobod_of_body[b].isValid()) kernel_of_mobod[m.mobod_of_body[b]] = static_cast<int>(b);
-  const int nb = m.matter.getNumBodies();
-  SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
-  SimTK::Vector f, udot;
+  LoadResponse response(m);
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
     if (!m.mobod_of_body[b].isValid()) continue;  // loose
     const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
@@ -34,17 +50,11 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
       // A unit torque (columns 0-2) or a unit force at the COM (3-5), along a root axis.
       SimTK::Vec3 unit(0);
       unit[column % 3] = 1;
-      const SimTK::Vec3 along = R * unit;
-      load.setToZero();
-      load[mob.getMobilizedBodyIndex()] =
-          column < 3 ? SimTK::SpatialVec(along, SimTK::Vec3(0))
-                     : SimTK::SpatialVec(SimTK::cross(com_G, along), along);
-      m.matter.multiplyBySystemJacobianTranspose(s, load, f);
-      m.matter.multiplyByMInv(s, f, udot);
-      m.matter.multiplyBySystemJacobian(s, udot, accel);
-      const SimTK::SpatialVec& A = accel[mob.getMobilizedBodyIndex()];
-      const SimTK::Vec3 angular = ~R * A[0];
-      const SimTK::Vec3 linear = ~R * (A[1] + SimTK::cross(A[0], com_G));
+      const SimTK::Vec3 along = R * unit, zero(0);
+      const auto [alpha, a_com] =
+          response.at_com(s, mob, com_G, column < 3 ? along : zero, column < 3 ? zero : along);
+      const SimTK::Vec3 angular = ~R * alpha;
+      const SimTK::Vec3 linear = ~R * a_com;
       for (int row = 0; row < 3; ++row) {
         out_b.phi[row][column] = angular[row];
         out_b.phi[row + 3][column] = linear[row];

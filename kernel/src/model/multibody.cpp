@@ -66,10 +66,8 @@ std::vector<double> Multibody::apparent_mass_kg() const {
   const Impl& m = *impl_;
   const SimTK::State& s = m.initial_state;
   m.system.realize(s, SimTK::Stage::Position);
-  const int nb = m.matter.getNumBodies();
   std::vector<double> out(m.mobod_of_body.size(), 0.0);
-  SimTK::Vector_<SimTK::SpatialVec> load(nb), accel(nb);
-  SimTK::Vector f, udot;
+  LoadResponse response(m);
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
     if (!m.mobod_of_body[b].isValid()) {  // a loose body: its own mass
       out[b] = m.loose.mass_kg(static_cast<int>(b));
@@ -81,13 +79,7 @@ std::vector<double> Multibody::apparent_mass_kg() const {
     for (int axis = 0; axis < 3; ++axis) {
       SimTK::Vec3 force(0);
       force[axis] = 1;
-      load.setToZero();
-      load[mob.getMobilizedBodyIndex()] = SimTK::SpatialVec(SimTK::cross(com_G, force), force);
-      m.matter.multiplyBySystemJacobianTranspose(s, load, f);
-      m.matter.multiplyByMInv(s, f, udot);
-      m.matter.multiplyBySystemJacobian(s, udot, accel);
-      const SimTK::SpatialVec& A = accel[mob.getMobilizedBodyIndex()];
-      const double a = (A[1] + SimTK::cross(A[0], com_G))[axis];
+      const double a = response.at_com(s, mob, com_G, SimTK::Vec3(0), force).second[axis];
       if (a > 1e-12) smallest = std::min(smallest, 1 / a);
     }
     out[b] = smallest;

@@ -305,4 +305,23 @@ void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
 /// The reactions carried with body1 to its pose at the step's end.
 void carry_joint_reactions(Multibody::Impl& m, const Pose* poses);
 
+/// How one body answers a wrench at its centre of mass with every joint free, from rest in a
+/// state realized to Position: J M⁻¹ Jᵀ on one load (apparent_mass_kg, contact_mobility; at
+/// load only, its buffers are its own). Defined in contact_mobility.cpp.
+class LoadResponse {
+ public:
+  explicit LoadResponse(const Multibody::Impl& m);
+  /// `torque` and `force` (ground axes) at the COM `com_G` (from the body origin, ground axes):
+  /// the body's angular acceleration and its COM's acceleration, ground axes.
+  std::pair<SimTK::Vec3, SimTK::Vec3> at_com(const SimTK::State& s,
+                                             const SimTK::MobilizedBody& body,
+                                             const SimTK::Vec3& com_G, const SimTK::Vec3& torque,
+                                             const SimTK::Vec3& force);
+
+ private:
+  const Multibody::Impl& m_;
+  SimTK::Vector_<SimTK::SpatialVec> load_, accel_;
+  SimTK::Vector f_, udot_;
+};
+
 }  // namespace s2sim::model
