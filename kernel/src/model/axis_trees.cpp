@@ -85,6 +85,7 @@ void find_axis_trees(Multibody::Impl& m) {
   m.tree_cursor.assign(trees, 0);
   m.row_order.assign(m.next_row.size(), 0);
   m.tree_changed.assign(trees, 0);
+  m.tree_sweeps.assign(trees, 0);
   m.tree_solve_start.assign(trees + 1, 0);
   m.solve_order.assign(axes, 0);
   std::vector<std::size_t> axes_in_tree(trees, 0);

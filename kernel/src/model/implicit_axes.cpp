@@ -191,11 +191,14 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
     m.next_row[i] = m.first_row[a];
     m.first_row[a] = i;
   }
-  bool friction = false;
+  // Which trees sweep in step 2 below, each for itself: whether another tree's axis has friction
+  // or hit a bound must not change this tree's numbers (issue 17: a part of the parallel islands
+  // holds only some trees; the last bits once differed from the whole system's).
+  std::fill(m.tree_sweeps.begin(), m.tree_sweeps.end(), 0);
   for (std::size_t a = 0; a < m.axes.size(); ++a)
     if (m.axis_friction[a] > 0.0 && !m.axes[a].loop && !m.sliding[a]) {
       m.friction_bound[a] = m.axis_friction[a];
-      friction = true;
+      m.tree_sweeps[static_cast<std::size_t>(m.axis_tree[a])] = 1;
       if (m.first_row[a] < 0) m.solve_list.push_back(static_cast<int>(a));
     }
   if (m.solve_list.empty()) return;
@@ -203,7 +206,6 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   SimTK::Vector& u = s.updU();
 
   // 1. The drive rows without bounds, all at once: one block per tree (axis_trees.cpp).
-  bool bounded = false;
   if (!m.rows.empty()) {
     group_rows_by_tree(m);
     for (std::size_t t = 0; t + 1 < m.tree_row_start.size(); ++t) {
@@ -229,7 +231,7 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
         auto& row = m.rows[order[i]];
         const double wanted = row.applied + std::sqrt(row.damping) * b[i];
         const double f = std::clamp(wanted, row.low, row.high);
-        bounded = bounded || f != wanted;
+        if (f != wanted) m.tree_sweeps[t] = 1;
         if (f != row.applied)
           add_scaled(u, kick_s * (f - row.applied), m.minv_column[row.axis], m.tree_u_begin[t],
                      m.tree_u_end[t]);
@@ -240,11 +242,11 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves; tree by
   // tree, each until its own axes converge, so that a robot's sweeps (and its numbers) do not
   // depend on how long another robot takes (issue 17: the parallel islands' parts).
-  if (bounded || friction) {
+  if (std::find(m.tree_sweeps.begin(), m.tree_sweeps.end(), 1) != m.tree_sweeps.end()) {
     group_solve_list_by_tree(m);
     for (std::size_t tree = 0; tree + 1 < m.tree_solve_start.size(); ++tree) {
       const int begin = m.tree_solve_start[tree], end = m.tree_solve_start[tree + 1];
-      if (begin == end) continue;
+      if (begin == end || !m.tree_sweeps[tree]) continue;
       const int sweeps = end - begin == 1 ? 1 : 16;
       for (int sweep = 0; sweep < sweeps; ++sweep) {
         bool changed = false;

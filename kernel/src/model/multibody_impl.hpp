@@ -202,8 +202,9 @@ struct Multibody::Impl {
   std::vector<int> row_order, tree_row_start, tree_cursor;
   std::vector<int> solve_order, tree_solve_start;  // solve_list ordered by tree, each's first
   std::vector<char> tree_changed;
-  int substep = 0;            // index of the current substep in the tick
-  bool bodies_fresh = false;  // substep_poses/twists hold the current state
+  std::vector<char> tree_sweeps;  // per tree: a bound was hit or an axis has friction (solve_axes)
+  int substep = 0;                // index of the current substep in the tick
+  bool bodies_fresh = false;      // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   std::vector<Pose> substep_poses;
   std::vector<Twist> substep_twists;
