@@ -63,6 +63,7 @@ struct Result {
   std::int64_t steps = 0;
   double wall_s = 0;                                 ///< best of the repeats
   std::vector<s2sim::Simulation::StageTime> stages;  ///< --profile
+  std::string components_serial;  ///< --threads > 1: why the components run serially
 };
 
 [[noreturn]] void usage_error(const std::string& message) {
@@ -162,6 +163,7 @@ Result measure(const fs::path& path, const Options& o) {
   r.bodies = sim->body_count() - 1;  // body 0 is the world
   r.axes = sim->axis_count();
   r.step_s = sim->tick_s();
+  if (o.threads > 1) r.components_serial = sim->components_serial_reason();
   // llround() beyond int64 is undefined; 2^53 steps is far beyond any benchmark anyway.
   if ((o.duration_s + o.warmup_s) / r.step_s > 9007199254740992.0)
     throw s2sim::Error(s2sim::ErrorKind::usage, "--duration/--warmup: too many physics steps");
@@ -277,6 +279,11 @@ int main(int argc, char** argv) {
       const Result r = measure(path, o);
       std::printf("%-32s %7d %5zu %9g %10.1f %9.2f %9.1f\n", r.scene.c_str(), r.bodies, r.axes,
                   r.step_s * 1e3, r.wall_s * 1e3, us_per_step(r), rtf(r));
+      if (o.threads > 1)
+        std::printf("  components: %s\n",
+                    r.components_serial.empty()
+                        ? "in the parts, on their threads"
+                        : ("on the calling thread: " + r.components_serial).c_str());
       if (o.profile) print_profile(r);
       std::fflush(stdout);
       results.push_back(r);

@@ -13,6 +13,7 @@
 namespace s2sim::drive_train {
 
 void DcMotor::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // one axis, its inputs and signals: stepped in the axis's part
   namespace d = defaults;
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));

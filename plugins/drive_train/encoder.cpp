@@ -17,6 +17,7 @@ enum : int { kLast = 0, kTravel = 1, kNoise = 2, kCount = 3, kSize = 4 };
 }
 
 void Encoder::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // one axis, its inputs and signals: stepped in the axis's part
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));
   linear_ = ctx.axis_is_linear(axis_);

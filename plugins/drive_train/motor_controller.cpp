@@ -17,6 +17,7 @@ enum : int { kIntegral = 0, kPrevious = 1, kPrimed = 2, kWasActive = 3, kSize = 
 }
 
 void MotorController::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // one axis, its inputs and signals: stepped in the axis's part
   const Params& p = ctx.params();
   axis_ = ctx.axis(p.text("axis"));
   const bool linear = ctx.axis_is_linear(axis_);

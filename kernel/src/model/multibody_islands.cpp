@@ -294,12 +294,39 @@ bool MultibodyIslands::split_forces(SubstepForces& forces) {
   return true;
 }
 
+int MultibodyIslands::part_of_axis(int axis) const {
+  return parts() == 1 ? 0 : part_of_axis_.at(static_cast<std::size_t>(axis));
+}
+int MultibodyIslands::part_of_joint(int joint) const {
+  return parts() == 1 ? 0 : part_of_joint_.at(static_cast<std::size_t>(joint));
+}
+
+void MultibodyIslands::stage_drives_by_part(bool on) {
+  drives_by_part_ = on && parts() > 1;
+  for (Part& part : parts_) {
+    part.drives.assign(drives_by_part_ ? drives_.size() : 0, AxisDrive{});
+    part.drive_count = 0;
+  }
+}
+
+void MultibodyIslands::run_tick_starts(const TickHooks& hooks) {
+  hooks_ = &hooks;
+  pool_->run(
+      [](void* self, int p, int thread) {
+        const auto& me = *static_cast<MultibodyIslands*>(self);
+        me.hooks_->start(me.hooks_->context, p, thread == 0);
+      },
+      this, parts());
+}
+
 void MultibodyIslands::run_substep(int substep, PartStages stages, void* context,
-                                   bool contact_in_parts) {
+                                   bool contact_in_parts, const TickHooks* hooks, bool start_ran) {
   substep_ = substep;
   stages_ = stages;
   stages_context_ = context;
   contact_in_parts_ = contact_in_parts;
+  hooks_ = hooks;
+  run_starts_ = hooks && substep == 0 && !start_ran;
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   try {
     pool_->run(&MultibodyIslands::run_part, this, parts());
@@ -320,12 +347,16 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
 void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
+  if (me.run_starts_) me.hooks_->start(me.hooks_->context, p, thread == 0);
   me.load_part(part, me.substep_);
   me.stages_(me.stages_context_, p, *part.multibody, thread == 0, me.substep_);
   // For the next substep's contact (its realize runs here, in parallel); split forces read
   // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
   if (!me.split_forces_) me.copy_bodies(part);
-  if (me.substep_ == me.substeps() - 1) me.publish_tick(part);
+  if (me.substep_ == me.substeps() - 1) {
+    me.publish_tick(part);
+    if (me.hooks_) me.hooks_->end(me.hooks_->context, p);
+  }
 }
 
 void MultibodyIslands::load_part(Part& part, int substep) {
@@ -340,14 +371,17 @@ void MultibodyIslands::load_part(Part& part, int substep) {
       forces[a] = axis_forces_[static_cast<std::size_t>(part.plan.global_axis[a])];
       friction[a] = axis_friction_[static_cast<std::size_t>(part.plan.global_axis[a])];
     }
-    // The drives on the part's axes, in the components' order.
+    // The drives on the part's axes, in the components' order: the scene-wide list's, or
+    // the part's own when the part's components staged them there.
     const int p = static_cast<int>(&part - parts_.data());
+    const AxisDrive* staged = drives_by_part_ ? part.drives.data() : drives_.data();
+    const std::int32_t staged_count = drives_by_part_ ? part.drive_count : drive_count_;
     AxisDrive* drives = mb.axis_drives();
     std::int32_t count = 0;
-    for (std::int32_t d = 0; d < drive_count_; ++d) {
-      const auto g = static_cast<std::size_t>(drives_[static_cast<std::size_t>(d)].axis);
+    for (std::int32_t d = 0; d < staged_count; ++d) {
+      const auto g = static_cast<std::size_t>(staged[d].axis);
       if (g >= part_of_axis_.size() || part_of_axis_[g] != p) continue;
-      AxisDrive drive = drives_[static_cast<std::size_t>(d)];
+      AxisDrive drive = staged[d];
       drive.axis = local_axis_[g];
       drives[count++] = drive;  // room: a part has the scene's slots (the constructor)
     }

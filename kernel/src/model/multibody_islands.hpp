@@ -81,13 +81,48 @@ class MultibodyIslands {
   bool move_body(int body, const Pose& pose);
   bool set_body_velocity(int body, const Twist& twist);
 
+  /// What the kernel runs in each part at the tick's edges, on the part's thread, when its
+  /// components are stepped in the parts (sim/component_parts.hpp): `start` before the
+  /// tick's first substep takes the loads (the part's components, which write its slices of
+  /// the scene-wide load arrays and its own drive slots, part_drives()); `end` after the last
+  /// substep's read-out. `calling_thread` as for PartStages.
+  struct TickHooks {
+    void* context = nullptr;
+    void (*start)(void* context, int part, bool calling_thread) = nullptr;
+    void (*end)(void* context, int part) = nullptr;
+  };
+
   /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
   /// taken from the scene-wide arrays (on the first substep) and the contact wrenches (unless
   /// `contact_in_parts`: `stages` then write the part's own, Multibody::use_contact_wrenches),
   /// then `stages`, then its bodies (and after the last substep its axes, drives and reactions)
   /// written back. Exceptions: the lowest part's; a non-finite state names the first body in
   /// kernel order, as the serial run does.
-  void run_substep(int substep, PartStages stages, void* context, bool contact_in_parts = false);
+  /// With `hooks`: their `start` first on substep 0 unless `start_ran` (run_tick_starts()
+  /// ran them already), their `end` last on the last substep.
+  void run_substep(int substep, PartStages stages, void* context, bool contact_in_parts = false,
+                   const TickHooks* hooks = nullptr, bool start_ran = false);
+  /// Only the hooks' `start` of every part, at once (for a tick whose contact must be
+  /// computed whole, between them and the substep).
+  void run_tick_starts(const TickHooks& hooks);
+
+  /// A part's kernel bodies (ascending) and its axes (scene-wide indices, the part's order).
+  const std::vector<int>& part_bodies(int p) const {
+    return parts_[static_cast<std::size_t>(p)].plan.bodies;
+  }
+  const std::vector<int>& part_axes(int p) const {
+    return parts_[static_cast<std::size_t>(p)].plan.global_axis;
+  }
+  /// The part that steps a kernel body (0 for the world), a scene-wide axis, a scene joint.
+  int part_of_body(int body) const { return parts() == 1 ? 0 : owner(body); }
+  int part_of_axis(int axis) const;
+  int part_of_joint(int joint) const;
+  /// Drives staged by part (the components' drives when they run in the parts): part `p`'s
+  /// slots, axes scene-wide, taken at the tick's start instead of the scene-wide axis_drives().
+  /// Each part has the scene's capacity (axis_drive_capacity()).
+  void stage_drives_by_part(bool on);
+  AxisDrive* part_drives(int p) { return parts_[static_cast<std::size_t>(p)].drives.data(); }
+  std::int32_t* part_drive_count(int p) { return &parts_[static_cast<std::size_t>(p)].drive_count; }
 
   /// Lets `forces` (contact) be computed part by part (SubstepForces::split) with this
   /// object's parts; true if it accepted.
@@ -103,6 +138,8 @@ class MultibodyIslands {
     std::unique_ptr<Multibody> multibody;
     PartPlan plan;
     Wrench* contact_wrenches = nullptr;  // the part's, when contact is used
+    std::vector<AxisDrive> drives;       // staged by part (stage_drives_by_part)
+    std::int32_t drive_count = 0;
     // Scratch for read(): the part's view of every body and of its axes (read() is const).
     mutable std::vector<Pose> poses;
     mutable std::vector<Twist> twists;
@@ -159,6 +196,9 @@ class MultibodyIslands {
   int substep_ = 0;
   PartStages stages_ = nullptr;
   void* stages_context_ = nullptr;
+  const TickHooks* hooks_ = nullptr;
+  bool run_starts_ = false;  // the substep runs the hooks' start
+  bool drives_by_part_ = false;
 };
 
 }  // namespace s2sim::model

@@ -70,18 +70,18 @@ class ConfigureContextImpl final : public ConfigureContext {
             "'robots/<robot>/solids/<id>'), got '" +
             n + "'");
       for (int b : sim_.scene.robots[slot().robot].bodies)
-        if (bodies[b].id == n) return BodyHandle{b + 1};
+        if (bodies[b].id == n) return noted_body(b + 1);
       throw fail(unknown("solid", n, robot_body_names(slot().robot)));
     }
     std::vector<std::string> all;
     for (std::size_t r = 0; r < sim_.scene.robots.size(); ++r)
       for (int b : sim_.scene.robots[r].bodies) {
         all.push_back(sim::solid_path(sim_.robot_prefix(static_cast<int>(r)), bodies[b].id));
-        if (all.back() == n) return BodyHandle{b + 1};
+        if (all.back() == n) return noted_body(b + 1);
       }
     for (int b : sim_.scene.things) {
       all.push_back(sim::thing_path(bodies[b].id));
-      if (all.back() == n) return BodyHandle{b + 1};
+      if (all.back() == n) return noted_body(b + 1);
     }
     throw fail(unknown("body", n, all));
   }
@@ -101,7 +101,10 @@ class ConfigureContextImpl final : public ConfigureContext {
       } else {
         names.push_back(axis_prefix(AxisHandle{static_cast<std::int32_t>(a)}));
       }
-      if (names.back() == n) return AxisHandle{static_cast<std::int32_t>(a)};
+      if (names.back() == n) {
+        slot().footprint.axes.push_back(static_cast<std::int32_t>(a));
+        return AxisHandle{static_cast<std::int32_t>(a)};
+      }
     }
     throw fail(unknown("axis", n, names));
   }
@@ -122,6 +125,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     if (sim_.signal_by_name.count(n)) throw fail("signal '" + n + "' is already declared");
     const auto index = static_cast<std::int32_t>(sim_.published.size());
     sim_.published.push_back(0.0);
+    sim_.publisher.push_back(index_);
     sim_.add_signal(n, std::string(unit), sim::Source::published, index);
     return SignalHandle{index};
   }
@@ -130,8 +134,10 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
                                double initial) override {
-    return InputHandle{
-        sim_.add_input(std::string(full_name), std::string(unit), initial, slot().where)};
+    const std::int32_t input =
+        sim_.add_input(std::string(full_name), std::string(unit), initial, slot().where);
+    slot().footprint.inputs.push_back(input);
+    return InputHandle{input};
   }
   StateHandle declare_state(std::string_view name, int count, double initial) override {
     if (count <= 0) throw fail("state '" + std::string(name) + "' must have a positive size");
@@ -147,6 +153,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     SensorSpec& o = spec_;
     o.kind = s.kind;
     o.body = BodyHandle{s.body + 1};  // scene body i is body i + 1; -1 (world) is 0
+    if (s.body >= 0) slot().footprint.bodies.push_back(s.body + 1);
     o.pose = s.pose;
     o.absolute_coords = s.absolute_coords;
     o.is_tool = s.is_tool;
@@ -179,8 +186,10 @@ class ConfigureContextImpl final : public ConfigureContext {
   SignalHandle published_signal(std::string_view full_name) const override {
     auto it = sim_.signal_by_name.find(std::string(full_name));
     if (it != sim_.signal_by_name.end() &&
-        sim_.signal_entries[it->second].source == sim::Source::published)
+        sim_.signal_entries[it->second].source == sim::Source::published) {
+      slot().footprint.published.push_back(sim_.signal_entries[it->second].index);
       return SignalHandle{sim_.signal_entries[it->second].index};
+    }
     std::vector<std::string> names;
     for (std::size_t i = 0; i < sim_.signal_infos.size(); ++i)
       if (sim_.signal_entries[i].source == sim::Source::published)
@@ -204,13 +213,16 @@ class ConfigureContextImpl final : public ConfigureContext {
         sim_.warnings.push_back(
             slot().where.str() + ": " + slot().label() + ": joint '" + joints[j].id +
             "' closes a kinematic loop (realised by constraints); its reaction reads zero");
+      slot().footprint.joints.push_back(static_cast<std::int32_t>(j));
       return JointHandle{static_cast<std::int32_t>(j)};
     }
     throw fail(unknown("joint", n, names));
   }
   BodyHandle joint_body(JointHandle j, int which) const override {
     const auto& jt = sim_.scene.joints.at(static_cast<std::size_t>(j.index));
-    return BodyHandle{(which == 2 ? jt.body2 : jt.body1) + 1};  // scene -1 (world) is 0
+    const int body = (which == 2 ? jt.body2 : jt.body1) + 1;  // scene -1 (world) is 0
+    if (body > 0) slot().footprint.bodies.push_back(body);
+    return BodyHandle{body};
   }
   std::string body_id(BodyHandle b) const override {
     if (b.index <= 0 || b.index > static_cast<int>(sim_.scene.bodies.size())) return {};
@@ -232,6 +244,7 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
 
   std::uint64_t seed() const override { return sim_.options.seed; }
+  void declare_local() override { slot().local = true; }
 
   void set_schedule(Stage stage, double period_s, double phase_s) override {
     auto to_ticks = [&](double t, const char* what) {
@@ -269,7 +282,10 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   InputHandle input(std::string_view full_name) override {
     auto it = sim_.input_by_name.find(std::string(full_name));
-    if (it != sim_.input_by_name.end()) return InputHandle{static_cast<std::int32_t>(it->second)};
+    if (it != sim_.input_by_name.end()) {
+      slot().footprint.inputs.push_back(static_cast<std::int32_t>(it->second));
+      return InputHandle{static_cast<std::int32_t>(it->second)};
+    }
     std::vector<std::string> names;
     for (const auto& info : sim_.input_infos)
       names.push_back(info.name);
@@ -277,9 +293,11 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   SignalReader signal_reader(std::string_view full_name) const override {
     auto it = sim_.signal_by_name.find(std::string(full_name));
-    if (it != sim_.signal_by_name.end())
+    if (it != sim_.signal_by_name.end()) {
+      slot().footprint.readers.push_back(static_cast<std::int32_t>(it->second));
       return SignalReader{&Simulation::Impl::read_signal_callback, &sim_,
                           static_cast<std::int32_t>(it->second)};
+    }
     std::vector<std::string> names;
     for (const auto& info : sim_.signal_infos)
       names.push_back(info.name);
@@ -288,6 +306,10 @@ class ConfigureContextImpl final : public ConfigureContext {
 
  private:
   sim::ComponentSlot& slot() const { return sim_.components[index_]; }
+  BodyHandle noted_body(int body) const {
+    slot().footprint.bodies.push_back(body);
+    return BodyHandle{body};
+  }
   Error fail(const std::string& message) const {
     return Error(ErrorKind::plugin, slot().where, slot().label() + ": " + message);
   }

@@ -196,6 +196,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.request_velocity = &Simulation::Impl::request_velocity;
   m.world.annotator = &m;
   m.world.annotate = &Simulation::Impl::annotate;
+  m.plan_component_parts();  // with several parts, the local components run in them
   m.declare_state();
   m.reset();
   return std::unique_ptr<Simulation>(new Simulation(std::move(impl)));

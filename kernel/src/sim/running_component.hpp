@@ -9,7 +9,9 @@
 
 namespace s2sim::sim {
 
-inline std::atomic<const char*> g_running_component{nullptr};
+/// Per thread: the parts' threads run components at once (component_parts.hpp), and a fatal
+/// signal is handled on the thread that raised it.
+inline thread_local std::atomic<const char*> g_running_component{nullptr};
 
 /// Marks `label` (a string that outlives the call) as running for the scope.
 class RunningComponent {

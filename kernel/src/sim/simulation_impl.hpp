@@ -18,6 +18,7 @@
 #include "model/multibody_islands.hpp"
 #include "plugin/plugin_loader.hpp"
 #include "scene/element_params.hpp"
+#include "sim/component_parts.hpp"
 #include "sim/stage_profile.hpp"
 #include "sim/state_layout.hpp"
 
@@ -86,6 +87,8 @@ struct ComponentSlot {
   bool plugin_element = false;     // made for a <plugin> element: its unread attributes warn
   bool strict_attributes = false;  // ...or refuse the scene (refuse_unread_attributes)
   std::string library;             // the plugin file it came from, for messages
+  bool local = false;              // declared local (ConfigureContext::declare_local)
+  Footprint footprint;             // what it resolved at configure
   std::string label() const { return prefix + " (kind '" + kind + "')"; }
   /// "component '<prefix>' (kind '<kind>') from <library>", made once at load: what a
   /// fatal-signal handler prints (running_component.hpp).
@@ -140,6 +143,31 @@ struct Simulation::Impl {
 
   std::vector<sim::ComponentSlot> components;
   std::array<std::vector<int>, 4> stage_order;
+  std::vector<std::int32_t> publisher;  // per published slot, the component that declared it
+
+  // --- components in parts (component_parts.cpp) ----------------------------------------------
+  /// The local components' view on the calling thread (the serial run).
+  sim::LocalView serial_local;
+  sim::ComponentParts component_parts;
+  /// At load, once the multibody and contact are built: component_parts, or why not.
+  void plan_component_parts();
+  /// The local views' copies of `world` (its time, tick and contacts change every tick).
+  void sync_local_views();
+  /// Part `part`'s components at the tick's start, on its thread (MultibodyIslands::TickHooks),
+  /// then its reference torques and the check of its loads; `end_part_tick` after its physics.
+  void start_part_tick(int part, bool calling_thread);
+  void end_part_tick(int part);
+  /// Whether the loads of these bodies, axes and drives are finite; else what is not, for the
+  /// message of check_loads_finite().
+  std::string non_finite_load(const std::vector<int>* bodies, const std::vector<int>* axes,
+                              const AxisDrive* drives, std::int32_t drive_count) const;
+  // What a local component is refused (LocalView): each throws naming it.
+  static RayHit refuse_ray(const void* local, const Vec3&, const Vec3&, double, std::int32_t);
+  static void refuse_place(const void* local, std::int32_t, const Pose&);
+  static void refuse_move(const void* local, std::int32_t, const Pose&);
+  static void refuse_velocity(const void* local, std::int32_t, const Twist&);
+  static void refuse_annotation(const void* local, std::int32_t, std::int32_t, std::int32_t,
+                                const char*, std::size_t, const double*);
 
   /// Re-placements components asked for in the current stage (StepContext::request_place),
   /// applied once the stage has run (step.cpp); reserved at load, one per body.
@@ -214,8 +242,11 @@ struct Simulation::Impl {
   /// The buffers the components read, from the multibody's state after a tick.
   void refresh();
   void reset();
-  /// One tick: the scheduled stages, then the physics.
+  /// One tick: the scheduled stages, then the physics (the stages in the parts when
+  /// component_parts has them).
   void step_once();
+  /// The scheduled stages on the calling thread, with the loads' reset before and check after.
+  void run_components();
   /// Throws (runtime) naming the body or axis when a component applied a non-finite load.
   void check_loads_finite() const;
 };

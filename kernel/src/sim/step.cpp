@@ -106,14 +106,16 @@ void part_stages(void* context, int part, model::Multibody& mb, bool calling_thr
 
 /// The substep's contact when it is split part by part: the calling thread's share (the pairs;
 /// the whole contact when two parts' bodies meet). Returns whether the parts compute the rest.
+template <class BeforeWhole>
 bool begin_contact_in_parts(model::MultibodyIslands& mb, model::SubstepForces& contact,
-                            StageProfile* profile) {
+                            StageProfile* profile, BeforeWhole&& before_whole) {
   StageTimer timer(profile, PipelineStage::collide);
   const Pose* poses = nullptr;
   const Twist* twists = nullptr;
   const bool placed = mb.untouched_since_substep();  // the parts placed their shapes
   if (!placed) mb.current_bodies(poses, twists);
   if (contact.begin_parts(placed, poses, twists, mb.substep_s())) return true;
+  before_whole();
   mb.current_bodies(poses, twists);
   contact.compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
   return false;
@@ -156,20 +158,27 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
   }
 }
 
-void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
-                  StageProfile* profile) {
+void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, StageProfile* profile,
+                  const model::MultibodyIslands::TickHooks* hooks) {
   if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
   PartsContext parts;
   parts.profile = profile;
   parts.contact = contact && mb.split_forces() == contact ? contact : nullptr;
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
+      bool start_ran = false;
+      auto starts_first = [&] {  // the components before a contact computed whole
+        if (!hooks || k != 0) return;
+        mb.run_tick_starts(*hooks);
+        start_ran = true;
+      };
       if (parts.contact) {
-        parts.contact_in_parts = begin_contact_in_parts(mb, *contact, profile);
+        parts.contact_in_parts = begin_contact_in_parts(mb, *contact, profile, starts_first);
       } else {
+        starts_first();
         collide(mb, contact, profile);
       }
-      mb.run_substep(k, &part_stages, &parts, parts.contact_in_parts);
+      mb.run_substep(k, &part_stages, &parts, parts.contact_in_parts, hooks, start_ran);
       if (parts.contact_in_parts) {
         StageTimer timer(profile, PipelineStage::collide);
         contact->end_parts();
@@ -187,34 +196,20 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact,
 void Simulation::Impl::step_once() {
   Wrench* wrenches = multibody->applied_wrenches();
   double* axis_force = multibody->applied_axis_forces();
-  double* axis_friction = multibody->applied_axis_friction();
-  std::fill(wrenches, wrenches + poses.size(), Wrench{});
-  std::fill(axis_force, axis_force + axis_views.size(), 0.0);
-  std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
-  *multibody->axis_drive_count() = 0;
-  // The scheduled stages, in Stage order: sense, control, motor control, actuate.
-  for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
-    sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
-    for (int c : stage_order[stage]) {
-      const sim::ComponentSlot& slot = components[c];
-      const std::int64_t since = tick - slot.phase_ticks;
-      if (since < 0 || since % slot.period_ticks != 0) continue;
-      StepContext ctx(&world, c, slot.period_ticks);
-      try {  // free unless something is thrown
-        const sim::RunningComponent running(slot.crash_label.c_str());
-        slot.component->update(ctx);
-      } catch (...) {
-        sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
-      }
-    }
-    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
-      apply_pending_places();
+  const bool in_parts = !component_parts.parts.empty();
+  if (in_parts) {
+    wrenches[0] = Wrench{};  // the world's entry, which no part clears (each clears its own)
+  } else {
+    run_components();
   }
-  for (std::size_t a = 0; a < axis_views.size(); ++a)
-    axis_force[a] += inputs[ref_torque_input[a]];
-  check_loads_finite();
+  const model::MultibodyIslands::TickHooks hooks{
+      this,
+      [](void* impl, int part, bool calling_thread) {
+        static_cast<Impl*>(impl)->start_part_tick(part, calling_thread);
+      },
+      [](void* impl, int part) { static_cast<Impl*>(impl)->end_part_tick(part); }};
   try {
-    sim::physics_tick(*multibody, contacts.get(), profile.get());
+    sim::physics_tick(*multibody, contacts.get(), profile.get(), in_parts ? &hooks : nullptr);
   } catch (const Error& e) {
     // A divergence names its first body: add where that body last was, finite (the kernel's
     // poses and twists still hold the previous tick's).
@@ -243,14 +238,49 @@ void Simulation::Impl::step_once() {
                     multibody->body_name(body[static_cast<std::size_t>(too_many.shape_b)]) +
                     ": bodies are placed into one another");
   }
-  // What the axes carried over the tick: the plain forces and the drives' implicit values.
-  const double* drive = multibody->drive_force_applied();
-  for (std::size_t a = 0; a < axis_views.size(); ++a)
-    axis_force_applied[a] = axis_force[a] + drive[a];
+  // What the axes carried over the tick: the plain forces and the drives' implicit values (in
+  // the parts, each part's end_part_tick).
+  if (!in_parts) {
+    const double* drive = multibody->drive_force_applied();
+    for (std::size_t a = 0; a < axis_views.size(); ++a)
+      axis_force_applied[a] = axis_force[a] + drive[a];
+  }
   ++tick;
   sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
-  refresh();
   world.contacts = contacts->contacts();  // the buffer may have grown
+  refresh();
+}
+
+void Simulation::Impl::run_components() {
+  Wrench* wrenches = multibody->applied_wrenches();
+  double* axis_force = multibody->applied_axis_forces();
+  double* axis_friction = multibody->applied_axis_friction();
+  std::fill(wrenches, wrenches + poses.size(), Wrench{});
+  std::fill(axis_force, axis_force + axis_views.size(), 0.0);
+  std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
+  *multibody->axis_drive_count() = 0;
+  // The scheduled stages, in Stage order: sense, control, motor control, actuate.
+  for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
+    sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
+    for (int c : stage_order[stage]) {
+      const sim::ComponentSlot& slot = components[c];
+      const std::int64_t since = tick - slot.phase_ticks;
+      if (since < 0 || since % slot.period_ticks != 0) continue;
+      if (slot.local) serial_local.component = c;
+      StepContext ctx(slot.local ? &serial_local.view : &world, c, slot.period_ticks);
+      try {  // free unless something is thrown
+        const sim::RunningComponent running(slot.crash_label.c_str());
+        slot.component->update(ctx);
+      } catch (...) {
+        sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
+      }
+    }
+    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
+      apply_pending_places();
+  }
+  for (std::size_t a = 0; a < axis_views.size(); ++a)
+    axis_force[a] += inputs[ref_torque_input[a]];
+  check_loads_finite();
 }
 
 namespace {
@@ -332,39 +362,64 @@ void Simulation::Impl::apply_pending_places() {
 }
 
 void Simulation::Impl::check_loads_finite() const {
-  // One sum per tick: a NaN or an infinity anywhere poisons it. Only then look for where.
+  const std::string what =
+      non_finite_load(nullptr, nullptr, multibody->axis_drives(), *multibody->axis_drive_count());
+  if (what.empty()) return;
+  throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
+                                      " s a component applied " + what +
+                                      " (the components acting on it ran in this tick)");
+}
+
+std::string Simulation::Impl::non_finite_load(const std::vector<int>* bodies,
+                                              const std::vector<int>* axes, const AxisDrive* drives,
+                                              std::int32_t drive_count) const {
+  // One sum: a NaN or an infinity anywhere poisons it. Only then look for where. Null bodies
+  // or axes: all of them (the world's entry too).
   const Wrench* wrenches = multibody->applied_wrenches();
   const double* axis_force = multibody->applied_axis_forces();
   const double* axis_friction = multibody->applied_axis_friction();
-  const AxisDrive* drives = multibody->axis_drives();
-  const std::int32_t drive_count = *multibody->axis_drive_count();
+  auto each = [](const std::vector<int>* list, std::size_t all, auto&& f) {
+    if (list) {
+      for (const int i : *list)
+        if (!f(static_cast<std::size_t>(i))) return;
+    } else {
+      for (std::size_t i = 0; i < all; ++i)
+        if (!f(i)) return;
+    }
+  };
   double sum = 0;
-  for (std::size_t b = 0; b < poses.size(); ++b)
+  each(bodies, poses.size(), [&](std::size_t b) {
     sum += wrenches[b].force_N.x + wrenches[b].force_N.y + wrenches[b].force_N.z +
            wrenches[b].torque_Nm.x + wrenches[b].torque_Nm.y + wrenches[b].torque_Nm.z;
-  for (std::size_t a = 0; a < axis_views.size(); ++a)
+    return true;
+  });
+  each(axes, axis_views.size(), [&](std::size_t a) {
     sum += axis_force[a] + axis_friction[a];
+    return true;
+  });
   for (std::int32_t d = 0; d < drive_count; ++d)  // the bounds may be infinite, not NaN
     sum += drives[d].force + drives[d].damping +
            (drives[d].min_force <= drives[d].max_force ? 0.0 : NAN);
-  if (std::isfinite(sum)) return;
+  if (std::isfinite(sum)) return {};
   std::string what;
-  for (std::size_t b = 0; b < poses.size() && what.empty(); ++b) {
+  each(bodies, poses.size(), [&](std::size_t b) {
     const Wrench& w = wrenches[b];
     if (!std::isfinite(w.force_N.x + w.force_N.y + w.force_N.z + w.torque_Nm.x + w.torque_Nm.y +
                        w.torque_Nm.z))
       what = "a non-finite force or torque on body " + multibody->body_name(static_cast<int>(b));
-  }
-  for (std::size_t a = 0; a < axis_views.size() && what.empty(); ++a)
-    if (!std::isfinite(axis_force[a] + axis_friction[a]))
-      what = "a non-finite force or friction on axis '" + axis_views[a].name + "'";
+    return what.empty();
+  });
+  if (what.empty())
+    each(axes, axis_views.size(), [&](std::size_t a) {
+      if (!std::isfinite(axis_force[a] + axis_friction[a]))
+        what = "a non-finite force or friction on axis '" + axis_views[a].name + "'";
+      return what.empty();
+    });
   for (std::int32_t d = 0; d < drive_count && what.empty(); ++d)
     if (!std::isfinite(drives[d].force + drives[d].damping) ||
         !(drives[d].min_force <= drives[d].max_force))
       what = "a non-finite or inverted drive on axis '" + axis_views[drives[d].axis].name + "'";
-  throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
-                                      " s a component applied " + what +
-                                      " (the components acting on it ran in this tick)");
+  return what;
 }
 
 void Simulation::Impl::refresh() {
@@ -372,6 +427,7 @@ void Simulation::Impl::refresh() {
   world.time_s = static_cast<double>(tick) * tick_s;
   world.tick = tick;
   if (ray_caster) ray_caster->invalidate();
+  sync_local_views();
 }
 
 void Simulation::Impl::reset() {

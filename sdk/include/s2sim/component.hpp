@@ -519,6 +519,23 @@ class ConfigureContext {
   /// parameter would silently leave a physical default in place (`cD` for `cd`). The error
   /// names the file, the element and the attribute, with the closest names it did read.
   virtual void refuse_unread_attributes() {}
+
+  // --- local components (SDK 0.11 addition, appended) ---
+
+  /// Declares that `update()` touches nothing but what this context resolved: the bodies,
+  /// axes and joints it looked up (`body`, `joint_body`, `axis`, `joint`), the inputs it
+  /// declared or looked up, the published signals and signal readers it resolved, and its own
+  /// signals, state and random stream; that it casts no ray, requests no place, move or
+  /// velocity, publishes no annotation (log line, HUD text, trail, XY point, colour), and
+  /// shares no data with other instances (no static variable). It may read the last step's
+  /// contacts. Every tick, the components that touch one another through inputs and signals
+  /// are then grouped with the bodies and axes they touch; with several threads
+  /// (SimulationOptions::threads) and every component of the scene local, each group runs on
+  /// the thread that steps its bodies, at the same time as the others, with the serial run's
+  /// results (docs/scheduling.md, "Components in parts"). A local component that casts a ray,
+  /// requests a move or annotates stops the simulation with an error naming it, at any
+  /// number of threads.
+  virtual void declare_local() {}
 };
 
 /// Base of every plugin component.

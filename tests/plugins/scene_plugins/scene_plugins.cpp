@@ -2,7 +2,9 @@
 // the SDK headers alone, loaded from a scene by kind name.
 #include <s2sim/sdk.hpp>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -191,6 +193,58 @@ class Annotator : public Component {
   int updates_ = 0;
 };
 
+// SDK 0.11: a local component (ConfigureContext::declare_local). A speed controller on the
+// axes `axes` (space-separated names) that reads the published signal `reads` (e.g. its
+// encoder's count) and sets each axis's `ref_voltage` input to gain * (ref - speed), or, with
+// `act`, does what a local component may not: `ray` casts a ray, `log` logs a line, `move`
+// asks to move the axis's body... `stray_drive` applies a drive to axis index `stray_axis`,
+// which it did not look up. `local='0'` leaves the declaration out.
+class LocalController : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override {
+    const Params& p = ctx.params();
+    if (p.number("local", 1.0) != 0.0) ctx.declare_local();
+    std::string names = p.text("axes");
+    for (std::size_t at = 0; at < names.size();) {
+      const std::size_t end = std::min(names.find(' ', at), names.size());
+      if (end > at) {
+        const AxisHandle axis = ctx.axis(names.substr(at, end - at));
+        axes_.push_back(axis);
+        refs_.push_back(ctx.input(ctx.axis_prefix(axis) + "/ref_voltage"));
+      }
+      at = end + 1;
+    }
+    if (p.has("reads")) reads_ = ctx.published_signal(p.text("reads"));
+    if (p.has("body")) body_ = ctx.body(p.text("body"));
+    gain_ = p.number("gain", 1.0);
+    ref_ = p.number("ref", 5.0);
+    act_ = p.text("act", "none");
+    stray_axis_ = static_cast<std::int32_t>(p.number("stray_axis", 0.0));
+    seen_ = ctx.declare_signal("seen", "1");
+    ctx.set_schedule(Stage::control, p.number("period_ms", 10.0) / 1000.0);
+  }
+  void update(StepContext& ctx) override {
+    for (std::size_t k = 0; k < axes_.size(); ++k)
+      ctx.set_input(refs_[k], gain_ * (ref_ - ctx.axis_velocity(axes_[k])));
+    if (reads_.index >= 0) ctx.publish(seen_, ctx.signal(reads_));
+    if (ctx.time_s() < 0.05) return;
+    if (act_ == "ray") ctx.cast_ray(Vec3{0, 0, 1}, Vec3{0, 0, -1}, 2.0);
+    if (act_ == "log") ctx.log_line("hello");
+    if (act_ == "move") ctx.request_move(body_, ctx.body_pose(body_));
+    if (act_ == "stray_drive") ctx.apply_axis_drive(AxisHandle{stray_axis_}, 0.0, 0.0);
+  }
+
+ private:
+  std::vector<AxisHandle> axes_;
+  std::vector<InputHandle> refs_;
+  SignalHandle reads_;
+  BodyHandle body_;
+  double gain_ = 1, ref_ = 5;
+  std::string act_;
+  std::int32_t stray_axis_ = 0;
+  SignalHandle seen_;
+};
+
 }  // namespace
 
 S2SIM_PLUGIN("s2sim_test_scene_plugins",
@@ -202,4 +256,5 @@ S2SIM_PLUGIN("s2sim_test_scene_plugins",
              S2SIM_KIND("test_body_push", Category::body, BodyPush),
              S2SIM_KIND("test_body_mover", Category::actuator, BodyMover),
              S2SIM_KIND("test_name_reader", Category::controller, NameReader),
-             S2SIM_KIND("test_annotator", Category::controller, Annotator))
+             S2SIM_KIND("test_annotator", Category::controller, Annotator),
+             S2SIM_KIND("test_local_controller", Category::controller, LocalController))

@@ -33,7 +33,8 @@ struct SimulationOptions {
   std::optional<int> substeps;
   /// Threads stepping the physics (docs/scheduling.md, "Parallel islands"): the scene's
   /// islands (robots and mechanisms not jointed to each other) are dealt into this many
-  /// Simbody systems stepped at once; contact stays serial. From 1 (one system, the default)
+  /// Simbody systems stepped at once, each with its own contact and, when every component is
+  /// local, its own components ("Components in parts"). From 1 (one system, the default)
   /// to the machine's hardware threads (else s2sim::Error, usage). The results do not depend
   /// on it, bit for bit; a snapshot restores only with the same number of parts.
   int threads = 1;
@@ -100,6 +101,11 @@ class Simulation {
   };
   /// Empty while profiling is off.
   std::vector<StageTime> stage_times() const;
+  /// Why the components' updates run on the calling thread, stage by stage, rather than each
+  /// in the part of the scene it touches, on that part's thread (docs/scheduling.md,
+  /// "Components in parts"; SimulationOptions::threads > 1 and every component local,
+  /// ConfigureContext::declare_local); empty when they run in the parts.
+  const std::string& components_serial_reason() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
   /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
   void reset();

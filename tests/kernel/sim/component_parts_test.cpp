@@ -1,0 +1,149 @@
+// Components stepped in the island parts (kernel/src/sim/component_parts.cpp): which scenes
+// run their components in the parts, that those give the serial run's numbers bit for bit,
+// and that a local component is held to its declaration (ConfigureContext::declare_local) at
+// any number of threads.
+#include <s2sim/error.hpp>
+#include <s2sim/kernel/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace s2sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool two_threads_available() {
+  return std::thread::hardware_concurrency() >= 2;
+}
+
+/// Four peer-benchmark robots in a row (r0, r1 are dealt to part 0, r2, r3 to part 1), with
+/// `plugins` (scene-level `<plugin>` elements) after them.
+fs::path write_scene(const std::string& name, const std::string& plugins) {
+  const fs::path dir = fs::path(testing::TempDir()) / ("component_parts_" + name);
+  fs::create_directories(dir);
+  const fs::path robot = fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/diffbot.xml";
+  std::ofstream f(dir / "scene.xml");
+  f << "<scene>\n";
+  for (int r = 0; r < 4; ++r)
+    f << "  <robot><ID name='r" << r << "'/><pos x='" << 1.5 * r << "' y='0' z='0'/><body file='"
+      << robot.string() << "'/></robot>\n";
+  f << plugins << "</scene>\n";
+  return dir;
+}
+
+std::unique_ptr<Simulation> load(const fs::path& scene, int threads) {
+  SimulationOptions o;
+  o.threads = threads;
+  o.plugin_path = {fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene", fs::path(S2SIM_PLUGIN_DIR)};
+  return Simulation::load(scene, o);
+}
+
+/// A local speed controller on robot r's two wheels that also reads an encoder's count (its
+/// own right wheel's unless `reads` says which).
+std::string controller(int r, const std::string& extra = "", std::string reads = "") {
+  const std::string axes = "robots/r" + std::to_string(r) + "/axes/";
+  if (reads.empty()) reads = axes + "right/encoder";
+  return "  <plugin kind='test_local_controller' id='c" + std::to_string(r) + "' axes='" + axes +
+         "left " + axes + "right' reads='" + reads + "' gain='" + std::to_string(0.5 + 0.25 * r) +
+         "' " + extra + "/>\n";
+}
+
+std::vector<double> signals(const Simulation& sim) {
+  std::vector<double> out(sim.signal_count());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = sim.signal(i);
+  return out;
+}
+
+TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSerialResults) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  const fs::path scene =
+      write_scene("local", controller(0) + controller(1) + controller(2) + controller(3));
+  auto serial = load(scene, 1);
+  auto parallel = load(scene, 2);
+  EXPECT_NE(serial->components_serial_reason().find("one part"), std::string::npos)
+      << serial->components_serial_reason();
+  ASSERT_EQ(parallel->components_serial_reason(), "");
+  for (int tick = 0; tick < 800; ++tick) {
+    serial->step();
+    parallel->step();
+    const std::vector<double> a = signals(*serial), b = signals(*parallel);
+    ASSERT_TRUE(a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 8) == 0)
+        << "tick " << tick;
+  }
+  // The controllers ran and drove the wheels.
+  EXPECT_GT(std::abs(serial->signal("robots/r3/axes/right/speed")), 1.0);
+  EXPECT_NE(serial->signal("controllers/c2/seen"), 0.0);  // its encoder's count, read
+}
+
+TEST(ComponentParts, AComponentThatIsNotLocalKeepsThemAllOnTheCallingThread) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto sim = load(write_scene("not_local", controller(0) + controller(1, "local='0'")), 2);
+  EXPECT_NE(sim->components_serial_reason().find("controllers/c1"), std::string::npos)
+      << sim->components_serial_reason();
+  EXPECT_NE(sim->components_serial_reason().find("not declared local"), std::string::npos);
+}
+
+TEST(ComponentParts, OneComponentOnTheAxesOfTwoPartsKeepsThemAllOnTheCallingThread) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Directly, by its own axes; and through an input it shares with the other part's.
+  auto both = load(write_scene("two_parts",
+                               "  <plugin kind='test_local_controller' id='both' "
+                               "axes='robots/r1/axes/left robots/r2/axes/left'/>\n"),
+                   2);
+  EXPECT_NE(both->components_serial_reason().find("controllers/both"), std::string::npos)
+      << both->components_serial_reason();
+  EXPECT_NE(both->components_serial_reason().find("two parts"), std::string::npos);
+  auto through_signal =
+      load(write_scene("two_parts_signal", controller(0, "", "robots/r3/axes/left/encoder")), 2);
+  const std::string& reason = through_signal->components_serial_reason();
+  EXPECT_NE(reason.find("two parts"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("robots/r0/"), std::string::npos) << reason;
+  EXPECT_NE(reason.find("robots/r3/axes/left/encoder"), std::string::npos) << reason;
+}
+
+/// The message of the error `act` raises in a local controller on r2, at `threads` threads.
+std::string refusal(const std::string& act, int threads) {
+  auto sim = load(write_scene("act_" + act, controller(2, "act='" + act +
+                                                              "' body='robots/r2/solids/brick'"
+                                                              " stray_axis='0'")),
+                  threads);
+  try {
+    sim->run_until(0.2);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    return e.message();
+  }
+  ADD_FAILURE() << "'" << act << "' went through at " << threads << " threads";
+  return {};
+}
+
+TEST(ComponentParts, ALocalComponentThatCastsARayMovesABodyOrLogsIsStoppedByName) {
+  for (const char* act : {"ray", "move", "log"})
+    for (int threads : {1, 2}) {
+      if (threads == 2 && !two_threads_available()) continue;
+      const std::string message = refusal(act, threads);
+      EXPECT_NE(message.find("controllers/c2"), std::string::npos) << message;
+      EXPECT_NE(message.find("declared itself local"), std::string::npos) << message;
+    }
+  EXPECT_NE(refusal("ray", 1).find("cast a ray"), std::string::npos);
+}
+
+TEST(ComponentParts, ADriveOnAnAxisOfAnotherPartIsStoppedByName) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Axis 0 is r0's (part 0); the controller is r2's (part 1). Serially nothing can tell.
+  const std::string message = refusal("stray_drive", 2);
+  EXPECT_NE(message.find("controllers/c2"), std::string::npos) << message;
+  EXPECT_NE(message.find("did not look up"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace s2sim
