@@ -73,9 +73,19 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
     if (lane_of_shape_[static_cast<std::size_t>(f.shape_a)] == part) lane.found.push_back(f);
   forces(&lane, lane.found, plane_count, poses, twists, step_s, wrenches);
+  lane.info_count = static_cast<std::int32_t>(lane.info.size());
 }
 
 void ContactWorld::end_parts() {
+  // The contact list stays in the lanes until someone reads it (contacts()): moving every
+  // part's contacts to the calling thread at every substep cost the parallel step a
+  // microsecond of serial work (issue 17).
+  in_lanes_ = true;
+}
+
+void ContactWorld::merge_parts() const {
+  if (!in_lanes_) return;
+  in_lanes_ = false;
   // The lanes' contacts, each list in rank order, merged: compute()'s contact list.
   info_.clear();
   merge_lanes([&](std::size_t l) { return lanes_[l].info.size(); },
@@ -84,6 +94,16 @@ void ContactWorld::end_parts() {
               },
               [&](std::size_t l, std::size_t i) { info_.push_back(lanes_[l].info[i]); });
   info_count_ = static_cast<std::int32_t>(info_.size());
+}
+
+const ContactInfo* ContactWorld::part_contacts(int part, const std::int32_t*& count) const {
+  if (in_lanes_) {
+    const Lane& lane = lanes_[static_cast<std::size_t>(part)];
+    count = &lane.info_count;
+    return lane.info.data();
+  }
+  count = &info_count_;
+  return info_.data();
 }
 
 void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, double step_s) {

@@ -258,9 +258,11 @@ void ContactWorld::reset() {
     lane.next_memory.clear();
     lane.info.clear();
     lane.info_rank.clear();
+    lane.info_count = 0;
   }
   info_.clear();
   info_count_ = 0;
+  in_lanes_ = false;
   query_.reset();
 }
 
@@ -329,6 +331,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
                            Wrench* wrenches) {
   std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
   place(nullptr, poses, twists, step_s);
+  in_lanes_ = false;  // this substep's list is the whole one, below
   info_.clear();
   stops_.clear();
   for (Lane& lane : lanes_) {
@@ -628,8 +631,13 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
   // The last substep's contacts: what touch sensors and the contact signals read next.
   constexpr std::size_t kInfo = 12;
   layout.add_variable(
-      "contact/points", kInfo, [this] { return kInfo * info_.size(); },
+      "contact/points", kInfo,
+      [this] {
+        merge_parts();
+        return kInfo * info_.size();
+      },
       [this](double* out) {
+        merge_parts();
         for (const ContactInfo& c : info_) {
           const double v[kInfo] = {static_cast<double>(c.body_a.index),
                                    static_cast<double>(c.body_b.index),
@@ -647,6 +655,7 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
         }
       },
       [this](const double* in, std::size_t count) {
+        in_lanes_ = false;  // the restored list is the whole one
         info_.clear();
         for (std::size_t k = 0; k < count; k += kInfo, in += kInfo) {
           ContactInfo c;

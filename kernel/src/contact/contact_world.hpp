@@ -59,9 +59,23 @@ class ContactWorld final : public model::SubstepForces {
   void end_parts() override;
   void place_part(int part, const Pose* poses, const Twist* twists, double step_s) override;
 
-  /// Contacts of the last substep.
-  const ContactInfo* contacts() const { return info_.data(); }
-  const std::int32_t* contact_count() const { return &info_count_; }
+  /// Contacts of the last substep, in compute()'s order. When the parts computed them, their
+  /// lists are merged here, on the first call after (a run nobody reads the list of never
+  /// merges): call between substeps, from one thread.
+  const ContactInfo* contacts() const {
+    merge_parts();
+    return info_.data();
+  }
+  const std::int32_t* contact_count() const {
+    merge_parts();
+    return &info_count_;
+  }
+  /// Part `part`'s share of the last substep's contacts, in compute()'s order, with `count`
+  /// pointed at its size: every contact on the part's bodies (those its components may read,
+  /// sim/component_parts.hpp), unmerged; the whole list when the last substep was computed
+  /// whole (the contact list may then hold other parts' contacts too). Safe while the other
+  /// parts compute theirs: it is the part's own lane, or the whole list nobody writes then.
+  const ContactInfo* part_contacts(int part, const std::int32_t*& count) const;
   const collision::ShapeTable& shapes() const { return table_; }
   /// Where the shapes were at the last substep.
   const collision::Placement& placement() const { return placement_; }
@@ -101,6 +115,7 @@ class ContactWorld final : public model::SubstepForces {
     std::vector<Found> found;
     std::vector<ContactInfo> info;
     std::vector<std::uint64_t> info_rank;
+    std::int32_t info_count = 0;  // info.size(), for part_contacts()
     StopGraph stops;
   };
   /// `lane`: part by part, the part's lane, whose lists take the results; null: the whole
@@ -195,9 +210,12 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<Lane> lanes_;
   std::vector<std::int32_t> lane_of_shape_;    // per shape (0 for static shapes)
   mutable std::vector<std::size_t> merge_at_;  // merge_lanes()'s cursor per lane
-  std::vector<std::uint64_t> plane_rank_;      // per moving shape: its place in table_.moving()
-  std::vector<ContactInfo> info_;
-  std::int32_t info_count_ = 0;
+  /// The lanes' lists into info_ when the last substep's contacts are theirs (end_parts()).
+  void merge_parts() const;
+  mutable bool in_lanes_ = false;          // the last substep's contacts are the lanes', unmerged
+  std::vector<std::uint64_t> plane_rank_;  // per moving shape: its place in table_.moving()
+  mutable std::vector<ContactInfo> info_;  // merged on demand (contacts())
+  mutable std::int32_t info_count_ = 0;
   std::vector<Found>
       found_;  // the substep's points in the order of their forces (by parts: pairs')
   std::vector<std::int32_t> touching_points_;  // per body, this substep (0 between substeps)

@@ -27,18 +27,21 @@ struct Groups {
   std::vector<std::size_t> parent;
 };
 
-constexpr int kEveryPart = -2;  // read by every part (a conveyor belt's speed, in contact)
+constexpr int kEveryPart = -2;    // read by every part (a conveyor belt's speed, in contact)
+constexpr int kAllContacts = -3;  // the scene's contact list (merged on the calling thread)
 
 using Pins = std::vector<std::pair<std::size_t, int>>;  // (node, part)
 using Slots = std::vector<sim::ComponentSlot>;
 
-std::string belt_reason(const Slots& components, Groups& groups, std::size_t node) {
+std::string shared_reason(const Slots& components, Groups& groups, std::size_t node, int pin) {
   const std::size_t C = components.size();
-  for (std::size_t c = 0; c < C; ++c)
-    if (groups.find(c) == groups.find(node))
-      return components[c].label() + " touches a conveyor belt's speed, which every part's " +
-             "contact reads";
-  return "a conveyor belt's speed is read by every part's contact";
+  const std::string what =
+      pin == kAllContacts ? "reads a signal of the scene's contacts (a body's contact_force, "
+                            "contacts/count), which the parts hold in pieces"
+                          : "touches a conveyor belt's speed, which every part's contact reads";
+  for (std::size_t c = node < C ? node : 0; c < C; ++c)
+    if (groups.find(c) == groups.find(node)) return components[c].label() + " " + what;
+  return "an input " + what;
 }
 
 std::string two_parts_reason(const Slots& components, Groups& groups, const Pins& pins,
@@ -124,8 +127,10 @@ void Simulation::Impl::plan_component_parts() {
           pins.emplace_back(c, multibody->part_of_axis(entry.index));
           break;
         case sim::Source::time:
-        case sim::Source::body_contact_force:  // the last step's contacts: read-only in a tick
+          break;
+        case sim::Source::body_contact_force:
         case sim::Source::contact_count:
+          pins.emplace_back(c, kAllContacts);
           break;
         default:  // a body's pose or velocity
           pins.emplace_back(c, multibody->part_of_body(entry.index));
@@ -137,10 +142,10 @@ void Simulation::Impl::plan_component_parts() {
   for (const auto& [node, part] : pins) {
     int& at = part_of_group[groups.find(node)];
     if (at == -1) at = part;
-    if (at == part && part != kEveryPart) continue;
-    plan.serial_reason = part == kEveryPart || at == kEveryPart
-                             ? belt_reason(components, groups, node)
-                             : two_parts_reason(components, groups, pins, node);
+    if (at == part && part >= 0) continue;
+    plan.serial_reason = part < 0 ? shared_reason(components, groups, node, part)
+                         : at < 0 ? shared_reason(components, groups, node, at)
+                                  : two_parts_reason(components, groups, pins, node);
     return;
   }
 
@@ -221,6 +226,9 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
     wrenches[b] = Wrench{};
   for (const int a : part.axes)
     axis_force[a] = axis_friction[a] = 0.0;
+  // The last substep's contacts on the part's bodies (its own lane; the whole list after a
+  // substep computed whole): what its components may read, unmerged.
+  part.local.view.contacts = contacts->part_contacts(p, part.local.view.contact_count);
   const AxisDrive* drives = multibody->part_drives(p);
   std::int32_t& drive_count = *multibody->part_drive_count(p);
   drive_count = 0;

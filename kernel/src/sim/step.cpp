@@ -247,11 +247,14 @@ void Simulation::Impl::step_once() {
   }
   ++tick;
   sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
-  world.contacts = contacts->contacts();  // the buffer may have grown
   refresh();
 }
 
 void Simulation::Impl::run_components() {
+  // The last step's contacts, merged from the parts' lists if they computed them (the buffer
+  // may have grown since the last tick).
+  world.contacts = serial_local.view.contacts = contacts->contacts();
+  world.contact_count = serial_local.view.contact_count = contacts->contact_count();
   Wrench* wrenches = multibody->applied_wrenches();
   double* axis_force = multibody->applied_axis_forces();
   double* axis_friction = multibody->applied_axis_friction();
@@ -438,6 +441,7 @@ void Simulation::Impl::reset() {
   annotations.clear();
   multibody->reset();
   contacts->reset();
+  world.contacts = contacts->contacts();  // empty, for initialize()
   // Copy in place: the WorldView points into these buffers.
   std::copy(inputs_initial.begin(), inputs_initial.end(), inputs.begin());
   std::copy(state_initial.begin(), state_initial.end(), state.begin());

@@ -528,12 +528,13 @@ class ConfigureContext {
   /// signals, state and random stream; that it casts no ray, requests no place, move or
   /// velocity, publishes no annotation (log line, HUD text, trail, XY point, colour), and
   /// shares no data with other instances (no static variable). It may read the last step's
-  /// contacts. Every tick, the components that touch one another through inputs and signals
-  /// are then grouped with the bodies and axes they touch; with several threads
-  /// (SimulationOptions::threads) and every component of the scene local, each group runs on
-  /// the thread that steps its bodies, at the same time as the others, with the serial run's
-  /// results (docs/scheduling.md, "Components in parts"). A local component that casts a ray,
-  /// requests a move or annotates stops the simulation with an error naming it, at any
+  /// contacts on the bodies it looked up (with several threads it is given its part's, which
+  /// hold all of those, and maybe others). The components that touch one another through
+  /// inputs and signals are then grouped with the bodies and axes they touch; with several
+  /// threads (SimulationOptions::threads) and every component of the scene local, each group
+  /// runs on the thread that steps its bodies, at the same time as the others, with the
+  /// serial run's results (docs/scheduling.md, "Components in parts"). A local component that casts
+  /// a ray, requests a move or annotates stops the simulation with an error naming it, at any
   /// number of threads.
   virtual void declare_local() {}
 };

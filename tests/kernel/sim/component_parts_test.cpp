@@ -65,8 +65,12 @@ std::vector<double> signals(const Simulation& sim) {
 
 TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSerialResults) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
-  const fs::path scene =
-      write_scene("local", controller(0) + controller(1) + controller(2) + controller(3));
+  // Each controller also sums the contact force on its robot's brick (its caster's) from the
+  // contact list: all of it on one thread, its part's on two.
+  std::string plugins;
+  for (int r = 0; r < 4; ++r)
+    plugins += controller(r, "body='robots/r" + std::to_string(r) + "/solids/brick'");
+  const fs::path scene = write_scene("local", plugins);
   auto serial = load(scene, 1);
   auto parallel = load(scene, 2);
   EXPECT_NE(serial->components_serial_reason().find("one part"), std::string::npos)
@@ -81,7 +85,13 @@ TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSeria
   }
   // The controllers ran and drove the wheels.
   EXPECT_GT(std::abs(serial->signal("robots/r3/axes/right/speed")), 1.0);
-  EXPECT_NE(serial->signal("controllers/c2/seen"), 0.0);  // its encoder's count, read
+  EXPECT_NE(serial->signal("controllers/c2/seen"), 0.0);   // its encoder's count, read
+  EXPECT_GT(serial->signal("controllers/c3/touch"), 0.1);  // its caster's share of ~4.7 N
+  // The list the façade reads is the whole one, merged from the parts' on demand.
+  ASSERT_EQ(serial->contact_count(), parallel->contact_count());
+  for (std::size_t c = 0; c < serial->contact_count(); ++c)
+    EXPECT_EQ(std::memcmp(&serial->contact(c), &parallel->contact(c), sizeof(ContactInfo)), 0)
+        << "contact " << c;
 }
 
 TEST(ComponentParts, AComponentThatIsNotLocalKeepsThemAllOnTheCallingThread) {
@@ -90,6 +100,13 @@ TEST(ComponentParts, AComponentThatIsNotLocalKeepsThemAllOnTheCallingThread) {
   EXPECT_NE(sim->components_serial_reason().find("controllers/c1"), std::string::npos)
       << sim->components_serial_reason();
   EXPECT_NE(sim->components_serial_reason().find("not declared local"), std::string::npos);
+}
+
+TEST(ComponentParts, AReaderOfTheScenesContactSignalsKeepsThemAllOnTheCallingThread) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto sim = load(write_scene("contact_signal", controller(0, "reader='contacts/count'")), 2);
+  EXPECT_NE(sim->components_serial_reason().find("scene's contacts"), std::string::npos)
+      << sim->components_serial_reason();
 }
 
 TEST(ComponentParts, OneComponentOnTheAxesOfTwoPartsKeepsThemAllOnTheCallingThread) {

@@ -198,7 +198,9 @@ class Annotator : public Component {
 // encoder's count) and sets each axis's `ref_voltage` input to gain * (ref - speed), or, with
 // `act`, does what a local component may not: `ray` casts a ray, `log` logs a line, `move`
 // asks to move the axis's body... `stray_drive` applies a drive to axis index `stray_axis`,
-// which it did not look up. `local='0'` leaves the declaration out.
+// which it did not look up. `local='0'` leaves the declaration out; `reader` names any signal it
+// reads through a SignalReader (published as `seen` too). With `body`, it publishes
+// `touch`, the vertical contact force on that body summed over the last step's contacts.
 class LocalController : public Component {
  public:
   void configure(ConfigureContext& ctx) override {
@@ -215,18 +217,30 @@ class LocalController : public Component {
       at = end + 1;
     }
     if (p.has("reads")) reads_ = ctx.published_signal(p.text("reads"));
+    if (p.has("reader")) reader_ = ctx.signal_reader(p.text("reader"));
     if (p.has("body")) body_ = ctx.body(p.text("body"));
     gain_ = p.number("gain", 1.0);
     ref_ = p.number("ref", 5.0);
     act_ = p.text("act", "none");
     stray_axis_ = static_cast<std::int32_t>(p.number("stray_axis", 0.0));
     seen_ = ctx.declare_signal("seen", "1");
+    touch_ = ctx.declare_signal("touch", "N");
     ctx.set_schedule(Stage::control, p.number("period_ms", 10.0) / 1000.0);
   }
   void update(StepContext& ctx) override {
     for (std::size_t k = 0; k < axes_.size(); ++k)
       ctx.set_input(refs_[k], gain_ * (ref_ - ctx.axis_velocity(axes_[k])));
     if (reads_.index >= 0) ctx.publish(seen_, ctx.signal(reads_));
+    if (reader_.read) ctx.publish(seen_, ctx.signal(reader_));
+    if (body_.index > 0) {  // the contact force on its body, from the last step's contacts
+      Vec3 sum;
+      for (int i = 0; i < ctx.contact_count(); ++i) {
+        const ContactInfo& c = ctx.contact(i);
+        if (c.body_a.index == body_.index) sum += c.force_N;
+        if (c.body_b.index == body_.index) sum -= c.force_N;
+      }
+      ctx.publish(touch_, sum.z);
+    }
     if (ctx.time_s() < 0.05) return;
     if (act_ == "ray") ctx.cast_ray(Vec3{0, 0, 1}, Vec3{0, 0, -1}, 2.0);
     if (act_ == "log") ctx.log_line("hello");
@@ -238,11 +252,12 @@ class LocalController : public Component {
   std::vector<AxisHandle> axes_;
   std::vector<InputHandle> refs_;
   SignalHandle reads_;
+  SignalReader reader_;
   BodyHandle body_;
   double gain_ = 1, ref_ = 5;
   std::string act_;
   std::int32_t stray_axis_ = 0;
-  SignalHandle seen_;
+  SignalHandle seen_, touch_;
 };
 
 }  // namespace
