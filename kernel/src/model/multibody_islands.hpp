@@ -134,7 +134,7 @@ class MultibodyIslands {
   bool untouched_since_substep() const { return untouched_; }
 
  private:
-  struct Part {
+  struct alignas(64) Part {  // a cache line apart: each is written by its own thread
     std::unique_ptr<Multibody> multibody;
     PartPlan plan;
     Wrench* contact_wrenches = nullptr;  // the part's, when contact is used

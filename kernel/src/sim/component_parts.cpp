@@ -229,6 +229,8 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
   // The last substep's contacts on the part's bodies (its own lane; the whole list after a
   // substep computed whole): what its components may read, unmerged.
   part.local.view.contacts = contacts->part_contacts(p, part.local.view.contact_count);
+  part.local.view.time_s = world.time_s;  // the rest of the view changes only at load
+  part.local.view.tick = world.tick;
   const AxisDrive* drives = multibody->part_drives(p);
   std::int32_t& drive_count = *multibody->part_drive_count(p);
   drive_count = 0;

@@ -39,8 +39,8 @@ struct LocalView {
 
 /// The plan of the components by part, made at load (Simulation::Impl::plan_component_parts).
 struct ComponentParts {
-  struct Part {
-    LocalView local;                              ///< its axis_drives: the part's own slots
+  struct alignas(64) Part {  // a cache line apart: each is written by its own thread
+    LocalView local;         ///< its axis_drives: the part's own slots
     std::array<std::vector<int>, 4> stage_order;  ///< its components, in the serial order
     std::vector<int> bodies, axes;                ///< what it steps (kernel bodies, scene axes)
   };

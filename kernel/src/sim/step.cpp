@@ -255,6 +255,8 @@ void Simulation::Impl::run_components() {
   // may have grown since the last tick).
   world.contacts = serial_local.view.contacts = contacts->contacts();
   world.contact_count = serial_local.view.contact_count = contacts->contact_count();
+  serial_local.view.time_s = world.time_s;
+  serial_local.view.tick = world.tick;
   Wrench* wrenches = multibody->applied_wrenches();
   double* axis_force = multibody->applied_axis_forces();
   double* axis_friction = multibody->applied_axis_friction();
@@ -430,7 +432,6 @@ void Simulation::Impl::refresh() {
   world.time_s = static_cast<double>(tick) * tick_s;
   world.tick = tick;
   if (ray_caster) ray_caster->invalidate();
-  sync_local_views();
 }
 
 void Simulation::Impl::reset() {
@@ -442,6 +443,7 @@ void Simulation::Impl::reset() {
   multibody->reset();
   contacts->reset();
   world.contacts = contacts->contacts();  // empty, for initialize()
+  sync_local_views();
   // Copy in place: the WorldView points into these buffers.
   std::copy(inputs_initial.begin(), inputs_initial.end(), inputs.begin());
   std::copy(state_initial.begin(), state_initial.end(), state.begin());
