@@ -56,6 +56,15 @@ class ContactQuery {
   /// only when more pairs overlap than ever before. Throws TooManyPairs past max_pairs().
   const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs(
       const Placement& placement);
+  /// Whether group_by_islands() found the search by islands worth it (else the grid).
+  bool by_islands() const { return by_islands_; }
+  /// overlapping_pairs() among the shapes group_by_islands() was given (a part's own and the
+  /// static ones, the others labelled IslandBroadPhase::kAbsent), which must have found the
+  /// search by islands worth it: the same pairs, in the same order, for those shapes; when more
+  /// island boxes overlap than max_pairs(), by testing every two of them instead of the grid
+  /// (which holds every shape). Throws TooManyPairs as overlapping_pairs() does.
+  const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs_searched(
+      const Placement& placement);
   /// How many pairs may overlap at once: 1024 + 64 per shape, far above any pile that is not
   /// bodies placed into one another (docs/reliability.md, "Limits").
   std::size_t max_pairs() const { return max_pairs_; }
@@ -74,6 +83,8 @@ class ContactQuery {
   BroadPhase broad_phase_;
   IslandBroadPhase islands_;
   bool by_islands_ = false;
+  std::vector<std::int32_t> searched_;  // group_by_islands(): the shapes not kAbsent, ascending
+  std::vector<char> is_static_;         // per shape: labelled static (-1)
   FclPairs fcl_;
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs_;
 };

@@ -19,14 +19,17 @@ bool IslandBroadPhase::build(const std::vector<std::int32_t>& island_of_shape,
   shape_count_ = static_cast<int>(island_of_shape.size());
   std::map<std::int32_t, std::vector<std::int32_t>> islands;  // label -> shapes, ascending
   std::vector<std::int32_t> statics;
+  int searched = 0;
   for (std::int32_t s = 0; s < shape_count_; ++s) {
     const std::int32_t label = island_of_shape[static_cast<std::size_t>(s)];
+    if (label == kAbsent) continue;
     (label < 0 ? statics : islands[label]).push_back(s);
+    ++searched;
   }
   island_count_ = static_cast<int>(islands.size());
   const std::size_t groups = islands.size() + statics.size();
-  if (shape_count_ < 2 ||
-      static_cast<double>(groups) > kMaxGroupsPerShape * static_cast<double>(shape_count_))
+  if (searched < 2 ||
+      static_cast<double>(groups) > kMaxGroupsPerShape * static_cast<double>(searched))
     return false;
   first_shape_.clear();
   shapes_.clear();

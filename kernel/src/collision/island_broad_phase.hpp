@@ -33,6 +33,9 @@ class IslandBroadPhase {
   /// Returns false, and the search is not to be used, when the islands group too few shapes
   /// to pay (mostly one shape each, as in a pile of loose things) or an island has so many
   /// shapes that may touch each other that a grid of all shapes does better.
+  /// A shape labelled kAbsent is not searched at all (another part's, when each part of the
+  /// parallel step searches its own shapes: contact_parts.cpp).
+  static constexpr std::int32_t kAbsent = -2;
   bool build(const std::vector<std::int32_t>& island_of_shape,
              const std::function<bool(std::int32_t, std::int32_t)>& may_touch);
 

@@ -39,6 +39,26 @@ bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
     reserve(lane);
   for (const Memory& m : memory)
     lane_of(static_cast<std::int32_t>(m.key >> 40)).memory.push_back(m);
+  // Each lane's own pair search: its moving shapes by island, the static ones, the others'
+  // left out. Used in the substeps when no two lanes' boxes overlap (begin_parts()), and only
+  // when every lane's search goes by islands (a grid would hold every shape).
+  lanes_search_ = query_.by_islands();
+  for (std::size_t l = 0; l < lanes_.size() && lanes_search_; ++l) {
+    Lane& lane = lanes_[l];
+    if (lane.moving.empty()) continue;
+    std::vector<std::int32_t> labels = island_of_shape_;
+    for (std::size_t s = 0; s < labels.size(); ++s)
+      if (body[s] != 0 && lane_of_shape_[s] != static_cast<std::int32_t>(l))
+        labels[s] = collision::IslandBroadPhase::kAbsent;
+    lane.query = std::make_unique<collision::ContactQuery>(table_);
+    lane.query->group_by_islands(labels, [&](std::int32_t i, std::int32_t j) {
+      return !excluded(body[static_cast<std::size_t>(i)], body[static_cast<std::size_t>(j)]);
+    });
+    lanes_search_ = lane.query->by_islands();
+  }
+  if (lanes_search_)
+    for (Lane& lane : lanes_)
+      bound_lane(lane);
   return true;
 }
 
@@ -50,6 +70,14 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
   // nothing of the lanes is written here (a line the caller writes costs the part's thread a
   // trip between the cores to read).
   found_.clear();
+  // No two parts' shapes' boxes overlap (their margins cover the step): no pair joins two
+  // parts, and each part finds its own (compute_part()), so that this thread reads none of the
+  // parts' shapes. Else the pairs here.
+  own_pairs_ = lanes_search_ && lanes_apart();
+  if (own_pairs_) {
+    ++own_pairs_substeps_;
+    return true;
+  }
   // False when two parts' bodies touch, or may within the step: the whole substep then runs on
   // this thread (compute()).
   return pair_points_into_found(true);
@@ -70,8 +98,14 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   for (const std::int32_t s : lane.moving)
     if (!fixed_to_world_[body[s]]) plane_points(s, lane.found);
   const std::size_t plane_count = lane.found.size();
-  for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
-    if (lane_of_shape_[static_cast<std::size_t>(f.shape_a)] == part) lane.found.push_back(f);
+  if (own_pairs_) {  // its own pairs (begin_parts()), in rank order
+    if (!lane.moving.empty())
+      pair_points_into(*lane.query, lane.query->overlapping_pairs_searched(placement_), lane.found);
+    lane.cursor = 0;  // the pairs' feature matching read the memory: forces() reads it again
+  } else {
+    for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
+      if (lane_of_shape_[static_cast<std::size_t>(f.shape_a)] == part) lane.found.push_back(f);
+  }
   forces(&lane, lane.found, plane_count, poses, twists, step_s, wrenches);
   lane.info_count = static_cast<std::int32_t>(lane.info.size());
 }

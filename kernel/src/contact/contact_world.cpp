@@ -132,7 +132,8 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
 void ContactWorld::group_islands(const scene::Scene& scene) {
   const std::vector<int> island_root = scene::joint_island_roots(scene);
   const auto& body = table_.bodies();
-  std::vector<std::int32_t> island_of_shape(body.size());
+  std::vector<std::int32_t>& island_of_shape = island_of_shape_;
+  island_of_shape.assign(body.size(), -1);
   for (std::size_t s = 0; s < body.size(); ++s)
     island_of_shape[s] = body[s] == 0 ? -1 : island_root[static_cast<std::size_t>(body[s] - 1)];
   query_.group_by_islands(island_of_shape, [&](std::int32_t i, std::int32_t j) {
@@ -279,27 +280,42 @@ void ContactWorld::plane_points(std::int32_t s, std::vector<Found>& out) {
 bool ContactWorld::pair_points_into_found(bool within_lanes) {
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
-  std::uint64_t rank = kPairRank;
   for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
     if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
     const bool swap = body[i] == 0;
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const int n = pair_points(ia, ib, points);
+    const int n = pair_points(query_, ia, ib, points);
     if (n == 0) continue;
     if (within_lanes && body[ib] != 0 &&
         lane_of_shape_[static_cast<std::size_t>(ib)] !=
             lane_of_shape_[static_cast<std::size_t>(ia)])
       return false;
     for (int k = 0; k < n; ++k)
-      found_.push_back({ia, ib, false, points[k], rank++});
+      found_.push_back({ia, ib, false, points[k], pair_rank(i, j, k)});
   }
   return true;
 }
 
-int ContactWorld::pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points) {
+void ContactWorld::pair_points_into(collision::ContactQuery& query,
+                                    const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                                    std::vector<Found>& out) {
+  const std::int32_t* body = table_.bodies().data();
+  collision::ContactPoint points[collision::kMaxPointsPerPair];
+  for (const auto& [i, j] : pairs) {
+    if (excluded(body[i], body[j])) continue;
+    const bool swap = body[i] == 0;  // shape a must move
+    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
+    const int n = pair_points(query, ia, ib, points);
+    for (int k = 0; k < n; ++k)
+      out.push_back({ia, ib, false, points[k], pair_rank(i, j, k)});
+  }
+}
+
+int ContactWorld::pair_points(collision::ContactQuery& query, std::int32_t ia, std::int32_t ib,
+                              collision::ContactPoint* points) {
   bool renumbered = false;
-  const int n = query_.pair_points(table_, placement_, ia, ib, points, renumbered);
+  const int n = query.pair_points(table_, placement_, ia, ib, points, renumbered);
   if (renumbered && n > 0) match_features(ia, ib, points, n);
   return n;
 }
@@ -313,18 +329,45 @@ void ContactWorld::reserve(Lane& lane) const {
   lane.stops.reserve(apparent_mass_kg_.size(), reserve_);
 }
 
-void ContactWorld::place(const Lane* lane, const Pose* poses, const Twist* twists, double step_s) {
+void ContactWorld::place(Lane* lane, const Pose* poses, const Twist* twists, double step_s) {
   const double min_margin_m = law_.min_speculative_speed_m_s * step_s;
   if (!lane) {
     for (std::size_t b = 1; b < to_body_.size(); ++b)
       to_body_[b] = poses[b].rotation.transposed();
     placement_.update(table_, poses, twists, step_s, min_margin_m, law_.max_speculative_margin_m);
+    if (lanes_search_)
+      for (Lane& each : lanes_)
+        bound_lane(each);
     return;
   }
   for (const std::int32_t b : lane->bodies)
     to_body_[static_cast<std::size_t>(b)] = poses[b].rotation.transposed();
   placement_.update(table_, poses, twists, step_s, min_margin_m, law_.max_speculative_margin_m,
                     lane->moving.data(), lane->moving.size());
+  if (lanes_search_) bound_lane(*lane);
+}
+
+void ContactWorld::bound_lane(Lane& lane) {
+  if (lane.moving.empty()) return;
+  const collision::Aabb* boxes = placement_.boxes();
+  collision::Aabb bound = boxes[lane.moving.front()];
+  for (const std::int32_t s : lane.moving) {
+    const collision::Aabb& b = boxes[s];
+    bound.min = {std::min(bound.min.x, b.min.x), std::min(bound.min.y, b.min.y),
+                 std::min(bound.min.z, b.min.z)};
+    bound.max = {std::max(bound.max.x, b.max.x), std::max(bound.max.y, b.max.y),
+                 std::max(bound.max.z, b.max.z)};
+  }
+  lane.bound = bound;
+}
+
+bool ContactWorld::lanes_apart() const {
+  for (std::size_t l = 0; l < lanes_.size(); ++l)
+    for (std::size_t m = l + 1; m < lanes_.size(); ++m)
+      if (!lanes_[l].moving.empty() && !lanes_[m].moving.empty() &&
+          collision::overlap(lanes_[l].bound, lanes_[m].bound))
+        return false;
+  return true;
 }
 
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,

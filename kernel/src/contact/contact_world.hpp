@@ -18,6 +18,7 @@
 #include <s2sim/kernel/scene.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace s2sim::sim {
@@ -70,6 +71,9 @@ class ContactWorld final : public model::SubstepForces {
     merge_parts();
     return &info_count_;
   }
+  /// How many substeps the parts found their own pairs in (their shapes' boxes apart: the
+  /// calling thread then found none), since load; for tests and profiling.
+  std::int64_t substeps_with_own_pairs() const { return own_pairs_substeps_; }
   /// Part `part`'s share of the last substep's contacts, in compute()'s order, with `count`
   /// pointed at its size: every contact on the part's bodies (those its components may read,
   /// sim/component_parts.hpp), unmerged; the whole list when the last substep was computed
@@ -117,6 +121,10 @@ class ContactWorld final : public model::SubstepForces {
     std::vector<std::uint64_t> info_rank;
     std::int32_t info_count = 0;  // info.size(), for part_contacts()
     StopGraph stops;
+    /// Its own pair search (its moving shapes and the static ones; its own narrow phase's
+    /// buffers), and the box around its moving shapes as last placed.
+    std::unique_ptr<collision::ContactQuery> query;
+    collision::Aabb bound;
   };
   /// `lane`: part by part, the part's lane, whose lists take the results; null: the whole
   /// substep's lists (info_, stops_), each point's memory its first shape's lane.
@@ -131,11 +139,27 @@ class ContactWorld final : public model::SubstepForces {
   /// The points of every overlapping pair that may touch, appended to found_ in rank order;
   /// `within_lanes`: stops (false) at the first pair of two lanes' bodies with points.
   bool pair_points_into_found(bool within_lanes);
+  /// The points of each of `pairs` (i < j, increasing) that may touch, appended to `out`.
+  void pair_points_into(collision::ContactQuery& query,
+                        const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                        std::vector<Found>& out);
   /// The points of a pair (a must move), with stable feature ids: how many were written.
-  int pair_points(std::int32_t ia, std::int32_t ib, collision::ContactPoint* points);
+  int pair_points(collision::ContactQuery& query, std::int32_t ia, std::int32_t ib,
+                  collision::ContactPoint* points);
+  /// A pair's point's rank: pairs in increasing (i, j), then the point's index.
+  std::uint64_t pair_rank(std::int32_t i, std::int32_t j, int k) const {
+    return kPairRank +
+           (static_cast<std::uint64_t>(i) * static_cast<std::uint64_t>(table_.size()) +
+            static_cast<std::uint64_t>(j)) *
+               collision::kMaxPointsPerPair +
+           static_cast<std::uint64_t>(k);
+  }
+  /// Each lane's bound (after place()), and whether no two lanes' bounds overlap.
+  void bound_lane(Lane& lane);
+  bool lanes_apart() const;
   /// Each shape of `lane` (null: every moving shape) and each of its bodies' rotations at the
   /// substep's poses.
-  void place(const Lane* lane, const Pose* poses, const Twist* twists, double step_s);
+  void place(Lane* lane, const Pose* poses, const Twist* twists, double step_s);
   /// Room in every list of `lane` for the scene's points (at load: stepping allocates nothing).
   void reserve(Lane& lane) const;
   /// Calls take(lane, index) for every element of the lanes' runs (each `size(lane)` long and
@@ -212,7 +236,11 @@ class ContactWorld final : public model::SubstepForces {
   mutable std::vector<std::size_t> merge_at_;  // merge_lanes()'s cursor per lane
   /// The lanes' lists into info_ when the last substep's contacts are theirs (end_parts()).
   void merge_parts() const;
-  mutable bool in_lanes_ = false;          // the last substep's contacts are the lanes', unmerged
+  mutable bool in_lanes_ = false;  // the last substep's contacts are the lanes', unmerged
+  std::vector<std::int32_t> island_of_shape_;  // group_islands(): per shape its island, -1 static
+  bool lanes_search_ = false;  // every lane with moving shapes searches its own pairs by islands
+  bool own_pairs_ = false;     // this substep, each lane finds its own pairs (begin_parts)
+  std::int64_t own_pairs_substeps_ = 0;
   std::vector<std::uint64_t> plane_rank_;  // per moving shape: its place in table_.moving()
   mutable std::vector<ContactInfo> info_;  // merged on demand (contacts())
   mutable std::int32_t info_count_ = 0;

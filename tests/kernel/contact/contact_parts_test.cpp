@@ -89,5 +89,45 @@ TEST(ContactParts, ThePartsGiveTheWholeContactBitForBit) {
   EXPECT_NEAR(run.poses[5].position.z, 2.5 * size, 2e-3) << "the late box is not on the stack";
 }
 
+// Two parts a metre and a half apart, each a pair of boxes hinged together lying on the ground
+// (one island of two shapes) with a loose box dropped across the hinge: the parts' boxes never
+// overlap, so each part finds its own pairs (the loose box on the hinged ones) on its own
+// thread, with the whole contact's numbers.
+TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
+  scene::Scene s;
+  const double size = 0.1;
+  for (int part = 0; part < 2; ++part) {
+    const double x = 1.5 * part;
+    const int first = static_cast<int>(s.bodies.size());
+    s.bodies.push_back(test::box("left", 0.5, {size, size, size}, {x, 0, size / 2}));
+    s.bodies.push_back(test::box("right", 0.7, {size, size, size}, {x + size, 0, size / 2}));
+    s.bodies.push_back(test::box("loose", 0.3, {size, size, size},
+                                 {x + size / 2 + 0.01 * part, 0, 1.5 * size + 0.2}));
+    s.joints.push_back(test::joint("hinge", scene::JointType::hinge, first, first + 1,
+                                   {x + size / 2, 0, 0}, {0, 1, 0}));
+  }
+  test::ContactRunner run(s);
+  ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
+  parts.set_mobility(run.mb.contact_mobility());
+  ASSERT_TRUE(parts.split({0, 0, 0, 0, 1, 1, 1}, 2));
+  SideBySide side(run.contacts, parts, run.mb.body_count());
+  run.contact = &side;
+  int pairs_between_bodies = 0;
+  for (int n = 0; n < 1000; ++n) {
+    run.step();
+    const Pose* poses = nullptr;
+    const Twist* twists = nullptr;
+    run.mb.current_bodies(poses, twists);
+    for (int p = 0; p < 2; ++p)
+      parts.place_part(p, poses, twists, 1e-3);
+    for (std::int32_t i = 0; i < *parts.contact_count(); ++i)
+      pairs_between_bodies += parts.contacts()[i].body_b.index != 0;
+  }
+  EXPECT_EQ(side.differing, 0);
+  EXPECT_EQ(side.split, side.substeps);
+  EXPECT_EQ(parts.substeps_with_own_pairs(), side.substeps);
+  EXPECT_GT(pairs_between_bodies, 1000) << "the loose boxes never lay on the hinged ones";
+}
+
 }  // namespace
 }  // namespace s2sim::contact
