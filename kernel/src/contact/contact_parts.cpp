@@ -144,4 +144,27 @@ void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, 
   place(&lanes_[static_cast<std::size_t>(part)], poses, twists, step_s);
 }
 
+void ContactWorld::bound_lane(Lane& lane) {
+  if (lane.moving.empty()) return;
+  const collision::Aabb* boxes = placement_.boxes();
+  collision::Aabb bound = boxes[lane.moving.front()];
+  for (const std::int32_t s : lane.moving) {
+    const collision::Aabb& b = boxes[s];
+    bound.min = {std::min(bound.min.x, b.min.x), std::min(bound.min.y, b.min.y),
+                 std::min(bound.min.z, b.min.z)};
+    bound.max = {std::max(bound.max.x, b.max.x), std::max(bound.max.y, b.max.y),
+                 std::max(bound.max.z, b.max.z)};
+  }
+  lane.bound = bound;
+}
+
+bool ContactWorld::lanes_apart() const {
+  for (std::size_t l = 0; l < lanes_.size(); ++l)
+    for (std::size_t m = l + 1; m < lanes_.size(); ++m)
+      if (!lanes_[l].moving.empty() && !lanes_[m].moving.empty() &&
+          collision::overlap(lanes_[l].bound, lanes_[m].bound))
+        return false;
+  return true;
+}
+
 }  // namespace s2sim::contact

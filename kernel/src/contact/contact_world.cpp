@@ -1,7 +1,6 @@
 #include "contact/contact_world.hpp"
 
 #include "scene/joint_islands.hpp"
-#include "sim/state_layout.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -347,29 +346,6 @@ void ContactWorld::place(Lane* lane, const Pose* poses, const Twist* twists, dou
   if (lanes_search_) bound_lane(*lane);
 }
 
-void ContactWorld::bound_lane(Lane& lane) {
-  if (lane.moving.empty()) return;
-  const collision::Aabb* boxes = placement_.boxes();
-  collision::Aabb bound = boxes[lane.moving.front()];
-  for (const std::int32_t s : lane.moving) {
-    const collision::Aabb& b = boxes[s];
-    bound.min = {std::min(bound.min.x, b.min.x), std::min(bound.min.y, b.min.y),
-                 std::min(bound.min.z, b.min.z)};
-    bound.max = {std::max(bound.max.x, b.max.x), std::max(bound.max.y, b.max.y),
-                 std::max(bound.max.z, b.max.z)};
-  }
-  lane.bound = bound;
-}
-
-bool ContactWorld::lanes_apart() const {
-  for (std::size_t l = 0; l < lanes_.size(); ++l)
-    for (std::size_t m = l + 1; m < lanes_.size(); ++m)
-      if (!lanes_[l].moving.empty() && !lanes_[m].moving.empty() &&
-          collision::overlap(lanes_[l].bound, lanes_[m].bound))
-        return false;
-  return true;
-}
-
 void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
                            Wrench* wrenches) {
   std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
@@ -620,98 +596,6 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
     stops.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
                       p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(infos.size() - 1),
                       memory_ref, last_hold_N * step_s);
-}
-
-void ContactWorld::declare_state(sim::StateLayout& layout) {
-  constexpr std::size_t kPer = 10;
-  layout.add_variable(
-      "contact/memory", kPer,
-      [this] {
-        std::size_t count = 0;
-        for (const Lane& lane : lanes_)
-          count += lane.memory.size();
-        return kPer * count;
-      },
-      [this](double* out) {
-        // In key order whatever the lanes: the lanes' runs merged.
-        merge_lanes([&](std::size_t l) { return lanes_[l].memory.size(); },
-                    [&](std::size_t l, std::size_t i, std::size_t k, std::size_t j) {
-                      return lanes_[l].memory[i].key < lanes_[k].memory[j].key;
-                    },
-                    [&](std::size_t l, std::size_t i) {
-                      const Memory& m = lanes_[l].memory[i];
-                      const PointState& p = m.state;
-                      const double v[kPer] = {std::bit_cast<double>(m.key),
-                                              p.bristle_m.x,
-                                              p.bristle_m.y,
-                                              p.bristle_m.z,
-                                              p.approach_speed_m_s,
-                                              p.local_point_m.x,
-                                              p.local_point_m.y,
-                                              p.local_point_m.z,
-                                              p.impact_pending ? 1.0 : 0.0,
-                                              p.held_force_N};
-                      out = std::copy(v, v + kPer, out);
-                    });
-      },
-      [this](const double* in, std::size_t count) {
-        for (Lane& lane : lanes_)
-          lane.memory.clear();
-        for (std::size_t k = 0; k < count; k += kPer, in += kPer) {
-          Memory m;
-          m.key = std::bit_cast<std::uint64_t>(in[0]);
-          m.state.bristle_m = {in[1], in[2], in[3]};
-          m.state.approach_speed_m_s = in[4];
-          m.state.local_point_m = {in[5], in[6], in[7]};
-          m.state.impact_pending = in[8] != 0;
-          m.state.held_force_N = in[9];
-          // A key names its first shape: its lane keeps it (a key from another scene: lane 0).
-          const std::uint64_t shape = m.key >> 40;
-          (shape < lane_of_shape_.size() ? lane_of(static_cast<std::int32_t>(shape)) : lanes_[0])
-              .memory.push_back(m);
-        }
-      });
-  // The last substep's contacts: what touch sensors and the contact signals read next.
-  constexpr std::size_t kInfo = 12;
-  layout.add_variable(
-      "contact/points", kInfo,
-      [this] {
-        merge_parts();
-        return kInfo * info_.size();
-      },
-      [this](double* out) {
-        merge_parts();
-        for (const ContactInfo& c : info_) {
-          const double v[kInfo] = {static_cast<double>(c.body_a.index),
-                                   static_cast<double>(c.body_b.index),
-                                   c.point_m.x,
-                                   c.point_m.y,
-                                   c.point_m.z,
-                                   c.normal.x,
-                                   c.normal.y,
-                                   c.normal.z,
-                                   c.force_N.x,
-                                   c.force_N.y,
-                                   c.force_N.z,
-                                   c.depth_m};
-          out = std::copy(v, v + kInfo, out);
-        }
-      },
-      [this](const double* in, std::size_t count) {
-        in_lanes_ = false;  // the restored list is the whole one
-        info_.clear();
-        for (std::size_t k = 0; k < count; k += kInfo, in += kInfo) {
-          ContactInfo c;
-          c.body_a = BodyHandle{static_cast<std::int32_t>(in[0])};
-          c.body_b = BodyHandle{static_cast<std::int32_t>(in[1])};
-          c.point_m = {in[2], in[3], in[4]};
-          c.normal = {in[5], in[6], in[7]};
-          c.force_N = {in[8], in[9], in[10]};
-          c.depth_m = in[11];
-          info_.push_back(c);
-        }
-        info_count_ = static_cast<std::int32_t>(info_.size());
-      });
 }
 
 }  // namespace s2sim::contact

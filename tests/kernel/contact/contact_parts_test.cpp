@@ -57,6 +57,17 @@ struct SideBySide final : model::SubstepForces {
   std::int32_t deepest_count = 0;
 };
 
+/// One step of `run`, then the two parts place their shapes from its poses, as the
+/// island-parallel step does after its multibody stages.
+void step_and_place(test::ContactRunner& run, ContactWorld& parts) {
+  run.step();
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  run.mb.current_bodies(poses, twists);
+  for (int p = 0; p < 2; ++p)
+    parts.place_part(p, poses, twists, 1e-3);
+}
+
 // Two stacks a metre apart, one per part, each hit by a falling box at the same instant (stops
 // and held points in both parts at once), and later a box of part 0 landing on part 1's stack
 // and staying there (the substeps then run whole).
@@ -74,14 +85,8 @@ TEST(ContactParts, ThePartsGiveTheWholeContactBitForBit) {
   ASSERT_TRUE(parts.split({0, 0, 0, 1, 1, 0}, 2));
   SideBySide side(run.contacts, parts, run.mb.body_count());
   run.contact = &side;
-  for (int n = 0; n < 1200; ++n) {
-    run.step();
-    const Pose* poses = nullptr;
-    const Twist* twists = nullptr;
-    run.mb.current_bodies(poses, twists);
-    for (int p = 0; p < 2; ++p)
-      parts.place_part(p, poses, twists, 1e-3);
-  }
+  for (int n = 0; n < 1200; ++n)
+    step_and_place(run, parts);
   EXPECT_EQ(side.differing, 0);
   EXPECT_GT(side.split, 200) << "of " << side.substeps << " substeps";
   EXPECT_GT(side.substeps - side.split, 200) << "the late box never met part 1's stack";
@@ -114,12 +119,7 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
   run.contact = &side;
   int pairs_between_bodies = 0;
   for (int n = 0; n < 1000; ++n) {
-    run.step();
-    const Pose* poses = nullptr;
-    const Twist* twists = nullptr;
-    run.mb.current_bodies(poses, twists);
-    for (int p = 0; p < 2; ++p)
-      parts.place_part(p, poses, twists, 1e-3);
+    step_and_place(run, parts);
     for (std::int32_t i = 0; i < *parts.contact_count(); ++i)
       pairs_between_bodies += parts.contacts()[i].body_b.index != 0;
   }
