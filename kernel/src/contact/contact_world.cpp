@@ -259,6 +259,7 @@ void ContactWorld::reset() {
     lane.info.clear();
     lane.info_rank.clear();
     lane.info_count = 0;
+    if (lane.query) lane.query->reset();
   }
   info_.clear();
   info_count_ = 0;

@@ -94,6 +94,22 @@ TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSeria
         << "contact " << c;
 }
 
+TEST(ComponentParts, AResetRunInThePartsRepeatsTheFirstBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  std::string plugins;
+  for (int r = 0; r < 4; ++r)
+    plugins += controller(r, "body='robots/r" + std::to_string(r) + "/solids/brick'");
+  auto sim = load(write_scene("reset", plugins), 2);
+  ASSERT_EQ(sim->components_serial_reason(), "");
+  sim->step(400);
+  const std::vector<double> first = signals(*sim);
+  sim->reset();
+  sim->step(400);
+  const std::vector<double> again = signals(*sim);
+  ASSERT_EQ(first.size(), again.size());
+  EXPECT_EQ(std::memcmp(first.data(), again.data(), first.size() * sizeof(double)), 0);
+}
+
 TEST(ComponentParts, AComponentThatIsNotLocalKeepsThemAllOnTheCallingThread) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   auto sim = load(write_scene("not_local", controller(0) + controller(1, "local='0'")), 2);
