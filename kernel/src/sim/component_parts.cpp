@@ -4,6 +4,7 @@
 #include "sim/simulation_impl.hpp"
 #include "sim/step.hpp"
 
+#include <algorithm>
 #include <numeric>
 #include <string>
 
