@@ -44,6 +44,10 @@ int run(const s2sim::runner::Options& o) {
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());
+  // Not a warning (the results are the same), but why --threads gains less than it could.
+  if (!o.quiet && options.threads > 1 && !sim->components_serial_reason().empty())
+    std::fprintf(stderr, "note: --threads %d: the components run on the calling thread: %s\n",
+                 options.threads, sim->components_serial_reason().c_str());
 
   if (o.list_signals || o.list_inputs) {
     if (o.list_signals)

@@ -72,7 +72,8 @@ Options:
   --substeps N         override the physics substeps per step
   --threads N          step the scene's islands (robots not jointed to each other) on N
                        threads, 1 to the machine's hardware threads (default 1); the
-                       results are the same for every N
+                       results are the same for every N (a note says when the components
+                       cannot run on their islands' threads, and why)
   --simbody-dynamics   Simbody's realize chain for every system, not the small-tree fast
                        path (the same dynamics to rounding, slower): for comparing the two
   --plugin-path DIR    search DIR for plugins before the default folders (repeatable;

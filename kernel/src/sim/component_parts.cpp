@@ -80,7 +80,9 @@ void Simulation::Impl::plan_component_parts() {
   multibody->stage_drives_by_part(false);
   const int parts = multibody->parts();
   if (parts < 2) {
-    plan.serial_reason = "the scene is stepped as one part (threads = 1, or one island)";
+    plan.serial_reason =
+        "the scene is stepped as one part (threads = 1, a single island, or a loop-closing or "
+        "Ball joint: docs/scheduling.md)";
     return;
   }
   for (const auto& slot : components)
