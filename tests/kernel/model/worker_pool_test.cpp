@@ -68,15 +68,17 @@ TEST(WorkerPool, OneThreadRunsEveryTaskOnTheCaller) {
 }
 
 // Task i's home is thread i mod threads: a part's data stays in its core's cache run after
-// run. Four tasks of 300 µs on two threads: the caller runs 0 then 2, the worker 1 then 3. By
-// the old rule (every thread takes the next task) tasks 2 and 3 went to whichever thread
-// finished first, about half the time the other way round. Only the runs the worker took part
-// in count: on a busy machine (ctest -j2) it may not be scheduled in time, or land on the
-// caller's core and leave its tasks to the caller, as it should.
+// run. Four tasks of 300 µs on two threads: the caller runs 0 then 2, the worker 1 then 3, and
+// a thread takes another's task only once that one is left untaken, which gives it three (or
+// all four). So in every run where each thread ran two tasks, each ran its own two, however
+// the threads were scheduled. By the old rule (every thread takes the next task) an even split
+// went the other way round about half the time. On a busy machine (ctest -j2) the worker may
+// not be scheduled in time, or land on the caller's core and leave its tasks to the caller, as
+// it should: those runs are uneven splits and prove nothing either way.
 TEST(WorkerPool, EachTaskRunsOnItsHomeThreadRunAfterRun) {
   WorkerPool pool(2, 4);
-  int shared = 0, all_home = 0;
-  for (int run = 0; run < 200 && shared < 40; ++run) {
+  int even = 0, even_at_home = 0;
+  for (int run = 0; run < 300 && even < 40; ++run) {
     Record record;
     pool.run(
         [](void* context, int index, int thread) {
@@ -92,12 +94,12 @@ TEST(WorkerPool, EachTaskRunsOnItsHomeThreadRunAfterRun) {
       on_worker += record.thread[i].load() == 1 ? 1 : 0;
       home = home && record.thread[i].load() == i % 2;
     }
-    if (on_worker == 0) continue;
-    ++shared;
-    all_home += home ? 1 : 0;
+    if (on_worker != 2) continue;
+    ++even;
+    even_at_home += home ? 1 : 0;
   }
-  if (shared < 10) GTEST_SKIP() << "the worker took part in " << shared << " of 200 runs";
-  EXPECT_GE(all_home, shared * 9 / 10) << "of " << shared << " runs the worker took part in";
+  if (even < 10) GTEST_SKIP() << "only " << even << " of 300 runs split the tasks evenly";
+  EXPECT_EQ(even_at_home, even) << "runs whose two threads ran two tasks each";
 }
 
 }  // namespace
