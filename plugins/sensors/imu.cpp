@@ -29,6 +29,7 @@ void read_channel(const Params& p, const char* el, double& noise, double& bias, 
 }  // namespace
 
 void Imu::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // its own body (and joint): stepped in that body's part
   s_.read(ctx);
   s_.schedule(ctx);
   const Params& p = ctx.params();

@@ -9,6 +9,7 @@
 namespace s2sim::sensors {
 
 void JointForce::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // its own body (and joint): stepped in that body's part
   s_.read(ctx);
   s_.schedule(ctx);
   const Params& p = ctx.params();

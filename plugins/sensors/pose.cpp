@@ -6,6 +6,7 @@
 namespace s2sim::sensors {
 
 void PoseSensor::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // its own body (and joint): stepped in that body's part
   s_.read(ctx);
   s_.schedule(ctx);
   yaw_stdev_ = ctx.params().number("noise.yaw_stdev", 0.0, Range::non_negative());

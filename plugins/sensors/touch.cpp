@@ -6,6 +6,7 @@
 namespace s2sim::sensors {
 
 void Touch::configure(ConfigureContext& ctx) {
+  ctx.declare_local();  // its own body (and joint): stepped in that body's part
   s_.read(ctx);
   s_.schedule(ctx);
   const Params& p = ctx.params();

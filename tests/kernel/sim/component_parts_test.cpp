@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -92,6 +93,52 @@ TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSeria
   for (std::size_t c = 0; c < serial->contact_count(); ++c)
     EXPECT_EQ(std::memcmp(&serial->contact(c), &parallel->contact(c), sizeof(ContactInfo)), 0)
         << "contact " << c;
+}
+
+TEST(ComponentParts, RobotsWithLocalSensorsRunThemInTheirPartsWithTheSerialResults) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // The peers' robot with an IMU, a pose sensor, a bumper on its caster and a force sensor in
+  // its right wheel's joint: the sensors plugin's local kinds.
+  const fs::path dir = fs::path(testing::TempDir()) / "component_parts_sensors";
+  fs::create_directories(dir);
+  std::string robot;
+  {
+    std::ifstream in(fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/diffbot.xml");
+    robot.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  robot.replace(robot.rfind("</robot>"), 8, R"(<sensors>
+    <imu><ID value='imu'/><solid id='brick'/><period value='0.002'/>
+      <accelerometer noise='0.02'/></imu>
+    <pose><ID value='where'/><solid id='brick'/></pose>
+    <touch><ID value='bump'/><solid id='brick'/><pos x='-0.06' y='0' z='-0.07'/>
+      <region x='0.04' y='0.04' z='0.04'/></touch>
+    <jointforce><ID value='axle'/><joint id='right'/></jointforce>
+  </sensors>
+</robot>)");
+  std::ofstream(dir / "robot.xml") << robot;
+  {
+    std::ofstream f(dir / "scene.xml");
+    f << "<scene>\n";
+    for (int r = 0; r < 4; ++r)
+      f << "  <robot><ID name='r" << r << "'/><pos x='" << 1.5 * r
+        << "' y='0' z='0'/><body file='robot.xml'/></robot>\n";
+    f << controller(0) + controller(1) + controller(2) + controller(3) << "</scene>\n";
+  }
+  auto serial = load(dir, 1);
+  auto parallel = load(dir, 2);
+  ASSERT_EQ(parallel->components_serial_reason(), "");
+  for (int tick = 0; tick < 600; ++tick) {
+    serial->step();
+    parallel->step();
+    const std::vector<double> a = signals(*serial), b = signals(*parallel);
+    ASSERT_TRUE(a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 8) == 0)
+        << "tick " << tick;
+  }
+  // The sensors read something: gravity, the pose, the caster's push, the axle's load.
+  EXPECT_NEAR(serial->signal("robots/r2/sensors/imu/acc_z"), 9.81, 1.0);
+  EXPECT_NEAR(serial->signal("robots/r2/sensors/where/x"), 3.0, 0.5);
+  EXPECT_GT(serial->signal("robots/r2/sensors/bump/force"), 0.1);
+  EXPECT_NE(serial->signal("robots/r2/sensors/axle/fz"), 0.0);
 }
 
 TEST(ComponentParts, AResetRunInThePartsRepeatsTheFirstBitForBit) {
