@@ -64,6 +64,19 @@ std::vector<double> signals(const Simulation& sim) {
   return out;
 }
 
+/// Steps both `ticks` times side by side: the first tick after which a signal's bits differ,
+/// or -1.
+int first_differing_tick(Simulation& serial, Simulation& parallel, int ticks) {
+  for (int tick = 0; tick < ticks; ++tick) {
+    serial.step();
+    parallel.step();
+    const std::vector<double> a = signals(serial), b = signals(parallel);
+    if (a.size() != b.size() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) != 0)
+      return tick;
+  }
+  return -1;
+}
+
 TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSerialResults) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   // Each controller also sums the contact force on its robot's brick (its caster's) from the
@@ -77,13 +90,7 @@ TEST(ComponentParts, LocalControllersAndTheDriveTrainRunInTheirPartsWithTheSeria
   EXPECT_NE(serial->components_serial_reason().find("one part"), std::string::npos)
       << serial->components_serial_reason();
   ASSERT_EQ(parallel->components_serial_reason(), "");
-  for (int tick = 0; tick < 800; ++tick) {
-    serial->step();
-    parallel->step();
-    const std::vector<double> a = signals(*serial), b = signals(*parallel);
-    ASSERT_TRUE(a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 8) == 0)
-        << "tick " << tick;
-  }
+  ASSERT_EQ(first_differing_tick(*serial, *parallel, 800), -1);
   // The controllers ran and drove the wheels.
   EXPECT_GT(std::abs(serial->signal("robots/r3/axes/right/speed")), 1.0);
   EXPECT_NE(serial->signal("controllers/c2/seen"), 0.0);   // its encoder's count, read
@@ -127,13 +134,7 @@ TEST(ComponentParts, RobotsWithLocalSensorsRunThemInTheirPartsWithTheSerialResul
   auto serial = load(dir, 1);
   auto parallel = load(dir, 2);
   ASSERT_EQ(parallel->components_serial_reason(), "");
-  for (int tick = 0; tick < 600; ++tick) {
-    serial->step();
-    parallel->step();
-    const std::vector<double> a = signals(*serial), b = signals(*parallel);
-    ASSERT_TRUE(a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * 8) == 0)
-        << "tick " << tick;
-  }
+  ASSERT_EQ(first_differing_tick(*serial, *parallel, 600), -1);
   // The sensors read something: gravity, the pose, the caster's push, the axle's load.
   EXPECT_NEAR(serial->signal("robots/r2/sensors/imu/acc_z"), 9.81, 1.0);
   EXPECT_NEAR(serial->signal("robots/r2/sensors/where/x"), 3.0, 0.5);
