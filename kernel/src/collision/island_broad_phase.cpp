@@ -75,13 +75,8 @@ IslandBroadPhase::Found IslandBroadPhase::find_pairs(const Aabb* boxes, Pairs& o
     auto s = static_cast<std::size_t>(first_shape_[g]);
     const auto end = static_cast<std::size_t>(first_shape_[g + 1]);
     Aabb box = boxes[shapes_[s]];
-    for (++s; s < end; ++s) {
-      const Aabb& b = boxes[shapes_[s]];
-      box.min = {std::min(box.min.x, b.min.x), std::min(box.min.y, b.min.y),
-                 std::min(box.min.z, b.min.z)};
-      box.max = {std::max(box.max.x, b.max.x), std::max(box.max.y, b.max.y),
-                 std::max(box.max.z, b.max.z)};
-    }
+    for (++s; s < end; ++s)
+      box = united(box, boxes[shapes_[s]]);
     group_boxes_[g] = box;
   }
   if (!groups_.find_pairs(group_boxes_.data(), group_pairs_, max_pairs))

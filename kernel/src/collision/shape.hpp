@@ -6,6 +6,7 @@
 
 #include <s2sim/math.hpp>
 
+#include <algorithm>
 #include <cstdint>
 
 namespace s2sim::collision {
@@ -49,6 +50,12 @@ struct Aabb {
 inline bool overlap(const Aabb& a, const Aabb& b) {
   return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y &&
          a.min.z <= b.max.z && b.min.z <= a.max.z;
+}
+
+/// The smallest box holding both.
+inline Aabb united(const Aabb& a, const Aabb& b) {
+  return {{std::min(a.min.x, b.min.x), std::min(a.min.y, b.min.y), std::min(a.min.z, b.min.z)},
+          {std::max(a.max.x, b.max.x), std::max(a.max.y, b.max.y), std::max(a.max.z, b.max.z)}};
 }
 
 /// A static half-space boundary: points p with dot(normal, p) < offset_m are inside matter.

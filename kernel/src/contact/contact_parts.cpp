@@ -65,21 +65,19 @@ bool ContactWorld::split(const std::vector<int>& part_of_body, int parts) {
 bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) {
   if (lanes_.size() < 2) return false;
   if (!placed) place(nullptr, poses, twists, step_s);
-  // The pairs here, on the calling thread (the broad phase needs every shape; the narrow
-  // phase's buffers are the query's), into found_, which the parts then read for their own:
-  // nothing of the lanes is written here (a line the caller writes costs the part's thread a
-  // trip between the cores to read).
   found_.clear();
   // No two parts' shapes' boxes overlap (their margins cover the step): no pair joins two
   // parts, and each part finds its own (compute_part()), so that this thread reads none of the
-  // parts' shapes. Else the pairs here.
+  // parts' shapes.
   own_pairs_ = lanes_search_ && lanes_apart();
   if (own_pairs_) {
     ++own_pairs_substeps_;
     return true;
   }
-  // False when two parts' bodies touch, or may within the step: the whole substep then runs on
-  // this thread (compute()).
+  // Else the scene's pairs here, into found_, which the parts then read for their own (nothing
+  // of the lanes is written here: a line this thread writes costs the part's thread a trip
+  // between the cores). False when two parts' bodies touch, or may within the step: the whole
+  // substep then runs on this thread (compute()).
   return pair_points_into_found(true);
 }
 
@@ -100,7 +98,8 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   const std::size_t plane_count = lane.found.size();
   if (own_pairs_) {  // its own pairs (begin_parts()), in rank order
     if (!lane.moving.empty())
-      pair_points_into(*lane.query, lane.query->overlapping_pairs_searched(placement_), lane.found);
+      pair_points_into(*lane.query, lane.query->overlapping_pairs_searched(placement_), lane.found,
+                       false);
     lane.cursor = 0;  // the pairs' feature matching read the memory: forces() reads it again
   } else {
     for (const Found& f : found_)  // the pairs begin_parts() found, in rank order
@@ -148,13 +147,8 @@ void ContactWorld::bound_lane(Lane& lane) {
   if (lane.moving.empty()) return;
   const collision::Aabb* boxes = placement_.boxes();
   collision::Aabb bound = boxes[lane.moving.front()];
-  for (const std::int32_t s : lane.moving) {
-    const collision::Aabb& b = boxes[s];
-    bound.min = {std::min(bound.min.x, b.min.x), std::min(bound.min.y, b.min.y),
-                 std::min(bound.min.z, b.min.z)};
-    bound.max = {std::max(bound.max.x, b.max.x), std::max(bound.max.y, b.max.y),
-                 std::max(bound.max.z, b.max.z)};
-  }
+  for (const std::int32_t s : lane.moving)
+    bound = collision::united(bound, boxes[s]);
   lane.bound = bound;
 }
 

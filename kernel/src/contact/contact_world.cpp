@@ -278,38 +278,29 @@ void ContactWorld::plane_points(std::int32_t s, std::vector<Found>& out) {
 }
 
 bool ContactWorld::pair_points_into_found(bool within_lanes) {
+  return pair_points_into(query_, query_.overlapping_pairs(placement_), found_, within_lanes);
+}
+
+bool ContactWorld::pair_points_into(collision::ContactQuery& query,
+                                    const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+                                    std::vector<Found>& out, bool within_lanes) {
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
-  for (const auto& [i, j] : query_.overlapping_pairs(placement_)) {
+  for (const auto& [i, j] : pairs) {
     if (excluded(body[i], body[j])) continue;
     // Shape a must move: a static shape is always b.
     const bool swap = body[i] == 0;
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const int n = pair_points(query_, ia, ib, points);
+    const int n = pair_points(query, ia, ib, points);
     if (n == 0) continue;
     if (within_lanes && body[ib] != 0 &&
         lane_of_shape_[static_cast<std::size_t>(ib)] !=
             lane_of_shape_[static_cast<std::size_t>(ia)])
       return false;
     for (int k = 0; k < n; ++k)
-      found_.push_back({ia, ib, false, points[k], pair_rank(i, j, k)});
-  }
-  return true;
-}
-
-void ContactWorld::pair_points_into(collision::ContactQuery& query,
-                                    const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
-                                    std::vector<Found>& out) {
-  const std::int32_t* body = table_.bodies().data();
-  collision::ContactPoint points[collision::kMaxPointsPerPair];
-  for (const auto& [i, j] : pairs) {
-    if (excluded(body[i], body[j])) continue;
-    const bool swap = body[i] == 0;  // shape a must move
-    const std::int32_t ia = swap ? j : i, ib = swap ? i : j;
-    const int n = pair_points(query, ia, ib, points);
-    for (int k = 0; k < n; ++k)
       out.push_back({ia, ib, false, points[k], pair_rank(i, j, k)});
   }
+  return true;
 }
 
 int ContactWorld::pair_points(collision::ContactQuery& query, std::int32_t ia, std::int32_t ib,

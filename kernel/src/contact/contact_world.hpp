@@ -136,13 +136,14 @@ class ContactWorld final : public model::SubstepForces {
   /// the stops, and the memory sorted.
   void forces(Lane* lane, const std::vector<Found>& found, std::size_t plane_count,
               const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches);
-  /// The points of every overlapping pair that may touch, appended to found_ in rank order;
-  /// `within_lanes`: stops (false) at the first pair of two lanes' bodies with points.
+  /// pair_points_into() of every overlapping pair of the scene, into found_.
   bool pair_points_into_found(bool within_lanes);
-  /// The points of each of `pairs` (i < j, increasing) that may touch, appended to `out`.
-  void pair_points_into(collision::ContactQuery& query,
+  /// The points of each of `pairs` (i < j, increasing) that may touch, appended to `out` in
+  /// rank order; `within_lanes`: stops (false) at the first pair of two lanes' bodies with
+  /// points.
+  bool pair_points_into(collision::ContactQuery& query,
                         const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
-                        std::vector<Found>& out);
+                        std::vector<Found>& out, bool within_lanes);
   /// The points of a pair (a must move), with stable feature ids: how many were written.
   int pair_points(collision::ContactQuery& query, std::int32_t ia, std::int32_t ib,
                   collision::ContactPoint* points);
