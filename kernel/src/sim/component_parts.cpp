@@ -240,18 +240,9 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
   for (std::size_t stage = 0; stage < part.stage_order.size(); ++stage) {
     sim::StageTimer timer(timing, static_cast<sim::PipelineStage>(stage));
     for (const int c : part.stage_order[stage]) {
-      const sim::ComponentSlot& slot = components[static_cast<std::size_t>(c)];
-      const std::int64_t since = tick - slot.phase_ticks;
-      if (since < 0 || since % slot.period_ticks != 0) continue;
-      part.local.component = c;
-      StepContext ctx(&part.local.view, c, slot.period_ticks);
       const std::int32_t before = drive_count;
-      try {
-        const sim::RunningComponent running(slot.crash_label.c_str());
-        slot.component->update(ctx);
-      } catch (...) {
-        sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
-      }
+      if (!update_if_due(c, &part.local)) continue;
+      const sim::ComponentSlot& slot = components[static_cast<std::size_t>(c)];
       for (std::int32_t d = before; d < drive_count; ++d) {
         const std::int32_t a = drives[d].axis;
         if (a >= 0 && static_cast<std::size_t>(a) < axis_views.size() &&
@@ -268,11 +259,7 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
   for (const int a : part.axes)
     axis_force[a] +=
         inputs[static_cast<std::size_t>(ref_torque_input[static_cast<std::size_t>(a)])];
-  const std::string what = non_finite_load(&part.bodies, &part.axes, drives, drive_count);
-  if (!what.empty())
-    throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
-                                        " s a component applied " + what +
-                                        " (the components acting on it ran in this tick)");
+  check_loads_finite(&part.bodies, &part.axes, drives, drive_count);
 }
 
 void Simulation::Impl::end_part_tick(int p) {

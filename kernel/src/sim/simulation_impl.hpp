@@ -157,10 +157,6 @@ struct Simulation::Impl {
   /// then its reference torques and the check of its loads; `end_part_tick` after its physics.
   void start_part_tick(int part, bool calling_thread);
   void end_part_tick(int part);
-  /// Whether the loads of these bodies, axes and drives are finite; else what is not, for the
-  /// message of check_loads_finite().
-  std::string non_finite_load(const std::vector<int>* bodies, const std::vector<int>* axes,
-                              const AxisDrive* drives, std::int32_t drive_count) const;
   // What a local component is refused (LocalView): each throws naming it.
   static RayHit refuse_ray(const void* local, const Vec3&, const Vec3&, double, std::int32_t);
   static void refuse_place(const void* local, std::int32_t, const Pose&);
@@ -247,8 +243,14 @@ struct Simulation::Impl {
   void step_once();
   /// The scheduled stages on the calling thread, with the loads' reset before and check after.
   void run_components();
-  /// Throws (runtime) naming the body or axis when a component applied a non-finite load.
-  void check_loads_finite() const;
+  /// Component `c`'s update when its schedule has it due this tick (true), through `local`'s
+  /// view when it is local (serial_local on this thread, a part's in the parts), else the
+  /// world's; an exception becomes the kernel's Error naming it.
+  bool update_if_due(int c, sim::LocalView* local);
+  /// Throws (runtime) naming the body, axis or drive when a component applied a non-finite
+  /// load: among `bodies` and `axes` (null: all, the world's entry too) and the drives.
+  void check_loads_finite(const std::vector<int>* bodies, const std::vector<int>* axes,
+                          const AxisDrive* drives, std::int32_t drive_count) const;
 };
 
 }  // namespace s2sim

@@ -267,25 +267,29 @@ void Simulation::Impl::run_components() {
   // The scheduled stages, in Stage order: sense, control, motor control, actuate.
   for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
     sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
-    for (int c : stage_order[stage]) {
-      const sim::ComponentSlot& slot = components[c];
-      const std::int64_t since = tick - slot.phase_ticks;
-      if (since < 0 || since % slot.period_ticks != 0) continue;
-      if (slot.local) serial_local.component = c;
-      StepContext ctx(slot.local ? &serial_local.view : &world, c, slot.period_ticks);
-      try {  // free unless something is thrown
-        const sim::RunningComponent running(slot.crash_label.c_str());
-        slot.component->update(ctx);
-      } catch (...) {
-        sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
-      }
-    }
+    for (int c : stage_order[stage])
+      update_if_due(c, components[static_cast<std::size_t>(c)].local ? &serial_local : nullptr);
     if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
       apply_pending_places();
   }
   for (std::size_t a = 0; a < axis_views.size(); ++a)
     axis_force[a] += inputs[ref_torque_input[a]];
-  check_loads_finite();
+  check_loads_finite(nullptr, nullptr, multibody->axis_drives(), *multibody->axis_drive_count());
+}
+
+bool Simulation::Impl::update_if_due(int c, sim::LocalView* local) {
+  const sim::ComponentSlot& slot = components[static_cast<std::size_t>(c)];
+  const std::int64_t since = tick - slot.phase_ticks;
+  if (since < 0 || since % slot.period_ticks != 0) return false;
+  if (local) local->component = c;
+  StepContext ctx(local ? &local->view : &world, c, slot.period_ticks);
+  try {  // free unless something is thrown
+    const sim::RunningComponent running(slot.crash_label.c_str());
+    slot.component->update(ctx);
+  } catch (...) {
+    sim::rethrow_from_component(slot, "update", ErrorKind::runtime);
+  }
+  return true;
 }
 
 namespace {
@@ -366,18 +370,9 @@ void Simulation::Impl::apply_pending_places() {
   refresh();
 }
 
-void Simulation::Impl::check_loads_finite() const {
-  const std::string what =
-      non_finite_load(nullptr, nullptr, multibody->axis_drives(), *multibody->axis_drive_count());
-  if (what.empty()) return;
-  throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
-                                      " s a component applied " + what +
-                                      " (the components acting on it ran in this tick)");
-}
-
-std::string Simulation::Impl::non_finite_load(const std::vector<int>* bodies,
-                                              const std::vector<int>* axes, const AxisDrive* drives,
-                                              std::int32_t drive_count) const {
+void Simulation::Impl::check_loads_finite(const std::vector<int>* bodies,
+                                          const std::vector<int>* axes, const AxisDrive* drives,
+                                          std::int32_t drive_count) const {
   // One sum: a NaN or an infinity anywhere poisons it. Only then look for where. Null bodies
   // or axes: all of them (the world's entry too).
   const Wrench* wrenches = multibody->applied_wrenches();
@@ -405,7 +400,7 @@ std::string Simulation::Impl::non_finite_load(const std::vector<int>* bodies,
   for (std::int32_t d = 0; d < drive_count; ++d)  // the bounds may be infinite, not NaN
     sum += drives[d].force + drives[d].damping +
            (drives[d].min_force <= drives[d].max_force ? 0.0 : NAN);
-  if (std::isfinite(sum)) return {};
+  if (std::isfinite(sum)) return;
   std::string what;
   each(bodies, poses.size(), [&](std::size_t b) {
     const Wrench& w = wrenches[b];
@@ -424,7 +419,9 @@ std::string Simulation::Impl::non_finite_load(const std::vector<int>* bodies,
     if (!std::isfinite(drives[d].force + drives[d].damping) ||
         !(drives[d].min_force <= drives[d].max_force))
       what = "a non-finite or inverted drive on axis '" + axis_views[drives[d].axis].name + "'";
-  return what;
+  throw Error(ErrorKind::runtime, "at t = " + std::to_string(static_cast<double>(tick) * tick_s) +
+                                      " s a component applied " + what +
+                                      " (the components acting on it ran in this tick)");
 }
 
 void Simulation::Impl::refresh() {
