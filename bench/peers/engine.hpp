@@ -61,6 +61,10 @@ std::unique_ptr<Engine> make_s2sim(const SceneSpec& scene);
 /// S2Sim with SimulationOptions::threads = 2 (the islands stepped in parallel; wall time is
 /// its measure, its thread CPU time is only the calling thread's).
 std::unique_ptr<Engine> make_s2sim_par2(const SceneSpec& scene);
+/// Two serial S2Sim copies of the scene at once, one per thread (s2sim_engine.cpp): its speed-up
+/// column is twice the serial run's wall time over its own, the machine's two-thread ceiling
+/// on the scene's work; its thread CPU time is one copy's.
+std::unique_ptr<Engine> make_s2sim_copies2(const SceneSpec& scene);
 /// S2Sim with SimulationOptions::simbody_dynamics_only: Simbody's realize chain where the
 /// small-tree fast path would run (what the fast path gains, in the same run).
 std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene);

@@ -3,11 +3,14 @@
 // report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's speed-up over
 // each peer, and each engine's physical outcome, so that a faster wrong answer shows. The
 // engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two threads:
-// its speed-up column is the serial run's wall time over its own. The engine s2sim-simbody is
+// its speed-up column is the serial run's wall time over its own. The engine s2sim-copies2 is two
+// serial copies of the scene stepped at once on two threads: its speed-up column, twice the
+// serial run's wall time over its own, is what the machine gives two threads on the scene's
+// work, the ceiling for s2sim-par2 in the same rounds. The engine s2sim-simbody is
 // S2Sim without the small-tree fast path (Simbody's realize chain): its speed-up column is
 // what the fast path gains.
 //   s2sim-peers [--scenes A,B,...] [--engines A,B,...] [--duration S] [--warmup S]
-//               [--rounds N] [--csv FILE] [--markdown FILE] [--check]
+//               [--rounds N] [--csv FILE] [--markdown FILE] [--rounds-csv FILE] [--check]
 #include "engine.hpp"
 
 #include <algorithm>
@@ -44,7 +47,10 @@ std::filesystem::path SceneSpec::ode_table() const {
 
 std::vector<EngineFactory> available_engines() {
   std::vector<EngineFactory> engines{{"s2sim", &make_s2sim}};
-  if (std::thread::hardware_concurrency() >= 2) engines.push_back({"s2sim-par2", &make_s2sim_par2});
+  if (std::thread::hardware_concurrency() >= 2) {
+    engines.push_back({"s2sim-par2", &make_s2sim_par2});
+    engines.push_back({"s2sim-copies2", &make_s2sim_copies2});
+  }
   engines.push_back({"s2sim-simbody", &make_s2sim_simbody});
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
   engines.push_back({"mujoco", &make_mujoco});
@@ -70,6 +76,7 @@ struct Options {
   double warmup_s = 0.2;
   int rounds = 5;
   std::string csv, markdown;
+  std::string rounds_csv;  // every round's times, not only their medians
   bool check = false;  // exit 5 unless every outcome is finite
 };
 
@@ -168,7 +175,7 @@ std::string fixed(double v, int decimals) {
 }
 
 bool is_parallel(const Result& r) {
-  return r.engine == "s2sim-par2";
+  return r.engine == "s2sim-par2" || r.engine == "s2sim-copies2";
 }
 
 const Result* s2sim_of(const std::vector<Result>& results, const std::string& scene) {
@@ -183,7 +190,9 @@ const Result* s2sim_of(const std::vector<Result>& results, const std::string& sc
 double speedup(const std::vector<Result>& results, const Result& r) {
   const Result* s = s2sim_of(results, r.scene);
   if (s == nullptr || r.cpu_us.empty() || s->cpu_us.empty()) return NAN;
-  if (is_parallel(r)) return median(s->wall_us) / median(r.wall_us);
+  // Two copies do twice the serial run's work: the throughput two threads give.
+  const double work = r.engine == "s2sim-copies2" ? 2.0 : 1.0;
+  if (is_parallel(r)) return work * median(s->wall_us) / median(r.wall_us);
   return median(r.cpu_us) / median(s->cpu_us);
 }
 
@@ -225,6 +234,28 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   std::fputs(md.str().c_str(), stdout);
   if (!o.markdown.empty()) std::ofstream(o.markdown) << md.str();
   if (!o.csv.empty()) std::ofstream(o.csv) << csv.str();
+  if (!o.rounds_csv.empty()) {
+    std::ofstream raw(o.rounds_csv);
+    raw << "scene,engine,round,cpu_us,wall_us\n";
+    for (const auto& r : results)
+      for (std::size_t i = 0; i < r.cpu_us.size(); ++i)
+        raw << r.scene << ',' << r.engine << ',' << i << ',' << r.cpu_us[i] << ',' << r.wall_us[i]
+            << '\n';
+  }
+}
+
+/// The untimed steps before a round: `steps` (none: none), and more until kWarmupWall has
+/// passed. A vCPU that idled runs the first milliseconds of a second thread's work at a
+/// fraction of its speed on this machine's host (two threads at once against one: 1.0× over
+/// 3 ms, 1.25× over 10 ms, 1.6–2.1× over 30 ms; docs/benchmarks.md): the parallel engines would
+/// otherwise time the host waking up.
+constexpr auto kWarmupWall = std::chrono::milliseconds(30);
+void warm_up(peers::Engine& engine, long steps) {
+  if (steps <= 0) return;
+  const auto start = std::chrono::steady_clock::now();
+  engine.step(steps);
+  while (std::chrono::steady_clock::now() - start < kWarmupWall)
+    engine.step(1);
 }
 
 int run(const Options& o) {
@@ -273,7 +304,7 @@ int run(const Options& o) {
         const std::size_t i = (k + static_cast<std::size_t>(round)) % loaded.size();
         if (!loaded[i]) continue;
         loaded[i]->reset();
-        loaded[i]->step(warmup);
+        warm_up(*loaded[i], warmup);
         const double cpu0 = thread_cpu_s();
         const auto wall0 = std::chrono::steady_clock::now();
         loaded[i]->step(steps);
@@ -320,6 +351,8 @@ int main(int argc, char** argv) {
         o.csv = value();
       else if (a == "--markdown")
         o.markdown = value();
+      else if (a == "--rounds-csv")
+        o.rounds_csv = value();
       else if (a == "--check")
         o.check = true;
       else
@@ -330,7 +363,8 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr,
                  "s2sim-peers: %s\nusage: s2sim-peers [--scenes A,B] [--engines A,B] [--duration S]"
-                 " [--warmup S] [--rounds N] [--csv FILE] [--markdown FILE] [--check]\n",
+                 " [--warmup S] [--rounds N] [--csv FILE] [--markdown FILE] [--rounds-csv FILE]"
+                 " [--check]\n",
                  e.what());
     return 4;
   }

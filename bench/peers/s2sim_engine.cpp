@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 #include <utility>
 
 namespace peers {
@@ -90,6 +91,31 @@ class S2SimEngine final : public Engine {
   std::vector<std::pair<std::size_t, double>> voltages_;
 };
 
+/// Two serial copies of the scene stepped at once, one per thread, each its own Simulation:
+/// nothing shared, nothing waited for until both are done. What the machine gives two threads
+/// on this very work, measured beside s2sim-par2 in the same rounds: the ceiling of any
+/// parallel stepping of the scene on two threads (a host that shares or slows its vCPUs when
+/// both are busy lowers it, and s2sim-par2 with it).
+class S2SimCopiesEngine final : public Engine {
+ public:
+  explicit S2SimCopiesEngine(const SceneSpec& scene) : first_(scene, 1), second_(scene, 1) {}
+  void reset() override {
+    first_.reset();
+    second_.reset();
+  }
+  void step(long steps) override {
+    std::thread other([&] { second_.step(steps); });
+    first_.step(steps);
+    other.join();
+  }
+  double deepest_penetration_m() const override { return first_.deepest_penetration_m(); }
+  int tracked_count() const override { return first_.tracked_count(); }
+  TrackedPose tracked(int index) const override { return first_.tracked(index); }
+
+ private:
+  S2SimEngine first_, second_;
+};
+
 }  // namespace
 
 std::unique_ptr<Engine> make_s2sim(const SceneSpec& scene) {
@@ -102,6 +128,10 @@ std::unique_ptr<Engine> make_s2sim_par2(const SceneSpec& scene) {
 
 std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene) {
   return std::make_unique<S2SimEngine>(scene, 1, true);
+}
+
+std::unique_ptr<Engine> make_s2sim_copies2(const SceneSpec& scene) {
+  return std::make_unique<S2SimCopiesEngine>(scene);
 }
 
 }  // namespace peers
