@@ -77,7 +77,7 @@ struct Options {
   int rounds = 5;
   std::string csv, markdown;
   std::string rounds_csv;  // every round's times, not only their medians
-  bool check = false;  // exit 5 unless every outcome is finite
+  bool check = false;      // exit 5 unless every outcome is finite
 };
 
 std::vector<std::string> split(const std::string& list) {
