@@ -79,11 +79,10 @@ void find_axis_trees(Multibody::Impl& m) {
         break;
       }
   }
-  // Scratch of the solve: rows grouped by tree, and the largest block's matrix.
+  // Scratch of the solve: axes grouped by tree, and the largest tree's matrices (one row and
+  // column per axis: a tree's drive rows are solved per axis, implicit_axes.cpp).
   const std::size_t trees = m.tree_u_begin.size();
-  m.tree_row_start.assign(trees + 1, 0);
   m.tree_cursor.assign(trees, 0);
-  m.row_order.assign(m.next_row.size(), 0);
   m.tree_changed.assign(trees, 0);
   m.tree_sweeps.assign(trees, 0);
   m.tree_solve_start.assign(trees + 1, 0);
@@ -91,11 +90,16 @@ void find_axis_trees(Multibody::Impl& m) {
   std::vector<std::size_t> axes_in_tree(trees, 0);
   for (std::size_t a = 0; a < axes; ++a)
     ++axes_in_tree[static_cast<std::size_t>(m.axis_tree[a])];
-  // As many rows as one tree can have: every drive slot on it, and a friction per axis.
   const std::size_t most_axes =
       axes_in_tree.empty() ? 0 : *std::max_element(axes_in_tree.begin(), axes_in_tree.end());
-  const std::size_t max_rows = std::min(m.next_row.size(), m.drives.size() + most_axes);
-  m.row_matrix.assign(max_rows * max_rows, 0.0);
+  m.row_matrix.assign(most_axes * most_axes, 0.0);
+  m.mode_matrix.assign(most_axes * most_axes, 0.0);
+  for (auto* v : {&m.mode_rhs, &m.mode_force, &m.mode_rate, &m.mode_total, &m.mode_friction})
+    v->assign(most_axes, 0.0);
+  m.mode_unknown.assign(most_axes, 0);
+  m.mode_stuck.assign(most_axes, 0);
+  m.solve_index.assign(axes, 0);
+  m.mode_row_side.assign(m.next_row.size(), 0);
 }
 
 void group_solve_list_by_tree(Multibody::Impl& m) {
@@ -109,20 +113,6 @@ void group_solve_list_by_tree(Multibody::Impl& m) {
   for (int a : m.solve_list) {  // stable: a tree's axes keep their order
     const auto t = static_cast<std::size_t>(m.axis_tree[static_cast<std::size_t>(a)]);
     m.solve_order[static_cast<std::size_t>(m.tree_cursor[t]++)] = a;
-  }
-}
-
-void group_rows_by_tree(Multibody::Impl& m) {
-  auto& start = m.tree_row_start;
-  std::fill(start.begin(), start.end(), 0);
-  for (const auto& row : m.rows)
-    ++start[static_cast<std::size_t>(m.axis_tree[static_cast<std::size_t>(row.axis)]) + 1];
-  for (std::size_t t = 0; t + 1 < start.size(); ++t)
-    start[t + 1] += start[t];
-  std::copy(start.begin(), start.end() - 1, m.tree_cursor.begin());
-  for (std::size_t i = 0; i < m.rows.size(); ++i) {  // stable: a tree's rows keep their order
-    const auto t = static_cast<std::size_t>(m.axis_tree[static_cast<std::size_t>(m.rows[i].axis)]);
-    m.row_order[static_cast<std::size_t>(m.tree_cursor[t]++)] = static_cast<int>(i);
   }
 }
 

@@ -34,10 +34,6 @@ double current_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t
   return axis_rate(m, s, a);
 }
 
-double law(const Multibody::Impl::DriveRow& r, double rate) {
-  return std::clamp(r.force - r.damping * (rate - r.rate0), r.low, r.high);
-}
-
 }  // namespace
 
 /// Which axes with friction slide so fast that friction cannot stop them within a step (ten
@@ -81,7 +77,7 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s) {
     }
     Multibody::Impl::DriveRow row{drive.axis,      drive.force,     drive.damping, m.rate0[a],
                                   drive.min_force, drive.max_force, 0.0,           true};
-    row.applied = law(row, rate(a));
+    row.applied = drive_law(row, rate(a));
     m.rows.push_back(row);
   }
   // A loop axis has no velocity-level brake: its Coulomb friction is regularised over
@@ -91,7 +87,7 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s) {
     const double bound = m.axis_friction[a];
     Multibody::Impl::DriveRow row{
         static_cast<int>(a), 0.0, bound / loop_friction_speed(), 0.0, -bound, bound, 0.0, false};
-    row.applied = law(row, rate(a));
+    row.applied = drive_law(row, rate(a));
     m.rows.push_back(row);
   }
   for (std::size_t a = 0; a < m.explicit_drive.size(); ++a)
@@ -134,7 +130,7 @@ double root_of_piecewise_linear(const F& f, const double* points, int count) {
 double axis_law(const Multibody::Impl& m, int axis, double v) {
   double sum = 0;
   for (int i = m.first_row[axis]; i >= 0; i = m.next_row[i])
-    sum += law(m.rows[i], v);
+    sum += drive_law(m.rows[i], v);
   return sum;
 }
 
@@ -172,10 +168,128 @@ double solve_one_axis(Multibody::Impl& m, int a, double v_now, double w, double 
   }
   double g_new = m.friction_applied[a];
   for (int i = m.first_row[a]; i >= 0; i = m.next_row[i]) {
-    m.rows[i].applied = law(m.rows[i], v);
+    m.rows[i].applied = drive_law(m.rows[i], v);
     g_new += m.rows[i].applied;
   }
   return g_new - g_now;
+}
+
+/// The Delassus matrix of one tree's axes solve_order[begin, end), W_pq = g_p·M^-1·g_q, into
+/// mode_matrix (row-major), and each axis's place in it (solve_index).
+void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
+  const int n = end - begin;
+  const int* axis = m.solve_order.data() + begin;
+  double* W = m.mode_matrix.data();
+  for (int q = 0; q < n; ++q) {
+    const auto b = static_cast<std::size_t>(axis[q]);
+    m.solve_index[b] = q;
+    const double* column = m.minv_column[b].getContiguousScalarData();
+    for (int p = 0; p < n; ++p) {
+      const auto a = static_cast<std::size_t>(axis[p]);
+      // axis_dot(a, column), read raw for a tree axis: it is asked n² times.
+      W[p * n + q] = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
+                                    : m.axis_impl[a].sign * column[m.axis_u[a]];
+    }
+  }
+}
+
+/// Step 1 for tree t (solve_axes): the drive rows without their bounds, all at once. Unbounded,
+/// an axis's rows add up to one law, G_p(v) = Σ F_i − Σ c_i·(v − v0_i), so the system is one
+/// row per axis in W of the tree's `axes` solved axes (build_tree_delassus):
+///   (I + κ·S·W·S)·z = S^-1·R,  ΔG = S·z,  S = diag(√C),  C = Σc,  R = Σ R_i,
+/// R_i = F_i − c_i·(v − v0_i) − applied_i, the rows' residuals now. A row's change is its law's
+/// at the axis's new speed, Δ_i = R_i − c_i·Δv with C·Δv = R − ΔG, written as
+/// (c_i/C)·ΔG + (R_i − c_i·R/C): not through the new speed, whose rounding a stiff drive
+/// (κ·c·W in the thousands) would amplify; a lone row's change is ΔG itself. Then each row
+/// within its bounds.
+void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int axes, double kick_s) {
+  const double* W = m.mode_matrix.data();
+  double* A = m.row_matrix.data();
+  double* b = m.row_rhs.data();
+  double* scale = m.mode_force.data();  // per solved axis: √Σc (0: no row)
+  double* rate = m.mode_rate.data();    // per solved axis: its speed now
+  int* with_rows = m.mode_unknown.data();
+  const int* axis = m.solve_order.data() + m.tree_solve_start[t];
+  int n = 0;
+  for (int p = 0; p < axes; ++p) {
+    const auto a = static_cast<std::size_t>(axis[p]);
+    rate[p] = axis_dot(m, a, u);
+    double damping = 0, residual = 0;
+    for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
+      const auto& row = m.rows[static_cast<std::size_t>(j)];
+      damping += row.damping;
+      residual += row.force - row.damping * (rate[p] - row.rate0) - row.applied;
+    }
+    scale[p] = std::sqrt(damping);
+    if (damping > 0) {
+      b[n] = residual / scale[p];
+      with_rows[n++] = p;
+    }
+  }
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k)
+      A[i * n + k] = (i == k ? 1.0 : 0.0) + kick_s * scale[with_rows[i]] *
+                                                W[with_rows[i] * axes + with_rows[k]] *
+                                                scale[with_rows[k]];
+  if (n == 0) return;
+  cholesky_factor(A, n);  // SPD: I + κ·S·W·S
+  cholesky_substitute(A, n, b, b);
+  for (int i = 0; i < n; ++i) {
+    const int p = with_rows[i];
+    const auto a = static_cast<std::size_t>(axis[p]);
+    const double total_change = b[i] * scale[p];  // ΔG
+    double damping = 0, residual = 0;             // C and R, as above
+    for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
+      const auto& row = m.rows[static_cast<std::size_t>(j)];
+      damping += row.damping;
+      residual += row.force - row.damping * (rate[p] - row.rate0) - row.applied;
+    }
+    const bool lone = m.next_row[m.first_row[a]] < 0;
+    double change = 0;
+    for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
+      auto& row = m.rows[static_cast<std::size_t>(j)];
+      const double own = row.force - row.damping * (rate[p] - row.rate0) - row.applied;
+      const double share = row.damping / damping;
+      const double wanted =
+          row.applied + (lone ? total_change : share * total_change + (own - share * residual));
+      const double f = std::clamp(wanted, row.low, row.high);
+      if (f != wanted) m.tree_sweeps[t] = 1;
+      change += f - row.applied;
+      row.applied = f;
+    }
+    if (change != 0.0)
+      add_scaled(u, kick_s * change, m.minv_column[a], m.tree_u_begin[t], m.tree_u_end[t]);
+  }
+}
+
+/// Step 2 for tree t (solve_axes): each of its axes solve_order[begin, end) exactly for itself,
+/// in turn, until nothing moves, and after each sweep the modes it left solved exactly
+/// (axis_modes.cpp).
+void sweep_tree(Multibody::Impl& m, SimTK::State& s, std::size_t tree, int begin, int end,
+                double kick_s) {
+  SimTK::Vector& u = s.updU();
+  const int sweeps = end - begin == 1 ? 1 : 16;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    bool changed = false;
+    for (int i = begin; i < end; ++i) {
+      const int a = m.solve_order[static_cast<std::size_t>(i)];
+      const auto axis = static_cast<std::size_t>(a);
+      const double w = m.axis_mobility[a];  // g·M^-1·g, kept with its column
+      if (!(w > 0)) continue;
+      const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
+      if (delta == 0.0) continue;
+      add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
+      // A tree axis that sticks stands exactly still (no creep from rounding).
+      if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
+        u[m.axis_u[axis]] = 0.0;
+      // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
+      changed =
+          changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
+    }
+    if (!changed) break;
+    // The modes the sweep left, solved exactly: coupled axes converge slowly by sweeps.
+    if (solve_tree_in_modes(m, s, static_cast<int>(tree), begin, end, kick_s)) break;
+  }
 }
 
 }  // namespace
@@ -204,70 +318,16 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   if (m.solve_list.empty()) return;
   update_columns(m, s, m.solve_list);
   SimTK::Vector& u = s.updU();
-
-  // 1. The drive rows without bounds, all at once: one block per tree (axis_trees.cpp).
-  if (!m.rows.empty()) {
-    group_rows_by_tree(m);
-    for (std::size_t t = 0; t + 1 < m.tree_row_start.size(); ++t) {
-      const int* order = m.row_order.data() + m.tree_row_start[t];
-      const auto n = static_cast<std::size_t>(m.tree_row_start[t + 1] - m.tree_row_start[t]);
-      if (n == 0) continue;
-      double* A = m.row_matrix.data();
-      double* b = m.row_rhs.data();
-      for (std::size_t i = 0; i < n; ++i) {
-        const auto& ri = m.rows[order[i]];
-        const double si = std::sqrt(ri.damping);
-        for (std::size_t k = 0; k < n; ++k) {
-          const auto& rk = m.rows[order[k]];
-          const double w = axis_dot(m, static_cast<std::size_t>(ri.axis), m.minv_column[rk.axis]);
-          A[i * n + k] = (i == k ? 1.0 : 0.0) + kick_s * si * w * std::sqrt(rk.damping);
-        }
-        const double v = axis_dot(m, static_cast<std::size_t>(ri.axis), u);
-        b[i] = (ri.force - ri.damping * (v - ri.rate0) - ri.applied) / si;
-      }
-      cholesky_factor(A, static_cast<int>(n));  // SPD: I + κ·S·W·S
-      cholesky_substitute(A, static_cast<int>(n), b, b);
-      for (std::size_t i = 0; i < n; ++i) {
-        auto& row = m.rows[order[i]];
-        const double wanted = row.applied + std::sqrt(row.damping) * b[i];
-        const double f = std::clamp(wanted, row.low, row.high);
-        if (f != wanted) m.tree_sweeps[t] = 1;
-        if (f != row.applied)
-          add_scaled(u, kick_s * (f - row.applied), m.minv_column[row.axis], m.tree_u_begin[t],
-                     m.tree_u_end[t]);
-        row.applied = f;
-      }
-    }
-  }
-  // 2. Bounds and friction: each axis exactly for itself, in turn, until nothing moves; tree by
-  // tree, each until its own axes converge, so that a robot's sweeps (and its numbers) do not
-  // depend on how long another robot takes (issue 17: the parallel islands' parts).
-  if (std::find(m.tree_sweeps.begin(), m.tree_sweeps.end(), 1) != m.tree_sweeps.end()) {
-    group_solve_list_by_tree(m);
-    for (std::size_t tree = 0; tree + 1 < m.tree_solve_start.size(); ++tree) {
-      const int begin = m.tree_solve_start[tree], end = m.tree_solve_start[tree + 1];
-      if (begin == end || !m.tree_sweeps[tree]) continue;
-      const int sweeps = end - begin == 1 ? 1 : 16;
-      for (int sweep = 0; sweep < sweeps; ++sweep) {
-        bool changed = false;
-        for (int i = begin; i < end; ++i) {
-          const int a = m.solve_order[static_cast<std::size_t>(i)];
-          const auto axis = static_cast<std::size_t>(a);
-          const double w = m.axis_mobility[a];  // g·M^-1·g, kept with its column
-          if (!(w > 0)) continue;
-          const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
-          if (delta == 0.0) continue;
-          add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
-          // A tree axis that sticks stands exactly still (no creep from rounding).
-          if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
-            u[m.axis_u[axis]] = 0.0;
-          // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
-          changed =
-              changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
-        }
-        if (!changed) break;
-      }
-    }
+  // Tree by tree (axis_trees.cpp): 1. the drive rows without bounds, all at once; 2. where a
+  // bound binds or an axis has friction, the sweeps. Each tree until its own axes converge, so
+  // that a robot's numbers do not depend on another's (issue 17: the parallel islands' parts).
+  group_solve_list_by_tree(m);
+  for (std::size_t t = 0; t + 1 < m.tree_solve_start.size(); ++t) {
+    const int begin = m.tree_solve_start[t], end = m.tree_solve_start[t + 1];
+    if (begin == end) continue;  // (a row's axis is in the solve list)
+    build_tree_delassus(m, begin, end);
+    if (!m.rows.empty()) solve_tree_rows(m, u, t, end - begin, kick_s);
+    if (m.tree_sweeps[t]) sweep_tree(m, s, t, begin, end, kick_s);
   }
   for (const auto& row : m.rows)
     if (row.component) m.drive_sum[row.axis] += row.applied;

@@ -11,6 +11,7 @@
 
 #include <Simbody.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -194,12 +195,18 @@ struct Multibody::Impl {
   std::vector<double> drive_sum;            // per axis: Σ over the tick's substeps of drive forces
   std::vector<double> drive_applied;        // per axis: their mean over the last tick (an output:
                                             // the kernel's axis_force_applied segment keeps it)
-  std::vector<double> row_matrix, row_rhs;  // one tree's rows x rows; rows
+  std::vector<double> row_matrix, row_rhs;  // one tree's axes x axes; per axis
+  // Scratch of the solve in modes (axis_modes.cpp): one tree's axes x axes, per axis, per row.
+  std::vector<double> mode_matrix, mode_rhs, mode_force, mode_rate, mode_total, mode_friction;
+  std::vector<int> mode_unknown;
+  std::vector<char> mode_stuck;
+  std::vector<int> solve_index;            // per axis: its place among its tree's solved axes
+  std::vector<signed char> mode_row_side;  // per row: -1 at its low bound, +1 at its high, 0 free
   // Independent trees (axis_trees.cpp): per axis its tree; per tree the ranges of its speeds
-  // and coordinates; scratch: the rows ordered by tree, each tree's first, changed trees.
+  // and coordinates; scratch: the solved axes ordered by tree, changed trees.
   std::vector<int> axis_tree;
   std::vector<int> tree_u_begin, tree_u_end, tree_q_begin, tree_q_end;
-  std::vector<int> row_order, tree_row_start, tree_cursor;
+  std::vector<int> tree_cursor;
   std::vector<int> solve_order, tree_solve_start;  // solve_list ordered by tree, each's first
   std::vector<char> tree_changed;
   std::vector<char> tree_sweeps;  // per tree: a bound was hit or an axis has friction (solve_axes)
@@ -238,8 +245,6 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, i
 void find_axis_trees(Multibody::Impl& m);
 /// Orders this substep's solve_list by tree (solve_order, tree_solve_start), stably.
 void group_solve_list_by_tree(Multibody::Impl& m);
-/// Orders this substep's rows by tree (row_order, tree_row_start), stably.
-void group_rows_by_tree(Multibody::Impl& m);
 /// Adds a load `f` (N·m or N) on axis a: a mobility force for a tree axis, equal and opposite
 /// body loads for a loop axis; `state` realized to Position.
 void apply_axis_load(const Multibody::Impl& m, const SimTK::State& state, std::size_t a, double f,
@@ -300,6 +305,18 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s);
 /// within their bounds, together with the tree axes' Coulomb friction (implicit_axes.cpp);
 /// the drives' mean over the tick is recorded for the axis torque signals.
 void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s);
+
+/// A drive row's law at an axis rate: clamp(force − damping·(rate − rate0), low, high).
+inline double drive_law(const Multibody::Impl::DriveRow& r, double rate) {
+  return std::clamp(r.force - r.damping * (rate - r.rate0), r.low, r.high);
+}
+/// One tree's tree axes solve_order[begin, end) solved exactly in the modes they are in now
+/// (axis_modes.cpp): each axis stuck by its friction, or sliding with each of its drive rows
+/// at a bound or on its slope, a linear system in the axes' Delassus matrix (mode_matrix, as
+/// solve_axes built it). Applies the solution and returns true when it stays in those modes;
+/// else changes nothing, false.
+bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begin, int end,
+                         double kick_s);
 
 /// Joint reactions (joint_reactions.cpp) from a state realized to Acceleration.
 void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
