@@ -206,8 +206,10 @@ void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int ax
   const double* W = m.mode_matrix.data();
   double* A = m.row_matrix.data();
   double* b = m.row_rhs.data();
-  double* scale = m.mode_force.data();  // per solved axis: √Σc (0: no row)
-  double* rate = m.mode_rate.data();    // per solved axis: its speed now
+  double* scale = m.mode_force.data();           // per solved axis: √C (0: no row)
+  double* rate = m.mode_rate.data();             // per solved axis: its speed now
+  double* damping_sum = m.mode_friction.data();  // per solved axis: C
+  double* residual_sum = m.mode_total.data();    // per solved axis: R
   int* with_rows = m.mode_unknown.data();
   const int* axis = m.solve_order.data() + m.tree_solve_start[t];
   int n = 0;
@@ -220,6 +222,8 @@ void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int ax
       damping += row.damping;
       residual += row.force - row.damping * (rate[p] - row.rate0) - row.applied;
     }
+    damping_sum[p] = damping;
+    residual_sum[p] = residual;
     scale[p] = std::sqrt(damping);
     if (damping > 0) {
       b[n] = residual / scale[p];
@@ -238,20 +242,15 @@ void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int ax
     const int p = with_rows[i];
     const auto a = static_cast<std::size_t>(axis[p]);
     const double total_change = b[i] * scale[p];  // ΔG
-    double damping = 0, residual = 0;             // C and R, as above
-    for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
-      const auto& row = m.rows[static_cast<std::size_t>(j)];
-      damping += row.damping;
-      residual += row.force - row.damping * (rate[p] - row.rate0) - row.applied;
-    }
     const bool lone = m.next_row[m.first_row[a]] < 0;
     double change = 0;
     for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
       auto& row = m.rows[static_cast<std::size_t>(j)];
       const double own = row.force - row.damping * (rate[p] - row.rate0) - row.applied;
-      const double share = row.damping / damping;
+      const double share = row.damping / damping_sum[p];
       const double wanted =
-          row.applied + (lone ? total_change : share * total_change + (own - share * residual));
+          row.applied +
+          (lone ? total_change : share * total_change + (own - share * residual_sum[p]));
       const double f = std::clamp(wanted, row.low, row.high);
       if (f != wanted) m.tree_sweeps[t] = 1;
       change += f - row.applied;
