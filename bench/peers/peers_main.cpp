@@ -231,6 +231,20 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
         << oc.penetration_m * 1e3 << ',' << oc.settled_penetration_m * 1e3 << ','
         << (oc.finite ? 1 : 0) << '\n';
   }
+  // The parallel step against what the machine gave two threads on the same work, in the same
+  // rounds: how much of the shortfall is S2Sim's and how much the host's.
+  for (const auto& par : results) {
+    if (par.engine != "s2sim-par2" || !par.error.empty()) continue;
+    for (const auto& copies : results)
+      if (copies.scene == par.scene && copies.engine == "s2sim-copies2" && copies.error.empty()) {
+        const double up = speedup(results, par), ceiling = speedup(results, copies);
+        if (std::isnan(up) || std::isnan(ceiling)) continue;
+        md << "\n"
+           << par.scene << ": s2sim-par2 " << fixed(up, 2)
+           << "× the serial run, where two threads gave " << fixed(ceiling, 2)
+           << "× on two copies (s2sim-copies2): " << fixed(up / ceiling, 2) << " of it\n";
+      }
+  }
   std::fputs(md.str().c_str(), stdout);
   if (!o.markdown.empty()) std::ofstream(o.markdown) << md.str();
   if (!o.csv.empty()) std::ofstream(o.csv) << csv.str();
