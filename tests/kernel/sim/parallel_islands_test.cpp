@@ -125,6 +125,38 @@ TEST(ParallelIslands, OneTreesSweepsOverFrictionAndBoundsLeaveTheOtherPartsBitFo
   }
 }
 
+TEST(ParallelIslands, HumanoidsBrakedAtEveryJointGiveTheSerialSignalsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Four humanoids in a row, each standing on 20 hinges held by Coulomb friction, their
+  // shoulders driven at different voltages: every tree's friction and bounds are solved in
+  // their modes (kernel/src/model/axis_modes.cpp) on its own part's thread.
+  const auto humanoid = std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/humanoid";
+  const auto row = std::filesystem::path(testing::TempDir()) / "parallel_islands_humanoids";
+  std::filesystem::create_directories(row);
+  {
+    std::ofstream f(row / "scene.xml");
+    f << "<scene>\n";
+    for (int r = 0; r < 4; ++r)
+      f << "<robot><ID name='h" << r << "'/><pos x='" << 2.0 * r << "' y='0' z='0'/><body file='"
+        << (humanoid / "robot.xml").string() << "'/></robot>\n";
+    f << "</scene>\n";
+  }
+  std::unique_ptr<Simulation> runs[2] = {load_on(row, 1), load_on(row, 2)};
+  for (auto& sim : runs)
+    for (int r = 0; r < 4; ++r)
+      for (const char* side : {"l", "r"})
+        sim->set_input(
+            "robots/h" + std::to_string(r) + "/axes/shoulder_pitch_" + side + "/ref_voltage",
+            1.0 + 1.5 * r);
+  for (int tick = 0; tick < 400; ++tick) {
+    runs[0]->step();
+    runs[1]->step();
+    ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1]))) << "tick " << tick;
+  }
+  // The arms swung: the check above compared motion, not rest.
+  EXPECT_GT(std::abs(runs[0]->signal("robots/h3/axes/shoulder_pitch_l/speed")), 0.01);
+}
+
 TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   auto sim = load_driven(kRobots16, 2);
