@@ -57,6 +57,21 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
+/// A scene of four copies of `robot_file` in a row along x, `spacing_m` apart, named
+/// <prefix>0 … <prefix>3, written into the test's folder `folder`: the folder.
+std::filesystem::path row_scene(const std::string& folder, const std::filesystem::path& robot_file,
+                                const std::string& prefix, double spacing_m) {
+  const auto row = std::filesystem::path(testing::TempDir()) / folder;
+  std::filesystem::create_directories(row);
+  std::ofstream f(row / "scene.xml");
+  f << "<scene>\n";
+  for (int r = 0; r < 4; ++r)
+    f << "<robot><ID name='" << prefix << r << "'/><pos x='" << spacing_m * r
+      << "' y='0' z='0'/><body file='" << robot_file.string() << "'/></robot>\n";
+  f << "</scene>\n";
+  return row;
+}
+
 TEST(ParallelIslands, SixteenRobotsGiveTheSerialSignalsBitForBitOnTwoThreads) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   auto serial = load_driven(kRobots16, 1);
@@ -101,16 +116,8 @@ TEST(ParallelIslands, OneTreesSweepsOverFrictionAndBoundsLeaveTheOtherPartsBitFo
   // the system over its bounds and friction when any one tree needed it, so the other part's
   // robots took other last bits alone than beside r0 (from tick 2 on).
   // Four robots in a row (on the peers' 2 x 2 grid the last bits happened to agree).
-  const auto row = std::filesystem::path(testing::TempDir()) / "parallel_islands_row";
-  std::filesystem::create_directories(row);
-  {
-    std::ofstream f(row / "scene.xml");
-    f << "<scene>\n";
-    for (int r = 0; r < 4; ++r)
-      f << "<robot><ID name='r" << r << "'/><pos x='" << 1.5 * r << "' y='0' z='0'/><body file='"
-        << (kRobots16.parent_path() / "diffbot.xml").string() << "'/></robot>\n";
-    f << "</scene>\n";
-  }
+  const auto row =
+      row_scene("parallel_islands_row", kRobots16.parent_path() / "diffbot.xml", "r", 1.5);
   std::unique_ptr<Simulation> runs[2] = {load_on(row, 1), load_on(row, 2)};
   for (auto& sim : runs)
     for (std::size_t i = 0; i < sim->input_count(); ++i) {
@@ -130,17 +137,9 @@ TEST(ParallelIslands, HumanoidsBrakedAtEveryJointGiveTheSerialSignalsBitForBit) 
   // Four humanoids in a row, each standing on 20 hinges held by Coulomb friction, their
   // shoulders driven at different voltages: every tree's friction and bounds are solved in
   // their modes (kernel/src/model/axis_modes.cpp) on its own part's thread.
-  const auto humanoid = std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/humanoid";
-  const auto row = std::filesystem::path(testing::TempDir()) / "parallel_islands_humanoids";
-  std::filesystem::create_directories(row);
-  {
-    std::ofstream f(row / "scene.xml");
-    f << "<scene>\n";
-    for (int r = 0; r < 4; ++r)
-      f << "<robot><ID name='h" << r << "'/><pos x='" << 2.0 * r << "' y='0' z='0'/><body file='"
-        << (humanoid / "robot.xml").string() << "'/></robot>\n";
-    f << "</scene>\n";
-  }
+  const auto row = row_scene(
+      "parallel_islands_humanoids",
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/humanoid/robot.xml", "h", 2.0);
   std::unique_ptr<Simulation> runs[2] = {load_on(row, 1), load_on(row, 2)};
   for (auto& sim : runs)
     for (int r = 0; r < 4; ++r)
