@@ -40,7 +40,7 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
   const int* axis = m.solve_order.data() + begin;
   SimTK::Vector& u = s.updU();
   double* speeds = u.updContiguousScalarData();
-  const double* W = m.mode_matrix.data();  // the tree's Delassus matrix (solve_axes)
+  const double* W = m.tree_delassus.data();  // the tree's Delassus matrix (solve_axes)
   double* x = m.mode_force.data();
   double* v = m.mode_rate.data();       // the speeds now
   double* total = m.mode_total.data();  // G now
@@ -63,8 +63,8 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
       m.mode_row_side[static_cast<std::size_t>(j)] = side_of(row, stuck[i] ? 0.0 : v[i]);
     }
   }
-  double* A = m.row_matrix.data();
-  double* y = m.row_rhs.data();
+  double* A = m.tree_matrix.data();
+  double* y = m.tree_rhs.data();
   for (int round = 0; round < kModeRounds; ++round) {
     // Each axis's equation in its mode: the right side, D's entry, or its known force.
     int count = 0;

@@ -92,13 +92,14 @@ void find_axis_trees(Multibody::Impl& m) {
     ++axes_in_tree[static_cast<std::size_t>(m.axis_tree[a])];
   const std::size_t most_axes =
       axes_in_tree.empty() ? 0 : *std::max_element(axes_in_tree.begin(), axes_in_tree.end());
-  m.row_matrix.assign(most_axes * most_axes, 0.0);
-  m.mode_matrix.assign(most_axes * most_axes, 0.0);
-  for (auto* v : {&m.mode_rhs, &m.mode_force, &m.mode_rate, &m.mode_total, &m.mode_friction})
+  m.tree_delassus.assign(most_axes * most_axes, 0.0);
+  m.tree_matrix.assign(most_axes * most_axes, 0.0);
+  for (auto* v : {&m.tree_rhs, &m.rows_scale, &m.rows_rate, &m.rows_damping, &m.rows_residual,
+                  &m.mode_rhs, &m.mode_force, &m.mode_rate, &m.mode_total, &m.mode_friction})
     v->assign(most_axes, 0.0);
+  m.rows_axes.assign(most_axes, 0);
   m.mode_unknown.assign(most_axes, 0);
   m.mode_stuck.assign(most_axes, 0);
-  m.solve_index.assign(axes, 0);
   m.mode_row_side.assign(m.next_row.size(), 0);
 }
 

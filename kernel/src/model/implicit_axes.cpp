@@ -175,14 +175,13 @@ double solve_one_axis(Multibody::Impl& m, int a, double v_now, double w, double 
 }
 
 /// The Delassus matrix of one tree's axes solve_order[begin, end), W_pq = g_p·M^-1·g_q, into
-/// mode_matrix (row-major), and each axis's place in it (solve_index).
+/// tree_delassus (row-major).
 void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
   const int n = end - begin;
   const int* axis = m.solve_order.data() + begin;
-  double* W = m.mode_matrix.data();
+  double* W = m.tree_delassus.data();
   for (int q = 0; q < n; ++q) {
     const auto b = static_cast<std::size_t>(axis[q]);
-    m.solve_index[b] = q;
     const double* column = m.minv_column[b].getContiguousScalarData();
     for (int p = 0; p < n; ++p) {
       const auto a = static_cast<std::size_t>(axis[p]);
@@ -203,14 +202,14 @@ void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
 /// (κ·c·W in the thousands) would amplify; a lone row's change is ΔG itself. Then each row
 /// within its bounds.
 void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int axes, double kick_s) {
-  const double* W = m.mode_matrix.data();
-  double* A = m.row_matrix.data();
-  double* b = m.row_rhs.data();
-  double* scale = m.mode_force.data();           // per solved axis: √C (0: no row)
-  double* rate = m.mode_rate.data();             // per solved axis: its speed now
-  double* damping_sum = m.mode_friction.data();  // per solved axis: C
-  double* residual_sum = m.mode_total.data();    // per solved axis: R
-  int* with_rows = m.mode_unknown.data();
+  const double* W = m.tree_delassus.data();
+  double* A = m.tree_matrix.data();
+  double* b = m.tree_rhs.data();
+  double* scale = m.rows_scale.data();  // √C (0: no row)
+  double* rate = m.rows_rate.data();
+  double* damping_sum = m.rows_damping.data();
+  double* residual_sum = m.rows_residual.data();
+  int* with_rows = m.rows_axes.data();
   const int* axis = m.solve_order.data() + m.tree_solve_start[t];
   int n = 0;
   for (int p = 0; p < axes; ++p) {

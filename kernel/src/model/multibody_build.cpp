@@ -359,7 +359,6 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   m.friction_applied.assign(m.axes.size(), 0.0);
   m.axis_stuck.assign(m.axes.size(), 0);
   m.breakpoints.assign(2 * max_rows, 0.0);
-  m.row_rhs.assign(max_rows, 0.0);
   m.explicit_drive.assign(m.axes.size(), 0.0);
   m.rate0.assign(m.axes.size(), 0.0);
   m.drive_sum.assign(m.axes.size(), 0.0);

@@ -184,23 +184,28 @@ struct Multibody::Impl {
     bool component;                           // a component's (not the loop friction)
   };
   std::vector<DriveRow> rows;
-  std::vector<int> first_row, next_row;     // the rows of each axis, as linked lists
-  std::vector<int> solve_list;              // the axes solved this substep
-  std::vector<double> friction_bound;       // per axis: its Coulomb bound in the solve (0: none)
-  std::vector<double> friction_applied;     // per axis: the friction force found
-  std::vector<char> axis_stuck;             // per axis: its friction holds it still
-  std::vector<double> breakpoints;          // scratch: one axis's drive breakpoints
-  std::vector<double> explicit_drive;       // per axis: the drives without damping, clamped
-  std::vector<double> rate0;                // per axis: its rate at the tick's first substep
-  std::vector<double> drive_sum;            // per axis: Σ over the tick's substeps of drive forces
-  std::vector<double> drive_applied;        // per axis: their mean over the last tick (an output:
-                                            // the kernel's axis_force_applied segment keeps it)
-  std::vector<double> row_matrix, row_rhs;  // one tree's axes x axes; per axis
-  // Scratch of the solve in modes (axis_modes.cpp): one tree's axes x axes, per axis, per row.
-  std::vector<double> mode_matrix, mode_rhs, mode_force, mode_rate, mode_total, mode_friction;
+  std::vector<int> first_row, next_row;  // the rows of each axis, as linked lists
+  std::vector<int> solve_list;           // the axes solved this substep
+  std::vector<double> friction_bound;    // per axis: its Coulomb bound in the solve (0: none)
+  std::vector<double> friction_applied;  // per axis: the friction force found
+  std::vector<char> axis_stuck;          // per axis: its friction holds it still
+  std::vector<double> breakpoints;       // scratch: one axis's drive breakpoints
+  std::vector<double> explicit_drive;    // per axis: the drives without damping, clamped
+  std::vector<double> rate0;             // per axis: its rate at the tick's first substep
+  std::vector<double> drive_sum;         // per axis: Σ over the tick's substeps of drive forces
+  std::vector<double> drive_applied;     // per axis: their mean over the last tick (an output:
+                                         // the kernel's axis_force_applied segment keeps it)
+  // Scratch of one tree's solves, sized for the largest tree (axis_trees.cpp): its solved axes'
+  // Delassus matrix W, and the matrix and right side of the Cholesky solve at hand.
+  std::vector<double> tree_delassus, tree_matrix, tree_rhs;
+  // Per solved axis of the tree, the drive rows' solve (implicit_axes.cpp, step 1): √C, its
+  // speed now, C = Σc, R = Σ residuals; the axes with rows.
+  std::vector<double> rows_scale, rows_rate, rows_damping, rows_residual;
+  std::vector<int> rows_axes;
+  // Per solved axis of the tree, the solve in modes (axis_modes.cpp).
+  std::vector<double> mode_rhs, mode_force, mode_rate, mode_total, mode_friction;
   std::vector<int> mode_unknown;
   std::vector<char> mode_stuck;
-  std::vector<int> solve_index;            // per axis: its place among its tree's solved axes
   std::vector<signed char> mode_row_side;  // per row: -1 at its low bound, +1 at its high, 0 free
   // Independent trees (axis_trees.cpp): per axis its tree; per tree the ranges of its speeds
   // and coordinates; scratch: the solved axes ordered by tree, changed trees.
@@ -312,7 +317,7 @@ inline double drive_law(const Multibody::Impl::DriveRow& r, double rate) {
 }
 /// One tree's tree axes solve_order[begin, end) solved exactly in the modes they are in now
 /// (axis_modes.cpp): each axis stuck by its friction, or sliding with each of its drive rows
-/// at a bound or on its slope, a linear system in the axes' Delassus matrix (mode_matrix, as
+/// at a bound or on its slope, a linear system in the axes' Delassus matrix (tree_delassus, as
 /// solve_axes built it). Applies the solution and returns true when it stays in those modes;
 /// else changes nothing, false.
 bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begin, int end,
