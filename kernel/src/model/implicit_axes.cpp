@@ -10,11 +10,13 @@
 //   f⁺ = clamp(F − c·(v⁺ − v0)),   v⁺ = v* + κ·W·(f⁺ − f),   W_ij = g_i·M^-1·g_j,
 // that is linearly implicit Euler, (M + κ·C)·Δu = κ·f, within the bounds. Coulomb friction on a
 // tree axis joins as the set-valued law f ∈ −F·Sign(v) (a velocity-level brake: true stick).
-//  1. The drives without their bounds: one symmetric positive definite solve,
-//     (I + κ·S·W·S)·z = S^-1·r, S = diag(√c), d = S·z: exact for any number of coupled axes.
+//  1. The drives without their bounds: one symmetric positive definite solve with a row per
+//     axis (an axis's unbounded drives add up to one law), (I + κ·S·W·S)·z = S^-1·r,
+//     S = diag(√Σc), d = S·z: exact for any number of coupled axes.
 //  2. Where a bound binds or an axis has friction: block Gauss-Seidel over the axes, each
 //     axis's monotone piecewise-linear law solved exactly for its own speed (its breakpoints
-//     walked in order), the others held; from the clamped solution of 1.
+//     walked in order), the others held; from the clamped solution of 1. After each sweep the
+//     modes it left are solved at once (axis_modes.cpp), which ends the sweeps when it holds.
 // An axis alone: its speed change is the explicit one divided by 1 + κ·c·w, never
 // overshooting, whatever c·κ/inertia; a motor stronger than its friction turns, a weaker one
 // sticks.
