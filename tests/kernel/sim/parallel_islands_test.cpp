@@ -4,6 +4,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "model/island_plan.hpp"
+#include "parallel_runs.hpp"
 #include "scene_builder.hpp"
 
 #include <gtest/gtest.h>
@@ -20,57 +21,7 @@
 namespace s2sim {
 namespace {
 
-const std::filesystem::path kRobots16 =
-    std::filesystem::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_16";
-
-bool two_threads_available() {
-  return std::thread::hardware_concurrency() >= 2;
-}
-
-std::unique_ptr<Simulation> load_on(const std::filesystem::path& scene, int threads) {
-  SimulationOptions o;
-  o.threads = threads;
-  return Simulation::load(scene, o);
-}
-
-std::unique_ptr<Simulation> load_driven(const std::filesystem::path& scene, int threads) {
-  auto sim = load_on(scene, threads);
-  // Each robot's wheels at their own voltages: the robots turn on circles of their own.
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < sim->input_count(); ++i) {
-    const std::string& name = sim->input_info(i).name;
-    if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
-      sim->set_input(i, 2.0 + 0.37 * static_cast<double>(k++ % 23));
-  }
-  return sim;
-}
-
-/// Every signal's bits, in order.
-std::vector<double> signals(const Simulation& sim) {
-  std::vector<double> out(sim.signal_count());
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = sim.signal(i);
-  return out;
-}
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
-
-/// A scene of four copies of `robot_file` in a row along x, `spacing_m` apart, named
-/// <prefix>0 … <prefix>3, written into the test's folder `folder`: the folder.
-std::filesystem::path row_scene(const std::string& folder, const std::filesystem::path& robot_file,
-                                const std::string& prefix, double spacing_m) {
-  const auto row = std::filesystem::path(testing::TempDir()) / folder;
-  std::filesystem::create_directories(row);
-  std::ofstream f(row / "scene.xml");
-  f << "<scene>\n";
-  for (int r = 0; r < 4; ++r)
-    f << "<robot><ID name='" << prefix << r << "'/><pos x='" << spacing_m * r
-      << "' y='0' z='0'/><body file='" << robot_file.string() << "'/></robot>\n";
-  f << "</scene>\n";
-  return row;
-}
+using namespace parallel_runs;
 
 TEST(ParallelIslands, SixteenRobotsGiveTheSerialSignalsBitForBitOnTwoThreads) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
@@ -177,16 +128,7 @@ TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
 // ticks.
 TEST(ParallelIslands, RobotsMeetingAcrossThePartsGiveTheSerialContactsBitForBit) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
-  const auto scene =
-      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/robots_meeting";
-  std::unique_ptr<Simulation> runs[2] = {load_on(scene, 1), load_on(scene, 2)};
-  for (auto& sim : runs) {
-    for (std::size_t i = 0; i < sim->input_count(); ++i) {
-      const std::string& name = sim->input_info(i).name;
-      if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
-        sim->set_input(i, name.find("/left/") != std::string::npos ? -6.0 : 6.0);  // ahead
-    }
-  }
+  std::unique_ptr<Simulation> runs[2] = {load_meeting(1), load_meeting(2)};
   // Which part integrates each body, as MultibodyIslands deals them.
   const scene::Scene& plan_scene = runs[1]->scene();
   const auto parts = model::plan_parts(plan_scene, model::plan_topology(plan_scene), {}, 2);
@@ -206,13 +148,8 @@ TEST(ParallelIslands, RobotsMeetingAcrossThePartsGiveTheSerialContactsBitForBit)
     ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1]))) << "tick " << tick;
     ASSERT_EQ(runs[0]->contact_count(), runs[1]->contact_count()) << "tick " << tick;
     for (std::size_t c = 0; c < runs[0]->contact_count(); ++c) {
-      const ContactInfo &a = runs[0]->contact(c), &b = runs[1]->contact(c);
-      ASSERT_TRUE(a.body_a.index == b.body_a.index && a.body_b.index == b.body_b.index &&
-                  std::memcmp(&a.point_m, &b.point_m, sizeof(Vec3)) == 0 &&
-                  std::memcmp(&a.normal, &b.normal, sizeof(Vec3)) == 0 &&
-                  std::memcmp(&a.force_N, &b.force_N, sizeof(Vec3)) == 0 &&
-                  std::memcmp(&a.depth_m, &b.depth_m, sizeof(double)) == 0)
-          << "tick " << tick << ", contact " << c;
+      ASSERT_TRUE(same_contact(*runs[0], *runs[1], c)) << "tick " << tick << ", contact " << c;
+      const ContactInfo& a = runs[0]->contact(c);
       if (a.body_a.index > 0 && a.body_b.index > 0) {
         ++body_pairs;
         if (part_of_body[static_cast<std::size_t>(a.body_a.index)] !=
