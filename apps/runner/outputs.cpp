@@ -124,6 +124,14 @@ std::string summary_text(const Simulation& sim, const RunTiming& t) {
                 sim.time_s(), t.wall_s, t.wall_s > 0 ? sim.time_s() / t.wall_s : 0.0, t.steps,
                 sim.tick_s() * 1e3);
   s += line;
+  const Simulation::RunAheadCounts ahead = sim.run_ahead_counts();
+  if (ahead.stretches + ahead.lost > 0) {  // --threads: how much of it the parts ran alone
+    std::snprintf(line, sizeof line,
+                  "ran ahead: %" PRId64 " stretches (%" PRId64 " steps), %" PRId64
+                  " gone back where two parts came close\n",
+                  ahead.stretches, ahead.ticks, ahead.lost);
+    s += line;
+  }
   auto rows = [&](const char* title, const std::vector<PoseRow>& r) {
     if (r.empty()) return;
     s += title;

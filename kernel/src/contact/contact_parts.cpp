@@ -11,6 +11,7 @@
 #include "common/assert.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace s2sim::contact {
 
@@ -141,6 +142,43 @@ const ContactInfo* ContactWorld::part_contacts(int part, const std::int32_t*& co
 
 void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
   place(&lanes_[static_cast<std::size_t>(part)], poses, twists, step_s);
+}
+
+bool ContactWorld::fence_parts() {
+  if (lanes_.size() < 2 || !lanes_search_ || !lanes_apart()) return false;
+  // The gap between the closest two lanes along the axis that parts them best; each lane may
+  // move 45 % of it in every direction, so that the fences keep a tenth of it between them.
+  double gap = INFINITY;
+  for (std::size_t l = 0; l < lanes_.size(); ++l)
+    for (std::size_t m = l + 1; m < lanes_.size(); ++m) {
+      if (lanes_[l].moving.empty() || lanes_[m].moving.empty()) continue;
+      const collision::Aabb &a = lanes_[l].bound, &b = lanes_[m].bound;
+      const double apart = std::max({a.min.x - b.max.x, b.min.x - a.max.x, a.min.y - b.max.y,
+                                     b.min.y - a.max.y, a.min.z - b.max.z, b.min.z - a.max.z});
+      gap = std::min(gap, apart);
+    }
+  if (!(gap > 0)) return false;
+  const double reach = std::isfinite(gap) ? 0.45 * gap : INFINITY;  // one lane moves: no limit
+  for (Lane& lane : lanes_) {
+    const Vec3 d{reach, reach, reach};
+    lane.fence = {lane.bound.min - d, lane.bound.max + d};
+  }
+  found_.clear();
+  own_pairs_ = true;
+  return true;
+}
+
+bool ContactWorld::part_inside_fence(int part) const {
+  const Lane& lane = lanes_[static_cast<std::size_t>(part)];
+  if (lane.moving.empty()) return true;
+  const collision::Aabb &b = lane.bound, &f = lane.fence;
+  return f.min.x <= b.min.x && f.min.y <= b.min.y && f.min.z <= b.min.z && b.max.x <= f.max.x &&
+         b.max.y <= f.max.y && b.max.z <= f.max.z;
+}
+
+void ContactWorld::end_parts_ahead(std::int64_t substeps) {
+  own_pairs_substeps_ += substeps;
+  end_parts();
 }
 
 void ContactWorld::bound_lane(Lane& lane) {

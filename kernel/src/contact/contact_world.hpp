@@ -59,6 +59,9 @@ class ContactWorld final : public model::SubstepForces {
                     Wrench* wrenches) override;
   void end_parts() override;
   void place_part(int part, const Pose* poses, const Twist* twists, double step_s) override;
+  bool fence_parts() override;
+  bool part_inside_fence(int part) const override;
+  void end_parts_ahead(std::int64_t substeps) override;
 
   /// Contacts of the last substep, in compute()'s order. When the parts computed them, their
   /// lists are merged here, on the first call after (a run nobody reads the list of never
@@ -125,6 +128,7 @@ class ContactWorld final : public model::SubstepForces {
     /// buffers), and the box around its moving shapes as last placed.
     std::unique_ptr<collision::ContactQuery> query;
     collision::Aabb bound;
+    collision::Aabb fence;  ///< the region its moving shapes keep to when running ahead
   };
   /// `lane`: part by part, the part's lane, whose lists take the results; null: the whole
   /// substep's lists (info_, stops_), each point's memory its first shape's lane.

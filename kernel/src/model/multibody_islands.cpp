@@ -314,7 +314,7 @@ void MultibodyIslands::run_tick_starts(const TickHooks& hooks) {
   pool_->run(
       [](void* self, int p, int thread) {
         const auto& me = *static_cast<MultibodyIslands*>(self);
-        me.hooks_->start(me.hooks_->context, p, thread == 0);
+        me.hooks_->start(me.hooks_->context, p, thread == 0, 0);
       },
       this, parts());
 }
@@ -347,7 +347,7 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
 void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
-  if (me.run_starts_) me.hooks_->start(me.hooks_->context, p, thread == 0);
+  if (me.run_starts_) me.hooks_->start(me.hooks_->context, p, thread == 0, 0);
   me.load_part(part, me.substep_);
   me.stages_(me.stages_context_, p, *part.multibody, thread == 0, me.substep_);
   // For the next substep's contact (its realize runs here, in parallel); split forces read
@@ -356,6 +356,52 @@ void MultibodyIslands::run_part(void* self, int p, int thread) {
   if (me.substep_ == me.substeps() - 1) {
     me.publish_tick(part);
     if (me.hooks_) me.hooks_->end(me.hooks_->context, p);
+  }
+}
+
+bool MultibodyIslands::run_ticks(int ticks, PartStages stages, void* context,
+                                 const TickHooks& hooks) {
+  stages_ = stages;
+  stages_context_ = context;
+  hooks_ = &hooks;
+  contact_in_parts_ = true;
+  ahead_ticks_ = ticks;
+  ahead_stopped_.store(false, std::memory_order_relaxed);
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
+  pool_->run(&MultibodyIslands::run_part_ticks, this, parts());
+  if (ahead_stopped_.load(std::memory_order_relaxed)) return false;
+  untouched_ = true;
+  read_fresh_ = true;
+  published_ = bound_.poses != nullptr;
+  return true;
+}
+
+void MultibodyIslands::run_part_ticks(void* self, int p, int thread) {
+  auto& me = *static_cast<MultibodyIslands*>(self);
+  Part& part = me.parts_[static_cast<std::size_t>(p)];
+  const int last = me.substeps() - 1;
+  try {
+    for (int k = 0; k < me.ahead_ticks_; ++k) {
+      // Another part left its fence: what follows would be thrown away.
+      if (me.ahead_stopped_.load(std::memory_order_relaxed)) return;
+      me.hooks_->start(me.hooks_->context, p, thread == 0, k);
+      for (int substep = 0; substep <= last; ++substep) {
+        me.load_part(part, substep);
+        const bool inside =
+            me.stages_(me.stages_context_, p, *part.multibody, thread == 0, substep);
+        if (substep == last) {
+          me.publish_tick(part);
+          me.hooks_->end(me.hooks_->context, p);
+        }
+        if (!inside) {
+          me.ahead_stopped_.store(true, std::memory_order_relaxed);
+          return;
+        }
+      }
+    }
+  } catch (...) {
+    me.ahead_stopped_.store(true, std::memory_order_relaxed);
+    throw;
   }
 }
 

@@ -14,6 +14,7 @@
 #include "model/substep_forces.hpp"
 #include "model/worker_pool.hpp"
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,8 +25,9 @@ class MultibodyIslands {
  public:
   /// The work of one part in a substep (sim/step.cpp: forces … project, and the tick's finish
   /// on its last substep), called on whichever thread takes the part; `calling_thread`: the
-  /// one that called run_substep.
-  using PartStages = void (*)(void* context, int part, Multibody& multibody, bool calling_thread,
+  /// one that called run_substep. Returns whether the part may go on alone (run_ticks(): its
+  /// shapes are still inside their fence); run_substep() ignores it.
+  using PartStages = bool (*)(void* context, int part, Multibody& multibody, bool calling_thread,
                               int substep);
 
   /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
@@ -85,10 +87,11 @@ class MultibodyIslands {
   /// components are stepped in the parts (sim/component_parts.hpp): `start` before the
   /// tick's first substep takes the loads (the part's components, which write its slices of
   /// the scene-wide load arrays and its own drive slots, part_drives()); `end` after the last
-  /// substep's read-out. `calling_thread` as for PartStages.
+  /// substep's read-out. `calling_thread` as for PartStages; `ahead`: the tick's distance
+  /// from the kernel's current one (run_ticks(); 0 otherwise).
   struct TickHooks {
     void* context = nullptr;
-    void (*start)(void* context, int part, bool calling_thread) = nullptr;
+    void (*start)(void* context, int part, bool calling_thread, int ahead) = nullptr;
     void (*end)(void* context, int part) = nullptr;
   };
 
@@ -105,6 +108,13 @@ class MultibodyIslands {
   /// Only the hooks' `start` of every part, at once (for a tick whose contact must be
   /// computed whole, between them and the substep).
   void run_tick_starts(const TickHooks& hooks);
+  /// Runs ahead (sim/run_ahead.cpp): `ticks` whole ticks of every part at once, each part on
+  /// its own thread without waiting for the others between ticks: at each tick the hooks'
+  /// `start`, then per substep its loads and `stages` (its contact computed in the part), then
+  /// the read-out and the hooks' `end`. A part whose `stages` return false stops there, and so
+  /// do the others at their next tick: returns false, and the state is then only good for a
+  /// restore. Exceptions: as run_substep().
+  bool run_ticks(int ticks, PartStages stages, void* context, const TickHooks& hooks);
 
   /// A part's kernel bodies (ascending) and its axes (scene-wide indices, the part's order).
   const std::vector<int>& part_bodies(int p) const {
@@ -146,6 +156,7 @@ class MultibodyIslands {
     mutable std::vector<double> axis_position, axis_velocity;
   };
   static void run_part(void* self, int part, int thread);
+  static void run_part_ticks(void* self, int part, int thread);
   /// The part's slice of the scene-wide loads (the tick's on its first substep, the contact
   /// wrenches on every one).
   void load_part(Part& part, int substep);
@@ -198,6 +209,9 @@ class MultibodyIslands {
   void* stages_context_ = nullptr;
   const TickHooks* hooks_ = nullptr;
   bool run_starts_ = false;  // the substep runs the hooks' start
+  // The running run_ticks(): how many, and whether a part stopped (read by every part).
+  int ahead_ticks_ = 0;
+  std::atomic<bool> ahead_stopped_{false};
   bool drives_by_part_ = false;
 };
 

@@ -5,6 +5,7 @@
 
 #include <s2sim/math.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace s2sim::model {
@@ -58,6 +59,22 @@ class SubstepForces {
     (void)twists;
     (void)step_s;
   }
+
+  // --- Running ahead (sim/run_ahead.cpp): the parts step several ticks without the calling
+  // thread between their substeps, which is exact while no load can couple two parts.
+
+  /// On the calling thread, instead of begin_parts(), the parts placed at the current poses:
+  /// gives each part a fence, a region of its own apart from the others', and starts
+  /// substeps computed part by part (compute_part()); false (nothing changed): it cannot.
+  virtual bool fence_parts() { return false; }
+  /// After place_part(), on the part's thread: whether no load can couple the part with
+  /// another in the next substep as long as the others are inside their fences too.
+  virtual bool part_inside_fence(int part) const {
+    (void)part;
+    return false;
+  }
+  /// On the calling thread after `substeps` substeps run ahead: end_parts() for all of them.
+  virtual void end_parts_ahead(std::int64_t substeps) { (void)substeps; }
 };
 
 }  // namespace s2sim::model

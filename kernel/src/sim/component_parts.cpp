@@ -219,7 +219,7 @@ void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::i
   refuse(local, "published an annotation (a log line, HUD text, trail, XY point or colour)");
 }
 
-void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
+void Simulation::Impl::start_part_tick(int p, bool calling_thread, int ahead) {
   sim::ComponentParts::Part& part = component_parts.parts[static_cast<std::size_t>(p)];
   sim::StageProfile* timing = calling_thread ? profile.get() : nullptr;
   Wrench* wrenches = multibody->applied_wrenches();
@@ -232,8 +232,9 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread) {
   // The last substep's contacts on the part's bodies (its own lane; the whole list after a
   // substep computed whole): what its components may read, unmerged.
   part.local.view.contacts = contacts->part_contacts(p, part.local.view.contact_count);
-  part.local.view.time_s = world.time_s;  // the rest of the view changes only at load
-  part.local.view.tick = world.tick;
+  // The rest of the view changes only at load; the time as refresh() writes it.
+  part.local.view.tick = tick + ahead;
+  part.local.view.time_s = static_cast<double>(part.local.view.tick) * tick_s;
   const AxisDrive* drives = multibody->part_drives(p);
   std::int32_t& drive_count = *multibody->part_drive_count(p);
   drive_count = 0;

@@ -155,7 +155,8 @@ struct Simulation::Impl {
   void sync_local_views();
   /// Part `part`'s components at the tick's start, on its thread (MultibodyIslands::TickHooks),
   /// then its reference torques and the check of its loads; `end_part_tick` after its physics.
-  void start_part_tick(int part, bool calling_thread);
+  /// `ahead`: the tick's distance from `tick` (running ahead; 0 otherwise).
+  void start_part_tick(int part, bool calling_thread, int ahead);
   void end_part_tick(int part);
   // What a local component is refused (LocalView): each throws naming it.
   static RayHit refuse_ray(const void* local, const Vec3&, const Vec3&, double, std::int32_t);
@@ -241,11 +242,27 @@ struct Simulation::Impl {
   /// One tick: the scheduled stages, then the physics (the stages in the parts when
   /// component_parts has them).
   void step_once();
+  /// What the parts run at a tick's edges when the components are in the parts.
+  model::MultibodyIslands::TickHooks part_tick_hooks();
+  /// `ticks` ticks, run ahead in stretches where it can (run_ahead.cpp), else one by one.
+  void advance(std::int64_t ticks);
+  /// Up to `ticks` ticks run ahead (run_ahead.cpp): how many ran; 0 when it could not start,
+  /// or when a part left its fence and the state went back to where it was.
+  std::int64_t step_ahead(std::int64_t ticks);
+  /// After the layout restored a state: the models' caches and the components' view.
+  void restored();
+  /// Running ahead: the state it started from, kept for a part leaving its fence; the ticks
+  /// still to run one by one before trying again, and the stretches lost in a row.
+  std::vector<double> ahead_checkpoint;
+  std::int64_t ahead_wait_ticks = 0;
+  int ahead_misses = 0;
+  Simulation::RunAheadCounts ahead_counts;
   /// The scheduled stages on the calling thread, with the loads' reset before and check after.
   void run_components();
   /// Component `c`'s update when its schedule has it due this tick (true), through `local`'s
   /// view when it is local (serial_local on this thread, a part's in the parts), else the
-  /// world's; an exception becomes the kernel's Error naming it.
+  /// world's; an exception becomes the kernel's Error naming it. Its schedule's clock: the
+  /// view's tick.
   bool update_if_due(int c, sim::LocalView* local);
   /// Throws (runtime) naming the body, axis or drive when a component applied a non-finite
   /// load: among `bodies` and `axes` (null: all, the world's entry too) and the drives.

@@ -73,10 +73,14 @@ Simulation::Snapshot Simulation::save() const {
 void Simulation::restore(const Snapshot& snapshot) {
   Impl& m = *impl_;
   m.layout.restore(snapshot.layout, entries_of(snapshot), snapshot.values);
-  m.multibody->restored();
-  m.world.contacts = m.contacts->contacts();  // the buffer may have grown
-  m.tick = static_cast<std::int64_t>(std::llround(m.multibody->time_s() / m.tick_s));
-  m.refresh();
+  m.restored();
+}
+
+void Simulation::Impl::restored() {
+  multibody->restored();
+  world.contacts = contacts->contacts();  // the buffer may have grown
+  tick = static_cast<std::int64_t>(std::llround(multibody->time_s() / tick_s));
+  refresh();
 }
 
 void Simulation::place_body(int body, const Pose& pose) {

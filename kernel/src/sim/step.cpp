@@ -77,12 +77,14 @@ struct PartsContext {
   StageProfile* profile = nullptr;
   model::SubstepForces* contact = nullptr;  // split part by part (MultibodyIslands::split_forces)
   bool contact_in_parts = false;            // this substep's contact is computed in the parts
+  bool fenced = false;                      // running ahead: each part keeps to its fence
 };
 
-/// One part's substep (MultibodyIslands::run_substep): its contact when the substep is split,
-/// its stages, and the placing of its shapes for the next substep's contact. Only the parts
-/// the calling thread takes are profiled (StageProfile is not shared between threads).
-void part_stages(void* context, int part, model::Multibody& mb, bool calling_thread, int substep) {
+/// One part's substep (MultibodyIslands::run_substep, run_ticks): its contact when the substep
+/// is split, its stages, and the placing of its shapes for the next substep's contact. Only
+/// the parts the calling thread takes are profiled (StageProfile is not shared between
+/// threads). Returns whether the part's shapes are still inside their fence (running ahead).
+bool part_stages(void* context, int part, model::Multibody& mb, bool calling_thread, int substep) {
   const auto& parts = *static_cast<const PartsContext*>(context);
   StageProfile* profile = calling_thread ? parts.profile : nullptr;
   const Pose* poses = nullptr;
@@ -102,6 +104,7 @@ void part_stages(void* context, int part, model::Multibody& mb, bool calling_thr
     mb.current_bodies(poses, twists);
     parts.contact->place_part(part, poses, twists, mb.substep_s());
   }
+  return !parts.fenced || parts.contact->part_inside_fence(part);
 }
 
 /// The substep's contact when it is split part by part: the calling thread's share (the pairs;
@@ -191,6 +194,24 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
   }
 }
 
+bool fence_parts(model::MultibodyIslands& mb, model::SubstepForces* contact) {
+  return mb.parts() > 1 && contact && mb.split_forces() == contact &&
+         mb.untouched_since_substep() && contact->fence_parts();
+}
+
+bool physics_ticks_ahead(model::MultibodyIslands& mb, model::SubstepForces& contact,
+                         StageProfile* profile, const model::MultibodyIslands::TickHooks& hooks,
+                         int ticks) {
+  PartsContext parts;
+  parts.profile = profile;
+  parts.contact = &contact;
+  parts.contact_in_parts = true;
+  parts.fenced = true;
+  if (!mb.run_ticks(ticks, &part_stages, &parts, hooks)) return false;
+  contact.end_parts_ahead(static_cast<std::int64_t>(ticks) * mb.substeps());
+  return true;
+}
+
 }  // namespace sim
 
 void Simulation::Impl::step_once() {
@@ -202,12 +223,7 @@ void Simulation::Impl::step_once() {
   } else {
     run_components();
   }
-  const model::MultibodyIslands::TickHooks hooks{
-      this,
-      [](void* impl, int part, bool calling_thread) {
-        static_cast<Impl*>(impl)->start_part_tick(part, calling_thread);
-      },
-      [](void* impl, int part) { static_cast<Impl*>(impl)->end_part_tick(part); }};
+  const model::MultibodyIslands::TickHooks hooks = part_tick_hooks();
   try {
     sim::physics_tick(*multibody, contacts.get(), profile.get(), in_parts ? &hooks : nullptr);
   } catch (const Error& e) {
@@ -250,6 +266,14 @@ void Simulation::Impl::step_once() {
   refresh();
 }
 
+model::MultibodyIslands::TickHooks Simulation::Impl::part_tick_hooks() {
+  return {this,
+          [](void* impl, int part, bool calling_thread, int ahead) {
+            static_cast<Impl*>(impl)->start_part_tick(part, calling_thread, ahead);
+          },
+          [](void* impl, int part) { static_cast<Impl*>(impl)->end_part_tick(part); }};
+}
+
 void Simulation::Impl::run_components() {
   // The last step's contacts, merged from the parts' lists if they computed them (the buffer
   // may have grown since the last tick).
@@ -279,7 +303,7 @@ void Simulation::Impl::run_components() {
 
 bool Simulation::Impl::update_if_due(int c, sim::LocalView* local) {
   const sim::ComponentSlot& slot = components[static_cast<std::size_t>(c)];
-  const std::int64_t since = tick - slot.phase_ticks;
+  const std::int64_t since = (local ? local->view.tick : tick) - slot.phase_ticks;
   if (since < 0 || since % slot.period_ticks != 0) return false;
   if (local) local->component = c;
   StepContext ctx(local ? &local->view : &world, c, slot.period_ticks);
@@ -461,14 +485,12 @@ void Simulation::Impl::reset() {
 }
 
 void Simulation::step(std::int64_t ticks) {
-  for (std::int64_t i = 0; i < ticks; ++i)
-    impl_->step_once();
+  impl_->advance(ticks);
 }
 
 void Simulation::run_until(double t_s) {
   const auto target = static_cast<std::int64_t>(std::llround(t_s / impl_->tick_s));
-  while (impl_->tick < target)
-    impl_->step_once();
+  if (impl_->tick < target) impl_->advance(target - impl_->tick);
 }
 
 void Simulation::reset() {

@@ -29,4 +29,15 @@ void physics_tick(model::MultibodyIslands& multibody, model::SubstepForces* cont
                   StageProfile* profile = nullptr,
                   const model::MultibodyIslands::TickHooks* hooks = nullptr);
 
+/// Whether `multibody` can run ahead (sim/run_ahead.cpp) now: several parts, whose shapes are
+/// placed at the current poses, `contact` split by them and each part's shapes apart from the
+/// others' (SubstepForces::fence_parts(), which then fences them).
+bool fence_parts(model::MultibodyIslands& multibody, model::SubstepForces* contact);
+/// After fence_parts(): `ticks` whole ticks of the parts, each part alone (its components by
+/// `hooks`, its contact, its stages), stopping when a part's shapes leave their fence.
+/// Returns whether all ran; if not, or if it throws, the state is only good for a restore.
+bool physics_ticks_ahead(model::MultibodyIslands& multibody, model::SubstepForces& contact,
+                         StageProfile* profile, const model::MultibodyIslands::TickHooks& hooks,
+                         int ticks);
+
 }  // namespace s2sim::sim

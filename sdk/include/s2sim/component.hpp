@@ -535,7 +535,10 @@ class ConfigureContext {
   /// runs on the thread that steps its bodies, at the same time as the others, with the
   /// serial run's results (docs/scheduling.md, "Components in parts"). A local component that casts
   /// a ray, requests a move or annotates stops the simulation with an error naming it, at any
-  /// number of threads.
+  /// number of threads. Its parts may then also run ahead of the calling thread and go back
+  /// (docs/scheduling.md, "Running ahead"): an `update()` may run again for a tick it ran
+  /// already, after its state was restored, so all it carries from tick to tick is in its
+  /// declared state, as a snapshot requires of every component.
   virtual void declare_local() {}
 };
 

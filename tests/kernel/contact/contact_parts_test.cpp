@@ -129,5 +129,51 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
   EXPECT_GT(pairs_between_bodies, 1000) << "the loose boxes never lay on the hinged ones";
 }
 
+// Running ahead (kernel/src/sim/run_ahead.cpp): two hinged pairs of boxes 1.5 m apart, one
+// per part (each part searching its own pairs by islands), get fences that let each part move
+// 45 % of the gap between their bounds in every direction; a part that moves further is told,
+// and parts whose bounds touch get no fences.
+TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence) {
+  scene::Scene s;
+  const double size = 0.1;
+  for (int part = 0; part < 2; ++part) {
+    const double x = 1.5 * part;
+    const int first = static_cast<int>(s.bodies.size());
+    s.bodies.push_back(test::box("left", 0.5, {size, size, size}, {x, 0, size / 2}));
+    s.bodies.push_back(test::box("right", 0.7, {size, size, size}, {x + size, 0, size / 2}));
+    s.joints.push_back(test::joint("hinge", scene::JointType::hinge, first, first + 1,
+                                   {x + size / 2, 0, 0}, {0, 1, 0}));
+  }
+  test::ContactRunner run(s);
+  ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
+  parts.set_mobility(run.mb.contact_mobility());
+  ASSERT_TRUE(parts.split({0, 0, 0, 1, 1}, 2));
+  step_and_place(run, parts);
+  const Pose* poses = nullptr;
+  const Twist* twists = nullptr;
+  run.mb.current_bodies(poses, twists);
+  const std::vector<Pose> start(poses, poses + 5);
+  std::vector<Pose> moved = start;
+  auto shift_part_0 = [&](double dx) {  // both its boxes
+    for (int b : {1, 2})
+      moved[static_cast<std::size_t>(b)].position.x =
+          start[static_cast<std::size_t>(b)].position.x + dx;
+    parts.place_part(0, moved.data(), twists, 1e-3);
+  };
+  // The gap between the bounds: 1.5 m less the pair's length (0.2 m) and the shapes' margins.
+  ASSERT_TRUE(parts.fence_parts());
+  EXPECT_TRUE(parts.part_inside_fence(0));
+  EXPECT_TRUE(parts.part_inside_fence(1));
+  shift_part_0(0.5);  // towards part 1, within its reach (45 % of about 1.3 m)
+  EXPECT_TRUE(parts.part_inside_fence(0));
+  shift_part_0(-0.5);  // away from it: the fence holds in every direction
+  EXPECT_TRUE(parts.part_inside_fence(0));
+  shift_part_0(0.7);  // past its reach: a pair with part 1 might form unseen
+  EXPECT_FALSE(parts.part_inside_fence(0));
+  EXPECT_TRUE(parts.part_inside_fence(1));
+  shift_part_0(1.5 - 2 * size);  // the two parts' bounds overlap: no fences
+  EXPECT_FALSE(parts.fence_parts());
+}
+
 }  // namespace
 }  // namespace s2sim::contact

@@ -86,7 +86,9 @@ class Simulation {
   std::int64_t tick() const;
   double tick_s() const;
 
-  /// Advances `ticks` ticks.
+  /// Advances `ticks` ticks: bit for bit as `ticks` calls of step(1). With several threads
+  /// and the components in the parts, the parts may step stretches of them each alone
+  /// (run_ahead_counts()).
   void step(std::int64_t ticks = 1);
   /// Steps until time_s() >= t (rounded to the nearest tick).
   void run_until(double t_s);
@@ -106,6 +108,15 @@ class Simulation {
   /// "Components in parts"; SimulationOptions::threads > 1 and every component local,
   /// ConfigureContext::declare_local); empty when they run in the parts.
   const std::string& components_serial_reason() const;
+  /// Running ahead (docs/scheduling.md, "Running ahead"): when the components run in the
+  /// parts and the parts' shapes are apart, step() lets each part step a stretch of ticks on
+  /// its own thread, and goes back to the stretch's start when two parts come close.
+  struct RunAheadCounts {
+    std::int64_t stretches = 0;  ///< stretches run ahead and kept
+    std::int64_t ticks = 0;      ///< the ticks they held
+    std::int64_t lost = 0;       ///< stretches gone back (run again tick by tick)
+  };
+  RunAheadCounts run_ahead_counts() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
   /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
   void reset();

@@ -1,0 +1,113 @@
+// Running ahead (kernel/src/sim/run_ahead.cpp): step(n) lets the parts step stretches of
+// ticks each alone, and the results stay the serial run's bit for bit: while the parts are
+// apart, when two parts come close (the stretch goes back and runs tick by tick), and when a
+// tick inside a stretch fails.
+#include <s2sim/error.hpp>
+#include <s2sim/kernel/simulation.hpp>
+
+#include "parallel_runs.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+namespace s2sim {
+namespace {
+
+using namespace parallel_runs;
+
+TEST(RunAhead, SixteenRobotsRunAheadAndGiveTheSerialSignalsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto serial = load_driven(kRobots16, 1);
+  auto parallel = load_driven(kRobots16, 2);
+  const Vec3 start = serial->body_pose(1).position;
+  for (int chunk = 0; chunk < 15; ++chunk) {
+    for (int tick = 0; tick < 100; ++tick)
+      serial->step();
+    parallel->step(100);
+    ASSERT_EQ(parallel->tick(), serial->tick());
+    ASSERT_TRUE(same_bits(signals(*serial), signals(*parallel))) << "after tick " << serial->tick();
+  }
+  const Vec3 end = serial->body_pose(1).position;
+  EXPECT_GT(std::hypot(end.x - start.x, end.y - start.y), 0.02);  // they moved
+  // It ran ahead, never lost a stretch (the parts' rows stay 1.5 m apart), and one thread
+  // never does.
+  const Simulation::RunAheadCounts ahead = parallel->run_ahead_counts();
+  EXPECT_GE(ahead.stretches, 15);
+  EXPECT_GE(ahead.ticks, 1400);
+  EXPECT_EQ(ahead.lost, 0);
+  EXPECT_EQ(serial->run_ahead_counts().stretches + serial->run_ahead_counts().lost, 0);
+}
+
+const std::filesystem::path kDiffbot = kRobots16.parent_path() / "diffbot.xml";
+
+TEST(RunAhead, PartsThatComeCloseGoBackAndGiveTheSerialContactsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Four robots in a row, r0 r1 | r2 r3 by part; r1 drives ahead into r2, across the parts.
+  const auto row = std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/robots_row";
+  std::unique_ptr<Simulation> runs[2] = {load_on(row, 1), load_on(row, 2)};
+  for (auto& run : runs) {
+    run->set_input("robots/r1/axes/left/ref_voltage", -6.0);
+    run->set_input("robots/r1/axes/right/ref_voltage", 6.0);
+  }
+  Simulation &serial = *runs[0], &parallel = *runs[1];
+  std::size_t robots_touching = 0;  // contacts between two robots, at the chunks' ends
+  for (int chunk = 0; chunk < 60; ++chunk) {
+    if (chunk == 45)  // placed between two calls: the next stretch starts from there
+      for (auto& run : runs)
+        run->place_body(1, Pose{{-0.2, -0.3, 0.08}, Mat3::identity()});
+    for (int tick = 0; tick < 50; ++tick)
+      serial.step();
+    parallel.step(50);
+    ASSERT_TRUE(same_bits(signals(serial), signals(parallel))) << "after tick " << serial.tick();
+    ASSERT_EQ(serial.contact_count(), parallel.contact_count()) << serial.tick();
+    for (std::size_t c = 0; c < serial.contact_count(); ++c) {
+      ASSERT_TRUE(same_contact(serial, parallel, c)) << serial.tick() << ", contact " << c;
+      if (serial.contact(c).body_a.index > 0 && serial.contact(c).body_b.index > 0)
+        ++robots_touching;
+    }
+  }
+  EXPECT_GT(robots_touching, 0u) << "r1 must reach r2";
+  const Simulation::RunAheadCounts ahead = parallel.run_ahead_counts();
+  EXPECT_GT(ahead.stretches, 0) << "while the parts are apart, they run ahead";
+  EXPECT_GT(ahead.lost, 0) << "r1 must come close to r2 within a stretch";
+}
+
+/// Four robots whose local controller on r2 casts a ray from t = 0.05 s on, which a local
+/// component may not: the error, the tick the run stopped at and the stretches it lost.
+struct Refused {
+  std::string error;
+  std::int64_t tick = 0, lost = 0;
+};
+Refused refused_ray(int threads) {
+  const auto scene = row_scene("run_ahead_ray", kDiffbot, "r", 1.5,
+                               "<plugin kind='test_local_controller' id='c2' "
+                               "axes='robots/r2/axes/left robots/r2/axes/right' act='ray'/>\n");
+  SimulationOptions o;
+  o.threads = threads;
+  o.plugin_path = {std::filesystem::path(S2SIM_TEST_PLUGIN_DIR) / "scene",
+                   std::filesystem::path(S2SIM_PLUGIN_DIR)};
+  auto sim = Simulation::load(scene, o);
+  try {
+    sim->step(200);
+  } catch (const Error& e) {
+    return {e.what(), sim->tick(), sim->run_ahead_counts().lost};
+  }
+  return {"", sim->tick(), sim->run_ahead_counts().lost};
+}
+
+TEST(RunAhead, AnErrorInsideAStretchIsThrownAtItsTickWithTheSerialMessage) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  const Refused serial = refused_ray(1);
+  EXPECT_NE(serial.error.find("c2"), std::string::npos) << serial.error;
+  EXPECT_EQ(serial.tick, 50);
+  const Refused parallel = refused_ray(2);
+  EXPECT_EQ(parallel.error, serial.error);
+  EXPECT_EQ(parallel.tick, serial.tick);
+  EXPECT_EQ(parallel.lost, 1) << "the error came inside a stretch, which went back";
+}
+
+}  // namespace
+}  // namespace s2sim
