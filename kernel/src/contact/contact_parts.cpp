@@ -114,7 +114,7 @@ void ContactWorld::end_parts() {
   // The contact list stays in the lanes until someone reads it (contacts()): moving every
   // part's contacts to the calling thread at every substep cost the parallel step a
   // microsecond of serial work (issue 17).
-  in_lanes_ = true;
+  in_lanes_ = lanes_hold_last_ = true;
 }
 
 void ContactWorld::merge_parts() const {
@@ -131,7 +131,9 @@ void ContactWorld::merge_parts() const {
 }
 
 const ContactInfo* ContactWorld::part_contacts(int part, const std::int32_t*& count) const {
-  if (in_lanes_) {
+  // The lane's list whenever it holds the last substep's contacts, merged since or not: a
+  // stretch run ahead (fence_parts()) starts after a merge and reads the lanes' own lists.
+  if (lanes_hold_last_) {
     const Lane& lane = lanes_[static_cast<std::size_t>(part)];
     count = &lane.info_count;
     return lane.info.data();
@@ -145,7 +147,9 @@ void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, 
 }
 
 bool ContactWorld::fence_parts() {
-  if (lanes_.size() < 2 || !lanes_search_ || !lanes_apart()) return false;
+  // The last substep part by part: each part's components then read their lane's list at
+  // every tick of the stretch, the first included.
+  if (lanes_.size() < 2 || !lanes_search_ || !lanes_hold_last_ || !lanes_apart()) return false;
   // The gap between the closest two lanes along the axis that parts them best; each lane may
   // move 45 % of it in every direction, so that the fences keep a tenth of it between them.
   double gap = INFINITY;

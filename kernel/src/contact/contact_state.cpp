@@ -84,7 +84,7 @@ void ContactWorld::declare_state(sim::StateLayout& layout) {
         }
       },
       [this](const double* in, std::size_t count) {
-        in_lanes_ = false;  // the restored list is the whole one
+        in_lanes_ = lanes_hold_last_ = false;  // the restored list is the whole one
         info_.clear();
         for (std::size_t k = 0; k < count; k += kInfo, in += kInfo) {
           ContactInfo c;

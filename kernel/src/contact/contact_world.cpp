@@ -263,7 +263,7 @@ void ContactWorld::reset() {
   }
   info_.clear();
   info_count_ = 0;
-  in_lanes_ = false;
+  in_lanes_ = lanes_hold_last_ = false;
   query_.reset();
 }
 
@@ -342,7 +342,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
                            Wrench* wrenches) {
   std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
   place(nullptr, poses, twists, step_s);
-  in_lanes_ = false;  // this substep's list is the whole one, below
+  in_lanes_ = lanes_hold_last_ = false;  // this substep's list is the whole one, below
   info_.clear();
   stops_.clear();
   for (Lane& lane : lanes_) {

@@ -242,6 +242,8 @@ class ContactWorld final : public model::SubstepForces {
   /// The lanes' lists into info_ when the last substep's contacts are theirs (end_parts()).
   void merge_parts() const;
   mutable bool in_lanes_ = false;  // the last substep's contacts are the lanes', unmerged
+  // The lanes' lists hold the last substep's contacts (it ran part by part), merged or not.
+  bool lanes_hold_last_ = false;
   std::vector<std::int32_t> island_of_shape_;  // group_islands(): per shape its island, -1 static
   bool lanes_search_ = false;  // every lane with moving shapes searches its own pairs by islands
   bool own_pairs_ = false;     // this substep, each lane finds its own pairs (begin_parts)

@@ -148,7 +148,11 @@ TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence)
   ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
   parts.set_mobility(run.mb.contact_mobility());
   ASSERT_TRUE(parts.split({0, 0, 0, 1, 1}, 2));
+  SideBySide side(run.contacts, parts, run.mb.body_count());
+  run.contact = &side;
+  EXPECT_FALSE(parts.fence_parts()) << "before a substep ran part by part: no fences";
   step_and_place(run, parts);
+  ASSERT_EQ(side.split, 1);
   const Pose* poses = nullptr;
   const Twist* twists = nullptr;
   run.mb.current_bodies(poses, twists);

@@ -75,6 +75,42 @@ TEST(RunAhead, PartsThatComeCloseGoBackAndGiveTheSerialContactsBitForBit) {
   EXPECT_GT(ahead.lost, 0) << "r1 must come close to r2 within a stretch";
 }
 
+/// `scene` with the test plugins (the local controller).
+std::unique_ptr<Simulation> load_with_test_plugins(const std::filesystem::path& scene,
+                                                   int threads) {
+  SimulationOptions o;
+  o.threads = threads;
+  o.plugin_path = {std::filesystem::path(S2SIM_TEST_PLUGIN_DIR) / "scene",
+                   std::filesystem::path(S2SIM_PLUGIN_DIR)};
+  return Simulation::load(scene, o);
+}
+
+TEST(RunAhead, LocalControllersReadTheirPartsLatestContactsAtEveryTickOfAStretch) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Each robot's local controller drives its wheels and publishes the vertical contact force
+  // on its brick (its caster's), summed from its part's contact list at every tick: inside a
+  // stretch, the list of the tick before, as in the serial run.
+  std::string plugins;
+  for (int r = 0; r < 4; ++r) {
+    const std::string robot = "robots/r" + std::to_string(r);
+    plugins += "<plugin kind='test_local_controller' id='c" + std::to_string(r) + "' axes='" +
+               robot + "/axes/left " + robot + "/axes/right' body='" + robot +
+               "/solids/brick' gain='" + std::to_string(0.5 + 0.25 * r) + "' period_ms='1'/>\n";
+  }
+  const auto scene = row_scene("run_ahead_touch", kDiffbot, "r", 1.5, plugins);
+  auto serial = load_with_test_plugins(scene, 1);
+  auto parallel = load_with_test_plugins(scene, 2);
+  ASSERT_EQ(parallel->components_serial_reason(), "");
+  for (int chunk = 0; chunk < 8; ++chunk) {
+    for (int tick = 0; tick < 100; ++tick)
+      serial->step();
+    parallel->step(100);
+    ASSERT_TRUE(same_bits(signals(*serial), signals(*parallel))) << "after tick " << serial->tick();
+  }
+  EXPECT_GT(serial->signal("controllers/c3/touch"), 0.1);  // its caster's share of ~4.7 N
+  EXPECT_GT(parallel->run_ahead_counts().stretches, 8);
+}
+
 /// Four robots whose local controller on r2 casts a ray from t = 0.05 s on, which a local
 /// component may not: the error, the tick the run stopped at and the stretches it lost.
 struct Refused {
@@ -85,11 +121,7 @@ Refused refused_ray(int threads) {
   const auto scene = row_scene("run_ahead_ray", kDiffbot, "r", 1.5,
                                "<plugin kind='test_local_controller' id='c2' "
                                "axes='robots/r2/axes/left robots/r2/axes/right' act='ray'/>\n");
-  SimulationOptions o;
-  o.threads = threads;
-  o.plugin_path = {std::filesystem::path(S2SIM_TEST_PLUGIN_DIR) / "scene",
-                   std::filesystem::path(S2SIM_PLUGIN_DIR)};
-  auto sim = Simulation::load(scene, o);
+  auto sim = load_with_test_plugins(scene, threads);
   try {
     sim->step(200);
   } catch (const Error& e) {
