@@ -18,18 +18,24 @@
 namespace s2sim {
 
 namespace {
-/// The longest stretch: long enough that the saved state (about 20 µs for 16 robots) costs
-/// little per tick, short enough that a part leaving its fence loses little.
-constexpr std::int64_t kAheadTicks = 64;
-/// After a stretch lost, ticks one by one before the next try: kAheadTicks, doubled for each
-/// stretch lost in a row up to 32 times as many (parts that keep meeting stop trying).
+/// A stretch's length: the first after a start or a loss, then doubled after each stretch
+/// kept, up to the longest. What a stretch costs once (the saved state, about 10 µs for 16
+/// robots; the start of the pool run; the wait for the slower part at its end) shrinks per
+/// tick as stretches grow: on 16 robots, stretches of 1 000 ticks gave 0.93–0.96 of the
+/// machine's two-thread ceiling, of 64 ticks 0.88–1.0, of 16 ticks 0.75–0.94 (docs/benchmarks.md).
+/// A part leaving its fence loses the ticks its stretch ran, so the length starts short.
+constexpr std::int64_t kFirstStretchTicks = 64;
+constexpr std::int64_t kLongestStretchTicks = 1024;
+/// After a stretch lost, ticks one by one before the next try: kFirstStretchTicks, doubled for
+/// each stretch lost in a row up to 32 times as many (parts that keep meeting stop trying).
 constexpr int kMaxBackoff = 5;
 }  // namespace
 
 void Simulation::Impl::advance(std::int64_t ticks) {
   while (ticks > 0) {
     if (ticks > 1 && ahead_wait_ticks == 0) {
-      const std::int64_t ran = step_ahead(std::min(ticks, kAheadTicks));
+      const std::int64_t ran =
+          step_ahead(std::min({ticks, kFirstStretchTicks << ahead_growth, kLongestStretchTicks}));
       ticks -= ran;
       if (ran > 0) continue;
     }
@@ -57,6 +63,7 @@ std::int64_t Simulation::Impl::step_ahead(std::int64_t ticks) {
   if (ran) {
     tick += ticks;
     ahead_misses = 0;
+    if ((kFirstStretchTicks << ahead_growth) < kLongestStretchTicks) ++ahead_growth;
     ++ahead_counts.stretches;
     ahead_counts.ticks += ticks;
     sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
@@ -65,7 +72,8 @@ std::int64_t Simulation::Impl::step_ahead(std::int64_t ticks) {
   }
   layout.restore(layout.id(), layout.entries(), ahead_checkpoint);
   restored();
-  ahead_wait_ticks = kAheadTicks << std::min(ahead_misses, kMaxBackoff);
+  ahead_wait_ticks = kFirstStretchTicks << std::min(ahead_misses, kMaxBackoff);
+  ahead_growth = 0;
   ++ahead_misses;
   ++ahead_counts.lost;
   return 0;

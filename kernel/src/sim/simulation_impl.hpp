@@ -252,10 +252,12 @@ struct Simulation::Impl {
   /// After the layout restored a state: the models' caches and the components' view.
   void restored();
   /// Running ahead: the state it started from, kept for a part leaving its fence; the ticks
-  /// still to run one by one before trying again, and the stretches lost in a row.
+  /// still to run one by one before trying again, the stretches lost in a row, and how many
+  /// times the next stretch's length doubles the first's (run_ahead.cpp).
   std::vector<double> ahead_checkpoint;
   std::int64_t ahead_wait_ticks = 0;
   int ahead_misses = 0;
+  int ahead_growth = 0;
   Simulation::RunAheadCounts ahead_counts;
   /// The scheduled stages on the calling thread, with the loads' reset before and check after.
   void run_components();
