@@ -115,8 +115,11 @@ int run(const s2sim::runner::Options& o) {
   runner::ProgressBar progress(!o.quiet && isatty(STDERR_FILENO));
   if (log) log->write_row(*sim);
   const auto start = Clock::now();
-  // Stepping in chunks keeps the clock and the progress bar out of the per-step cost.
-  const std::int64_t chunk = log ? log_every : std::max<std::int64_t>(1, total_ticks / 1000);
+  // Stepping in chunks keeps the clock and the progress bar out of the per-step cost, and
+  // lets the parts run ahead over a chunk with --threads (docs/scheduling.md): a hundredth of
+  // the run, a thousandth when paced in real time.
+  const std::int64_t chunk =
+      log ? log_every : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
   std::int64_t done = 0;
   while (done < total_ticks) {
     apply_presses();
