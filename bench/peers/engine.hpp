@@ -61,6 +61,9 @@ std::unique_ptr<Engine> make_s2sim(const SceneSpec& scene);
 /// S2Sim with SimulationOptions::threads = 2 (the islands stepped in parallel; wall time is
 /// its measure, its thread CPU time is only the calling thread's).
 std::unique_ptr<Engine> make_s2sim_par2(const SceneSpec& scene);
+/// s2sim-par2 without running ahead (SimulationOptions::run_ahead = false): the parts wait for
+/// each other and the calling thread at every tick (what running ahead gains, in the same run).
+std::unique_ptr<Engine> make_s2sim_par2_lockstep(const SceneSpec& scene);
 /// Two serial S2Sim copies of the scene at once, one per thread (s2sim_engine.cpp): its speed-up
 /// column is twice the serial run's wall time over its own, the machine's two-thread ceiling
 /// on the scene's work; its thread CPU time is one copy's.

@@ -6,7 +6,8 @@
 // its speed-up column is the serial run's wall time over its own. The engine s2sim-copies2 is two
 // serial copies of the scene stepped at once on two threads: its speed-up column, twice the
 // serial run's wall time over its own, is what the machine gives two threads on the scene's
-// work, the ceiling for s2sim-par2 in the same rounds. The engine s2sim-simbody is
+// work, the ceiling for s2sim-par2 in the same rounds; s2sim-par2-lockstep is s2sim-par2
+// without running ahead (the parts wait for each other at every tick). The engine s2sim-simbody is
 // S2Sim without the small-tree fast path (Simbody's realize chain): its speed-up column is
 // what the fast path gains.
 //   s2sim-peers [--scenes A,B,...] [--engines A,B,...] [--duration S] [--warmup S]
@@ -49,6 +50,7 @@ std::vector<EngineFactory> available_engines() {
   std::vector<EngineFactory> engines{{"s2sim", &make_s2sim}};
   if (std::thread::hardware_concurrency() >= 2) {
     engines.push_back({"s2sim-par2", &make_s2sim_par2});
+    engines.push_back({"s2sim-par2-lockstep", &make_s2sim_par2_lockstep});
     engines.push_back({"s2sim-copies2", &make_s2sim_copies2});
   }
   engines.push_back({"s2sim-simbody", &make_s2sim_simbody});
@@ -175,7 +177,8 @@ std::string fixed(double v, int decimals) {
 }
 
 bool is_parallel(const Result& r) {
-  return r.engine == "s2sim-par2" || r.engine == "s2sim-copies2";
+  return r.engine == "s2sim-par2" || r.engine == "s2sim-par2-lockstep" ||
+         r.engine == "s2sim-copies2";
 }
 
 const Result* s2sim_of(const std::vector<Result>& results, const std::string& scene) {
@@ -234,13 +237,14 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   // The parallel step against what the machine gave two threads on the same work, in the same
   // rounds: how much of the shortfall is S2Sim's and how much the host's.
   for (const auto& par : results) {
-    if (par.engine != "s2sim-par2" || !par.error.empty()) continue;
+    if ((par.engine != "s2sim-par2" && par.engine != "s2sim-par2-lockstep") || !par.error.empty())
+      continue;
     for (const auto& copies : results)
       if (copies.scene == par.scene && copies.engine == "s2sim-copies2" && copies.error.empty()) {
         const double up = speedup(results, par), ceiling = speedup(results, copies);
         if (std::isnan(up) || std::isnan(ceiling)) continue;
         md << "\n"
-           << par.scene << ": s2sim-par2 " << fixed(up, 2)
+           << par.scene << ": " << par.engine << " " << fixed(up, 2)
            << "× the serial run, where two threads gave " << fixed(ceiling, 2)
            << "× on two copies (s2sim-copies2): " << fixed(up / ceiling, 2) << " of it\n";
       }

@@ -14,9 +14,11 @@ namespace {
 
 class S2SimEngine final : public Engine {
  public:
-  S2SimEngine(const SceneSpec& scene, int threads, bool simbody_dynamics_only = false) {
+  S2SimEngine(const SceneSpec& scene, int threads, bool simbody_dynamics_only = false,
+              bool run_ahead = true) {
     s2sim::SimulationOptions options;
-    options.threads = threads;  // s2sim-par2: the islands on two threads
+    options.threads = threads;      // s2sim-par2: the islands on two threads
+    options.run_ahead = run_ahead;  // s2sim-par2-lockstep: the parts tick by tick
     options.simbody_dynamics_only = simbody_dynamics_only;  // s2sim-simbody: no fast path
     // No substeps in any engine: scenes/pile asks for two, the benchmark compares at 1 ms.
     options.physics_step_s = 0.001;
@@ -124,6 +126,10 @@ std::unique_ptr<Engine> make_s2sim(const SceneSpec& scene) {
 
 std::unique_ptr<Engine> make_s2sim_par2(const SceneSpec& scene) {
   return std::make_unique<S2SimEngine>(scene, 2);
+}
+
+std::unique_ptr<Engine> make_s2sim_par2_lockstep(const SceneSpec& scene) {
+  return std::make_unique<S2SimEngine>(scene, 2, false, false);
 }
 
 std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene) {

@@ -33,7 +33,7 @@ constexpr int kMaxBackoff = 5;
 
 void Simulation::Impl::advance(std::int64_t ticks) {
   while (ticks > 0) {
-    if (ticks > 1 && ahead_wait_ticks == 0) {
+    if (ticks > 1 && ahead_wait_ticks == 0 && options.run_ahead) {
       const std::int64_t ran =
           step_ahead(std::min({ticks, kFirstStretchTicks << ahead_growth, kLongestStretchTicks}));
       ticks -= ran;

@@ -41,6 +41,22 @@ TEST(RunAhead, SixteenRobotsRunAheadAndGiveTheSerialSignalsBitForBit) {
   EXPECT_EQ(serial->run_ahead_counts().stretches + serial->run_ahead_counts().lost, 0);
 }
 
+TEST(RunAhead, TurnedOffThePartsStepTickByTickWithTheSameResults) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  auto ahead = load_driven(kRobots16, 2);
+  SimulationOptions o;
+  o.threads = 2;
+  o.run_ahead = false;
+  auto lockstep = Simulation::load(kRobots16, o);
+  each_voltage(*lockstep,
+               [&](std::size_t i, const std::string&) { lockstep->set_input(i, ahead->input(i)); });
+  ahead->step(300);
+  lockstep->step(300);
+  EXPECT_TRUE(same_bits(signals(*ahead), signals(*lockstep)));
+  EXPECT_GT(ahead->run_ahead_counts().stretches, 0);
+  EXPECT_EQ(lockstep->run_ahead_counts().stretches + lockstep->run_ahead_counts().lost, 0);
+}
+
 const std::filesystem::path kDiffbot = kRobots16.parent_path() / "diffbot.xml";
 
 TEST(RunAhead, PartsThatComeCloseGoBackAndGiveTheSerialContactsBitForBit) {

@@ -58,6 +58,11 @@ struct SimulationOptions {
   /// Sheet cells set before the start, over `Global.S2Sheet`'s (the runner's --sheet): each
   /// becomes an input `sheet/<cell>` even when the file lacks it.
   std::vector<scene::SheetCell> sheet_cells;
+  /// With several threads, lets step(n) run the parts ahead of each other over stretches of
+  /// ticks (docs/scheduling.md, "Running ahead"; Simulation::run_ahead_counts()). The results
+  /// are the same either way, bit for bit; false steps the parts tick by tick (for comparing,
+  /// or for a local component that keeps state outside its declared state).
+  bool run_ahead = true;
 };
 
 /// A named value with its unit, e.g. `robots/r/axes/left/speed` in `rad/s`.
