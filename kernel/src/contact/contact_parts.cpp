@@ -150,23 +150,37 @@ bool ContactWorld::fence_parts() {
   // The last substep part by part: each part's components then read their lane's list at
   // every tick of the stretch, the first included.
   if (lanes_.size() < 2 || !lanes_search_ || !lanes_hold_last_ || !lanes_apart()) return false;
-  // The gap between the closest two lanes along the axis that parts them best; each lane may
-  // move 45 % of it in every direction, so that the fences keep a tenth of it between them.
-  double gap = INFINITY;
+  // Each two lanes stay apart along the axis that parts them best: each may come 45 % of the
+  // way to the plane midway between them there, so that a tenth of the gap stays between
+  // them; sideways, and away from each other, they may go anywhere (robots driving along
+  // their rows, the rows apart, never leave their fences).
+  for (Lane& lane : lanes_)
+    lane.fence = {{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
+  auto along = [](auto& v, int k) -> decltype(auto) {
+    return k == 0 ? (v.x) : k == 1 ? (v.y) : (v.z);
+  };
   for (std::size_t l = 0; l < lanes_.size(); ++l)
     for (std::size_t m = l + 1; m < lanes_.size(); ++m) {
       if (lanes_[l].moving.empty() || lanes_[m].moving.empty()) continue;
       const collision::Aabb &a = lanes_[l].bound, &b = lanes_[m].bound;
-      const double apart = std::max({a.min.x - b.max.x, b.min.x - a.max.x, a.min.y - b.max.y,
-                                     b.min.y - a.max.y, a.min.z - b.max.z, b.min.z - a.max.z});
-      gap = std::min(gap, apart);
+      int axis = 0;
+      double gap = -INFINITY;
+      bool l_below = true;  // lane l on the lower side along `axis`
+      for (int k = 0; k < 3; ++k) {
+        const double above = along(b.min, k) - along(a.max, k);  // l below m
+        const double below = along(a.min, k) - along(b.max, k);  // l above m
+        if (above > gap) gap = above, axis = k, l_below = true;
+        if (below > gap) gap = below, axis = k, l_below = false;
+      }
+      if (!(gap > 0)) return false;  // lanes_apart() said otherwise: a NaN
+      Lane& lower = l_below ? lanes_[l] : lanes_[m];
+      Lane& upper = l_below ? lanes_[m] : lanes_[l];
+      const double mid = along(lower.bound.max, axis) + 0.5 * gap;
+      double& lower_max = along(lower.fence.max, axis);
+      double& upper_min = along(upper.fence.min, axis);
+      lower_max = std::min(lower_max, mid - 0.05 * gap);
+      upper_min = std::max(upper_min, mid + 0.05 * gap);
     }
-  if (!(gap > 0)) return false;
-  const double reach = std::isfinite(gap) ? 0.45 * gap : INFINITY;  // one lane moves: no limit
-  for (Lane& lane : lanes_) {
-    const Vec3 d{reach, reach, reach};
-    lane.fence = {lane.bound.min - d, lane.bound.max + d};
-  }
   found_.clear();
   own_pairs_ = true;
   return true;

@@ -129,10 +129,10 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
   EXPECT_GT(pairs_between_bodies, 1000) << "the loose boxes never lay on the hinged ones";
 }
 
-// Running ahead (kernel/src/sim/run_ahead.cpp): two hinged pairs of boxes 1.5 m apart, one
-// per part (each part searching its own pairs by islands), get fences that let each part move
-// 45 % of the gap between their bounds in every direction; a part that moves further is told,
-// and parts whose bounds touch get no fences.
+// Running ahead (kernel/src/sim/run_ahead.cpp): two hinged pairs of boxes 1.5 m apart along
+// x, one per part (each part searching its own pairs by islands), get fences that let each
+// come 45 % of the gap between their bounds towards the other, and go anywhere sideways or
+// away; a part that comes closer is told, and parts whose bounds touch get no fences.
 TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence) {
   scene::Scene s;
   const double size = 0.1;
@@ -158,10 +158,13 @@ TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence)
   run.mb.current_bodies(poses, twists);
   const std::vector<Pose> start(poses, poses + 5);
   std::vector<Pose> moved = start;
-  auto shift_part_0 = [&](double dx) {  // both its boxes
-    for (int b : {1, 2})
+  auto shift_part_0 = [&](double dx, double dy = 0) {  // both its boxes
+    for (int b : {1, 2}) {
       moved[static_cast<std::size_t>(b)].position.x =
           start[static_cast<std::size_t>(b)].position.x + dx;
+      moved[static_cast<std::size_t>(b)].position.y =
+          start[static_cast<std::size_t>(b)].position.y + dy;
+    }
     parts.place_part(0, moved.data(), twists, 1e-3);
   };
   // The gap between the bounds: 1.5 m less the pair's length (0.2 m) and the shapes' margins.
@@ -170,7 +173,9 @@ TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence)
   EXPECT_TRUE(parts.part_inside_fence(1));
   shift_part_0(0.5);  // towards part 1, within its reach (45 % of about 1.3 m)
   EXPECT_TRUE(parts.part_inside_fence(0));
-  shift_part_0(-0.5);  // away from it: the fence holds in every direction
+  shift_part_0(-5.0, 3.0);  // away from it and sideways: no limit
+  EXPECT_TRUE(parts.part_inside_fence(0));
+  shift_part_0(0.5, -20.0);  // sideways, as close as before: still inside
   EXPECT_TRUE(parts.part_inside_fence(0));
   shift_part_0(0.7);  // past its reach: a pair with part 1 might form unseen
   EXPECT_FALSE(parts.part_inside_fence(0));
