@@ -94,11 +94,9 @@ TEST(ContactParts, ThePartsGiveTheWholeContactBitForBit) {
   EXPECT_NEAR(run.poses[5].position.z, 2.5 * size, 2e-3) << "the late box is not on the stack";
 }
 
-// Two parts a metre and a half apart, each a pair of boxes hinged together lying on the ground
-// (one island of two shapes) with a loose box dropped across the hinge: the parts' boxes never
-// overlap, so each part finds its own pairs (the loose box on the hinged ones) on its own
-// thread, with the whole contact's numbers.
-TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
+/// Two pairs of 0.1 m boxes hinged together lying on the ground, 1.5 m apart along x (bodies
+/// left, right[, loose] per pair); `loose`: a loose box dropped across each hinge.
+scene::Scene hinged_pairs(bool loose) {
   scene::Scene s;
   const double size = 0.1;
   for (int part = 0; part < 2; ++part) {
@@ -106,11 +104,21 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
     const int first = static_cast<int>(s.bodies.size());
     s.bodies.push_back(test::box("left", 0.5, {size, size, size}, {x, 0, size / 2}));
     s.bodies.push_back(test::box("right", 0.7, {size, size, size}, {x + size, 0, size / 2}));
-    s.bodies.push_back(test::box("loose", 0.3, {size, size, size},
-                                 {x + size / 2 + 0.01 * part, 0, 1.5 * size + 0.2}));
+    if (loose)
+      s.bodies.push_back(test::box("loose", 0.3, {size, size, size},
+                                   {x + size / 2 + 0.01 * part, 0, 1.5 * size + 0.2}));
     s.joints.push_back(test::joint("hinge", scene::JointType::hinge, first, first + 1,
                                    {x + size / 2, 0, 0}, {0, 1, 0}));
   }
+  return s;
+}
+
+// Two parts a metre and a half apart, each a pair of boxes hinged together lying on the ground
+// (one island of two shapes) with a loose box dropped across the hinge: the parts' boxes never
+// overlap, so each part finds its own pairs (the loose box on the hinged ones) on its own
+// thread, with the whole contact's numbers.
+TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
+  const scene::Scene s = hinged_pairs(true);
   test::ContactRunner run(s);
   ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
   parts.set_mobility(run.mb.contact_mobility());
@@ -134,16 +142,8 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
 // come 45 % of the gap between their bounds towards the other, and go anywhere sideways or
 // away; a part that comes closer is told, and parts whose bounds touch get no fences.
 TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence) {
-  scene::Scene s;
+  const scene::Scene s = hinged_pairs(false);
   const double size = 0.1;
-  for (int part = 0; part < 2; ++part) {
-    const double x = 1.5 * part;
-    const int first = static_cast<int>(s.bodies.size());
-    s.bodies.push_back(test::box("left", 0.5, {size, size, size}, {x, 0, size / 2}));
-    s.bodies.push_back(test::box("right", 0.7, {size, size, size}, {x + size, 0, size / 2}));
-    s.joints.push_back(test::joint("hinge", scene::JointType::hinge, first, first + 1,
-                                   {x + size / 2, 0, 0}, {0, 1, 0}));
-  }
   test::ContactRunner run(s);
   ContactWorld parts(run.table, s, run.mb.apparent_mass_kg());
   parts.set_mobility(run.mb.contact_mobility());
