@@ -151,9 +151,9 @@ bool ContactWorld::fence_parts() {
   // every tick of the stretch, the first included.
   if (lanes_.size() < 2 || !lanes_search_ || !lanes_hold_last_ || !lanes_apart()) return false;
   // Each two lanes stay apart along the axis that parts them best: each may come 45 % of the
-  // way to the plane midway between them there, so that a tenth of the gap stays between
-  // them; sideways, and away from each other, they may go anywhere (robots driving along
-  // their rows, the rows apart, never leave their fences).
+  // gap closer to the other there, stopping short of the plane midway between them, so that a
+  // tenth of the gap stays between them; sideways, and away from each other, they may go anywhere
+  // (robots driving along their rows, the rows apart, never leave their fences).
   for (Lane& lane : lanes_)
     lane.fence = {{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}};
   auto along = [](auto& v, int k) -> decltype(auto) {

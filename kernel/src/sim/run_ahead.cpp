@@ -3,13 +3,14 @@
 // calling thread between their ticks. A tick stepped one by one makes both threads wait for
 // the slower at every tick and pays the start of a pool run; a stretch pays them once.
 //
-// Exact, not approximate: each part's shapes are fenced in a box of their own, the boxes
-// apart (ContactWorld::fence_parts). While every part's shapes stay inside their fence no pair
-// of shapes joins two parts, and each part's substeps are those of the serial run bit for bit
-// (the parts' contact is computed part by part exactly when no pair joins two parts). A part
-// whose shapes leave their fence stops, the others stop at their next tick, and the state goes
-// back to where the stretch began (the state layout, as a snapshot restores it); the stretch
-// then runs tick by tick, which sees the parts meet as the serial run does.
+// Exact, not approximate: each part's shapes are fenced (ContactWorld::fence_parts): each two
+// parts may come only so close along the axis that parts them best, and go anywhere else.
+// While every part's shapes stay inside their fence no pair of shapes joins two parts, and each
+// part's substeps are those of the serial run bit for bit (the parts' contact is computed part by
+// part exactly when no pair joins two parts). A part whose shapes leave their fence stops, the
+// others stop at their next tick, and the state goes back to where the stretch began (the state
+// layout, as a snapshot restores it); the stretch then runs tick by tick, which sees the parts meet
+// as the serial run does.
 #include "sim/simulation_impl.hpp"
 #include "sim/step.hpp"
 

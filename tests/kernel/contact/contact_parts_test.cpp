@@ -139,7 +139,7 @@ TEST(ContactParts, EachPartFindsItsOwnPairsWhileThePartsAreApart) {
 
 // Running ahead (kernel/src/sim/run_ahead.cpp): two hinged pairs of boxes 1.5 m apart along
 // x, one per part (each part searching its own pairs by islands), get fences that let each
-// come 45 % of the gap between their bounds towards the other, and go anywhere sideways or
+// come 45 % of the gap between their bounds closer to the other, and go anywhere sideways or
 // away; a part that comes closer is told, and parts whose bounds touch get no fences.
 TEST(ContactParts, EachPartIsFencedAwayFromTheOthersAndToldWhenItLeavesItsFence) {
   const scene::Scene s = hinged_pairs(false);
