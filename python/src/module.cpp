@@ -68,10 +68,11 @@ class PySimulation {
                std::optional<double> physics_step_s, std::optional<int> substeps,
                const std::map<std::string, double>& defines,
                const std::vector<std::filesystem::path>& plugin_path, int threads,
-               bool simbody_dynamics) {
+               bool simbody_dynamics, bool run_ahead) {
     SimulationOptions options;
     options.seed = seed;
     options.threads = threads;
+    options.run_ahead = run_ahead;
     options.simbody_dynamics_only = simbody_dynamics;
     options.physics_step_s = physics_step_s;
     options.substeps = substeps;
@@ -228,14 +229,14 @@ PYBIND11_MODULE(_s2sim, m) {
   py::class_<PySimulation>(m, "Simulation",
                            "A loaded scene ready to step (docs/python.md). Simulation(scene, "
                            "seed=1, physics_step=None, substeps=None, defines={}, "
-                           "plugin_path=[], threads=1, simbody_dynamics=False).")
+                           "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True).")
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,
-                    const std::vector<std::filesystem::path>&, int, bool>(),
+                    const std::vector<std::filesystem::path>&, int, bool, bool>(),
            py::arg("scene"), py::arg("seed") = 1, py::arg("physics_step") = py::none(),
            py::arg("substeps") = py::none(), py::arg("defines") = std::map<std::string, double>{},
            py::arg("plugin_path") = std::vector<std::filesystem::path>{}, py::arg("threads") = 1,
-           py::arg("simbody_dynamics") = false)
+           py::arg("simbody_dynamics") = false, py::arg("run_ahead") = true)
       .def("step", &PySimulation::step, py::arg("n") = 1,
            "Advances n ticks (physics steps); the GIL is released meanwhile.")
       .def("run_until", &PySimulation::run_until, py::arg("t"),
@@ -243,6 +244,18 @@ PYBIND11_MODULE(_s2sim, m) {
       .def_property_readonly(
           "time", [](const PySimulation& s) { return s.sim().time_s(); }, "Simulated time, s.")
       .def_property_readonly("tick", [](const PySimulation& s) { return s.sim().tick(); })
+      .def_property_readonly(
+          "run_ahead_counts",
+          [](const PySimulation& s) {
+            const Simulation::RunAheadCounts c = s.sim().run_ahead_counts();
+            py::dict d;
+            d["stretches"] = c.stretches;
+            d["ticks"] = c.ticks;
+            d["lost"] = c.lost;
+            return d;
+          },
+          "With threads > 1: stretches of ticks the parts ran ahead and kept, their ticks, and "
+          "the stretches gone back (docs/scheduling.md, 'Running ahead').")
       .def_property_readonly(
           "tick_s", [](const PySimulation& s) { return s.sim().tick_s(); },
           "Length of one tick (the physics step), s.")

@@ -191,6 +191,21 @@ def test_threads_keyword_gives_the_same_run():
         s2sim.Simulation(ROBOTS_4, threads=0)
 
 
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="one hardware thread")
+def test_run_ahead_keyword_gives_the_same_run_and_counts_its_stretches():
+    ahead = s2sim.Simulation(ROBOTS_4, threads=2)
+    lockstep = s2sim.Simulation(ROBOTS_4, threads=2, run_ahead=False)
+    for sim in (ahead, lockstep):
+        for name in sim.list_inputs():
+            if name.endswith("/ref_voltage"):
+                sim.set_input(name, 4.0)
+        sim.step(300)
+    assert np.array_equal(ahead.signals("*"), lockstep.signals("*"))
+    assert ahead.run_ahead_counts["stretches"] > 0
+    assert ahead.run_ahead_counts["ticks"] >= 200
+    assert lockstep.run_ahead_counts == {"stretches": 0, "ticks": 0, "lost": 0}
+
+
 def test_simbody_dynamics_keyword_gives_the_fast_paths_run_to_rounding():
     runs = [robots_4_signals(simbody_dynamics=simbody) for simbody in (False, True)]
     assert not np.array_equal(runs[0], runs[1])  # two computations, not one
