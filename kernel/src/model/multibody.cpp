@@ -53,6 +53,9 @@ bool Multibody::joint_is_loop(int joint) const {
 bool Multibody::uses_tree_fast_path() const {
   return impl_->uses_tree();
 }
+bool Multibody::needs_simbody_dynamics() const {
+  return impl_->has_mobilized_bodies && !impl_->tree;
+}
 void Multibody::set_tree_fast_path(bool enabled) {
   impl_->tree_enabled = enabled;
   impl_->bodies_fresh = false;

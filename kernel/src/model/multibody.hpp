@@ -109,6 +109,10 @@ class Multibody {
   /// without constraints whose joints are all free, hinge, slider or fixed, whose
   /// accelerations matched Simbody's at load, while no joint reactions are read.
   bool uses_tree_fast_path() const;
+  /// Whether Simbody must compute this system's dynamics: it has mobilized bodies and the fast
+  /// path could not be built for them (constraints, a joint it does not take, its check at
+  /// load failed), whatever set_tree_fast_path() says.
+  bool needs_simbody_dynamics() const;
   /// Switches the fast path off (Simbody's realize chain for everything) or back on where
   /// it is possible: for tests and benchmarks that compare the two.
   void set_tree_fast_path(bool enabled);

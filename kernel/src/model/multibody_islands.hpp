@@ -213,6 +213,7 @@ class MultibodyIslands {
   int ahead_ticks_ = 0;
   std::atomic<bool> ahead_stopped_{false};
   bool drives_by_part_ = false;
+  bool fast_path_possible_ = true;  // every part's trees can take it (the constructor)
 };
 
 }  // namespace s2sim::model
