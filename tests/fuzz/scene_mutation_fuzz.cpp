@@ -6,7 +6,14 @@
 /// input; a crash, a sanitizer report, an internal error (exit 1, anything but s2sim::Error)
 /// or a hang is a finding: its mutated scene is kept for a regression test.
 ///
+/// With `--threads N` (N ≥ 2) each case is run twice, on one thread and on N, every axis's
+/// `ref_voltage` input driven at its own value (robots ahead): the two must end with the same
+/// signals bit for bit, or fail with the same error (issue 17: the parallel step, its parts'
+/// components and running ahead are exact). A difference is a finding (exit 6).
+///
 ///   s2sim-fuzz-scenes --corpus scenes --corpus ../shared/simtwo-scenes --cases 2000 --jobs 2
+///   s2sim-fuzz-scenes --corpus tests/fuzz/seeds/parallel --corpus bench/peers/scenes
+///                     --threads 2 --sim-time 0.3 --cases 500
 
 #include "xml_mutator.hpp"
 
@@ -47,13 +54,14 @@ struct Options {
   fs::path work = fs::temp_directory_path() / "s2sim-fuzz";
   fs::path findings = "fuzz-findings";
   std::vector<fs::path> plugin_path;
+  int threads = 1;  // ≥ 2: each case also on that many threads, compared with one
 };
 
 [[noreturn]] void usage(const std::string& message) {
   std::cerr << "s2sim-fuzz-scenes: " << message
             << "\nusage: s2sim-fuzz-scenes --corpus DIR... [--cases N] [--seed S] [--jobs J]"
                " [--timeout-s T] [--sim-time S] [--work DIR] [--findings DIR]"
-               " [--plugin-path DIR]\n";
+               " [--plugin-path DIR] [--threads N]\n";
   std::exit(4);
 }
 
@@ -98,6 +106,8 @@ Options parse(int argc, char** argv) {
         o.findings = value();
       } else if (a == "--plugin-path") {
         o.plugin_path.push_back(value());
+      } else if (a == "--threads") {
+        o.threads = std::stoi(value());
       } else {
         usage("unknown option " + a);
       }
@@ -106,8 +116,11 @@ Options parse(int argc, char** argv) {
     }
   }
   if (o.corpus.empty()) usage("no --corpus scene");
-  if (o.cases < 0 || o.jobs < 1 || !(o.timeout_s > 0) || !(o.sim_time_s >= 0))
-    usage("cases >= 0, jobs >= 1, timeout > 0 and sim time >= 0");
+  if (o.cases < 0 || o.jobs < 1 || !(o.timeout_s > 0) || !(o.sim_time_s >= 0) || o.threads < 1)
+    usage("cases >= 0, jobs >= 1, timeout > 0, sim time >= 0 and threads >= 1");
+  if (o.threads > static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
+    usage("--threads " + std::to_string(o.threads) + " is more than this machine's " +
+          std::to_string(std::thread::hardware_concurrency()) + " hardware threads");
   return o;
 }
 
@@ -119,8 +132,15 @@ std::string read(const fs::path& p) {
 /// Copies the seed's small files (textures and the like are not needed headless) and mutates
 /// one of its XML files 1 to 3 times. Returns what was done.
 std::string make_case(const fs::path& seed, const fs::path& dir, s2sim::fuzz::Rng& rng) {
-  fs::remove_all(dir);
+  fs::remove_all(dir.parent_path());
   fs::create_directories(dir);
+  // A seed may name files in its parent folder (bench/peers/scenes/robots_4: ../diffbot.xml):
+  // they go beside the case's folder, unmutated, in a folder of the case's own (the cases
+  // running at once must not write each other's).
+  for (const auto& e : fs::directory_iterator(seed.parent_path()))
+    if (e.is_regular_file() && e.path().extension() == ".xml" && e.file_size() <= (1u << 20))
+      fs::copy_file(e.path(), dir.parent_path() / e.path().filename(),
+                    fs::copy_options::overwrite_existing);
   std::vector<fs::path> xml_files;
   for (const auto& e : fs::directory_iterator(seed)) {
     if (!e.is_regular_file() || e.file_size() > (1u << 20)) continue;
@@ -140,7 +160,72 @@ std::string make_case(const fs::path& seed, const fs::path& dir, s2sim::fuzz::Rn
   return log;
 }
 
-/// The child: load and run as the runner does, exit with the runner's codes.
+/// The exit code of a case whose run on several threads differs from its run on one.
+constexpr int kParallelDiffers = 6;
+
+/// One run of a case: the runner's exit code, its error, and every signal at its end.
+struct Run {
+  int code = 0;
+  std::string error;
+  std::vector<std::string> names;
+  std::vector<double> signals;
+};
+
+/// Loads and runs the case on `threads` threads, as the runner would; with the differential
+/// check, every `ref_voltage` input first driven at its own value (the same in every run).
+Run run_on(const fs::path& dir, const Options& o, int threads) {
+  Run run;
+  try {
+    s2sim::SimulationOptions so;
+    so.plugin_path = o.plugin_path;
+    so.threads = threads;
+    auto sim = s2sim::Simulation::load(dir, so);
+    if (o.threads > 1) {
+      std::size_t k = 0;
+      for (std::size_t i = 0; i < sim->input_count(); ++i) {
+        const std::string& name = sim->input_info(i).name;
+        // Each robot's wheels ahead (a left wheel turns the other way), at their own speeds.
+        if (name.size() > 12 && name.compare(name.size() - 12, 12, "/ref_voltage") == 0)
+          sim->set_input(i, (name.find("/left/") != std::string::npos ? -1.0 : 1.0) *
+                                (4.0 + 0.37 * static_cast<double>(k++ % 13)));
+      }
+    }
+    sim->run_until(o.sim_time_s);
+    for (std::size_t i = 0; i < sim->signal_count(); ++i) {
+      run.names.push_back(sim->signal_info(i).name);
+      run.signals.push_back(sim->signal(i));
+    }
+  } catch (const s2sim::Error& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    run.code = s2sim::exit_code(e.kind());
+    run.error = e.what();
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    run.code = 1;
+  } catch (...) {
+    std::fprintf(stderr, "internal error: unknown exception\n");
+    run.code = 1;
+  }
+  return run;
+}
+
+/// How the run on several threads differs from the one on one thread (empty: it does not).
+std::string difference(const Run& serial, const Run& parallel) {
+  if (serial.code != parallel.code || serial.error != parallel.error)
+    return "exit " + std::to_string(parallel.code) + " (" + parallel.error + ") against exit " +
+           std::to_string(serial.code) + " (" + serial.error + ") on one";
+  if (serial.names != parallel.names) return "other signals than on one thread";
+  for (std::size_t i = 0; i < serial.signals.size(); ++i) {
+    const std::string& name = serial.names[i];
+    if (std::memcmp(&serial.signals[i], &parallel.signals[i], sizeof(double)) != 0)
+      return "signal " + name + " is " + std::to_string(parallel.signals[i]) + ", " +
+             std::to_string(serial.signals[i]) + " on one thread";
+  }
+  return {};
+}
+
+/// The child: load and run as the runner does, exit with the runner's codes (and with
+/// kParallelDiffers when the run on several threads differs).
 [[noreturn]] void run_case(const fs::path& dir, const Options& o) {
   const int out = ::open((dir / "output.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   if (out >= 0) {
@@ -154,21 +239,15 @@ std::string make_case(const fs::path& seed, const fs::path& dir, s2sim::fuzz::Rn
   const rlimit as{limit, limit};
   ::setrlimit(RLIMIT_AS, &as);
 #endif
-  int code = 0;
-  try {
-    s2sim::SimulationOptions so;
-    so.plugin_path = o.plugin_path;
-    auto sim = s2sim::Simulation::load(dir, so);
-    sim->run_until(o.sim_time_s);
-  } catch (const s2sim::Error& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    code = s2sim::exit_code(e.kind());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "internal error: %s\n", e.what());
-    code = 1;
-  } catch (...) {
-    std::fprintf(stderr, "internal error: unknown exception\n");
-    code = 1;
+  Run serial = run_on(dir, o, 1);
+  int code = serial.code;
+  if (o.threads > 1 && code != 1) {
+    const Run parallel = run_on(dir, o, o.threads);
+    const std::string differs = difference(serial, parallel);
+    if (!differs.empty()) {
+      std::fprintf(stderr, "on %d threads: %s\n", o.threads, differs.c_str());
+      code = kParallelDiffers;
+    }
   }
   std::fflush(nullptr);
   ::_exit(code);
@@ -205,11 +284,11 @@ int main(int argc, char** argv) {
                         "-case" + std::to_string(r.index));
       fs::create_directories(o.findings);
       fs::remove_all(kept);
-      fs::copy(r.dir, kept, fs::copy_options::recursive);
+      fs::copy(r.dir.parent_path(), kept, fs::copy_options::recursive);
       std::ofstream(kept / "mutation.txt") << r.description << "\n" << outcome << "\n";
       findings.push_back(kept.string() + ": " + outcome + " (" + r.description + ")");
     }
-    fs::remove_all(r.dir);
+    fs::remove_all(r.dir.parent_path());
   };
 
   while (next < o.cases || !running.empty()) {
@@ -218,7 +297,7 @@ int main(int argc, char** argv) {
       r.index = next++;
       const fs::path& seed = o.corpus[static_cast<std::size_t>(r.index) % o.corpus.size()];
       s2sim::fuzz::Rng rng(o.seed * 0x100000001B3ull + static_cast<std::uint64_t>(r.index));
-      r.dir = o.work / ("case" + std::to_string(r.index));
+      r.dir = o.work / ("case" + std::to_string(r.index)) / "scene";
       r.description = seed_name(seed) + "/" + make_case(seed, r.dir, rng);
       std::fflush(nullptr);
       r.start = Clock::now();
@@ -250,9 +329,11 @@ int main(int argc, char** argv) {
                                                "refused: scene (exit 2)",
                                                "refused: plugin (exit 3)",
                                                "refused: usage (exit 4)",
-                                               "diverged, located (exit 5)"};
-          const bool known = code >= 0 && code <= 5;
-          finish(r, known ? kNames[code] : "exit " + std::to_string(code), !known || code == 1);
+                                               "diverged, located (exit 5)",
+                                               "differs on several threads (exit 6)"};
+          const bool known = code >= 0 && code <= kParallelDiffers;
+          finish(r, known ? kNames[code] : "exit " + std::to_string(code),
+                 !known || code == 1 || code == kParallelDiffers);
         }
       } else {
         ++k;
