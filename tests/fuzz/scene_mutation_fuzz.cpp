@@ -217,9 +217,12 @@ std::string difference(const Run& serial, const Run& parallel) {
   if (serial.names != parallel.names) return "other signals than on one thread";
   for (std::size_t i = 0; i < serial.signals.size(); ++i) {
     const std::string& name = serial.names[i];
-    if (std::memcmp(&serial.signals[i], &parallel.signals[i], sizeof(double)) != 0)
-      return "signal " + name + " is " + std::to_string(parallel.signals[i]) + ", " +
-             std::to_string(serial.signals[i]) + " on one thread";
+    if (std::memcmp(&serial.signals[i], &parallel.signals[i], sizeof(double)) != 0) {
+      char values[80];  // every digit: they may differ in the last bit only
+      std::snprintf(values, sizeof values, " is %.17g, %.17g on one thread", parallel.signals[i],
+                    serial.signals[i]);
+      return "signal " + name + values;
+    }
   }
   return {};
 }
