@@ -357,15 +357,20 @@ void MultibodyIslands::run_part(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
   if (me.run_starts_) me.hooks_->start(me.hooks_->context, p, thread == 0, 0);
-  me.load_part(part, me.substep_);
-  me.stages_(me.stages_context_, p, *part.multibody, thread == 0, me.substep_);
+  me.step_part(part, p, thread, me.substep_);
+}
+
+bool MultibodyIslands::step_part(Part& part, int p, int thread, int substep) {
+  load_part(part, substep);
+  const bool inside = stages_(stages_context_, p, *part.multibody, thread == 0, substep);
   // For the next substep's contact (its realize runs here, in parallel); split forces read
   // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
-  if (!me.split_forces_) me.copy_bodies(part);
-  if (me.substep_ == me.substeps() - 1) {
-    me.publish_tick(part);
-    if (me.hooks_) me.hooks_->end(me.hooks_->context, p);
+  if (!split_forces_) copy_bodies(part);
+  if (substep == substeps() - 1) {
+    publish_tick(part);
+    if (hooks_) hooks_->end(hooks_->context, p);
   }
+  return inside;
 }
 
 bool MultibodyIslands::run_ticks(int ticks, PartStages stages, void* context,
@@ -388,21 +393,13 @@ bool MultibodyIslands::run_ticks(int ticks, PartStages stages, void* context,
 void MultibodyIslands::run_part_ticks(void* self, int p, int thread) {
   auto& me = *static_cast<MultibodyIslands*>(self);
   Part& part = me.parts_[static_cast<std::size_t>(p)];
-  const int last = me.substeps() - 1;
   try {
     for (int k = 0; k < me.ahead_ticks_; ++k) {
       // Another part left its fence: what follows would be thrown away.
       if (me.ahead_stopped_.load(std::memory_order_relaxed)) return;
       me.hooks_->start(me.hooks_->context, p, thread == 0, k);
-      for (int substep = 0; substep <= last; ++substep) {
-        me.load_part(part, substep);
-        const bool inside =
-            me.stages_(me.stages_context_, p, *part.multibody, thread == 0, substep);
-        if (substep == last) {
-          me.publish_tick(part);
-          me.hooks_->end(me.hooks_->context, p);
-        }
-        if (!inside) {
+      for (int substep = 0; substep < me.substeps(); ++substep) {
+        if (!me.step_part(part, p, thread, substep)) {
           me.ahead_stopped_.store(true, std::memory_order_relaxed);
           return;
         }

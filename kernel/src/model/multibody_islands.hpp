@@ -157,6 +157,10 @@ class MultibodyIslands {
   };
   static void run_part(void* self, int part, int thread);
   static void run_part_ticks(void* self, int part, int thread);
+  /// Part `p`'s substep on `thread` (run_substep(), run_ticks()): its loads, the stages, its
+  /// bodies out, and on the tick's last substep its read-out and the hooks' `end`. Returns
+  /// what the stages returned.
+  bool step_part(Part& part, int p, int thread, int substep);
   /// The part's slice of the scene-wide loads (the tick's on its first substep, the contact
   /// wrenches on every one).
   void load_part(Part& part, int substep);
