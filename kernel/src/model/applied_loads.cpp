@@ -7,10 +7,48 @@
 
 namespace s2sim::model {
 
+namespace {
+
+/// A loop axis's body as the fast path has it (Simbody's stages are not realized there): its
+/// pose and velocity from the tree, for the current state.
+struct TreeBody {
+  SimTK::Rotation R;  // body to Ground
+  SimTK::Vec3 origin, angular, linear;
+};
+
+TreeBody tree_body(const Multibody::Impl& m, int body) {
+  update_tree_kinematics(m);  // kept while q and u are unchanged
+  const SimTK::MobilizedBodyIndex i = m.mobod_of_body[static_cast<std::size_t>(body)];
+  const Pose& pose = m.tree->pose(i);
+  const Twist& twist = m.tree->twist(i);
+  SimTK::Mat33 R;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      R(r, c) = pose.rotation.m[r][c];
+  return {SimTK::Rotation(R, true), to_simtk(pose.position), to_simtk(twist.angular_rad_s),
+          to_simtk(twist.linear_m_s)};
+}
+
+/// The rotation of body1 relative to body2 since load, about the axis (in (-pi, pi]).
+double loop_angle(const AxisImpl& ax, const SimTK::Rotation& R1, const SimTK::Rotation& R2) {
+  const SimTK::Rotation delta = (~R2 * R1) * ~ax.relative0;
+  const SimTK::Mat33& D = delta.asMat33();
+  const SimTK::Vec3 vee(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
+  return std::atan2(0.5 * SimTK::dot(vee, ax.axis_in_body2), (D.trace() - 1.0) / 2.0);
+}
+
+}  // namespace
+
 double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
   if (!m.axes[a].loop)
     return ax.sign * m.matter.getMobilizedBody(ax.mobod).getOneQ(s, ax.coordinate);
+  if (m.uses_tree()) {
+    const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
+    if (m.axes[a].linear)
+      return SimTK::dot(~b2.R * (b1.origin - b2.origin) - ax.offset0_in_body2, ax.axis_in_body2);
+    return loop_angle(ax, b1.R, b2.R);
+  }
   const auto& b1 = m.mobod(ax.body1);
   const auto& b2 = m.mobod(ax.body2);
   const SimTK::Rotation& R2 = b2.getBodyRotation(s);
@@ -18,16 +56,20 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
     const SimTK::Vec3 offset = ~R2 * (b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s));
     return SimTK::dot(offset - ax.offset0_in_body2, ax.axis_in_body2);
   }
-  // Rotation of body1 relative to body2 since load, about the axis (in (-pi, pi]).
-  const SimTK::Rotation delta = (~R2 * b1.getBodyRotation(s)) * ~ax.relative0;
-  const SimTK::Mat33& D = delta.asMat33();
-  const SimTK::Vec3 vee(D(2, 1) - D(1, 2), D(0, 2) - D(2, 0), D(1, 0) - D(0, 1));
-  return std::atan2(0.5 * SimTK::dot(vee, ax.axis_in_body2), (D.trace() - 1.0) / 2.0);
+  return loop_angle(ax, b1.getBodyRotation(s), R2);
 }
 
 double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
   if (!m.axes[a].loop) return ax.sign * s.getU()[m.axis_u[a]];  // u by index: no look-up
+  if (m.uses_tree()) {
+    const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
+    const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
+    if (m.axes[a].linear)
+      return SimTK::dot(b1.linear - b2.linear - SimTK::cross(b2.angular, b1.origin - b2.origin),
+                        axis_G);
+    return SimTK::dot(b1.angular - b2.angular, axis_G);
+  }
   const auto& b1 = m.mobod(ax.body1);
   const auto& b2 = m.mobod(ax.body2);
   const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
@@ -51,8 +93,26 @@ void apply_axis_load(const Multibody::Impl& mb, const SimTK::State& state, std::
     mobility_forces[mb.axis_u[a]] += ax.sign * f;
     return;
   }
-  const auto& b1 = mb.mobod(ax.body1);
-  const auto& b2 = mb.mobod(ax.body2);
+  const SimTK::MobilizedBodyIndex i1 = mb.mobod_of_body[static_cast<std::size_t>(ax.body1)];
+  const SimTK::MobilizedBodyIndex i2 = mb.mobod_of_body[static_cast<std::size_t>(ax.body2)];
+  if (mb.uses_tree()) {
+    // What the MobilizedBody calls below add (torque about the body origin, then force).
+    const TreeBody b1 = tree_body(mb, ax.body1), b2 = tree_body(mb, ax.body2);
+    const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
+    if (mb.axes[a].linear) {
+      const SimTK::Vec3 arm1 = b1.R * ax.anchor_in_body1;  // from body1's origin
+      const SimTK::Vec3 arm2 = b1.origin + arm1 - b2.origin;
+      const SimTK::Vec3 force = f * axis_G;
+      body_forces[i1] += SimTK::SpatialVec(SimTK::cross(arm1, force), force);
+      body_forces[i2] -= SimTK::SpatialVec(SimTK::cross(arm2, force), force);
+    } else {
+      body_forces[i1][0] += f * axis_G;
+      body_forces[i2][0] -= f * axis_G;
+    }
+    return;
+  }
+  const auto& b1 = mb.matter.getMobilizedBody(i1);
+  const auto& b2 = mb.matter.getMobilizedBody(i2);
   const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
   if (mb.axes[a].linear) {
     const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);

@@ -84,8 +84,13 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
       m.unit_body_forces.setToZero();
       m.unit_force = 0.0;
       apply_axis_load(m, s, static_cast<std::size_t>(a), 1.0, m.unit_body_forces, m.unit_force);
-      m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, g);
-      m.matter.multiplyByMInv(s, g, m.minv_column[a]);
+      if (m.uses_tree()) {
+        m.tree->generalized_forces(&m.unit_body_forces[0][0][0], g.updContiguousScalarData());
+        m.tree->solve(g.getContiguousScalarData(), m.minv_column[a].updContiguousScalarData());
+      } else {
+        m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, g);
+        m.matter.multiplyByMInv(s, g, m.minv_column[a]);
+      }
     }
     m.axis_mobility[a] = axis_dot(m, static_cast<std::size_t>(a), m.minv_column[a]);
     m.column_valid[a] = 1;

@@ -1,5 +1,6 @@
-// The small-tree fast path between Simbody's model and TreeDynamics: which systems take it,
-// the check at load that it gives Simbody's accelerations, and its use while stepping.
+// The small-tree fast path between Simbody's model and TreeDynamics (with LoopConstraints for
+// the loop joints): which systems take it, the check at load that it gives Simbody's
+// accelerations, and its use while stepping, projections included.
 #include "model/multibody_impl.hpp"
 
 #include <algorithm>
@@ -58,6 +59,33 @@ std::unique_ptr<TreeDynamics> tree_of(const Multibody::Impl& m) {
   }
 }
 
+/// The loop constraints from Simbody's, or null when one is not a Ball or a ConstantAngle (a
+/// Weld or a slider's loop: Simbody's).
+std::unique_ptr<LoopConstraints> loops_of(const Multibody::Impl& m) {
+  std::vector<LoopConstraints::Ball> balls;
+  std::vector<LoopConstraints::Angle> angles;
+  for (SimTK::ConstraintIndex c(0); c < m.matter.getNumConstraints(); ++c) {
+    const SimTK::Constraint& constraint = m.matter.getConstraint(c);
+    if (constraint.isDisabledByDefault()) continue;
+    if (SimTK::Constraint::Ball::isInstanceOf(constraint)) {
+      const auto& ball = SimTK::Constraint::Ball::downcast(constraint);
+      balls.push_back({ball.getBody1MobilizedBodyIndex(), ball.getBody2MobilizedBodyIndex(),
+                       from_simtk(ball.getDefaultPointOnBody1()),
+                       from_simtk(ball.getDefaultPointOnBody2())});
+    } else if (SimTK::Constraint::ConstantAngle::isInstanceOf(constraint)) {
+      const auto& angle = SimTK::Constraint::ConstantAngle::downcast(constraint);
+      angles.push_back({angle.getBaseMobilizedBodyIndex(), angle.getFollowerMobilizedBodyIndex(),
+                        from_simtk(SimTK::Vec3(angle.getDefaultBaseAxis())),
+                        from_simtk(SimTK::Vec3(angle.getDefaultFollowerAxis())),
+                        std::cos(angle.getDefaultAngle())});
+    } else {
+      return nullptr;
+    }
+  }
+  return std::make_unique<LoopConstraints>(std::move(balls), std::move(angles),
+                                           m.initial_state.getNU());
+}
+
 }  // namespace
 
 void update_tree_kinematics(const Multibody::Impl& m) {
@@ -77,12 +105,60 @@ void tree_accelerations(Multibody::Impl& m) {
   add_applied_loads(m, m.current, m.tree_body_loads, m.tree_mobility_forces);
   m.tree->accelerations(&m.tree_body_loads[0][0][0], data_of(m.tree_mobility_forces),
                         m.udot.updContiguousScalarData());
+  if (m.loops) m.loops->constrain_accelerations(*m.tree, m.udot.updContiguousScalarData());
+}
+
+void project_loop_speeds(Multibody::Impl& m) {
+  update_tree_kinematics(m);
+  // u is changed in place only when the errors call for it: updU() would drop what Simbody
+  // realized (nothing on the fast path, but a state it reads later must stay coherent).
+  const SimTK::Vector& u = m.current.getU();
+  std::copy(data_of(u), data_of(u) + u.size(), m.loop_u.begin());
+  if (m.loops->project_speeds(*m.tree, m.loop_u.data(), kLoopTolerance))
+    std::copy(m.loop_u.begin(), m.loop_u.end(), m.current.updU().updContiguousScalarData());
+}
+
+void project_loops(Multibody::Impl& m) {
+  // Positions first (Gauss-Newton on the errors, in the speeds' least change mapped by N), then
+  // the speeds at the new configuration: the order of Simbody's project(). As Simbody's, a
+  // projection starts when the errors exceed the tolerance, then aims ten times below it
+  // (its overshoot factor) and settles for the tolerance.
+  double target = kLoopTolerance;
+  for (int iteration = 0;; ++iteration) {
+    update_tree_kinematics(m);
+    if (!m.loops->position_correction(*m.tree, target, m.loop_du.data())) break;
+    if (iteration == kLoopIterations) {
+      const double error = m.loops->rms_position_error(*m.tree);
+      if (error <= kLoopTolerance) break;
+      std::ostringstream out;
+      out << "the loop joints could not be closed to " << kLoopTolerance << " (RMS error " << error
+          << " after " << kLoopIterations
+          << " corrections): the mechanism cannot be assembled here";
+      throw Error(ErrorKind::runtime, out.str());
+    }
+    target = kLoopTolerance * kLoopOvershoot;
+    SimTK::Vector& q = m.current.updQ();
+    double* qd = q.updContiguousScalarData();
+    calc_qdot(m, m.loop_du.data(), qd, m.loop_dq.data());
+    for (int i = 0; i < q.size(); ++i)
+      qd[i] += m.loop_dq[static_cast<std::size_t>(i)];
+    normalize_quaternions(m, qd);
+  }
+  project_loop_speeds(m);
 }
 
 void build_fast_path(Multibody::Impl& m) {
-  if (m.has_constraints || !m.own_n || !m.has_mobilized_bodies) return;
+  if (!m.own_n || !m.has_mobilized_bodies) return;
   std::unique_ptr<TreeDynamics> tree = tree_of(m);
   if (!tree) return;
+  std::unique_ptr<LoopConstraints> loops;
+  if (m.has_constraints) {
+    loops = loops_of(m);
+    if (!loops) return;
+    m.loop_u.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
+    m.loop_du.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
+    m.loop_dq.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
+  }
   const int nb = m.matter.getNumBodies(), nu = m.initial_state.getNU();
   m.tree_body_loads.resize(nb);
   m.tree_mobility_forces.resize(nu);
@@ -94,9 +170,12 @@ void build_fast_path(Multibody::Impl& m) {
     SimTK::Vector& u = m.current.updU();
     for (int i = 0; i < nu; ++i)
       u[i] = std::sin(1.7 * i + 0.3);
+    // With loops, a state on the constraints: redundant rows (a planar loop's) then agree.
+    if (loops) m.system.project(m.current, kLoopTolerance);
     realize_accelerations(m);
     const SimTK::Vector simbody = m.current.getUDot();
     m.tree = std::move(tree);
+    m.loops = std::move(loops);
     tree_accelerations(m);
     for (int i = 0; i < nu; ++i) {
       scale = std::max(scale, std::abs(simbody[i]));
@@ -106,12 +185,14 @@ void build_fast_path(Multibody::Impl& m) {
     // A system either side cannot solve at load (a singular mass matrix): Simbody's, which
     // reports it when stepping as it always did.
     m.tree.reset();
+    m.loops.reset();
     m.current = m.initial_state;
     return;
   }
   m.current = m.initial_state;
   if (!(worst <= 1e-9 * scale)) {
     m.tree.reset();
+    m.loops.reset();
     std::ostringstream out;
     out << "the small-tree fast path disagrees with Simbody by " << worst << " (relative to "
         << scale << "): Simbody computes this scene's dynamics";

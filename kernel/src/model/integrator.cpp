@@ -23,12 +23,9 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, i
   }
 }
 
-namespace {
-
 /// q' = N(q)·u for Free mobilizers (q = quaternion of R_FM then p_FM, u = ω then v, both in
 /// F: q̇_quat = ½·(0, ω)⊗q, ṗ = v) and mobilizers whose q' = u (Pin, Slider, Universal).
-void calc_qdot(const Multibody::Impl& m, const SimTK::Vector& u, const SimTK::Vector& q,
-               SimTK::Vector& qdot) {
+void calc_qdot(const Multibody::Impl& m, const double* u, const double* q, double* qdot) {
   for (const auto& [qi, ui] : m.direct_coordinates)
     qdot[qi] = u[ui];
   for (const auto& f : m.free_coordinates) {
@@ -43,7 +40,16 @@ void calc_qdot(const Multibody::Impl& m, const SimTK::Vector& u, const SimTK::Ve
   }
 }
 
-}  // namespace
+void normalize_quaternions(const Multibody::Impl& m, double* q) {
+  for (int first : m.quaternion_q) {
+    double n2 = 0;
+    for (int c = 0; c < 4; ++c)
+      n2 += q[first + c] * q[first + c];
+    const double inverse_norm = 1 / std::sqrt(n2);
+    for (int c = 0; c < 4; ++c)
+      q[first + c] *= inverse_norm;
+  }
+}
 
 int Multibody::substeps() const {
   return impl_->substeps;
@@ -129,7 +135,12 @@ void Multibody::solve_axes() {
   model::solve_axes(m, m.current, m.last_kick_s);
   // Loops: the speeds the drift integrates satisfy the velocity constraints (the solve above
   // works in the tree's coordinates), so that positions move by h times the speeds reported.
-  if (m.has_constraints && !m.rows.empty()) m.system.projectU(m.current, 1e-10);
+  if (!m.has_constraints || m.rows.empty()) return;
+  if (m.uses_tree()) {
+    project_loop_speeds(m);
+  } else {
+    m.system.projectU(m.current, kLoopTolerance);
+  }
 }
 
 void Multibody::drift(int substep) {
@@ -141,26 +152,26 @@ void Multibody::drift(int substep) {
   // and realize the Time stage of every subsystem each substep, for nothing that reads it.
   m.substep = substep + 1;
   if (!m.has_mobilized_bodies) return;  // updQ would invalidate Simbody's empty state
+  // (A State's q and u are contiguous: Simbody allocates them as one block per subsystem.)
   if (m.own_n) {
-    calc_qdot(m, s.getU(), s.getQ(), m.qdot);
+    calc_qdot(m, s.getU().getContiguousScalarData(), s.getQ().getContiguousScalarData(),
+              m.qdot.updContiguousScalarData());
   } else {
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);
   }
   SimTK::Vector& q = s.updQ();
   add_scaled(q, h, m.qdot);
-  for (int first : m.quaternion_q) {
-    double n2 = 0;
-    for (int c = 0; c < 4; ++c)
-      n2 += q[first + c] * q[first + c];
-    const double inverse_norm = 1 / std::sqrt(n2);
-    for (int c = 0; c < 4; ++c)
-      q[first + c] *= inverse_norm;
-  }
+  normalize_quaternions(m, q.updContiguousScalarData());
 }
 
 void Multibody::project() {
   Impl& m = *impl_;
-  if (m.has_constraints) m.system.project(m.current, 1e-10);
+  if (!m.has_constraints) return;
+  if (m.uses_tree()) {
+    project_loops(m);
+  } else {
+    m.system.project(m.current, kLoopTolerance);
+  }
 }
 
 void Multibody::finish_tick() {

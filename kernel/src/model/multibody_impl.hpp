@@ -3,6 +3,7 @@
 /// Multibody's Simbody objects and the helpers shared by model/'s translation units. Only
 /// kernel/src/model/ includes this header (it pulls in Simbody: C++17, see kernel/CMakeLists).
 
+#include "model/loop_constraints.hpp"
 #include "model/loose_bodies.hpp"
 #include "model/multibody.hpp"
 #include "model/tree_dynamics.hpp"
@@ -47,6 +48,12 @@ inline SimTK::Transform to_simtk(const Pose& p) {
 
 /// Gravity, m/s², along −Z: the SDK's one value.
 constexpr double kGravity = kGravity_m_s2;
+/// The loop constraints' projections: the RMS of the errors they leave (m, or the cosine's for
+/// an angle; m/s for the speeds), Simbody's project() accuracy, and the corrections a
+/// configuration gets before it is declared impossible.
+constexpr double kLoopTolerance = 1e-10;
+constexpr double kLoopOvershoot = 0.1;  // a projection aims at kLoopTolerance·kLoopOvershoot
+constexpr int kLoopIterations = 20;
 
 /// How an axis's value is realised.
 struct AxisImpl {
@@ -130,10 +137,12 @@ struct Multibody::Impl {
   double tick_s = 1e-3;
   int substeps = 1;
   // The small-tree fast path (tree_dynamics.hpp, fast_path.cpp): built at load when the system
-  // has no constraint and only Free, Pin, Slider and Weld mobilizers, and it agreed with
-  // Simbody on a probe state; used while no component reads joint reactions (those come from
-  // Simbody's Acceleration stage) and unless a test switched it off.
+  // has only Free, Pin, Slider and Weld mobilizers and its constraints (if any) are balls and
+  // constant angles (loop_constraints.hpp), and it agreed with Simbody on a probe state; used
+  // while no component reads joint reactions (those come from Simbody's Acceleration stage)
+  // and unless a test switched it off.
   std::unique_ptr<TreeDynamics> tree;
+  std::unique_ptr<LoopConstraints> loops;  // with the tree, when the system has constraints
   bool tree_enabled = true;
   bool uses_tree() const { return tree && tree_enabled && !reactions_wanted; }
 
@@ -226,6 +235,7 @@ struct Multibody::Impl {
   SimTK::Vector udot, qdot;
   SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the fast path's loads (uses_tree)
   SimTK::Vector tree_mobility_forces;
+  std::vector<double> loop_u, loop_du, loop_dq;  // the loop projections' (fast_path.cpp)
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
 
   const SimTK::State& state() const { return current; }
@@ -280,6 +290,15 @@ void build_fast_path(Multibody::Impl& m);
 void update_tree_kinematics(const Multibody::Impl& m);
 /// m.udot for this substep's loads, through the tree (uses_tree()).
 void tree_accelerations(Multibody::Impl& m);
+/// The fast path's projections onto the loop constraints (uses_tree() with m.loops), in place
+/// of Simbody's projectU() and project() at the same accuracy: the speeds; the positions then
+/// the speeds (throws s2sim::Error, runtime, when the loops cannot be closed).
+void project_loop_speeds(Multibody::Impl& m);
+void project_loops(Multibody::Impl& m);
+/// q' = N(q)·u (own_n: every mobilizer Free or with q' = u), over raw arrays.
+void calc_qdot(const Multibody::Impl& m, const double* u, const double* q, double* qdot);
+/// Normalises each quaternion of q (Free mobilizers).
+void normalize_quaternions(const Multibody::Impl& m, double* q);
 /// A direction fixed in a mobilized body, in Ground: through the tree or Simbody (`state`
 /// realized to Position then).
 SimTK::Vec3 to_ground(const Multibody::Impl& m, const SimTK::State& state,

@@ -332,6 +332,28 @@ void TreeDynamics::substitute(const Tree& t, const double* b, double* x) const {
   cholesky_substitute(&mass_[static_cast<std::size_t>(t.matrix)], t.u_end - t.u_begin, b, x);
 }
 
+void TreeDynamics::generalized_forces(const double* body_loads, double* f) {
+  const std::size_t n = bodies_.size();
+  for (std::size_t i = 1; i < n; ++i) {
+    const double* l = body_loads + 6 * i;
+    subtree_load_[i] = {{l[0], l[1], l[2]}, {l[3], l[4], l[5]}};  // (torque, force)
+  }
+  // Tip to base: each subtree's load about its body's origin, then each speed's share.
+  for (std::size_t i = n - 1; i >= 1; --i) {
+    const Body& b = bodies_[i];
+    const Wrench& load = subtree_load_[i];
+    for (int k = b.u0; k < b.u0 + b.dofs; ++k) {
+      const Twist& h = column_[static_cast<std::size_t>(k)];
+      f[k] = dot(h.angular_rad_s, load.torque_Nm) + dot(h.linear_m_s, load.force_N);
+    }
+    const auto p = static_cast<std::size_t>(b.parent);
+    if (p == 0) continue;
+    subtree_load_[p].force_N += load.force_N;
+    subtree_load_[p].torque_Nm +=
+        load.torque_Nm + cross(pose_[i].position - pose_[p].position, load.force_N);
+  }
+}
+
 void TreeDynamics::solve(const double* g, double* x) const {
   for (const Tree& t : trees_) {
     bool zero = true;

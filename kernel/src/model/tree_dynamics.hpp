@@ -51,6 +51,24 @@ class TreeDynamics {
   void accelerations(const double* body_loads, const double* mobility_forces, double* udot);
   /// x = M^-1·g with the mass matrix of the last accelerations() (its configuration).
   void solve(const double* g, double* x) const;
+  /// f = Jᵀ·loads: the generalized forces of body loads (six numbers per body as in
+  /// accelerations(), Ground's first); after kinematics().
+  void generalized_forces(const double* body_loads, double* f);
+
+  /// The structure, for the loop constraints (loop_constraints.hpp): a body's parent (-1 for
+  /// Ground), its first speed and its number of speeds.
+  int parent(int body) const { return bodies_[static_cast<std::size_t>(body)].parent; }
+  int first_speed(int body) const { return bodies_[static_cast<std::size_t>(body)].u0; }
+  int speed_count(int body) const { return bodies_[static_cast<std::size_t>(body)].dofs; }
+  int speeds() const { return nu_; }
+  /// The velocity (ω, v of its origin, Ground) of the body owning speed k per unit of that
+  /// speed, its parent held; after kinematics().
+  const Twist& column(int k) const { return column_[static_cast<std::size_t>(k)]; }
+  /// A body's acceleration (α, a of its origin, Ground) with every u' zero: the
+  /// velocity-product terms; after accelerations().
+  const Twist& bias_acceleration(int body) const {
+    return bias_acceleration_[static_cast<std::size_t>(body)];
+  }
 
  private:
   struct Body : BodySpec {

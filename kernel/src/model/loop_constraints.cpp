@@ -1,0 +1,216 @@
+// The loop joints' constraints in the tree's coordinates (loop_constraints.hpp; equations in
+// docs/models/multibody.md, "Loops on the fast path").
+#include "model/loop_constraints.hpp"
+
+#include "model/cholesky.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace s2sim::model {
+namespace {
+
+/// Relative size below which a pivot of the rows' system counts as a redundant row.
+constexpr double kRankTolerance = 1e-12;
+
+/// The acceleration of a point of a body at p (Ground) with every u' zero.
+Vec3 point_bias(const TreeDynamics& tree, int body, const Vec3& p) {
+  const Twist& A = tree.bias_acceleration(body);
+  const Vec3& w = tree.twist(body).angular_rad_s;
+  const Vec3 r = p - tree.pose(body).position;
+  return A.linear_m_s + cross(A.angular_rad_s, r) + cross(w, cross(w, r));
+}
+
+double rms(const std::vector<double>& e) {
+  double sum = 0;
+  for (double v : e)
+    sum += v * v;
+  return e.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(e.size()));
+}
+
+}  // namespace
+
+LoopConstraints::LoopConstraints(std::vector<Ball> balls, std::vector<Angle> angles, int speeds)
+    : balls_(std::move(balls)), angles_(std::move(angles)), nu_(speeds) {
+  rows_ = 3 * static_cast<int>(balls_.size()) + static_cast<int>(angles_.size());
+  const auto rows = static_cast<std::size_t>(rows_);
+  const auto nu = static_cast<std::size_t>(nu_);
+  points_.assign(balls_.size(), RowPoint{});
+  base_axis_.assign(angles_.size(), Vec3{});
+  follower_axis_.assign(angles_.size(), Vec3{});
+  error_.assign(rows, 0.0);
+  G_.assign(rows * nu, 0.0);
+  minv_gt_.assign(rows * nu, 0.0);
+  A_.assign(rows * rows, 0.0);
+  rhs_.assign(rows, 0.0);
+  x_.assign(rows, 0.0);
+  weight_.assign(nu, 1.0);
+  order_.assign(rows, 0);
+}
+
+void LoopConstraints::place(const TreeDynamics& tree) {
+  int row = 0;
+  for (std::size_t i = 0; i < balls_.size(); ++i) {
+    const Ball& b = balls_[i];
+    RowPoint& p = points_[i];
+    p.p1 = tree.pose(b.body1) * b.point1_B1;
+    p.p2 = tree.pose(b.body2) * b.point2_B2;
+    const Vec3 e = p.p2 - p.p1;
+    error_[static_cast<std::size_t>(row++)] = e.x;
+    error_[static_cast<std::size_t>(row++)] = e.y;
+    error_[static_cast<std::size_t>(row++)] = e.z;
+  }
+  for (std::size_t i = 0; i < angles_.size(); ++i) {
+    const Angle& a = angles_[i];
+    base_axis_[i] = tree.pose(a.base).rotation * a.axis_base_B;
+    follower_axis_[i] = tree.pose(a.follower).rotation * a.axis_follower_F;
+    error_[static_cast<std::size_t>(row++)] = dot(base_axis_[i], follower_axis_[i]) - a.cos_angle;
+  }
+}
+
+double LoopConstraints::rms_position_error(const TreeDynamics& tree) {
+  place(tree);
+  return rms(error_);
+}
+
+void LoopConstraints::add_point_row(const TreeDynamics& tree, int row, int body, const Vec3& p,
+                                    const Vec3& direction, double sign) {
+  double* g = &G_[static_cast<std::size_t>(row * nu_)];
+  for (int a = body; a > 0; a = tree.parent(a)) {
+    const Vec3 r = p - tree.pose(a).position;
+    for (int k = tree.first_speed(a); k < tree.first_speed(a) + tree.speed_count(a); ++k) {
+      const Twist& h = tree.column(k);
+      g[k] += sign * dot(direction, h.linear_m_s + cross(h.angular_rad_s, r));
+    }
+  }
+}
+
+void LoopConstraints::add_angular_row(const TreeDynamics& tree, int row, int body,
+                                      const Vec3& direction, double sign) {
+  double* g = &G_[static_cast<std::size_t>(row * nu_)];
+  for (int a = body; a > 0; a = tree.parent(a))
+    for (int k = tree.first_speed(a); k < tree.first_speed(a) + tree.speed_count(a); ++k)
+      g[k] += sign * dot(direction, tree.column(k).angular_rad_s);
+}
+
+void LoopConstraints::jacobian(const TreeDynamics& tree) {
+  std::fill(G_.begin(), G_.end(), 0.0);
+  int row = 0;
+  const Vec3 unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (std::size_t i = 0; i < balls_.size(); ++i, row += 3)
+    for (int c = 0; c < 3; ++c) {  // v(p2) − v(p1)
+      add_point_row(tree, row + c, balls_[i].body2, points_[i].p2, unit[c], 1.0);
+      add_point_row(tree, row + c, balls_[i].body1, points_[i].p1, unit[c], -1.0);
+    }
+  for (std::size_t i = 0; i < angles_.size(); ++i, ++row) {  // (ω_F − ω_B)·(f × b)
+    const Vec3 n = cross(follower_axis_[i], base_axis_[i]);
+    add_angular_row(tree, row, angles_[i].follower, n, 1.0);
+    add_angular_row(tree, row, angles_[i].base, n, -1.0);
+  }
+}
+
+void LoopConstraints::solve_rows(const std::vector<double>& right, const double* weight) {
+  for (int r = 0; r < rows_; ++r)
+    for (int c = 0; c <= r; ++c) {
+      const double* gr = &G_[static_cast<std::size_t>(r * nu_)];
+      const double* wc = &right[static_cast<std::size_t>(c * nu_)];
+      double sum = 0;
+      if (weight != nullptr) {
+        for (int k = 0; k < nu_; ++k)
+          sum += gr[k] * weight[k] * wc[k];
+      } else {
+        for (int k = 0; k < nu_; ++k)
+          sum += gr[k] * wc[k];
+      }
+      A_[static_cast<std::size_t>(r * rows_ + c)] = sum;
+      A_[static_cast<std::size_t>(c * rows_ + r)] = sum;
+    }
+  semidefinite_solve(A_.data(), rows_, rhs_.data(), x_.data(), order_.data(), kRankTolerance);
+}
+
+void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) {
+  place(tree);
+  jacobian(tree);
+  for (int r = 0; r < rows_; ++r)
+    tree.solve(&G_[static_cast<std::size_t>(r * nu_)],
+               &minv_gt_[static_cast<std::size_t>(r * nu_)]);
+  // The right side: G·u'_free plus the constraints' accelerations at u' = 0 (Ġ·u).
+  int row = 0;
+  for (std::size_t i = 0; i < balls_.size(); ++i) {
+    const Vec3 bias = point_bias(tree, balls_[i].body2, points_[i].p2) -
+                      point_bias(tree, balls_[i].body1, points_[i].p1);
+    rhs_[static_cast<std::size_t>(row++)] = bias.x;
+    rhs_[static_cast<std::size_t>(row++)] = bias.y;
+    rhs_[static_cast<std::size_t>(row++)] = bias.z;
+  }
+  for (std::size_t i = 0; i < angles_.size(); ++i) {
+    const Angle& a = angles_[i];
+    const Vec3& f = follower_axis_[i];
+    const Vec3& b = base_axis_[i];
+    const Vec3& w_F = tree.twist(a.follower).angular_rad_s;
+    const Vec3& w_B = tree.twist(a.base).angular_rad_s;
+    const Vec3 alpha = tree.bias_acceleration(a.follower).angular_rad_s -
+                       tree.bias_acceleration(a.base).angular_rad_s;
+    const Vec3 n_rate = cross(cross(w_F, f), b) + cross(f, cross(w_B, b));
+    rhs_[static_cast<std::size_t>(row++)] = dot(alpha, cross(f, b)) + dot(w_F - w_B, n_rate);
+  }
+  for (int r = 0; r < rows_; ++r) {
+    const double* g = &G_[static_cast<std::size_t>(r * nu_)];
+    double sum = 0;
+    for (int k = 0; k < nu_; ++k)
+      sum += g[k] * udot[k];
+    rhs_[static_cast<std::size_t>(r)] += sum;
+  }
+  solve_rows(minv_gt_, nullptr);
+  for (int r = 0; r < rows_; ++r) {
+    const double lambda = x_[static_cast<std::size_t>(r)];
+    if (lambda == 0.0) continue;
+    const double* y = &minv_gt_[static_cast<std::size_t>(r * nu_)];
+    for (int k = 0; k < nu_; ++k)
+      udot[k] -= lambda * y[k];
+  }
+}
+
+bool LoopConstraints::project_speeds(const TreeDynamics& tree, double* u, double tolerance) {
+  place(tree);
+  jacobian(tree);
+  for (int r = 0; r < rows_; ++r) {
+    const double* g = &G_[static_cast<std::size_t>(r * nu_)];
+    double sum = 0;
+    for (int k = 0; k < nu_; ++k)
+      sum += g[k] * u[k];
+    rhs_[static_cast<std::size_t>(r)] = sum;
+  }
+  if (!(rms(rhs_) > tolerance)) return false;
+  // Simbody's weights on the change (SimbodyMatterSubsystemRep::projectU): a speed above 1
+  // may change in proportion to itself, |Eu·du| least with Eu_k = min(1, 1/|u_k|); the step
+  // is D·Gᵀ·y with D = Eu⁻².
+  for (int k = 0; k < nu_; ++k)
+    weight_[static_cast<std::size_t>(k)] = std::max(1.0, u[k] * u[k]);
+  solve_rows(G_, weight_.data());
+  for (int r = 0; r < rows_; ++r) {
+    const double y = x_[static_cast<std::size_t>(r)];
+    const double* g = &G_[static_cast<std::size_t>(r * nu_)];
+    for (int k = 0; k < nu_; ++k)
+      u[k] -= y * weight_[static_cast<std::size_t>(k)] * g[k];
+  }
+  return true;
+}
+
+bool LoopConstraints::position_correction(const TreeDynamics& tree, double tolerance, double* du) {
+  place(tree);
+  if (!(rms(error_) > tolerance)) return false;
+  jacobian(tree);
+  std::copy(error_.begin(), error_.end(), rhs_.begin());
+  solve_rows(G_, nullptr);
+  std::fill(du, du + nu_, 0.0);
+  for (int r = 0; r < rows_; ++r) {
+    const double y = x_[static_cast<std::size_t>(r)];
+    const double* g = &G_[static_cast<std::size_t>(r * nu_)];
+    for (int k = 0; k < nu_; ++k)
+      du[k] -= y * g[k];
+  }
+  return true;
+}
+
+}  // namespace s2sim::model

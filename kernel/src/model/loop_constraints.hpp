@@ -1,0 +1,88 @@
+#pragma once
+/// \file
+/// The loop joints of the fast path (issue 17): the constraints that close a loop (a ball, a
+/// ball with one or two constant angles: the ball, universal and hinge loop joints), in the
+/// tree's coordinates, without Simbody. Simbody's loop forward dynamics rebuilds G·M⁻¹·Gᵀ
+/// column by column through its realize chain every step: nine tenths of a four-bar's step
+/// (docs/benchmarks.md). Here the same equations run over plain arrays:
+///   accelerations  u' = u'_free − M⁻¹·Gᵀ·λ,  (G·M⁻¹·Gᵀ)·λ = G·u'_free + Ġ·u;
+///   speeds         u ← u − D·Gᵀ·(G·D·Gᵀ)⁺·G·u, D_kk = max(1, u_k²)   (Simbody's projectU);
+///   positions      Δu = −Gᵀ·(G·Gᵀ)⁺·perr, q ← q + N·Δu, repeated (its projectQ, Gauss-Newton);
+/// each projection only when the RMS of the errors exceeds the tolerance, as Simbody's.
+/// Redundant rows (a planar loop's out-of-plane equations) are solved by a pivoted Cholesky
+/// (cholesky.hpp). Conventions are TreeDynamics's (body 0 is Ground).
+
+#include "model/tree_dynamics.hpp"
+
+#include <s2sim/math.hpp>
+
+#include <vector>
+
+namespace s2sim::model {
+
+class LoopConstraints {
+ public:
+  /// A point of body1 held on a point of body2 (three equations): Simbody's Constraint::Ball.
+  struct Ball {
+    int body1 = 0, body2 = 0;
+    Vec3 point1_B1, point2_B2;  // body frames
+  };
+  /// An axis of `follower` kept at a constant angle to an axis of `base` (one equation):
+  /// Simbody's Constraint::ConstantAngle.
+  struct Angle {
+    int base = 0, follower = 0;
+    Vec3 axis_base_B, axis_follower_F;  // unit, body frames
+    double cos_angle = 0;
+  };
+
+  /// `speeds`: the tree's (TreeDynamics::speeds()).
+  LoopConstraints(std::vector<Ball> balls, std::vector<Angle> angles, int speeds);
+
+  int rows() const { return rows_; }
+  /// The RMS of the position errors (m for a ball, the cosine's for an angle); after the
+  /// tree's kinematics().
+  double rms_position_error(const TreeDynamics& tree);
+  /// Corrects the tree's accelerations `udot` (of its last accelerations(), whose mass matrix
+  /// factor it uses) by the constraint forces.
+  void constrain_accelerations(TreeDynamics& tree, double* udot);
+  /// Projects the speeds `u` (those of the tree's last kinematics()) onto G·u = 0 by the
+  /// least change, when the RMS of G·u exceeds `tolerance`; returns whether it did.
+  bool project_speeds(const TreeDynamics& tree, double* u, double tolerance);
+  /// When the RMS of the position errors exceeds `tolerance`: the least speed change `du`
+  /// whose first-order effect removes them (the caller moves q by N·du), and true.
+  bool position_correction(const TreeDynamics& tree, double tolerance, double* du);
+
+ private:
+  struct RowPoint {  // a ball: the two points in Ground
+    Vec3 p1, p2;
+  };
+  std::vector<Ball> balls_;
+  std::vector<Angle> angles_;
+  int rows_ = 0, nu_ = 0;
+  // Scratch, sized at construction.
+  std::vector<RowPoint> points_;
+  std::vector<Vec3> base_axis_, follower_axis_;  // per angle, in Ground
+  std::vector<double> error_;                    // rows
+  std::vector<double> G_;                        // rows x nu, row-major
+  std::vector<double> minv_gt_;                  // rows x nu: row r is M⁻¹·(row r of G)
+  std::vector<double> A_, rhs_, x_;              // the rows' system
+  std::vector<double> weight_;                   // nu: the speed projection's weights
+  std::vector<int> order_;
+
+  /// The points and axes in Ground and the position errors; after kinematics().
+  void place(const TreeDynamics& tree);
+  /// G at the tree's configuration; after place().
+  void jacobian(const TreeDynamics& tree);
+  /// Adds `sign` times the velocity of a point of `body` (at p in Ground) along `direction`
+  /// per unit speed to row `row` of G, for every speed that moves the body.
+  void add_point_row(const TreeDynamics& tree, int row, int body, const Vec3& p,
+                     const Vec3& direction, double sign);
+  /// Adds `sign` times the body's angular velocity along `direction` per unit speed.
+  void add_angular_row(const TreeDynamics& tree, int row, int body, const Vec3& direction,
+                       double sign);
+  /// Solves (G·D·R)·x = rhs_ into x_: R = Gᵀ (`right` G_) or M⁻¹·Gᵀ (minv_gt_), D the diagonal
+  /// `weight` (null: the identity).
+  void solve_rows(const std::vector<double>& right, const double* weight);
+};
+
+}  // namespace s2sim::model

@@ -1,0 +1,228 @@
+// Loop joints on the fast path (kernel/src/model/loop_constraints.cpp) against Simbody's loop
+// forward dynamics and projections: every kind of constraint row (a ball's three, a constant
+// angle's one), on trees hinged to the world and on a free root, with drives and friction on
+// the loop joint's own axis; and the semidefinite solve of redundant rows (cholesky.hpp).
+#include "fast_path_comparison.hpp"
+#include "model/cholesky.hpp"
+#include "model/multibody.hpp"
+#include "model_runner.hpp"
+#include "scene_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace s2sim::model {
+namespace {
+
+using scene::JointType;
+
+/// A free chassis carrying a parallelogram: two legs hinged under it, a foot bar hinged to
+/// both (the second foot hinge closes the loop: a ball and two constant angles).
+scene::Scene walker() {
+  scene::Scene s;
+  const Vec3 y{0, 1, 0};
+  s.bodies.push_back(test::box("chassis", 4.0, {0.6, 0.3, 0.1}, {0, 0, 1.0},
+                               test::rotation_about({1, 2, 3}, 0.2)));
+  s.bodies[0].com_m = {0.02, -0.01, 0.01};
+  const Mat3 R = s.bodies[0].pose.rotation;
+  const Vec3 c = s.bodies[0].pose.position;
+  auto at = [&](Vec3 local) { return c + R * local; };
+  s.bodies.push_back(test::box("front", 0.5, {0.02, 0.02, 0.4}, at({0.2, 0, -0.25}), R));
+  s.bodies.push_back(test::box("back", 0.5, {0.02, 0.02, 0.4}, at({-0.2, 0, -0.25}), R));
+  s.bodies.push_back(test::box("foot", 0.8, {0.4, 0.04, 0.02}, at({0, 0, -0.45}), R));
+  const Vec3 axis = R * y;
+  s.joints.push_back(test::joint("hip_front", JointType::hinge, 1, 0, at({0.2, 0, -0.05}), axis));
+  s.joints.push_back(test::joint("hip_back", JointType::hinge, 2, 0, at({-0.2, 0, -0.05}), axis));
+  s.joints.push_back(test::joint("ankle_front", JointType::hinge, 3, 1, at({0.2, 0, -0.45}), axis));
+  s.joints.push_back(test::joint("ankle_back", JointType::hinge, 3, 2, at({-0.2, 0, -0.45}), axis));
+  test::add_robot(s, "walker");
+  return s;
+}
+
+/// A spatial loop closed by a ball: four links on skew hinges from the world, the last one's
+/// tip held at a point of the world (three equations, one degree of freedom left).
+scene::Scene spatial_ball_loop() {
+  scene::Scene s;
+  s.bodies.push_back(test::box("crank", 0.6, {0.02, 0.3, 0.02}, {0, 0.15, 2}));
+  s.bodies.push_back(test::box("link1", 0.4, {0.3, 0.02, 0.02}, {0.15, 0.3, 2}));
+  s.bodies.push_back(test::box("link2", 0.4, {0.02, 0.02, 0.3}, {0.3, 0.3, 1.85}));
+  s.bodies.push_back(test::box("link3", 0.7, {0.02, 0.3, 0.02}, {0.3, 0.15, 1.7}));
+  s.joints.push_back(test::joint("crank", JointType::hinge, 0, -1, {0, 0, 2}, {1, 0, 0}));
+  s.joints.push_back(test::joint("elbow", JointType::hinge, 1, 0, {0, 0.3, 2}, {0, 1, 1}));
+  s.joints.push_back(test::joint("wrist", JointType::hinge, 2, 1, {0.3, 0.3, 2}, {1, 0.4, 1}));
+  s.joints.push_back(test::joint("knee", JointType::hinge, 3, 2, {0.3, 0.3, 1.7}, {1, 0, 0.3}));
+  s.joints.push_back(test::joint("tip", JointType::ball, 3, -1, {0.3, 0, 1.7}));
+  test::add_robot(s, "linkage");
+  return s;
+}
+
+/// Spin the first axis up: the velocity-product terms must count.
+void spin_first_axis(Multibody& mb, int tick) {
+  mb.applied_axis_forces()[0] += tick < 150 ? 4.0 : 0.0;
+}
+
+/// A drive on every loop axis and on the first axis (the implicit solve's rows: the loop
+/// axes' columns through the tree), and Coulomb friction on the loop axes.
+void drive_loop_axes(Multibody& mb, int tick) {
+  *mb.axis_drive_count() = 0;
+  for (std::size_t a = 0; a < mb.axes().size(); ++a) {
+    if (!mb.axes()[a].loop && a != 0) continue;
+    const double f = 0.4 * std::sin(0.01 * tick + static_cast<double>(a));
+    mb.axis_drives()[(*mb.axis_drive_count())++] =
+        AxisDrive{static_cast<std::int32_t>(a), f, 0.05, -0.3, 0.3};
+    if (mb.axes()[a].loop) mb.applied_axis_friction()[a] = 0.02;
+  }
+}
+
+int loop_axes(const Multibody& mb) {
+  int n = 0;
+  for (const auto& a : mb.axes())
+    n += a.loop;
+  return n;
+}
+
+// The tolerance on planar loops: the projections are Simbody's (the same errors, weights,
+// thresholds and Newton steps), so the ticks agree to rounding.
+constexpr test::FastPathTolerance kLoopTolerance{1e-13, 1e-11};
+
+TEST(LoopConstraints, FourBarWithDrivenLoopAxisMatchesSimbodysLoopDynamics) {
+  test::Runner probe(test::four_bar());
+  EXPECT_EQ(loop_axes(probe.mb), 1);
+  const double worst = test::worst_relative_difference(test::four_bar(), 400, kLoopTolerance,
+                                                       [](Multibody& mb, int tick) {
+                                                         drive_loop_axes(mb, tick);
+                                                         spin_first_axis(mb, tick);
+                                                       });
+  std::printf("four-bar: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-11);
+}
+
+TEST(LoopConstraints, FreeWalkerParallelogramMatchesSimbody) {
+  test::Runner probe(walker());
+  EXPECT_EQ(loop_axes(probe.mb), 1);
+  const double worst =
+      test::worst_relative_difference(walker(), 400, kLoopTolerance, drive_loop_axes);
+  std::printf("walker: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-11);
+}
+
+// On a spatial loop the two position projections take the same first Newton step, and second
+// steps that differ (here the second step is 1.6e-8 long, and the two end points are up to
+// 1e-8 apart along the constraint manifold, both within 1e-10 of it). Planar loops agree to
+// rounding (above). So the poses are compared to 5e-8 per tick here, and the loop's closure is
+// checked on its own: the last link's tip stays on its point of the world.
+TEST(LoopConstraints, SpatialBallLoopMatchesSimbody) {
+  test::Runner probe(spatial_ball_loop());
+  EXPECT_EQ(loop_axes(probe.mb), 0);  // a ball has no axis
+  const double worst =
+      test::worst_relative_difference(spatial_ball_loop(), 400, {5e-8, 1e-6}, spin_first_axis);
+  std::printf("spatial ball loop: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-4);
+  test::Runner r(spatial_ball_loop());
+  ASSERT_TRUE(r.mb.uses_tree_fast_path());
+  const Vec3 tip_in_link3 =
+      r.poses[4].rotation.transposed() * (Vec3{0.3, 0, 1.7} - r.poses[4].position);
+  double worst_gap = 0, fastest = 0;
+  for (int tick = 0; tick < 400; ++tick) {
+    test::load_everywhere(r.mb, tick);
+    spin_first_axis(r.mb, tick);
+    r.step();
+    worst_gap = std::max(worst_gap, norm(r.poses[4] * tip_in_link3 - Vec3{0.3, 0, 1.7}));
+    fastest = std::max(fastest, std::abs(r.vel[0]));
+  }
+  std::printf("spatial ball loop: the tip's worst gap %.3g m\n", worst_gap);
+  EXPECT_GT(fastest, 1.0);
+  EXPECT_LT(worst_gap, 2e-10);
+}
+
+// Two seconds of a driven four-bar, each side on its own (not re-synchronised): the fast path
+// follows Simbody's trajectory, and its loop stays closed.
+TEST(LoopConstraints, TwoSecondsOfADrivenFourBarFollowSimbodysTrajectory) {
+  test::Runner fast(test::four_bar()), simbody(test::four_bar());
+  simbody.mb.set_tree_fast_path(false);
+  ASSERT_TRUE(fast.mb.uses_tree_fast_path());
+  double worst = 0, worst_closure = 0, travel = 0;
+  for (int tick = 0; tick < 2000; ++tick) {
+    for (test::Runner* r : {&fast, &simbody}) {
+      r->mb.applied_axis_forces()[0] = tick < 300 ? 3.0 : -0.5;
+      drive_loop_axes(r->mb, tick);
+    }
+    fast.step();
+    simbody.step();
+    for (int b = 1; b < fast.mb.body_count(); ++b)
+      worst = std::max(worst, norm(fast.poses[b].position - simbody.poses[b].position));
+    // The loop axis D reads the coupler relative to crank2: minus crank2's angle.
+    worst_closure = std::max(worst_closure, std::abs(fast.pos[3] + fast.pos[1]));
+    travel = std::max(travel, std::abs(fast.pos[0]));
+  }
+  std::printf("four-bar, 2 s: worst position difference %.3g m, loop %.3g rad\n", worst,
+              worst_closure);
+  EXPECT_GT(travel, 0.5);
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_LT(worst_closure, 1e-12);
+}
+
+TEST(LoopConstraints, SlidersLoopKeepsSimbody) {
+  // A slider closing the loop is a constant orientation and a point on a line: Simbody's. (The
+  // four-bar's loop is B, met last: crank2 is reached through the coupler first.)
+  scene::Scene s = test::four_bar();
+  s.joints[1].type = JointType::slider;
+  s.joints[1].axis1 = {1, 0, 0};
+  test::Runner r(s);
+  EXPECT_FALSE(r.mb.uses_tree_fast_path());
+  r.step(10);
+}
+
+// Redundant rows: a planar loop's five equations have rank two. The solve leaves the redundant
+// unknowns at zero and still solves A·x = b exactly for b in A's range.
+TEST(SemidefiniteSolve, RankDeficientSystemsAreSolvedOnTheirRange) {
+  // G: 5 x 3 of rank 2 (rows 1, 3, 4 combinations of rows 0 and 2).
+  const double G[5][3] = {
+      {0.4, -0.4, 0.0}, {0.8, -0.8, 0.0}, {0.5, 0.0, 0.5}, {0.9, -0.4, 0.5}, {-0.1, -0.4, -0.5}};
+  const double u[3] = {0.3, -0.7, 0.2};
+  double A[25], b[5], x[5];
+  int order[5];
+  for (int r = 0; r < 5; ++r) {
+    b[r] = 0;
+    for (int k = 0; k < 3; ++k)
+      b[r] += G[r][k] * u[k];
+    for (int c = 0; c < 5; ++c) {
+      A[r * 5 + c] = 0;
+      for (int k = 0; k < 3; ++k)
+        A[r * 5 + c] += G[r][k] * G[c][k];
+    }
+  }
+  double A0[25], b0[5];
+  std::copy(A, A + 25, A0);
+  std::copy(b, b + 5, b0);
+  EXPECT_EQ(model::semidefinite_solve(A, 5, b, x, order, 1e-12), 2);
+  for (int r = 0; r < 5; ++r) {
+    double Ax = 0;
+    for (int c = 0; c < 5; ++c)
+      Ax += A0[r * 5 + c] * x[c];
+    EXPECT_NEAR(Ax, b0[r], 1e-14) << "row " << r;
+  }
+  // u − Gᵀx is u's projection on G's null space: G·(u − Gᵀx) = 0.
+  double projected[3];
+  for (int k = 0; k < 3; ++k) {
+    projected[k] = u[k];
+    for (int r = 0; r < 5; ++r)
+      projected[k] -= G[r][k] * x[r];
+  }
+  for (int r = 0; r < 5; ++r)
+    EXPECT_NEAR(G[r][0] * projected[0] + G[r][1] * projected[1] + G[r][2] * projected[2], 0.0,
+                1e-15);
+  // A full-rank system: the plain solution.
+  double B[4] = {4, 1, 1, 3}, c[2] = {1, 2}, y[2];
+  int order2[2];
+  EXPECT_EQ(model::semidefinite_solve(B, 2, c, y, order2, 1e-12), 2);
+  EXPECT_NEAR(4 * y[0] + y[1], 1, 1e-15);
+  EXPECT_NEAR(y[0] + 3 * y[1], 2, 1e-15);
+}
+
+}  // namespace
+}  // namespace s2sim::model
