@@ -120,6 +120,7 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   pose_.assign(n, Pose{});
   twist_.assign(n, Twist{});
   joint_origin_.assign(n, Vec3{});
+  frame_rotation_.assign(n, Mat3{});
   relative_angular_.assign(n, Vec3{});
   relative_linear_.assign(n, Vec3{});
   column_.assign(static_cast<std::size_t>(nu), Twist{});
@@ -128,41 +129,35 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   composite_.assign(n, Composite{});
 }
 
-bool TreeDynamics::same_state(const double* q, const double* u) const {
-  if (!kinematics_valid_) return false;
-  for (int i = 0; i < nq_; ++i)
-    if (q[i] != last_q_[static_cast<std::size_t>(i)]) return false;
-  for (int i = 0; i < nu_; ++i)
-    if (u[i] != last_u_[static_cast<std::size_t>(i)]) return false;
-  return true;
-}
-
 void TreeDynamics::kinematics(const double* q, const double* u) {
-  if (same_state(q, u)) return;
-  std::copy(q, q + nq_, last_q_.begin());
+  const bool same_q = kinematics_valid_ && std::equal(q, q + nq_, last_q_.begin());
+  if (same_q && std::equal(u, u + nu_, last_u_.begin())) return;
+  if (!same_q) {
+    std::copy(q, q + nq_, last_q_.begin());
+    positions(q);
+    ++configuration_;
+  }
   std::copy(u, u + nu_, last_u_.begin());
   kinematics_valid_ = true;
+  velocities(u);
+}
+
+void TreeDynamics::positions(const double* q) {
   for (std::size_t i = 1; i < bodies_.size(); ++i) {
     const Body& b = bodies_[i];
     const auto p = static_cast<std::size_t>(b.parent);
     const Pose X_GF = pose_[p] * b.X_PF;
     Pose X_FM;
-    Vec3 w_FM, v_FM;  // in F
     const double* qb = q + b.q0;
-    const double* ub = u + b.u0;
     switch (b.joint) {
       case Joint::free:
         X_FM = {{qb[4], qb[5], qb[6]}, rotation_of_quaternion(qb)};
-        w_FM = {ub[0], ub[1], ub[2]};
-        v_FM = {ub[3], ub[4], ub[5]};
         break;
       case Joint::pin:
         X_FM.rotation = rotation_about_z(qb[0]);
-        w_FM = {0, 0, ub[0]};
         break;
       case Joint::slider:
         X_FM.position = {qb[0], 0, 0};
-        v_FM = {ub[0], 0, 0};
         break;
       case Joint::weld:
         break;
@@ -171,14 +166,8 @@ void TreeDynamics::kinematics(const double* q, const double* u) {
     pose_[i] = X_GM * b.X_MB;
     joint_origin_[i] = X_GM.position;
     const Mat3& R_GF = X_GF.rotation;
-    const Vec3 w_rel = R_GF * w_FM, v_rel = R_GF * v_FM;
-    relative_angular_[i] = w_rel;
-    relative_linear_[i] = v_rel;
-    const Twist& V_P = twist_[p];
-    const Vec3 r = pose_[i].position - pose_[p].position;  // parent origin to body origin
-    const Vec3 d = pose_[i].position - X_GM.position;      // M origin to body origin
-    twist_[i] = {V_P.angular_rad_s + w_rel,
-                 V_P.linear_m_s + cross(V_P.angular_rad_s, r) + v_rel + cross(w_rel, d)};
+    frame_rotation_[i] = R_GF;
+    const Vec3 d = pose_[i].position - X_GM.position;  // M origin to body origin
     // Columns: the body's velocity per unit speed, its parent held.
     Twist* col = &column_[static_cast<std::size_t>(b.u0)];
     switch (b.joint) {
@@ -200,6 +189,38 @@ void TreeDynamics::kinematics(const double* q, const double* u) {
       case Joint::weld:
         break;
     }
+  }
+}
+
+void TreeDynamics::velocities(const double* u) {
+  for (std::size_t i = 1; i < bodies_.size(); ++i) {
+    const Body& b = bodies_[i];
+    const auto p = static_cast<std::size_t>(b.parent);
+    Vec3 w_FM, v_FM;  // in F
+    const double* ub = u + b.u0;
+    switch (b.joint) {
+      case Joint::free:
+        w_FM = {ub[0], ub[1], ub[2]};
+        v_FM = {ub[3], ub[4], ub[5]};
+        break;
+      case Joint::pin:
+        w_FM = {0, 0, ub[0]};
+        break;
+      case Joint::slider:
+        v_FM = {ub[0], 0, 0};
+        break;
+      case Joint::weld:
+        break;
+    }
+    const Mat3& R_GF = frame_rotation_[i];
+    const Vec3 w_rel = R_GF * w_FM, v_rel = R_GF * v_FM;
+    relative_angular_[i] = w_rel;
+    relative_linear_[i] = v_rel;
+    const Twist& V_P = twist_[p];
+    const Vec3 r = pose_[i].position - pose_[p].position;  // parent origin to body origin
+    const Vec3 d = pose_[i].position - joint_origin_[i];   // M origin to body origin
+    twist_[i] = {V_P.angular_rad_s + w_rel,
+                 V_P.linear_m_s + cross(V_P.angular_rad_s, r) + v_rel + cross(w_rel, d)};
   }
 }
 

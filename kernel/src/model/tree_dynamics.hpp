@@ -39,8 +39,12 @@ class TreeDynamics {
   TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu);
 
   /// Poses and velocities of every body for the coordinates q and speeds u (Simbody's
-  /// Position and Velocity stages); nothing to do when q and u are those of the last call.
+  /// Position and Velocity stages); nothing to do when q and u are those of the last call,
+  /// the velocities only when q is.
   void kinematics(const double* q, const double* u);
+  /// Counts the configurations kinematics() has computed: what depends on q alone (a loop's
+  /// Jacobian) is current while this is unchanged.
+  long configuration() const { return configuration_; }
   /// A body's pose and velocity (index as Simbody's: 0 is Ground); after kinematics().
   const Pose& pose(int body) const { return pose_[body]; }
   const Twist& twist(int body) const { return twist_[body]; }
@@ -85,11 +89,13 @@ class TreeDynamics {
   int nq_ = 0, nu_ = 0;
   std::vector<double> last_q_, last_u_;  // of the last kinematics()
   bool kinematics_valid_ = false;
+  long configuration_ = 0;
 
   // Scratch, sized at construction (stepping does not allocate).
   std::vector<Pose> pose_;
   std::vector<Twist> twist_;
   std::vector<Vec3> joint_origin_;      // p_GM: the mobilizer's M origin in Ground
+  std::vector<Mat3> frame_rotation_;    // R_GF: the mobilizer's F frame in Ground
   std::vector<Vec3> relative_angular_;  // ω of the body relative to its parent, Ground
   std::vector<Vec3> relative_linear_;   // v of M's origin relative to F, Ground
   std::vector<Twist> column_;           // per speed: the body's (ω, v) per unit speed
@@ -105,7 +111,9 @@ class TreeDynamics {
   std::vector<double> mass_;  // per tree its mass matrix block, then its Cholesky factor
   std::vector<double> rhs_;
 
-  bool same_state(const double* q, const double* u) const;
+  /// The two halves of kinematics(): poses and columns from q; velocities from u.
+  void positions(const double* q);
+  void velocities(const double* u);
   /// The stages of accelerations(): the velocity-product accelerations (base to tip); the
   /// loads each subtree needs for them less the applied ones, and the composite bodies (tip to
   /// base); the mass matrix's lower triangle and the right side τ − bias.
