@@ -122,10 +122,16 @@ void project_loops(Multibody::Impl& m) {
   // Positions first (Gauss-Newton on the errors, in the speeds' least change mapped by N), then
   // the speeds at the new configuration: the order of Simbody's project(). As Simbody's, a
   // projection starts when the errors exceed the tolerance, then aims ten times below it
-  // (its overshoot factor) and settles for the tolerance.
+  // (its overshoot factor) and settles for the tolerance. The iterations work on a copy of q:
+  // each updQ() would walk Simbody's cache invalidation.
+  const SimTK::Vector& q_now = m.current.getQ();
+  const double* u = data_of(m.current.getU());
+  double* q = m.loop_q.data();
+  std::copy(data_of(q_now), data_of(q_now) + q_now.size(), q);
   double target = kLoopTolerance;
+  bool moved = false;
   for (int iteration = 0;; ++iteration) {
-    update_tree_kinematics(m);
+    m.tree->kinematics(q, u);
     if (!m.loops->position_correction(*m.tree, target, m.loop_du.data())) break;
     if (iteration == kLoopIterations) {
       const double error = m.loops->rms_position_error(*m.tree);
@@ -137,13 +143,14 @@ void project_loops(Multibody::Impl& m) {
       throw Error(ErrorKind::runtime, out.str());
     }
     target = kLoopTolerance * kLoopOvershoot;
-    SimTK::Vector& q = m.current.updQ();
-    double* qd = q.updContiguousScalarData();
-    calc_qdot(m, m.loop_du.data(), qd, m.loop_dq.data());
-    for (int i = 0; i < q.size(); ++i)
-      qd[i] += m.loop_dq[static_cast<std::size_t>(i)];
-    normalize_quaternions(m, qd);
+    calc_qdot(m, m.loop_du.data(), q, m.loop_dq.data());
+    for (std::size_t i = 0; i < m.loop_q.size(); ++i)
+      q[i] += m.loop_dq[i];
+    normalize_quaternions(m, q);
+    moved = true;
   }
+  if (moved)
+    std::copy(m.loop_q.begin(), m.loop_q.end(), m.current.updQ().updContiguousScalarData());
   project_loop_speeds(m);
 }
 
@@ -158,6 +165,7 @@ void build_fast_path(Multibody::Impl& m) {
     m.loop_u.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
     m.loop_du.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
     m.loop_dq.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
+    m.loop_q.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
   }
   const int nb = m.matter.getNumBodies(), nu = m.initial_state.getNU();
   m.tree_body_loads.resize(nb);

@@ -49,6 +49,8 @@ LoopConstraints::LoopConstraints(std::vector<Ball> balls, std::vector<Angle> ang
 }
 
 void LoopConstraints::place(const TreeDynamics& tree) {
+  if (placed_at_ == tree.configuration()) return;
+  placed_at_ = tree.configuration();
   int row = 0;
   for (std::size_t i = 0; i < balls_.size(); ++i) {
     const Ball& b = balls_[i];
@@ -94,6 +96,8 @@ void LoopConstraints::add_angular_row(const TreeDynamics& tree, int row, int bod
 }
 
 void LoopConstraints::jacobian(const TreeDynamics& tree) {
+  if (jacobian_at_ == tree.configuration()) return;
+  jacobian_at_ = tree.configuration();
   std::fill(G_.begin(), G_.end(), 0.0);
   int row = 0;
   const Vec3 unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};

@@ -68,8 +68,11 @@ class LoopConstraints {
   std::vector<double> A_, rhs_, x_;              // the rows' system
   std::vector<double> weight_;                   // nu: the speed projection's weights
   std::vector<int> order_;
+  // The configurations (TreeDynamics::configuration()) the points and G were computed at.
+  long placed_at_ = -1, jacobian_at_ = -1;
 
-  /// The points and axes in Ground and the position errors; after kinematics().
+  /// The points and axes in Ground and the position errors; after kinematics(). Kept while
+  /// the configuration is unchanged, as G is (jacobian()).
   void place(const TreeDynamics& tree);
   /// G at the tree's configuration; after place().
   void jacobian(const TreeDynamics& tree);

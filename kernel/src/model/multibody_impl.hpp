@@ -235,7 +235,7 @@ struct Multibody::Impl {
   SimTK::Vector udot, qdot;
   SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the fast path's loads (uses_tree)
   SimTK::Vector tree_mobility_forces;
-  std::vector<double> loop_u, loop_du, loop_dq;  // the loop projections' (fast_path.cpp)
+  std::vector<double> loop_q, loop_u, loop_du, loop_dq;  // the loop projections' (fast_path.cpp)
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
 
   const SimTK::State& state() const { return current; }
