@@ -59,31 +59,58 @@ std::unique_ptr<TreeDynamics> tree_of(const Multibody::Impl& m) {
   }
 }
 
-/// The loop constraints from Simbody's, or null when one is not a Ball or a ConstantAngle (a
-/// Weld or a slider's loop: Simbody's).
+/// The three constant angles of Simbody's ConstantOrientation (and of a Weld's rotation): the
+/// follower frame's x, y, z axes perpendicular to the base frame's y, z, x.
+void add_orientation(std::vector<LoopConstraints::Angle>& angles, int base,
+                     const SimTK::Rotation& R_base, int follower,
+                     const SimTK::Rotation& R_follower) {
+  for (int k = 0; k < 3; ++k)
+    angles.push_back({base, follower, from_simtk(SimTK::Vec3(R_base.col((k + 1) % 3))),
+                      from_simtk(SimTK::Vec3(R_follower.col(k))), 0.0});
+}
+
+/// The loop constraints from Simbody's, or null when one is of a kind they do not know.
 std::unique_ptr<LoopConstraints> loops_of(const Multibody::Impl& m) {
-  std::vector<LoopConstraints::Ball> balls;
-  std::vector<LoopConstraints::Angle> angles;
+  LoopConstraints::Spec spec;
   for (SimTK::ConstraintIndex c(0); c < m.matter.getNumConstraints(); ++c) {
     const SimTK::Constraint& constraint = m.matter.getConstraint(c);
     if (constraint.isDisabledByDefault()) continue;
     if (SimTK::Constraint::Ball::isInstanceOf(constraint)) {
       const auto& ball = SimTK::Constraint::Ball::downcast(constraint);
-      balls.push_back({ball.getBody1MobilizedBodyIndex(), ball.getBody2MobilizedBodyIndex(),
-                       from_simtk(ball.getDefaultPointOnBody1()),
-                       from_simtk(ball.getDefaultPointOnBody2())});
+      spec.balls.push_back({ball.getBody1MobilizedBodyIndex(), ball.getBody2MobilizedBodyIndex(),
+                            from_simtk(ball.getDefaultPointOnBody1()),
+                            from_simtk(ball.getDefaultPointOnBody2())});
     } else if (SimTK::Constraint::ConstantAngle::isInstanceOf(constraint)) {
       const auto& angle = SimTK::Constraint::ConstantAngle::downcast(constraint);
-      angles.push_back({angle.getBaseMobilizedBodyIndex(), angle.getFollowerMobilizedBodyIndex(),
-                        from_simtk(SimTK::Vec3(angle.getDefaultBaseAxis())),
-                        from_simtk(SimTK::Vec3(angle.getDefaultFollowerAxis())),
-                        std::cos(angle.getDefaultAngle())});
+      spec.angles.push_back({angle.getBaseMobilizedBodyIndex(),
+                             angle.getFollowerMobilizedBodyIndex(),
+                             from_simtk(SimTK::Vec3(angle.getDefaultBaseAxis())),
+                             from_simtk(SimTK::Vec3(angle.getDefaultFollowerAxis())),
+                             std::cos(angle.getDefaultAngle())});
+    } else if (SimTK::Constraint::ConstantOrientation::isInstanceOf(constraint)) {
+      const auto& o = SimTK::Constraint::ConstantOrientation::downcast(constraint);
+      add_orientation(spec.angles, o.getBaseMobilizedBodyIndex(), o.getDefaultBaseRotation(),
+                      o.getFollowerMobilizedBodyIndex(), o.getDefaultFollowerRotation());
+    } else if (SimTK::Constraint::Weld::isInstanceOf(constraint)) {
+      // Simbody's Weld: body 2's frame axes perpendicular to body 1's (a ConstantOrientation
+      // with body 1 as base), and the two frames' origins held together (a Ball).
+      const auto& weld = SimTK::Constraint::Weld::downcast(constraint);
+      const SimTK::Transform& X1 = weld.getDefaultFrameOnBody1();
+      const SimTK::Transform& X2 = weld.getDefaultFrameOnBody2();
+      const int b1 = weld.getBody1MobilizedBodyIndex(), b2 = weld.getBody2MobilizedBodyIndex();
+      add_orientation(spec.angles, b1, X1.R(), b2, X2.R());
+      spec.balls.push_back({b1, b2, from_simtk(X1.p()), from_simtk(X2.p())});
+    } else if (SimTK::Constraint::PointOnLine::isInstanceOf(constraint)) {
+      const auto& line = SimTK::Constraint::PointOnLine::downcast(constraint);
+      spec.lines.push_back({line.getLineMobilizedBodyIndex(), line.getFollowerMobilizedBodyIndex(),
+                            from_simtk(SimTK::Vec3(line.getDefaultLineDirection())),
+                            from_simtk(line.getDefaultPointOnLine()),
+                            from_simtk(line.getDefaultFollowerPoint())});
     } else {
       return nullptr;
     }
   }
-  return std::make_unique<LoopConstraints>(std::move(balls), std::move(angles),
-                                           m.initial_state.getNU());
+  return std::make_unique<LoopConstraints>(std::move(spec), m.initial_state.getNU());
 }
 
 }  // namespace

@@ -21,6 +21,11 @@ Vec3 point_bias(const TreeDynamics& tree, int body, const Vec3& p) {
   return A.linear_m_s + cross(A.angular_rad_s, r) + cross(w, cross(w, r));
 }
 
+Vec3 point_velocity(const TreeDynamics& tree, int body, const Vec3& p) {
+  const Twist& V = tree.twist(body);
+  return V.linear_m_s + cross(V.angular_rad_s, p - tree.pose(body).position);
+}
+
 double rms(const std::vector<double>& e) {
   double sum = 0;
   for (double v : e)
@@ -30,9 +35,22 @@ double rms(const std::vector<double>& e) {
 
 }  // namespace
 
-LoopConstraints::LoopConstraints(std::vector<Ball> balls, std::vector<Angle> angles, int speeds)
-    : balls_(std::move(balls)), angles_(std::move(angles)), nu_(speeds) {
-  rows_ = 3 * static_cast<int>(balls_.size()) + static_cast<int>(angles_.size());
+LoopConstraints::LoopConstraints(Spec spec, int speeds)
+    : balls_(std::move(spec.balls)),
+      angles_(std::move(spec.angles)),
+      lines_(std::move(spec.lines)),
+      nu_(speeds) {
+  rows_ = 3 * static_cast<int>(balls_.size()) + static_cast<int>(angles_.size()) +
+          2 * static_cast<int>(lines_.size());
+  for (const Line& l : lines_) {
+    // Two normals of the line, fixed in its body: any pair spans the same errors.
+    const Vec3& d = l.direction_B;
+    const Vec3 helper = std::abs(d.x) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 n1 = cross(d, helper) / norm(cross(d, helper));
+    line_normals_.push_back(n1);
+    line_normals_.push_back(cross(d, n1));
+  }
+  line_places_.assign(lines_.size(), LinePlace{});
   const auto rows = static_cast<std::size_t>(rows_);
   const auto nu = static_cast<std::size_t>(nu_);
   points_.assign(balls_.size(), RowPoint{});
@@ -67,6 +85,17 @@ void LoopConstraints::place(const TreeDynamics& tree) {
     base_axis_[i] = tree.pose(a.base).rotation * a.axis_base_B;
     follower_axis_[i] = tree.pose(a.follower).rotation * a.axis_follower_F;
     error_[static_cast<std::size_t>(row++)] = dot(base_axis_[i], follower_axis_[i]) - a.cos_angle;
+  }
+  for (std::size_t i = 0; i < lines_.size(); ++i) {
+    const Line& l = lines_[i];
+    LinePlace& at = line_places_[i];
+    const Pose& X_GB = tree.pose(l.base);
+    at.p = X_GB * l.point_B;
+    at.s = tree.pose(l.follower) * l.point_F;
+    for (int k = 0; k < 2; ++k) {
+      at.n[k] = X_GB.rotation * line_normals_[2 * i + static_cast<std::size_t>(k)];
+      error_[static_cast<std::size_t>(row++)] = dot(at.s - at.p, at.n[k]);
+    }
   }
 }
 
@@ -111,6 +140,13 @@ void LoopConstraints::jacobian(const TreeDynamics& tree) {
     add_angular_row(tree, row, angles_[i].follower, n, 1.0);
     add_angular_row(tree, row, angles_[i].base, n, -1.0);
   }
+  // A line: (v(s) of the follower − v(s) of the base's point at s)·n, n turning with the base.
+  for (std::size_t i = 0; i < lines_.size(); ++i)
+    for (int k = 0; k < 2; ++k, ++row) {
+      const LinePlace& at = line_places_[i];
+      add_point_row(tree, row, lines_[i].follower, at.s, at.n[k], 1.0);
+      add_point_row(tree, row, lines_[i].base, at.s, at.n[k], -1.0);
+    }
 }
 
 void LoopConstraints::solve_rows(const std::vector<double>& right, const double* weight) {
@@ -157,6 +193,21 @@ void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) 
                        tree.bias_acceleration(a.base).angular_rad_s;
     const Vec3 n_rate = cross(cross(w_F, f), b) + cross(f, cross(w_B, b));
     rhs_[static_cast<std::size_t>(row++)] = dot(alpha, cross(f, b)) + dot(w_F - w_B, n_rate);
+  }
+  for (std::size_t i = 0; i < lines_.size(); ++i) {
+    // e = (s − p)·n: ë at u' = 0 is (a_S − a_P − α_B × r − ω_B × (v_S − v_P))·n
+    // + (v_S − v_P − ω_B × r)·(ω_B × n), r = s − p.
+    const Line& l = lines_[i];
+    const LinePlace& at = line_places_[i];
+    const Vec3& w_B = tree.twist(l.base).angular_rad_s;
+    const Vec3 r = at.s - at.p;
+    const Vec3 v_S = point_velocity(tree, l.follower, at.s);
+    const Vec3 v_P = point_velocity(tree, l.base, at.p);
+    const Vec3 a = point_bias(tree, l.follower, at.s) - point_bias(tree, l.base, at.p) -
+                   cross(tree.bias_acceleration(l.base).angular_rad_s, r) - cross(w_B, v_S - v_P);
+    const Vec3 v = v_S - v_P - cross(w_B, r);
+    for (int k = 0; k < 2; ++k)
+      rhs_[static_cast<std::size_t>(row++)] = dot(a, at.n[k]) + dot(v, cross(w_B, at.n[k]));
   }
   for (int r = 0; r < rows_; ++r) {
     const double* g = &G_[static_cast<std::size_t>(r * nu_)];

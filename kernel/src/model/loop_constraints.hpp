@@ -1,9 +1,11 @@
 #pragma once
 /// \file
-/// The loop joints of the fast path (issue 17): the constraints that close a loop (a ball, a
-/// ball with one or two constant angles: the ball, universal and hinge loop joints), in the
-/// tree's coordinates, without Simbody. Simbody's loop forward dynamics rebuilds G·M⁻¹·Gᵀ
-/// column by column through its realize chain every step: nine tenths of a four-bar's step
+/// The loop joints of the fast path (issue 17): the constraints that close a loop, in the
+/// tree's coordinates, without Simbody: balls, constant angles and points on lines, of which
+/// every loop joint is made (ball: a ball; universal: a ball and an angle; hinge: a ball and two
+/// angles; fixed: a ball and three angles, Simbody's Weld; slider: three angles and a point on
+/// a line, its ConstantOrientation and PointOnLine). Simbody's loop forward dynamics rebuilds
+/// G·M⁻¹·Gᵀ column by column through its realize chain every step: nine tenths of a four-bar's step
 /// (docs/benchmarks.md). Here the same equations run over plain arrays:
 ///   accelerations  u' = u'_free − M⁻¹·Gᵀ·λ,  (G·M⁻¹·Gᵀ)·λ = G·u'_free + Ġ·u;
 ///   speeds         u ← u − D·Gᵀ·(G·D·Gᵀ)⁺·G·u, D_kk = max(1, u_k²)   (Simbody's projectU);
@@ -35,11 +37,24 @@ class LoopConstraints {
     double cos_angle = 0;
   };
 
+  /// A point of `follower` held on a line fixed in `base` (two equations): Simbody's
+  /// Constraint::PointOnLine.
+  struct Line {
+    int base = 0, follower = 0;
+    Vec3 direction_B, point_B;  // the line, base frame (direction unit)
+    Vec3 point_F;               // follower frame
+  };
+  struct Spec {
+    std::vector<Ball> balls;
+    std::vector<Angle> angles;
+    std::vector<Line> lines;
+  };
+
   /// `speeds`: the tree's (TreeDynamics::speeds()).
-  LoopConstraints(std::vector<Ball> balls, std::vector<Angle> angles, int speeds);
+  LoopConstraints(Spec spec, int speeds);
 
   int rows() const { return rows_; }
-  /// The RMS of the position errors (m for a ball, the cosine's for an angle); after the
+  /// The RMS of the position errors (m for a ball or a line, the cosine's for an angle); after the
   /// tree's kinematics().
   double rms_position_error(const TreeDynamics& tree);
   /// Corrects the tree's accelerations `udot` (of its last accelerations(), whose mass matrix
@@ -56,8 +71,14 @@ class LoopConstraints {
   struct RowPoint {  // a ball: the two points in Ground
     Vec3 p1, p2;
   };
+  struct LinePlace {  // a line: its point, the follower's point and two normals in Ground
+    Vec3 p, s, n[2];
+  };
   std::vector<Ball> balls_;
   std::vector<Angle> angles_;
+  std::vector<Line> lines_;
+  std::vector<Vec3> line_normals_;  // two per line, base frame
+  std::vector<LinePlace> line_places_;
   int rows_ = 0, nu_ = 0;
   // Scratch, sized at construction.
   std::vector<RowPoint> points_;

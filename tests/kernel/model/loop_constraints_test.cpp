@@ -166,15 +166,70 @@ TEST(LoopConstraints, TwoSecondsOfADrivenFourBarFollowSimbodysTrajectory) {
   EXPECT_LT(worst_closure, 1e-12);
 }
 
-TEST(LoopConstraints, SlidersLoopKeepsSimbody) {
-  // A slider closing the loop is a constant orientation and a point on a line: Simbody's. (The
-  // four-bar's loop is B, met last: crank2 is reached through the coupler first.)
+// A slider closing the loop: a constant orientation (three angles) and a point on a line.
+// (The four-bar's loop is B, met last: crank2 is reached through the coupler first.)
+TEST(LoopConstraints, SliderLoopMatchesSimbody) {
   scene::Scene s = test::four_bar();
   s.joints[1].type = JointType::slider;
   s.joints[1].axis1 = {1, 0, 0};
-  test::Runner r(s);
-  EXPECT_FALSE(r.mb.uses_tree_fast_path());
-  r.step(10);
+  test::Runner probe(s);
+  EXPECT_EQ(loop_axes(probe.mb), 1);
+  const double worst =
+      test::worst_relative_difference(s, 400, kLoopTolerance, [](Multibody& mb, int tick) {
+        drive_loop_axes(mb, tick);
+        spin_first_axis(mb, tick);
+      });
+  std::printf("slider loop: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-11);
+}
+
+/// A free chassis with two legs hinged under it, and a bar hinged to the first leg's foot and
+/// welded to the second's (a fixed joint closing the loop: three angles and a ball).
+scene::Scene welded_frame() {
+  scene::Scene s;
+  const Mat3 R = test::rotation_about({2, -1, 3}, 0.4);
+  const Vec3 c{0.2, -0.1, 1.0};
+  auto at = [&](Vec3 local) { return c + R * local; };
+  s.bodies.push_back(test::box("chassis", 3.0, {0.4, 0.2, 0.1}, c, R));
+  s.bodies.push_back(test::box("leg_a", 0.3, {0.02, 0.02, 0.3}, at({0.1, 0, -0.2}), R));
+  s.bodies.push_back(test::box("leg_b", 0.3, {0.02, 0.02, 0.3}, at({-0.1, 0, -0.2}), R));
+  s.bodies.push_back(test::box("bar", 0.2, {0.2, 0.02, 0.02}, at({0, 0, -0.35}), R));
+  const Vec3 y = R * Vec3{0, 1, 0};
+  s.joints.push_back(test::joint("hip_a", JointType::hinge, 1, 0, at({0.1, 0, -0.05}), y));
+  s.joints.push_back(test::joint("hip_b", JointType::hinge, 2, 0, at({-0.1, 0, -0.05}), y));
+  s.joints.push_back(test::joint("knee", JointType::hinge, 3, 1, at({0.1, 0, -0.35}), y));
+  s.joints.push_back(test::joint("weld", JointType::fixed, 3, 2, at({-0.1, 0, -0.35})));
+  test::add_robot(s, "frame");
+  return s;
+}
+
+/// Spin the free chassis (kernel body 1) for the first 200 ticks.
+void spin_chassis(Multibody& mb, int tick) {
+  if (tick < 200) mb.applied_wrenches()[1].torque_Nm += Vec3{0.6, -0.4, 0.9};
+}
+
+TEST(LoopConstraints, WeldedFrameOnAFreeRootMatchesSimbody) {
+  const double worst =
+      test::worst_relative_difference(welded_frame(), 400, kLoopTolerance, spin_chassis);
+  std::printf("welded frame: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-11);
+}
+
+// The same frame with the bar sliding along itself in the second leg: a line whose base body
+// turns (its normals' rates count), on a free root.
+TEST(LoopConstraints, SliderBetweenTurningBodiesMatchesSimbody) {
+  scene::Scene s = welded_frame();
+  s.joints[3].type = JointType::slider;
+  s.joints[3].axis1 = s.bodies[0].pose.rotation * Vec3{1, 0, 0};
+  test::Runner probe(s);
+  EXPECT_EQ(loop_axes(probe.mb), 1);
+  const double worst =
+      test::worst_relative_difference(s, 400, kLoopTolerance, [](Multibody& mb, int tick) {
+        drive_loop_axes(mb, tick);
+        spin_chassis(mb, tick);
+      });
+  std::printf("sliding frame: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-11);
 }
 
 // Redundant rows: a planar loop's five equations have rank two. The solve leaves the redundant
