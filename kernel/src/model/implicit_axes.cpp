@@ -57,7 +57,8 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s) {
   std::fill(m.friction_applied.begin(), m.friction_applied.end(), 0.0);
   bool realized = false;
   auto rate = [&](std::size_t a) {
-    if (m.axes[a].loop && !realized) {
+    // A loop axis's rate comes from its bodies: Simbody's, realized (the fast path has them).
+    if (m.axes[a].loop && !realized && !m.uses_tree()) {
       m.system.realize(s, SimTK::Stage::Velocity);
       realized = true;
     }
