@@ -111,8 +111,15 @@ double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x)
   }
   const SimTK::Vector& g = m.loop_unit_force[a];
   double sum = 0;
-  for (int i = 0; i < g.size(); ++i)
-    sum += g[i] * x[i];
+  if (g.hasContiguousData() && x.hasContiguousData()) {
+    const double* pg = g.getContiguousScalarData();
+    const double* px = x.getContiguousScalarData();
+    for (int i = 0; i < g.size(); ++i)
+      sum += pg[i] * px[i];
+  } else {
+    for (int i = 0; i < g.size(); ++i)
+      sum += g[i] * x[i];
+  }
   return sum;
 }
 
