@@ -55,14 +55,21 @@ inline void cholesky_substitute(const double* L, int n, const double* b, double*
 /// constraints counted twice, a planar four-bar's out-of-plane rows): Cholesky with the
 /// largest remaining diagonal as pivot, stopping where what remains is below
 /// `relative_tolerance` times A's largest diagonal. The unknowns of the rows left out are zero:
-/// for b in A's range (G·u for A = G·Gᵀ, say) that is an exact solution. A and b are
-/// overwritten; `order` holds n ints of scratch. Returns the rank found.
-inline int semidefinite_solve(double* A, int n, double* b, double* x, int* order,
-                              double relative_tolerance) {
+/// for b in A's range (G·u for A = G·Gᵀ, say) that is an exact solution. Only A's lower
+/// triangle is read; A keeps it. `scratch` holds n·n + 2·n doubles, `order` n ints. Returns the
+/// rank found.
+inline int semidefinite_solve(const double* A, int n, const double* b, double* x, int* order,
+                              double* scratch, double relative_tolerance) {
+  // Left-looking, pivots chosen by index: L's rows stay at their original index (L[r·n + k],
+  // k the step), so nothing is swapped.
+  double* L = scratch;
+  double* d = scratch + n * n;  // what remains of each diagonal
+  double* y = d + n;
   double largest = 0;
   for (int i = 0; i < n; ++i) {
     order[i] = i;
-    largest = std::fmax(largest, A[i * n + i]);
+    d[i] = A[i * n + i];
+    largest = std::fmax(largest, d[i]);
   }
   const double floor = relative_tolerance * largest;
   int rank = 0;
@@ -70,50 +77,39 @@ inline int semidefinite_solve(double* A, int n, double* b, double* x, int* order
     const int j = rank;
     int p = j;
     for (int i = j + 1; i < n; ++i)
-      if (A[i * n + i] > A[p * n + p]) p = i;
-    if (!(A[p * n + p] > floor)) break;
-    if (p != j) {  // the symmetric swap of rows and columns j and p
-      for (int k = 0; k < n; ++k) {
-        const double t = A[j * n + k];
-        A[j * n + k] = A[p * n + k];
-        A[p * n + k] = t;
-      }
-      for (int k = 0; k < n; ++k) {
-        const double t = A[k * n + j];
-        A[k * n + j] = A[k * n + p];
-        A[k * n + p] = t;
-      }
-      const double t = b[j];
-      b[j] = b[p];
-      b[p] = t;
-      const int o = order[j];
-      order[j] = order[p];
-      order[p] = o;
-    }
-    const double d = std::sqrt(A[j * n + j]);
-    A[j * n + j] = d;
+      if (d[order[i]] > d[order[p]]) p = i;
+    if (!(d[order[p]] > floor)) break;
+    const int t = order[j];
+    order[j] = order[p];
+    order[p] = t;
+    const int c = order[j];
+    const double pivot = std::sqrt(d[c]);
+    L[c * n + j] = pivot;
     for (int i = j + 1; i < n; ++i) {
-      A[i * n + j] /= d;
-      A[j * n + i] = A[i * n + j];
+      const int r = order[i];
+      double v = r > c ? A[r * n + c] : A[c * n + r];
+      for (int k = 0; k < j; ++k)
+        v -= L[r * n + k] * L[c * n + k];
+      v /= pivot;
+      L[r * n + j] = v;
+      d[r] -= v * v;
     }
-    for (int i = j + 1; i < n; ++i)  // the trailing block, both triangles (for the swaps)
-      for (int k = j + 1; k < n; ++k)
-        A[i * n + k] -= A[i * n + j] * A[k * n + j];
   }
-  for (int i = 0; i < rank; ++i) {  // L·y = b on the rows kept
-    double v = b[i];
-    for (int k = 0; k < i; ++k)
-      v -= A[i * n + k] * b[k];
-    b[i] = v / A[i * n + i];
+  for (int j = 0; j < rank; ++j) {  // L·y = b on the rows kept
+    const int r = order[j];
+    double v = b[r];
+    for (int k = 0; k < j; ++k)
+      v -= L[r * n + k] * y[k];
+    y[j] = v / L[r * n + j];
   }
-  for (int i = rank; i-- > 0;) {  // Lᵀ·z = y
-    double v = b[i];
-    for (int k = i + 1; k < rank; ++k)
-      v -= A[k * n + i] * b[k];
-    b[i] = v / A[i * n + i];
+  for (int j = rank; j-- > 0;) {  // Lᵀ·z = y
+    double v = y[j];
+    for (int i = j + 1; i < rank; ++i)
+      v -= L[order[i] * n + j] * y[i];
+    y[j] = v / L[order[j] * n + j];
   }
-  for (int i = 0; i < n; ++i)
-    x[order[i]] = i < rank ? b[i] : 0.0;
+  for (int j = 0; j < n; ++j)
+    x[order[j]] = j < rank ? y[j] : 0.0;
   return rank;
 }
 

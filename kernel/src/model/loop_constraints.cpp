@@ -62,6 +62,7 @@ LoopConstraints::LoopConstraints(Spec spec, int speeds)
   A_.assign(rows * rows, 0.0);
   rhs_.assign(rows, 0.0);
   x_.assign(rows, 0.0);
+  solve_scratch_.assign(rows * rows + 2 * rows, 0.0);
   weight_.assign(nu, 1.0);
   order_.assign(rows, 0);
 }
@@ -150,9 +151,10 @@ void LoopConstraints::jacobian(const TreeDynamics& tree) {
 }
 
 void LoopConstraints::solve_rows(const std::vector<double>& right, const double* weight) {
-  for (int r = 0; r < rows_; ++r)
+  // The lower triangle of G·D·R (all semidefinite_solve reads).
+  for (int r = 0; r < rows_; ++r) {
+    const double* gr = &G_[static_cast<std::size_t>(r * nu_)];
     for (int c = 0; c <= r; ++c) {
-      const double* gr = &G_[static_cast<std::size_t>(r * nu_)];
       const double* wc = &right[static_cast<std::size_t>(c * nu_)];
       double sum = 0;
       if (weight != nullptr) {
@@ -163,9 +165,10 @@ void LoopConstraints::solve_rows(const std::vector<double>& right, const double*
           sum += gr[k] * wc[k];
       }
       A_[static_cast<std::size_t>(r * rows_ + c)] = sum;
-      A_[static_cast<std::size_t>(c * rows_ + r)] = sum;
     }
-  semidefinite_solve(A_.data(), rows_, rhs_.data(), x_.data(), order_.data(), kRankTolerance);
+  }
+  semidefinite_solve(A_.data(), rows_, rhs_.data(), x_.data(), order_.data(), solve_scratch_.data(),
+                     kRankTolerance);
 }
 
 void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) {

@@ -89,6 +89,7 @@ class LoopConstraints {
   std::vector<double> A_, rhs_, x_;              // the rows' system
   std::vector<double> weight_;                   // nu: the speed projection's weights
   std::vector<int> order_;
+  std::vector<double> solve_scratch_;  // semidefinite_solve's
   // The configurations (TreeDynamics::configuration()) the points and G were computed at.
   long placed_at_ = -1, jacobian_at_ = -1;
 

@@ -254,7 +254,8 @@ TEST(SemidefiniteSolve, RankDeficientSystemsAreSolvedOnTheirRange) {
   double A0[25], b0[5];
   std::copy(A, A + 25, A0);
   std::copy(b, b + 5, b0);
-  EXPECT_EQ(model::semidefinite_solve(A, 5, b, x, order, 1e-12), 2);
+  double scratch[5 * 5 + 2 * 5];
+  EXPECT_EQ(model::semidefinite_solve(A, 5, b, x, order, scratch, 1e-12), 2);
   for (int r = 0; r < 5; ++r) {
     double Ax = 0;
     for (int c = 0; c < 5; ++c)
@@ -274,7 +275,8 @@ TEST(SemidefiniteSolve, RankDeficientSystemsAreSolvedOnTheirRange) {
   // A full-rank system: the plain solution.
   double B[4] = {4, 1, 1, 3}, c[2] = {1, 2}, y[2];
   int order2[2];
-  EXPECT_EQ(model::semidefinite_solve(B, 2, c, y, order2, 1e-12), 2);
+  double scratch2[2 * 2 + 2 * 2];
+  EXPECT_EQ(model::semidefinite_solve(B, 2, c, y, order2, scratch2, 1e-12), 2);
   EXPECT_NEAR(4 * y[0] + y[1], 1, 1e-15);
   EXPECT_NEAR(y[0] + 3 * y[1], 2, 1e-15);
 }
