@@ -366,11 +366,13 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   m.axis_mobility.assign(m.axes.size(), 0.0);
   m.sliding.assign(m.axes.size(), 0);
   m.axis_u.assign(m.axes.size(), -1);
-  for (std::size_t a = 0; a < m.axes.size(); ++a)
-    if (!m.axes[a].loop)
-      m.axis_u[a] =
-          m.matter.getMobilizedBody(m.axis_impl[a].mobod).getFirstUIndex(m.initial_state) +
-          m.axis_impl[a].coordinate;
+  m.axis_q.assign(m.axes.size(), -1);
+  for (std::size_t a = 0; a < m.axes.size(); ++a) {
+    if (m.axes[a].loop) continue;
+    const auto& mob = m.matter.getMobilizedBody(m.axis_impl[a].mobod);
+    m.axis_u[a] = mob.getFirstUIndex(m.initial_state) + m.axis_impl[a].coordinate;
+    m.axis_q[a] = mob.getFirstQIndex(m.initial_state) + m.axis_impl[a].coordinate;
+  }
   find_axis_trees(m);
   m.qdot.resize(m.initial_state.getNQ());
   m.reactions_at_M.resize(m.matter.getNumBodies());

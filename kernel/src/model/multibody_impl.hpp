@@ -102,6 +102,7 @@ struct Multibody::Impl {
   };
   std::vector<Stop> stops;
   std::vector<int> axis_u;          // per tree axis, its index in u (-1: loop axis)
+  std::vector<int> axis_q;          // and in q (a Pin's, Slider's or Universal's q' = u)
   std::vector<char> q_shapes_mass;  // per q: whether M depends on it (axis_columns.cpp)
   struct Root {
     int q0, u0;  // a free root's quaternion and angular velocity indices
