@@ -138,8 +138,8 @@ struct Multibody::Impl {
   double tick_s = 1e-3;
   int substeps = 1;
   // The small-tree fast path (tree_dynamics.hpp, fast_path.cpp): built at load when the system
-  // has only Free, Pin, Slider and Weld mobilizers and its constraints (if any) are balls and
-  // constant angles (loop_constraints.hpp), and it agreed with Simbody on a probe state; used
+  // has only Free, Pin, Slider and Weld mobilizers and its constraints (if any) are of the
+  // kinds loop_constraints.hpp knows, and it agreed with Simbody on a probe state; used
   // while no component reads joint reactions (those come from Simbody's Acceleration stage)
   // and unless a test switched it off.
   std::unique_ptr<TreeDynamics> tree;
