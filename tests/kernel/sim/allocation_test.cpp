@@ -78,6 +78,13 @@ TEST(Allocation, TheKernelAddsNoAllocationToSimbodysOwn) {
   const Counts l =
       count(std::filesystem::path(S2SIM_SOURCE_DIR) / "scenes/default", SimulationOptions{});
   EXPECT_LE(l.simulation, l.simbody + l.simbody / 50) << "the kernel allocates while stepping";
+  // Loops on the fast path (every kind: the loops seed's hinge, ball and slider loops, a walker
+  // on the floor; the peers' closed-loop arm): no Simbody projection, nothing allocated at all.
+  for (const char* scene : {"tests/fuzz/seeds/loops/mechanisms", "bench/peers/scenes/arm_loop"}) {
+    const Counts f = count(std::filesystem::path(S2SIM_SOURCE_DIR) / scene, SimulationOptions{});
+    EXPECT_EQ(f.simulation, 0) << scene;
+    EXPECT_EQ(f.simbody, 0) << scene;
+  }
   // Contact: a pile of boxes and spheres (box-box by FCL's boxBox2, sphere-box, planes), after
   // it has settled so that the contact count is steady.
   SimulationOptions settled;
