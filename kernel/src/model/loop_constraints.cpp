@@ -132,10 +132,12 @@ void LoopConstraints::jacobian(const TreeDynamics& tree) {
   std::fill(G_.begin(), G_.end(), 0.0);
   int row = 0;
   const Vec3 unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  // A ball: v(p2) − v(C), C the point of body 1 where p2 is now, as Simbody's BallImpl (not
+  // p1: the two differ by the error, and so would the position projection's second step).
   for (std::size_t i = 0; i < balls_.size(); ++i, row += 3)
-    for (int c = 0; c < 3; ++c) {  // v(p2) − v(p1)
+    for (int c = 0; c < 3; ++c) {
       add_point_row(tree, row + c, balls_[i].body2, points_[i].p2, unit[c], 1.0);
-      add_point_row(tree, row + c, balls_[i].body1, points_[i].p1, unit[c], -1.0);
+      add_point_row(tree, row + c, balls_[i].body1, points_[i].p2, unit[c], -1.0);
     }
   for (std::size_t i = 0; i < angles_.size(); ++i, ++row) {  // (ω_F − ω_B)·(f × b)
     const Vec3 n = cross(follower_axis_[i], base_axis_[i]);
@@ -182,7 +184,7 @@ void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) 
   int row = 0;
   for (std::size_t i = 0; i < balls_.size(); ++i) {
     const Vec3 bias = point_bias(tree, balls_[i].body2, points_[i].p2) -
-                      point_bias(tree, balls_[i].body1, points_[i].p1);
+                      point_bias(tree, balls_[i].body1, points_[i].p2);  // at C, as G
     rhs_[static_cast<std::size_t>(row++)] = bias.x;
     rhs_[static_cast<std::size_t>(row++)] = bias.y;
     rhs_[static_cast<std::size_t>(row++)] = bias.z;

@@ -120,18 +120,17 @@ TEST(LoopConstraints, FreeWalkerParallelogramMatchesSimbody) {
   EXPECT_LT(driven_difference(walker(), 1, nullptr, "walker"), 1e-11);
 }
 
-// On a spatial loop the two position projections take the same first Newton step, and second
-// steps that differ (here the second step is 1.6e-8 long, and the two end points are up to
-// 1e-8 apart along the constraint manifold, both within 1e-10 of it). Planar loops agree to
-// rounding (above). So the poses are compared to 5e-8 per tick here, and the loop's closure is
-// checked on its own: the last link's tip stays on its point of the world.
+// A spatial loop: its position errors after a drift are larger (1e-5 m here), and the
+// projection's second Newton step depends on where the ball's row is taken on body 1 (Simbody:
+// at the point of body 1 where p2 is, not at p1). Checked to the same tolerance as the planar
+// loops, and the loop's closure on its own: the last link's tip stays on its point of the world.
 TEST(LoopConstraints, SpatialBallLoopMatchesSimbody) {
   test::Runner probe(spatial_ball_loop());
   EXPECT_EQ(loop_axes(probe.mb), 0);  // a ball has no axis
   const double worst =
-      test::worst_relative_difference(spatial_ball_loop(), 400, {5e-8, 1e-6}, spin_first_axis);
+      test::worst_relative_difference(spatial_ball_loop(), 400, kLoopTolerance, spin_first_axis);
   std::printf("spatial ball loop: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-4);
+  EXPECT_LT(worst, 1e-10);
   test::Runner r(spatial_ball_loop());
   ASSERT_TRUE(r.mb.uses_tree_fast_path());
   const Vec3 tip_in_link3 =
