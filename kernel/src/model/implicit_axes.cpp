@@ -57,9 +57,9 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s) {
   std::fill(m.friction_applied.begin(), m.friction_applied.end(), 0.0);
   bool realized = false;
   auto rate = [&](std::size_t a) {
-    // A loop axis's rate comes from its bodies: Simbody's, realized (the fast path has them).
-    if (m.axes[a].loop && !realized && !m.uses_tree()) {
-      m.system.realize(s, SimTK::Stage::Velocity);
+    // A loop axis's rate comes from its bodies (realize_velocity: none on the fast path).
+    if (m.axes[a].loop && !realized) {
+      realize_velocity(m, s);
       realized = true;
     }
     return current_rate(m, s, a);
