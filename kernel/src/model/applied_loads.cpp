@@ -43,9 +43,7 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
   const AxisImpl& ax = m.axis_impl[a];
   if (!m.axes[a].loop) {
     // q by index, as MobilizedBody::getOneQ reads it (its look-ups cost more).
-    const SimTK::Vector& q = s.getQ();
-    return ax.sign *
-           (q.hasContiguousData() ? q.getContiguousScalarData()[m.axis_q[a]] : q[m.axis_q[a]]);
+    return ax.sign * element(s.getQ(), m.axis_q[a]);
   }
   if (m.uses_tree()) {
     const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
@@ -65,11 +63,7 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
 
 double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
-  if (!m.axes[a].loop) {  // u by index: no look-up
-    const SimTK::Vector& u = s.getU();
-    return ax.sign *
-           (u.hasContiguousData() ? u.getContiguousScalarData()[m.axis_u[a]] : u[m.axis_u[a]]);
-  }
+  if (!m.axes[a].loop) return ax.sign * element(s.getU(), m.axis_u[a]);  // by index
   if (m.uses_tree()) {
     const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
     const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;

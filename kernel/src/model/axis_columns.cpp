@@ -103,11 +103,8 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
 
 double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x) {
   if (!m.axes[a].loop) {
-    // Raw storage where contiguous: Vector's element access is a non-inline call, and the
-    // friction sweeps ask this many times per substep.
-    const double v =
-        x.hasContiguousData() ? x.getContiguousScalarData()[m.axis_u[a]] : x[m.axis_u[a]];
-    return m.axis_impl[a].sign * v;
+    // The friction sweeps ask this many times per substep.
+    return m.axis_impl[a].sign * element(x, m.axis_u[a]);
   }
   const SimTK::Vector& g = m.loop_unit_force[a];
   double sum = 0;

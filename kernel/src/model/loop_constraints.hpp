@@ -53,7 +53,6 @@ class LoopConstraints {
   /// `speeds`: the tree's (TreeDynamics::speeds()).
   LoopConstraints(Spec spec, int speeds);
 
-  int rows() const { return rows_; }
   /// The RMS of the position errors (m for a ball or a line, the cosine's for an angle); after the
   /// tree's kinematics().
   double rms_position_error(const TreeDynamics& tree);

@@ -46,6 +46,12 @@ inline SimTK::Transform to_simtk(const Pose& p) {
   return SimTK::Transform(to_simtk(p.rotation), to_simtk(p.position));
 }
 
+/// v[i] through raw storage where it is contiguous (a State's q and u are): Vector's element
+/// access is a non-inline call into SimTKcommon.
+inline double element(const SimTK::Vector& v, int i) {
+  return v.hasContiguousData() ? v.getContiguousScalarData()[i] : v[i];
+}
+
 /// Gravity, m/s², along −Z: the SDK's one value.
 constexpr double kGravity = kGravity_m_s2;
 /// The loop constraints' projections: the RMS of the errors they leave (m, or the cosine's for

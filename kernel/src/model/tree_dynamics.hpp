@@ -64,7 +64,6 @@ class TreeDynamics {
   int parent(int body) const { return bodies_[static_cast<std::size_t>(body)].parent; }
   int first_speed(int body) const { return bodies_[static_cast<std::size_t>(body)].u0; }
   int speed_count(int body) const { return bodies_[static_cast<std::size_t>(body)].dofs; }
-  int speeds() const { return nu_; }
   /// The velocity (ω, v of its origin, Ground) of the body owning speed k per unit of that
   /// speed, its parent held; after kinematics().
   const Twist& column(int k) const { return column_[static_cast<std::size_t>(k)]; }
