@@ -103,14 +103,33 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
       *std::min_element(run_load.begin(), run_load.end()) > 0)
     part_of_island = run_of_island;
 
+  // A loose body (a thing, a one-solid robot) goes with the island of the jointed body nearest
+  // to where it stands at load (ties: the lower body): a ball ahead of a robot is the robot's
+  // part's, so that the parts' shapes stay apart and the parts can run ahead (run_ahead.cpp);
+  // all in one part, the things would lie among the other part's robots.
+  for (int loose : topology.loose) {
+    const Vec3& at = scene.bodies[static_cast<std::size_t>(loose)].pose.position;
+    double nearest = INFINITY;
+    for (std::size_t b = 0; b < n_bodies; ++b) {
+      if (island_of_body[b] < 0 || !in_tree[b]) continue;
+      const Vec3 d = scene.bodies[b].pose.position - at;
+      const double distance2 = dot(d, d);
+      if (distance2 < nearest) {
+        nearest = distance2;
+        island_of_body[static_cast<std::size_t>(loose)] = island_of_body[b];
+      }
+    }
+  }
+
   std::vector<PartPlan> plans(n_parts);
   for (auto& plan : plans)
     plan.topology.joint_is_loop = topology.joint_is_loop;
-  plans[0].topology.loose = topology.loose;
   auto part_of_body = [&](int b) -> PartPlan& {
     return plans[static_cast<std::size_t>(
         part_of_island[static_cast<std::size_t>(island_of_body[static_cast<std::size_t>(b)])])];
   };
+  for (int loose : topology.loose)
+    part_of_body(loose).topology.loose.push_back(loose);
   for (const auto& e : topology.tree)
     part_of_body(e.child).topology.tree.push_back(e);
   for (int j : topology.loops)
@@ -125,8 +144,7 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
     plan.global_axis.push_back(static_cast<int>(a));
   }
   for (std::size_t b = 0; b < n_bodies; ++b)
-    (island_of_body[b] < 0 ? plans[0] : part_of_body(static_cast<int>(b)))
-        .bodies.push_back(static_cast<int>(b) + 1);
+    part_of_body(static_cast<int>(b)).bodies.push_back(static_cast<int>(b) + 1);
   for (std::size_t j = 0; j < scene.joints.size(); ++j)
     plans[static_cast<std::size_t>(
               part_of_island[static_cast<std::size_t>(island_of_joint(static_cast<int>(j)))])]

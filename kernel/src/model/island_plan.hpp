@@ -13,8 +13,9 @@ namespace s2sim::model {
 
 /// One part of the multibody: whole islands, planned like the whole scene.
 struct PartPlan {
-  /// The part's trees, loops and axes, each in the whole plan's order; the loose bodies (no
-  /// joint) are part 0's. joint_is_loop is the whole plan's.
+  /// The part's trees, loops, loose bodies and axes, each in the whole plan's order (a loose
+  /// body is the part's whose jointed body stands nearest to it at load). joint_is_loop is
+  /// the whole plan's.
   Topology topology;
   std::vector<double> axis_inertia;  ///< per part axis
   std::vector<int> global_axis;      ///< part axis -> the whole plan's axis
@@ -26,7 +27,8 @@ struct PartPlan {
 /// runs of about equal weight (bodies + axes), so that a part's bodies lie together, when no
 /// part is then heavier than by the greedy deal; else the greedy deal: islands in decreasing
 /// weight (ties: the island of the lower body first), each to the part with the least weight
-/// so far (ties: the lower part). One part (the whole plan) when `parts` ≤ 1, the scene
+/// so far (ties: the lower part). Each loose body then goes with the island of the jointed
+/// body nearest to it at load. One part (the whole plan) when `parts` ≤ 1, the scene
 /// has fewer than two islands, or it has a loop-closing joint or a Ball joint anywhere (one
 /// system's scene-wide policies then decide last bits: island_plan.cpp).
 std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,

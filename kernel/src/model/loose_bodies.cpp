@@ -123,9 +123,9 @@ double LooseBodies::checksum() const {
   return sum;
 }
 
-void LooseBodies::declare_state(sim::StateLayout& layout) {
+void LooseBodies::declare_state(sim::StateLayout& layout, const std::string& prefix) {
   layout.add(
-      "loose/position", 7 * state_.size(),
+      prefix + "/position", 7 * state_.size(),
       [this](double* out) {
         for (const State& s : state_) {
           const double v[7] = {s.com_m.x, s.com_m.y, s.com_m.z, s.q.w, s.q.x, s.q.y, s.q.z};
@@ -141,7 +141,7 @@ void LooseBodies::declare_state(sim::StateLayout& layout) {
         refresh_rotations();
       });
   layout.add(
-      "loose/velocity", 6 * state_.size(),
+      prefix + "/velocity", 6 * state_.size(),
       [this](double* out) {
         for (const State& s : state_) {
           const Vec3 &v = s.com_velocity_m_s, &w = s.angular_velocity_rad_s;

@@ -10,6 +10,7 @@
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
+#include <string>
 #include <vector>
 
 namespace s2sim::sim {
@@ -54,10 +55,10 @@ class LooseBodies {
   /// Sets body `kernel_index`'s velocity (its origin's, world frame); false if not loose.
   bool set_velocity(int kernel_index, const Twist& twist);
 
-  /// Registers the state segments `loose/position` (per body its centre of mass and
-  /// orientation quaternion w, x, y, z: 7 numbers) and `loose/velocity` (its centre of mass's
-  /// velocity and its angular velocity: 6 numbers), in the order the bodies were added.
-  void declare_state(sim::StateLayout& layout);
+  /// Registers the state segments `<prefix>/position` (per body its centre of mass and
+  /// orientation quaternion w, x, y, z: 7 numbers) and `<prefix>/velocity` (its centre of
+  /// mass's velocity and its angular velocity: 6 numbers), in the order the bodies were added.
+  void declare_state(sim::StateLayout& layout, const std::string& prefix);
 
  private:
   struct Model {

@@ -272,7 +272,11 @@ void Multibody::declare_state(sim::StateLayout& layout, const std::string& prefi
             in += 3;
           }
       });
-  if (prefix == "multibody" || !m.loose.empty()) m.loose.declare_state(layout);
+  // The serial run's names stay `loose/…`; a part's, under its own prefix.
+  if (prefix == "multibody")
+    m.loose.declare_state(layout, "loose");
+  else if (!m.loose.empty())
+    m.loose.declare_state(layout, prefix + "/loose");
 }
 
 void Multibody::restored() {

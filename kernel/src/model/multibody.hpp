@@ -179,9 +179,10 @@ class Multibody {
   /// `multibody/time` (ticks, pending half kick), `multibody/q`, `multibody/u`, `multibody/z`,
   /// `multibody/columns` (the M^-1 column cache: validity flags, columns, loop axes' unit
   /// forces, the q and root quaternions they were computed at, axis mobilities),
-  /// `multibody/reactions` (6 per scene joint), then the loose bodies' segments. After the
-  /// layout restored them, call restored(). `prefix` replaces `multibody` in the names (one
-  /// part of several, multibody_islands.hpp); a part without loose bodies then declares none.
+  /// `multibody/reactions` (6 per scene joint), then the loose bodies' segments (`loose/…`).
+  /// After the layout restored them, call restored(). `prefix` replaces `multibody` in the
+  /// names (one part of several, multibody_islands.hpp), and the loose bodies' are then
+  /// `<prefix>/loose/…`, declared only by a part that has loose bodies.
   void declare_state(sim::StateLayout& layout, const std::string& prefix = "multibody");
   /// Makes the restored segments the current state (time, realized; mid-tick caches dropped).
   void restored();

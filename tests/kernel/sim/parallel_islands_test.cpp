@@ -138,10 +138,10 @@ TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
   EXPECT_THROW(serial->restore(snapshot), Error);
 }
 
-// Robots of both parts driven into each other, into a wall (FCL's box–box) and into loose
-// boxes and a ball (part 0's): every signal and every contact (bodies, point, normal, force,
-// depth, in order) equal the serial run's, also after a robot is placed elsewhere between two
-// ticks.
+// Robots driven into each other, into a wall (FCL's box–box), into loose boxes and a ball, and
+// a robot of part 0 into a plank of part 1 (a loose body goes with its nearest robot's part):
+// every signal and every contact (bodies, point, normal, force, depth, in order) equal the
+// serial run's, also after a robot is placed elsewhere between two ticks.
 TEST(ParallelIslands, RobotsMeetingAcrossThePartsGiveTheSerialContactsBitForBit) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   std::unique_ptr<Simulation> runs[2] = {load_meeting(1), load_meeting(2)};
@@ -175,7 +175,7 @@ TEST(ParallelIslands, RobotsMeetingAcrossThePartsGiveTheSerialContactsBitForBit)
     }
   }
   EXPECT_GT(body_pairs, 100u) << "the robots must meet each other, the things and the wall";
-  EXPECT_GT(across_parts, 10u) << "the parts' robots must meet each other";
+  EXPECT_GT(across_parts, 10u) << "a part's robot must push the other part's plank";
 }
 
 /// The error of a run whose robots in `blown` get an absurd torque (empty: none thrown).

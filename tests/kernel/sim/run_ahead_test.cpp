@@ -5,6 +5,7 @@
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>
 
+#include "model/island_plan.hpp"
 #include "parallel_runs.hpp"
 
 #include <gtest/gtest.h>
@@ -89,6 +90,67 @@ TEST(RunAhead, PartsThatComeCloseGoBackAndGiveTheSerialContactsBitForBit) {
   const Simulation::RunAheadCounts ahead = parallel.run_ahead_counts();
   EXPECT_GT(ahead.stretches, 0) << "while the parts are apart, they run ahead";
   EXPECT_GT(ahead.lost, 0) << "r1 must come close to r2 within a stretch";
+}
+
+TEST(RunAhead, ThingsGoWithTheirNearestRobotsPartSoThatPartsPushingThemRunAhead) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Sixteen robots on a grid, each driving into a ball and a box ahead of it. Each thing is
+  // dealt to the part of the robot nearest to it at load; all in part 0, they would lie among
+  // part 1's robots, the parts' shapes would overlap and no stretch would ever start.
+  const auto scene =
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/robots_things";
+  std::unique_ptr<Simulation> runs[2] = {load_on(scene, 1), load_on(scene, 2)};
+  for (auto& run : runs)
+    each_voltage(*run, [&](std::size_t i, const std::string& name) {
+      run->set_input(i, name.find("/left/") != std::string::npos ? -6.0 : 6.0);
+    });
+  Simulation &serial = *runs[0], &parallel = *runs[1];
+  const scene::Scene& sc = serial.scene();
+  const auto plans = model::plan_parts(sc, model::plan_topology(sc), {}, 2);
+  ASSERT_EQ(plans.size(), 2u);
+  std::vector<int> part_of_body(sc.bodies.size() + 1, -1);
+  for (std::size_t p = 0; p < plans.size(); ++p)
+    for (int b : plans[p].bodies)
+      part_of_body[static_cast<std::size_t>(b)] = static_cast<int>(p);
+  // Thing k (ball k, box k) stands ahead of robot k, whose rows y = 0, 1.5 are part 0's.
+  std::vector<int> things;
+  for (std::size_t b = 0; b < sc.bodies.size(); ++b)
+    if (sc.bodies[b].robot < 0) things.push_back(static_cast<int>(b) + 1);
+  ASSERT_EQ(things.size(), 32u);
+  for (std::size_t k = 0; k < things.size(); ++k)
+    EXPECT_EQ(part_of_body[static_cast<std::size_t>(things[k])], k / 2 < 8 ? 0 : 1)
+        << sc.bodies[static_cast<std::size_t>(things[k]) - 1].id;
+
+  std::size_t things_pushed = 0;  // contacts between a robot and a thing, at the chunks' ends
+  for (int chunk = 0; chunk < 15; ++chunk) {
+    for (int tick = 0; tick < 100; ++tick)
+      serial.step();
+    parallel.step(100);
+    ASSERT_TRUE(same_bits(signals(serial), signals(parallel))) << "after tick " << serial.tick();
+    ASSERT_EQ(serial.contact_count(), parallel.contact_count()) << serial.tick();
+    for (std::size_t c = 0; c < serial.contact_count(); ++c) {
+      ASSERT_TRUE(same_contact(serial, parallel, c)) << serial.tick() << ", contact " << c;
+      const ContactInfo& a = serial.contact(c);
+      if (a.body_a.index > 0 && a.body_b.index > 0 &&
+          (sc.bodies[static_cast<std::size_t>(a.body_a.index) - 1].robot < 0) !=
+              (sc.bodies[static_cast<std::size_t>(a.body_b.index) - 1].robot < 0))
+        ++things_pushed;
+    }
+  }
+  EXPECT_GT(things_pushed, 50u) << "the robots must push their things";
+  const Vec3 ball = serial.body_pose(things[0]).position;
+  EXPECT_GT(ball.x, 0.3) << "ball0 was pushed from x = 0.2";
+  const Simulation::RunAheadCounts ahead = parallel.run_ahead_counts();
+  EXPECT_GE(ahead.ticks, 1400);
+  EXPECT_EQ(ahead.lost, 0);
+  // Each part's things are its own snapshot segments, and a snapshot brings them back.
+  const Simulation::Snapshot snapshot = parallel.save();
+  EXPECT_EQ(snapshot.find("multibody/part1/loose/position").size, 7u * 16);
+  parallel.step(200);
+  const std::vector<double> first = signals(parallel);
+  parallel.restore(snapshot);
+  parallel.step(200);
+  EXPECT_TRUE(same_bits(first, signals(parallel)));
 }
 
 /// `scene` with the test plugins (the local controller).
