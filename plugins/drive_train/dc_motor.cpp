@@ -108,45 +108,44 @@ DcMotor::Parameters DcMotor::parameters(const StepContext& ctx) const {
 }
 
 void DcMotor::update(StepContext& ctx) {
-  const Parameters m = parameters(ctx);
   const double w = ctx.axis_velocity(axis_);  // mid-step speed of the last step
   const double q = ctx.axis_position(axis_);
   const double dt = ctx.tick_s();
   double& i = *ctx.state(current_state_);
   double& energy = *ctx.state(energy_);
 
-  double v = 0, e = 0;
-  CurrentStep step;
-  const double de_dw = simtwo_back_emf_ ? m.K / m.N : m.K * m.N;
-  if (m.active) {
+  double v = 0, e = 0, motor_torque = 0, power = 0;
+  if (ctx.input(active_in_) != 0.0) {
+    const Parameters m = parameters(ctx);
     v = std::clamp(ctx.input(ref_voltage_), -m.vmax, m.vmax);
+    const double de_dw = simtwo_back_emf_ ? m.K / m.N : m.K * m.N;
     e = de_dw * w;
-    step = advance_current(i, v, e, m.R, m.L, m.imax, m.simple, dt);
-  } else {
-    i = 0;  // switched off (SimTwo's SetMotorActive false): no current, no torque
-  }
-  // The slew limit is a box around the last step's current: it bounds the drive as the
-  // current limit does, so the implicit solve keeps it.
-  double i_min = -m.imax, i_max = m.imax;
-  if (slew_A_per_tick_ > 0) {
-    i_min = std::max(i_min, i - slew_A_per_tick_);
-    i_max = std::min(i_max, i + slew_A_per_tick_);
-    step.end = std::clamp(step.end, i_min, i_max);
-    step.mean = std::clamp(step.mean, i_min, i_max);
-  }
-  i = step.end;
-  const double motor_torque = m.N * m.K * step.mean;
-  const double power = v * step.mean;
-  energy += power * dt;
-
-  // The motor torque falls with the speed through the back-EMF, within the current limit;
-  // the viscous friction too: drives, which the kernel integrates implicitly (stable and
-  // without ringing on any inertia, docs/models/dc-motor.md). The spring stays an explicit
-  // force: the leapfrog keeps its energy exactly, an implicit spring would bleed it.
-  if (m.active) {
+    CurrentStep step = advance_current(i, v, e, m.R, m.L, m.imax, m.simple, dt);
+    // The slew limit is a box around the last step's current: it bounds the drive as the
+    // current limit does, so the implicit solve keeps it.
+    double i_min = -m.imax, i_max = m.imax;
+    if (slew_A_per_tick_ > 0) {
+      i_min = std::max(i_min, i - slew_A_per_tick_);
+      i_max = std::min(i_max, i + slew_A_per_tick_);
+      step.end = std::clamp(step.end, i_min, i_max);
+      step.mean = std::clamp(step.mean, i_min, i_max);
+    }
+    i = step.end;
+    motor_torque = m.N * m.K * step.mean;
+    power = v * step.mean;
+    energy += power * dt;
+    // The motor torque falls with the speed through the back-EMF, within the current limit:
+    // a drive, which the kernel integrates implicitly (stable and without ringing on any
+    // inertia, docs/models/dc-motor.md).
     ctx.apply_axis_drive(axis_, m.N * m.K * step.unlimited_mean, -m.N * m.K * step.dmean_de * de_dw,
                          m.N * m.K * i_min, m.N * m.K * i_max);
+  } else {
+    // Switched off (SimTwo's SetMotorActive false): no current, no torque. Its parameters are
+    // not used, so not read: they are validated when it is switched on again.
+    i = 0;
   }
+  // The viscous friction is a drive too; the spring stays an explicit force: the leapfrog
+  // keeps its energy exactly, an implicit spring would bleed it.
   if (bv_ > 0) ctx.apply_axis_drive(axis_, -bv_ * w, bv_);
   if (spring_k_ > 0) ctx.apply_axis_force(axis_, -spring_k_ * (q - zero_pos_));
   if (fc_ > 0) ctx.apply_axis_friction(axis_, fc_);

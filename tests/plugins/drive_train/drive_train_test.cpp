@@ -260,8 +260,13 @@ TEST(DcMotor, ParameterInputsSwitchTheMotorAndChangeItsLawAtRunTime) {
   sim->run_until(4.0);
   const double w_2r = (6 - 2 * kRa * kTc / kKs) / (kKs + 2 * kRa * kB / kKs);
   EXPECT_NEAR(sim->signal(axis("speed")), w_2r, 1e-3 * w_2r);
-  // A value the motor cannot take stops the run, naming the input and the value.
+  // A value the motor cannot take stops the run, naming the input and the value, as soon as
+  // the motor uses it: not while it is switched off (its parameters unread), at once when on.
+  sim->set_input(axis("motor_active"), 0);
   sim->set_input(axis("gear_ratio"), 0);
+  EXPECT_NO_THROW(sim->step(10));
+  EXPECT_EQ(sim->signal(axis("current")), 0.0);
+  sim->set_input(axis("motor_active"), 1);
   try {
     sim->step();
     FAIL() << "a zero gear ratio was accepted";
