@@ -132,12 +132,16 @@ std::string summary_text(const Simulation& sim, const RunTiming& t) {
                   ahead.stretches, ahead.ticks, ahead.lost);
     s += line;
   }
+  // A value that prints as zero prints without a sign: a robot driving straight ends at
+  // y = -1e-18 as readily as at +1e-18, and "-0.0000" would read as a drift.
+  auto shown = [](double v, double last_digit) { return std::abs(v) < 0.5 * last_digit ? 0.0 : v; };
   auto rows = [&](const char* title, const std::vector<PoseRow>& r) {
     if (r.empty()) return;
     s += title;
     for (const auto& p : r) {
       std::snprintf(line, sizeof line, "  %-20s x %9.4f  y %9.4f  z %9.4f  yaw %8.2f deg\n",
-                    p.name.c_str(), p.x, p.y, p.z, p.yaw * 180.0 / kPi);
+                    p.name.c_str(), shown(p.x, 1e-4), shown(p.y, 1e-4), shown(p.z, 1e-4),
+                    shown(p.yaw * 180.0 / kPi, 1e-2));
       s += line;
     }
   };
