@@ -107,8 +107,14 @@ class TreeDynamics {
     Mat3 second_moment;  // kg·m², the inertia about the origin
   };
   std::vector<Composite> composite_;
-  std::vector<double> mass_;  // per tree its mass matrix block, then its Cholesky factor
+  // Per tree its mass matrix block (lower triangle, only the entries of a speed and its
+  // ancestors: the others are zero), then its factor L, M = Lᵀ·L, in the same entries.
+  std::vector<double> mass_;
   std::vector<double> rhs_;
+  // Per speed the speed it hangs from, as an index within its tree (-1: none): the previous
+  // speed of its own body, else the last speed of its nearest ancestor body with speeds. A row
+  // of M, and of its factor, is non-zero only at the speed's chain of these.
+  std::vector<int> speed_parent_;
 
   /// The two halves of kinematics(): poses and columns from q; velocities from u.
   void positions(const double* q);
@@ -119,8 +125,9 @@ class TreeDynamics {
   void bias_accelerations();
   void subtree_loads(const double* body_loads);
   void mass_matrix_and_right_side(const double* mobility_forces);
+  /// M = Lᵀ·L, tip to base, without fill-in (Featherstone's LTL factorisation).
   void factor(const Tree& t);
-  /// x = M^-1·b within tree t (b and x point at its first speed); after factor(t).
+  /// x = M^-1·b within tree t (b and x point at its first speed; x may be b); after factor(t).
   void substitute(const Tree& t, const double* b, double* x) const;
 };
 
