@@ -3,8 +3,8 @@
 /// Dense Cholesky factorisation and substitution for the model's small symmetric positive
 /// definite systems: the implicit axis solve's rows (implicit_axes.cpp, axis_modes.cpp; the
 /// tree's mass matrix has its own sparse factor, tree_dynamics.cpp); and a pivoted one for the
-/// semidefinite systems of
-/// redundant loop constraints (loop_constraints.cpp). Row-major n x n; a few dozen rows at most.
+/// semidefinite systems of redundant loop constraints (loop_constraints.cpp). Row-major n x n;
+/// a few dozen rows at most.
 
 #include <cmath>
 
