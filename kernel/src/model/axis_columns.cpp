@@ -40,16 +40,18 @@ void rotate_with_root(Multibody::Impl& m, const SimTK::State& s, int a) {
   const int root = m.axis_root[a];
   if (root < 0) return;
   const Multibody::Impl::Root& r = m.roots[static_cast<std::size_t>(root)];
-  const SimTK::Vector& q = s.getQ();
+  // Raw reads and writes: a Vector's element access is a call (asked for every axis, every
+  // substep). A State's q is one contiguous block; the columns are our own Vectors.
+  const double* q = s.getQ().getContiguousScalarData() + r.q0;
   double* then = &m.column_root_quat[4 * static_cast<std::size_t>(a)];
   bool same = true;
   for (int k = 0; k < 4; ++k)
-    same = same && then[k] == q[r.q0 + k];
+    same = same && then[k] == q[k];
   if (same) return;
-  const SimTK::Rotation R_now(SimTK::Quaternion(q[r.q0], q[r.q0 + 1], q[r.q0 + 2], q[r.q0 + 3]));
+  const SimTK::Rotation R_now(SimTK::Quaternion(q[0], q[1], q[2], q[3]));
   const SimTK::Rotation R_then(SimTK::Quaternion(then[0], then[1], then[2], then[3]));
   const SimTK::Rotation R = R_now * ~R_then;
-  SimTK::Vector& column = m.minv_column[a];
+  double* column = m.minv_column[a].updContiguousScalarData();
   for (int part = 0; part < 2; ++part) {
     const int i = r.u0 + 3 * part;
     const SimTK::Vec3 v = R * SimTK::Vec3(column[i], column[i + 1], column[i + 2]);
@@ -57,7 +59,7 @@ void rotate_with_root(Multibody::Impl& m, const SimTK::State& s, int a) {
       column[i + k] = v[k];
   }
   for (int k = 0; k < 4; ++k)
-    then[k] = q[r.q0 + k];
+    then[k] = q[k];
 }
 
 }  // namespace
@@ -70,14 +72,16 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
       rotate_with_root(m, s, a);
       continue;
     }
-    if (!m.axes[a].loop) {
+    if (!m.axes[a].loop && m.uses_tree()) {
+      // g: a unit load along the axis; M factored by this substep's accelerations, at this q.
+      double& g = m.unit_speed[static_cast<std::size_t>(m.axis_u[a])];
+      g = m.axis_impl[a].sign;
+      m.tree->solve(m.unit_speed.data(), m.minv_column[a].updContiguousScalarData());
+      g = 0.0;
+    } else if (!m.axes[a].loop) {
       m.unit_force = 0.0;
-      m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;  // g: a unit load along the axis
-      if (m.uses_tree())  // M factored by this substep's accelerations, at this q
-        m.tree->solve(m.unit_force.getContiguousScalarData(),
-                      m.minv_column[a].updContiguousScalarData());
-      else
-        m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
+      m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;
+      m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
     } else {
       // g = Jᵀ·(the body loads of a unit axis load), then M^-1·g.
       SimTK::Vector& g = m.loop_unit_force[a];
@@ -94,10 +98,11 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
     }
     m.axis_mobility[a] = axis_dot(m, static_cast<std::size_t>(a), m.minv_column[a]);
     m.column_valid[a] = 1;
-    if (m.axis_root[a] >= 0)
-      for (int k = 0; k < 4; ++k)
-        m.column_root_quat[4 * static_cast<std::size_t>(a) + k] =
-            s.getQ()[m.roots[static_cast<std::size_t>(m.axis_root[a])].q0 + k];
+    if (m.axis_root[a] >= 0) {
+      const double* q =
+          s.getQ().getContiguousScalarData() + m.roots[static_cast<std::size_t>(m.axis_root[a])].q0;
+      std::copy(q, q + 4, &m.column_root_quat[4 * static_cast<std::size_t>(a)]);
+    }
   }
 }
 

@@ -340,6 +340,7 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   m.substep_twists.assign(m.mobod_of_body.size(), Twist{});
   m.substep_wrenches.assign(m.mobod_of_body.size(), Wrench{});
   m.unit_force.resize(m.initial_state.getNU());
+  m.unit_speed.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
   m.columns_q.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
   m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
   m.loop_unit_force.assign(m.axes.size(), SimTK::Vector());

@@ -234,6 +234,7 @@ struct Multibody::Impl {
   int substep = 0;                // index of the current substep in the tick
   bool bodies_fresh = false;      // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
+  std::vector<double> unit_speed;  // zero but while a tree axis's column is solved (fast path)
   std::vector<Pose> substep_poses;
   std::vector<Twist> substep_twists;
   std::vector<Wrench> substep_wrenches;
