@@ -32,7 +32,7 @@ namespace {
 /// The axis's rate for the current generalized speeds; `state` realized to Velocity for a
 /// loop axis.
 double current_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
-  if (!m.axes[a].loop) return m.axis_impl[a].sign * s.getU()[m.axis_u[a]];
+  if (!m.axes[a].loop) return m.axis_impl[a].sign * element(s.getU(), m.axis_u[a]);
   return axis_rate(m, s, a);
 }
 
@@ -47,7 +47,7 @@ void classify_sliding(Multibody::Impl& m, const SimTK::State& s, double h) {
     m.sliding[a] = 0;
     if (!(m.axis_friction[a] > 0.0) || m.axes[a].loop || !(m.axis_mobility[a] > 0)) continue;
     const double threshold = 10 * m.axis_friction[a] * h * m.axis_mobility[a];
-    m.sliding[a] = std::abs(u[m.axis_u[a]]) > threshold;
+    m.sliding[a] = std::abs(element(u, m.axis_u[a])) > threshold;
   }
 }
 
@@ -282,7 +282,7 @@ void sweep_tree(Multibody::Impl& m, SimTK::State& s, std::size_t tree, int begin
       add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
       // A tree axis that sticks stands exactly still (no creep from rounding).
       if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
-        u[m.axis_u[axis]] = 0.0;
+        u.updContiguousScalarData()[m.axis_u[axis]] = 0.0;  // (a State's u is contiguous)
       // Converged when no axis's speed moves by more than 1e-9 of itself (or 1e-9 rad/s).
       changed =
           changed || std::abs(delta) * kick_s * w > 1e-9 * (1 + std::abs(axis_dot(m, axis, u)));
