@@ -5,7 +5,8 @@
 namespace s2sim::collision {
 namespace {
 constexpr std::size_t kInsertionSortBelow = 16;
-}
+constexpr std::size_t kDirectSortPerBox = 8;  // sort directly below one pair per 8 boxes
+}  // namespace
 
 void PairSorter::reserve(int count, std::size_t pairs) {
   count_ = count;
@@ -15,6 +16,12 @@ void PairSorter::reserve(int count, std::size_t pairs) {
 
 void PairSorter::sort(Pairs& out) {
   const auto n = static_cast<std::size_t>(count_);
+  // Few pairs among many boxes (a part's own, a few robots'): the counting sort's pass over
+  // every box would cost more than sorting them directly, into the same order.
+  if (out.size() * kDirectSortPerBox < n) {
+    std::sort(out.begin(), out.end());
+    return;
+  }
   first_of_.assign(n + 1, 0);
   for (const auto& p : out)
     ++first_of_[static_cast<std::size_t>(p.first) + 1];

@@ -16,8 +16,8 @@ class PairSorter {
   using Pairs = std::vector<std::pair<std::int32_t, std::int32_t>>;
   /// Pairs of `count` boxes; reserves for `pairs` of them.
   void reserve(int count, std::size_t pairs);
-  /// Sorts by (i, j): a counting sort on i, then each i's few j in place. Allocates only when
-  /// more pairs come than ever before.
+  /// Sorts by (i, j): a counting sort on i, then each i's few j in place; fewer pairs than
+  /// an eighth of the boxes directly. Allocates only when more pairs come than ever before.
   void sort(Pairs& pairs);
 
  private:
