@@ -75,6 +75,30 @@ scene::Scene arm_and_box() {
   return s;
 }
 
+/// A free body carrying a bracket welded to it, and below the bracket two hinges in a chain:
+/// speeds whose body hangs from a weld (their rows of the factor skip the weld's body, which
+/// has no speeds, to the free body's).
+scene::Scene welded_chain() {
+  scene::Scene s;
+  s.bodies.push_back(
+      test::box("hub", 1.5, {0.2, 0.2, 0.2}, {0, 0, 1}, test::rotation_about({1, -1, 2}, 0.4)));
+  s.bodies.push_back(test::box("bracket", 0.2, {0.05, 0.05, 0.2}, {0.1, 0, 0.85}));
+  s.bodies.push_back(test::box("link", 0.3, {0.25, 0.03, 0.03}, {0.25, 0, 0.75}));
+  s.bodies[2].com_m = {0.02, 0.0, 0.005};
+  s.bodies.push_back(test::box("tip", 0.1, {0.04, 0.04, 0.1}, {0.38, 0, 0.7}));
+  s.joints.push_back(test::joint("bolt", JointType::fixed, 1, 0, {0.1, 0, 0.9}));
+  s.joints.push_back(test::joint("knee", JointType::hinge, 2, 1, {0.12, 0, 0.75}, {0, 1, 0.3}));
+  s.joints.push_back(test::joint("ankle", JointType::hinge, 3, 2, {0.37, 0, 0.75}, {1, 0, 0}));
+  test::add_robot(s, "welded");
+  return s;
+}
+
+TEST(TreeDynamics, SpeedsBelowAWeldMatchSimbodysToOnePartInATrillion) {
+  const double worst = test::worst_relative_difference(welded_chain(), 400);
+  std::printf("welded chain: worst relative difference of the velocity change %.3g\n", worst);
+  EXPECT_LT(worst, 1e-12);
+}
+
 TEST(TreeDynamics, RoverAccelerationsMatchSimbodysToOnePartInATrillion) {
   const double worst = test::worst_relative_difference(rover(), 400);
   std::printf("rover: worst relative difference of the velocity change %.3g\n", worst);
