@@ -35,8 +35,10 @@ std::unique_ptr<TreeDynamics> tree_of(const Multibody::Impl& m) {
       b.joint = TreeDynamics::Joint::slider;
     } else if (SimTK::MobilizedBody::Weld::isInstanceOf(mob)) {
       b.joint = TreeDynamics::Joint::weld;
+    } else if (SimTK::MobilizedBody::Universal::isInstanceOf(mob)) {
+      b.joint = TreeDynamics::Joint::universal;
     } else {
-      return nullptr;  // Universal, Ball: Simbody's
+      return nullptr;  // Ball: Simbody's
     }
     b.parent = mob.getParentMobilizedBody().getMobilizedBodyIndex();
     b.X_PF = pose_of(mob.getDefaultInboardFrame());

@@ -70,8 +70,8 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
   poses_.assign(bodies, Pose{});
   twists_.assign(bodies, Twist{});
   gather_reactions();
-  // One system takes the fast path only if every tree of it can (a universal joint anywhere:
-  // Simbody for all), and the two compute the same dynamics only to rounding. The parts do
+  // One system takes the fast path only if every tree of it can (one whose check at load
+  // fails: Simbody for all), and the two compute the same dynamics only to rounding. The parts do
   // as the whole scene would, or a part without that tree would take the fast path's last
   // bits where the serial run takes Simbody's (found by the differential fuzzing).
   for (const Part& part : parts_)

@@ -20,6 +20,22 @@ Mat3 rotation_about_z(double angle) {
   return r;
 }
 
+/// Simbody's body-fixed X then Y rotation (a Universal mobilizer's R_FM): Rx(a)·Ry(b).
+Mat3 rotation_x_then_y(double a, double b) {
+  const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
+  Mat3 r;
+  r.m[0][0] = cb;
+  r.m[0][1] = 0;
+  r.m[0][2] = sb;
+  r.m[1][0] = sa * sb;
+  r.m[1][1] = ca;
+  r.m[1][2] = -sa * cb;
+  r.m[2][0] = -ca * sb;
+  r.m[2][1] = sa;
+  r.m[2][2] = ca * cb;
+  return r;
+}
+
 /// Simbody's rotation of a quaternion (w, x, y, z), normalised first as its Quaternion does.
 Mat3 rotation_of_quaternion(const double* q) {
   const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
@@ -68,6 +84,8 @@ int dofs_of(TreeDynamics::Joint joint) {
     case TreeDynamics::Joint::pin:
     case TreeDynamics::Joint::slider:
       return 1;
+    case TreeDynamics::Joint::universal:
+      return 2;
     case TreeDynamics::Joint::weld:
       return 0;
   }
@@ -135,6 +153,7 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   frame_rotation_.assign(n, Mat3{});
   relative_angular_.assign(n, Vec3{});
   relative_linear_.assign(n, Vec3{});
+  relative_bias_.assign(n, Vec3{});
   column_.assign(static_cast<std::size_t>(nu), Twist{});
   bias_acceleration_.assign(n, Twist{});
   subtree_load_.assign(n, Wrench{});
@@ -171,6 +190,9 @@ void TreeDynamics::positions(const double* q) {
       case Joint::slider:
         X_FM.position = {qb[0], 0, 0};
         break;
+      case Joint::universal:
+        X_FM.rotation = rotation_x_then_y(qb[0], qb[1]);
+        break;
       case Joint::weld:
         break;
     }
@@ -198,6 +220,14 @@ void TreeDynamics::positions(const double* q) {
       case Joint::slider:
         col[0] = {Vec3{}, R_GF.column(0)};
         break;
+      case Joint::universal: {
+        // F's X, then the new Y: F's Y turned about X by q0.
+        const Vec3 x = R_GF.column(0);
+        const Vec3 y = R_GF * Vec3{0, std::cos(qb[0]), std::sin(qb[0])};
+        col[0] = {x, cross(x, d)};
+        col[1] = {y, cross(y, d)};
+        break;
+      }
       case Joint::weld:
         break;
     }
@@ -221,11 +251,20 @@ void TreeDynamics::velocities(const double* u) {
       case Joint::slider:
         v_FM = {ub[0], 0, 0};
         break;
+      case Joint::universal:
       case Joint::weld:
         break;
     }
     const Mat3& R_GF = frame_rotation_[i];
-    const Vec3 w_rel = R_GF * w_FM, v_rel = R_GF * v_FM;
+    Vec3 w_rel = R_GF * w_FM;
+    const Vec3 v_rel = R_GF * v_FM;
+    relative_bias_[i] = Vec3{};
+    if (b.joint == Joint::universal) {  // its columns' axes, the second turning with the first
+      const Vec3 w_1 = column_[static_cast<std::size_t>(b.u0)].angular_rad_s * ub[0];
+      const Vec3 w_2 = column_[static_cast<std::size_t>(b.u0) + 1].angular_rad_s * ub[1];
+      w_rel = w_1 + w_2;
+      relative_bias_[i] = cross(w_1, w_2);
+    }
     relative_angular_[i] = w_rel;
     relative_linear_[i] = v_rel;
     const Twist& V_P = twist_[p];
@@ -259,11 +298,13 @@ void TreeDynamics::bias_accelerations() {
     const Twist& A_P = bias_acceleration_[p];
     const Vec3 r = pose_[i].position - pose_[p].position;
     const Vec3 d = pose_[i].position - joint_origin_[i];
-    const Vec3 w_P_x_w_rel = cross(w_P, w_rel);
-    bias_acceleration_[i] = {A_P.angular_rad_s + w_P_x_w_rel,
+    // The relative ω's change at u' = 0: its axes turning with the parent, and a Universal's
+    // second axis with its first.
+    const Vec3 w_rel_rate = cross(w_P, w_rel) + relative_bias_[i];
+    bias_acceleration_[i] = {A_P.angular_rad_s + w_rel_rate,
                              A_P.linear_m_s + cross(A_P.angular_rad_s, r) +
                                  cross(w_P, twist_[i].linear_m_s - twist_[p].linear_m_s) +
-                                 cross(w_P, relative_linear_[i]) + cross(w_P_x_w_rel, d) +
+                                 cross(w_P, relative_linear_[i]) + cross(w_rel_rate, d) +
                                  cross(w_rel, cross(twist_[i].angular_rad_s, d))};
   }
 }

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// The forward dynamics of a Simbody matter subsystem without constraints whose mobilizers are
-/// all Free, Pin, Slider or Weld, computed without Simbody: the small-tree fast path (issue 17).
+/// The forward dynamics of a Simbody matter subsystem whose mobilizers are all Free, Pin,
+/// Slider, Universal or Weld, computed without Simbody: the small-tree fast path (issue 17).
 /// Simbody's realize chain costs three quarters of a small robot's step in stage bookkeeping
 /// and cache access (docs/benchmarks.md); the same equations here, over plain arrays, give
 /// its accelerations to rounding (tests/kernel/model/tree_dynamics_test.cpp compares them to
@@ -10,7 +10,8 @@
 /// Conventions are Simbody's: body index 0 is Ground; a body's pose X_GB = X_GP·X_PF·X_FM(q)·X_MB;
 /// its velocity is (ω, v of its origin) in Ground; body loads are (torque about the body origin,
 /// force) in Ground; a Free mobilizer's q is the quaternion of R_FM then p_FM, its u is ω_FM
-/// then v_FM, both in F; a Pin turns about the common Z of F and M, a Slider moves along X.
+/// then v_FM, both in F; a Pin turns about the common Z of F and M, a Slider moves along X; a
+/// Universal turns about F's X by q0, then about the new Y by q1 (R_FM = Rx(q0)·Ry(q1), u = q').
 /// No Simbody header here (kernel/src/model's Simbody translation units are C++17).
 
 #include <s2sim/math.hpp>
@@ -21,7 +22,7 @@ namespace s2sim::model {
 
 class TreeDynamics {
  public:
-  enum class Joint { free, pin, slider, weld };
+  enum class Joint { free, pin, slider, weld, universal };
 
   /// One mobilized body, in Simbody's order (parents first); `parent` 0 is Ground.
   struct BodySpec {
@@ -97,6 +98,7 @@ class TreeDynamics {
   std::vector<Mat3> frame_rotation_;    // R_GF: the mobilizer's F frame in Ground
   std::vector<Vec3> relative_angular_;  // ω of the body relative to its parent, Ground
   std::vector<Vec3> relative_linear_;   // v of M's origin relative to F, Ground
+  std::vector<Vec3> relative_bias_;     // a Universal's ω_1 × ω_2: its axis turning (Ground)
   std::vector<Twist> column_;           // per speed: the body's (ω, v) per unit speed
   std::vector<Twist> bias_acceleration_;
   std::vector<Wrench> subtree_load_;  // the force each subtree needs, about its body origin
