@@ -37,8 +37,10 @@ std::unique_ptr<TreeDynamics> tree_of(const Multibody::Impl& m) {
       b.joint = TreeDynamics::Joint::weld;
     } else if (SimTK::MobilizedBody::Universal::isInstanceOf(mob)) {
       b.joint = TreeDynamics::Joint::universal;
+    } else if (SimTK::MobilizedBody::Ball::isInstanceOf(mob) && mob.getNumQ(s) == 4) {
+      b.joint = TreeDynamics::Joint::ball;
     } else {
-      return nullptr;  // Ball: Simbody's
+      return nullptr;  // another kind (none built now): Simbody's
     }
     b.parent = mob.getParentMobilizedBody().getMobilizedBodyIndex();
     b.X_PF = pose_of(mob.getDefaultInboardFrame());

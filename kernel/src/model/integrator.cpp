@@ -25,19 +25,28 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, i
 
 /// q' = N(q)·u for Free mobilizers (q = quaternion of R_FM then p_FM, u = ω then v, both in
 /// F: q̇_quat = ½·(0, ω)⊗q, ṗ = v) and mobilizers whose q' = u (Pin, Slider, Universal).
+namespace {
+/// Simbody's quaternion rate for the angular velocity w (in F): q' = ½·(0, w)⊗q.
+void quaternion_rate(const double* w, const double* q, double* qdot) {
+  const double w0 = w[0], w1 = w[1], w2 = w[2];
+  const double a = q[0], b = q[1], c = q[2], d = q[3];
+  qdot[0] = -0.5 * (w0 * b + w1 * c + w2 * d);
+  qdot[1] = 0.5 * (w0 * a + w1 * d - w2 * c);
+  qdot[2] = 0.5 * (-w0 * d + w1 * a + w2 * b);
+  qdot[3] = 0.5 * (w0 * c - w1 * b + w2 * a);
+}
+}  // namespace
+
 void calc_qdot(const Multibody::Impl& m, const double* u, const double* q, double* qdot) {
   for (const auto& [qi, ui] : m.direct_coordinates)
     qdot[qi] = u[ui];
   for (const auto& f : m.free_coordinates) {
-    const double w0 = u[f.u], w1 = u[f.u + 1], w2 = u[f.u + 2];
-    const double a = q[f.q], b = q[f.q + 1], c = q[f.q + 2], d = q[f.q + 3];
-    qdot[f.q] = -0.5 * (w0 * b + w1 * c + w2 * d);
-    qdot[f.q + 1] = 0.5 * (w0 * a + w1 * d - w2 * c);
-    qdot[f.q + 2] = 0.5 * (-w0 * d + w1 * a + w2 * b);
-    qdot[f.q + 3] = 0.5 * (w0 * c - w1 * b + w2 * a);
+    quaternion_rate(u + f.u, q + f.q, qdot + f.q);
     for (int k = 0; k < 3; ++k)
       qdot[f.q + 4 + k] = u[f.u + 3 + k];
   }
+  for (const auto& f : m.ball_coordinates)
+    quaternion_rate(u + f.u, q + f.q, qdot + f.q);
 }
 
 void normalize_quaternions(const Multibody::Impl& m, double* q) {

@@ -23,15 +23,10 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
     return std::vector<PartPlan>{std::move(plan)};
   };
   if (parts <= 1) return whole();
-  // Scene-wide policies of one Simbody system that a part would not share, so that its numbers
+  // A scene-wide policy of one Simbody system that a part would not share, so that its numbers
   // would differ in the last bits: with a loop anywhere the M^-1 columns are recomputed when any
-  // coordinate moves and the axis solve is one block; with a Ball anywhere q' = N·u is Simbody's
-  // for every body (multibody_build.cpp). Such scenes keep one part.
+  // coordinate moves and the axis solve is one block. Such scenes keep one part.
   if (!topology.loops.empty()) return whole();
-  for (const auto& e : topology.tree)
-    if (e.joint >= 0 &&
-        scene.joints[static_cast<std::size_t>(e.joint)].type == scene::JointType::ball)
-      return whole();
 
   // Connected components over the scene bodies (the world joins nothing: robots standing on
   // the floor are separate islands).

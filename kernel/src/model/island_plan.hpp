@@ -29,8 +29,8 @@ struct PartPlan {
 /// weight (ties: the island of the lower body first), each to the part with the least weight
 /// so far (ties: the lower part). Each loose body then goes with the island of the jointed
 /// body nearest to it at load. One part (the whole plan) when `parts` ≤ 1, the scene
-/// has fewer than two islands, or it has a loop-closing joint or a Ball joint anywhere (one
-/// system's scene-wide policies then decide last bits: island_plan.cpp).
+/// has fewer than two islands, or it has a loop-closing joint anywhere (one system's
+/// scene-wide policies then decide last bits: island_plan.cpp).
 std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topology,
                                  const std::vector<double>& axis_inertia, int parts);
 

@@ -328,8 +328,10 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
         m.direct_coordinates.emplace_back(q0 + c, u0 + c);
     } else if (nq == 7 && nu == 6) {
       m.free_coordinates.push_back({q0, u0});
+    } else if (nq == 4 && nu == 3) {
+      m.ball_coordinates.push_back({q0, u0});
     } else {
-      m.own_n = false;  // a Ball: leave it to Simbody
+      m.own_n = false;  // another kind: leave it to Simbody
     }
   }
   m.has_constraints = m.matter.getNumConstraints() > 0;

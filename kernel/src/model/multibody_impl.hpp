@@ -127,12 +127,14 @@ struct Multibody::Impl {
   bool contact_wrenches_used = false;  // substep_wrenches are written every substep (contact)
   SimTK::State initial_state;
   std::vector<int> quaternion_q;  // first q index of each quaternion (Free and Ball mobilizers)
-  // q' = N(q)·u by hand when every mobilizer is Free or has q' = u: Simbody's multiplyByN goes
-  // through its state digest for what is a copy plus one quaternion rate per free body.
+  // q' = N(q)·u by hand when every mobilizer is Free, Ball (quaternion) or has q' = u:
+  // Simbody's multiplyByN goes through its state digest for what is a copy plus one quaternion
+  // rate per free body or ball.
   struct FreeCoordinates {
     int q, u;  // first indices: quaternion then position; angular then linear velocity
   };
   std::vector<FreeCoordinates> free_coordinates;
+  std::vector<FreeCoordinates> ball_coordinates;        // a quaternion and an angular velocity
   std::vector<std::pair<int, int>> direct_coordinates;  // (q, u) of mobilizers with q' = u
   bool own_n = true;
   // The Force::Custom carrying the loads through Simbody's force subsystem: disabled in the

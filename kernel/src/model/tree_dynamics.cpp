@@ -86,6 +86,8 @@ int dofs_of(TreeDynamics::Joint joint) {
       return 1;
     case TreeDynamics::Joint::universal:
       return 2;
+    case TreeDynamics::Joint::ball:
+      return 3;
     case TreeDynamics::Joint::weld:
       return 0;
   }
@@ -193,6 +195,9 @@ void TreeDynamics::positions(const double* q) {
       case Joint::universal:
         X_FM.rotation = rotation_x_then_y(qb[0], qb[1]);
         break;
+      case Joint::ball:
+        X_FM.rotation = rotation_of_quaternion(qb);
+        break;
       case Joint::weld:
         break;
     }
@@ -220,6 +225,12 @@ void TreeDynamics::positions(const double* q) {
       case Joint::slider:
         col[0] = {Vec3{}, R_GF.column(0)};
         break;
+      case Joint::ball:
+        for (int k = 0; k < 3; ++k) {
+          const Vec3 e = R_GF.column(k);
+          col[k] = {e, cross(e, d)};
+        }
+        break;
       case Joint::universal: {
         // F's X, then the new Y: F's Y turned about X by q0.
         const Vec3 x = R_GF.column(0);
@@ -244,6 +255,9 @@ void TreeDynamics::velocities(const double* u) {
       case Joint::free:
         w_FM = {ub[0], ub[1], ub[2]};
         v_FM = {ub[3], ub[4], ub[5]};
+        break;
+      case Joint::ball:
+        w_FM = {ub[0], ub[1], ub[2]};
         break;
       case Joint::pin:
         w_FM = {0, 0, ub[0]};

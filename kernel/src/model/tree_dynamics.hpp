@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// The forward dynamics of a Simbody matter subsystem whose mobilizers are all Free, Pin,
-/// Slider, Universal or Weld, computed without Simbody: the small-tree fast path (issue 17).
+/// The forward dynamics of a Simbody matter subsystem whose mobilizers are all Free, Ball,
+/// Pin, Slider, Universal or Weld, computed without Simbody: the small-tree fast path (issue 17).
 /// Simbody's realize chain costs three quarters of a small robot's step in stage bookkeeping
 /// and cache access (docs/benchmarks.md); the same equations here, over plain arrays, give
 /// its accelerations to rounding (tests/kernel/model/tree_dynamics_test.cpp compares them to
@@ -11,7 +11,8 @@
 /// its velocity is (ω, v of its origin) in Ground; body loads are (torque about the body origin,
 /// force) in Ground; a Free mobilizer's q is the quaternion of R_FM then p_FM, its u is ω_FM
 /// then v_FM, both in F; a Pin turns about the common Z of F and M, a Slider moves along X; a
-/// Universal turns about F's X by q0, then about the new Y by q1 (R_FM = Rx(q0)·Ry(q1), u = q').
+/// Universal turns about F's X by q0, then about the new Y by q1 (R_FM = Rx(q0)·Ry(q1), u = q');
+/// a Ball is a Free without translation (its q the quaternion of R_FM, its u ω_FM in F).
 /// No Simbody header here (kernel/src/model's Simbody translation units are C++17).
 
 #include <s2sim/math.hpp>
@@ -22,7 +23,7 @@ namespace s2sim::model {
 
 class TreeDynamics {
  public:
-  enum class Joint { free, pin, slider, weld, universal };
+  enum class Joint { free, pin, slider, weld, universal, ball };
 
   /// One mobilized body, in Simbody's order (parents first); `parent` 0 is Ground.
   struct BodySpec {

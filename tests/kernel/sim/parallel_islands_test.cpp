@@ -107,11 +107,13 @@ TEST(ParallelIslands, HumanoidsBrakedAtEveryJointGiveTheSerialSignalsBitForBit) 
   EXPECT_GT(std::abs(runs[0]->signal("robots/h3/axes/shoulder_pitch_l/speed")), 0.01);
 }
 
-TEST(ParallelIslands, ATreeTheFastPathCannotTakeKeepsEveryPartOnSimbodysDynamics) {
+TEST(ParallelIslands, MechanismsOfEveryTreeJointKindGiveTheSerialSignalsBitForBit) {
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
-  // The serial system holds the gimbal's universal joint, so Simbody computes all of its
-  // dynamics; the part without the gimbal once took the fast path, equal only to rounding
-  // (the pendulum's speed 1 ulp apart from the first tick).
+  // A gimbal (universal joints), pendulums and a cart-pole in two parts. When the fast path
+  // refused universal joints, the serial system went to Simbody's dynamics while the part
+  // without the gimbal took the fast path, equal only to rounding (the pendulum's speed 1 ulp
+  // apart from the first tick); a system one of whose trees the fast path refuses still takes
+  // Simbody's dynamics in every part (MultibodyIslands). Now every part takes the fast path.
   const auto scene =
       std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/mechanisms_without_loop";
   std::unique_ptr<Simulation> runs[2] = {load_on(scene, 1), load_on(scene, 2)};
@@ -121,6 +123,38 @@ TEST(ParallelIslands, ATreeTheFastPathCannotTakeKeepsEveryPartOnSimbodysDynamics
     ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1]))) << "tick " << tick;
   }
   EXPECT_GT(std::abs(runs[0]->signal("robots/pendulum/axes/swing/speed")), 0.01);  // it swings
+}
+
+TEST(ParallelIslands, RobotsWithBallJointsAreDealtToPartsAndGiveTheSerialSignalsBitForBit) {
+  if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
+  // Four robots, each with a mast on a Ball joint; r1 and r2 drive into each other across the
+  // parts. A Ball joint anywhere once kept the scene in one part (Simbody's quaternion rates).
+  const auto scene =
+      std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/fuzz/seeds/parallel/robots_with_ball_masts";
+  std::unique_ptr<Simulation> runs[2] = {load_on(scene, 1), load_on(scene, 2)};
+  const scene::Scene& sc = runs[1]->scene();
+  EXPECT_EQ(model::plan_parts(sc, model::plan_topology(sc), {}, 2).size(), 2u);
+  for (auto& run : runs)
+    for (const char* robot : {"r1", "r2"}) {
+      run->set_input(std::string("robots/") + robot + "/axes/left/ref_voltage", -6.0);
+      run->set_input(std::string("robots/") + robot + "/axes/right/ref_voltage", 6.0);
+    }
+  for (int chunk = 0; chunk < 12; ++chunk) {
+    for (int tick = 0; tick < 50; ++tick)
+      runs[0]->step();
+    runs[1]->step(50);
+    ASSERT_TRUE(same_bits(signals(*runs[0]), signals(*runs[1])))
+        << "after tick " << runs[0]->tick();
+  }
+  EXPECT_GT(runs[1]->run_ahead_counts().stretches, 0);
+  // The masts swing on their quaternions: the brick's and the mast's orientations part.
+  int mast = -1;
+  for (std::size_t b = 0; b < sc.bodies.size(); ++b)
+    if (sc.bodies[b].id == "mast" && sc.bodies[b].robot >= 0 &&
+        sc.robots[static_cast<std::size_t>(sc.bodies[b].robot)].id == "r1")
+      mast = static_cast<int>(b) + 1;
+  ASSERT_GT(mast, 0);
+  EXPECT_LT(runs[0]->body_pose(mast).rotation.m[2][2], 0.9999);  // tilted from upright
 }
 
 TEST(ParallelIslands, ASnapshotOfTheParallelRunReplaysItBitForBit) {
