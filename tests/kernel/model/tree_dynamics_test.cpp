@@ -93,22 +93,25 @@ scene::Scene welded_chain() {
   return s;
 }
 
+/// Steps `scene` on the fast path and on Simbody from the same state every tick (400 ticks,
+/// fast_path_comparison.hpp): each body's velocity change agrees within 1e-12 of its size.
+void expect_simbodys_velocity_changes(const char* name, const scene::Scene& scene,
+                                      test::FastPathTolerance tolerance = {}) {
+  const double worst = test::worst_relative_difference(scene, 400, tolerance);
+  std::printf("%s: worst relative difference of the velocity change %.3g\n", name, worst);
+  EXPECT_LT(worst, 1e-12) << name;
+}
+
 TEST(TreeDynamics, SpeedsBelowAWeldMatchSimbodysToOnePartInATrillion) {
-  const double worst = test::worst_relative_difference(welded_chain(), 400);
-  std::printf("welded chain: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-12);
+  expect_simbodys_velocity_changes("welded chain", welded_chain());
 }
 
 TEST(TreeDynamics, RoverAccelerationsMatchSimbodysToOnePartInATrillion) {
-  const double worst = test::worst_relative_difference(rover(), 400);
-  std::printf("rover: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-12);
+  expect_simbodys_velocity_changes("rover", rover());
 }
 
 TEST(TreeDynamics, WorldHingedArmAndFreeBoxMatchSimbodysToOnePartInATrillion) {
-  const double worst = test::worst_relative_difference(arm_and_box(), 400);
-  std::printf("arm and box: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-12);
+  expect_simbodys_velocity_changes("arm and box", arm_and_box());
 }
 
 /// A free, tilted hub; a shaft on a Universal joint with tilted axes (its second turning with
@@ -138,9 +141,7 @@ TEST(TreeDynamics, UniversalJointsMatchSimbodysToOnePartInATrillion) {
   // is 1.4e-14: the poses of its body agree to a few of those.
   test::FastPathTolerance tolerance;
   tolerance.pose = 1e-13;
-  const double worst = test::worst_relative_difference(cardan_chain(), 400, tolerance);
-  std::printf("cardan chain: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-12);
+  expect_simbodys_velocity_changes("cardan chain", cardan_chain(), tolerance);
 }
 
 /// A free, tilted hub; an arm on a Ball joint off its centre of mass, a forearm on a second
@@ -162,9 +163,7 @@ scene::Scene ball_chain() {
 }
 
 TEST(TreeDynamics, BallJointsMatchSimbodysToOnePartInATrillion) {
-  const double worst = test::worst_relative_difference(ball_chain(), 400);
-  std::printf("ball chain: worst relative difference of the velocity change %.3g\n", worst);
-  EXPECT_LT(worst, 1e-12);
+  expect_simbodys_velocity_changes("ball chain", ball_chain());
 }
 
 TEST(TreeDynamics, JointReactionsKeepSimbody) {
