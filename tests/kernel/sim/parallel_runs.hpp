@@ -103,4 +103,30 @@ inline bool same_contact(const Simulation& a_run, const Simulation& b_run, std::
          std::memcmp(&a.depth_m, &b.depth_m, sizeof(double)) == 0;
 }
 
+/// Steps `serial` `ticks` times one by one and `parallel` once by step(ticks) (so that its
+/// parts may run ahead), then whether every signal and every contact is the same to the bit,
+/// a failure naming the first that is not; calls `each(contact)` for every contact.
+template <class F>
+bool step_and_compare(Simulation& serial, Simulation& parallel, int ticks, F&& each) {
+  for (int tick = 0; tick < ticks; ++tick)
+    serial.step();
+  parallel.step(ticks);
+  if (!same_bits(signals(serial), signals(parallel))) {
+    ADD_FAILURE() << "signals differ after tick " << serial.tick();
+    return false;
+  }
+  if (serial.contact_count() != parallel.contact_count()) {
+    ADD_FAILURE() << "contact counts differ after tick " << serial.tick();
+    return false;
+  }
+  for (std::size_t c = 0; c < serial.contact_count(); ++c) {
+    if (!same_contact(serial, parallel, c)) {
+      ADD_FAILURE() << "contact " << c << " differs after tick " << serial.tick();
+      return false;
+    }
+    each(serial.contact(c));
+  }
+  return true;
+}
+
 }  // namespace s2sim::parallel_runs

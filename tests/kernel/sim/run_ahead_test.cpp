@@ -75,16 +75,9 @@ TEST(RunAhead, PartsThatComeCloseGoBackAndGiveTheSerialContactsBitForBit) {
     if (chunk == 45)  // placed between two calls: the next stretch starts from there
       for (auto& run : runs)
         run->place_body(1, Pose{{-0.2, -0.3, 0.08}, Mat3::identity()});
-    for (int tick = 0; tick < 50; ++tick)
-      serial.step();
-    parallel.step(50);
-    ASSERT_TRUE(same_bits(signals(serial), signals(parallel))) << "after tick " << serial.tick();
-    ASSERT_EQ(serial.contact_count(), parallel.contact_count()) << serial.tick();
-    for (std::size_t c = 0; c < serial.contact_count(); ++c) {
-      ASSERT_TRUE(same_contact(serial, parallel, c)) << serial.tick() << ", contact " << c;
-      if (serial.contact(c).body_a.index > 0 && serial.contact(c).body_b.index > 0)
-        ++robots_touching;
-    }
+    ASSERT_TRUE(step_and_compare(serial, parallel, 50, [&](const ContactInfo& c) {
+      if (c.body_a.index > 0 && c.body_b.index > 0) ++robots_touching;
+    }));
   }
   EXPECT_GT(robots_touching, 0u) << "r1 must reach r2";
   const Simulation::RunAheadCounts ahead = parallel.run_ahead_counts();
@@ -122,21 +115,15 @@ TEST(RunAhead, ThingsGoWithTheirNearestRobotsPartSoThatPartsPushingThemRunAhead)
         << sc.bodies[static_cast<std::size_t>(things[k]) - 1].id;
 
   std::size_t things_pushed = 0;  // contacts between a robot and a thing, at the chunks' ends
-  for (int chunk = 0; chunk < 15; ++chunk) {
-    for (int tick = 0; tick < 100; ++tick)
-      serial.step();
-    parallel.step(100);
-    ASSERT_TRUE(same_bits(signals(serial), signals(parallel))) << "after tick " << serial.tick();
-    ASSERT_EQ(serial.contact_count(), parallel.contact_count()) << serial.tick();
-    for (std::size_t c = 0; c < serial.contact_count(); ++c) {
-      ASSERT_TRUE(same_contact(serial, parallel, c)) << serial.tick() << ", contact " << c;
-      const ContactInfo& a = serial.contact(c);
-      if (a.body_a.index > 0 && a.body_b.index > 0 &&
-          (sc.bodies[static_cast<std::size_t>(a.body_a.index) - 1].robot < 0) !=
-              (sc.bodies[static_cast<std::size_t>(a.body_b.index) - 1].robot < 0))
-        ++things_pushed;
-    }
-  }
+  auto robot_and_thing = [&](const ContactInfo& c) {
+    auto is_thing = [&](BodyHandle b) {
+      return sc.bodies[static_cast<std::size_t>(b.index) - 1].robot < 0;
+    };
+    if (c.body_a.index > 0 && c.body_b.index > 0 && is_thing(c.body_a) != is_thing(c.body_b))
+      ++things_pushed;
+  };
+  for (int chunk = 0; chunk < 15; ++chunk)
+    ASSERT_TRUE(step_and_compare(serial, parallel, 100, robot_and_thing));
   EXPECT_GT(things_pushed, 50u) << "the robots must push their things";
   const Vec3 ball = serial.body_pose(things[0]).position;
   EXPECT_GT(ball.x, 0.3) << "ball0 was pushed from x = 0.2";
