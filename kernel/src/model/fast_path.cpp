@@ -200,6 +200,7 @@ void build_fast_path(Multibody::Impl& m) {
   }
   const int nb = m.matter.getNumBodies(), nu = m.initial_state.getNU();
   m.tree_body_loads.resize(nb);
+  m.tree_reactions.assign(static_cast<std::size_t>(nb), Wrench{});
   m.tree_mobility_forces.resize(nu);
   // The check: a probe state with every speed moving (the velocity-product terms count) under
   // gravity, through Simbody and through the tree.

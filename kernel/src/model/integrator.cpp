@@ -112,7 +112,9 @@ void Multibody::accelerations(bool last_substep) {
   if (!m.has_mobilized_bodies) return;
   if (m.uses_tree()) {
     tree_accelerations(m);
-    return;  // (joint reactions need Simbody's stages: uses_tree() is false when wanted)
+    // The reactions of the tick's last acceleration evaluation, as below.
+    if (m.reactions_wanted && last_substep) compute_tree_joint_reactions(m);
+    return;
   }
   realize_accelerations(m);
   m.udot = 0.0;

@@ -30,6 +30,28 @@ void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s) {
   }
 }
 
+void compute_tree_joint_reactions(Multibody::Impl& m) {
+  const TreeDynamics& tree = *m.tree;
+  m.tree->reactions(&m.tree_body_loads[0][0][0], m.udot.getContiguousScalarData(),
+                    m.tree_reactions.data());
+  for (std::size_t j = 0; j < m.joint_reaction_source.size(); ++j) {
+    const auto& src = m.joint_reaction_source[j];
+    if (!src.mobod.isValid()) continue;  // a loop joint: zeros
+    const int mobod = src.mobod;
+    const Wrench& R = m.tree_reactions[static_cast<std::size_t>(mobod)];
+    Vec3 force = R.force_N, torque = R.torque_Nm;
+    if (!src.child_is_body1) {  // on the parent, moved from Mo to Fo, as above
+      const Vec3 p_FM = tree.joint_origin(mobod) - tree.frame_origin(mobod);
+      force = -R.force_N;
+      torque = -R.torque_Nm + cross(p_FM, force);
+    }
+    m.joint_reactions[j] = Wrench{torque, force};
+    const Mat3 R_1G =
+        tree.pose(m.mobod_of_body[static_cast<std::size_t>(src.body1)]).rotation.transposed();
+    m.joint_reactions_in_body1[j] = Wrench{R_1G * torque, R_1G * force};
+  }
+}
+
 /// The reactions computed in the step, carried with body1 to its pose at the step's end: the
 /// reaction is taken at the last substep's start, the sensors read it with the poses after the
 /// drift (a steadily spinning joint would otherwise read a tangential ω·h fraction of its

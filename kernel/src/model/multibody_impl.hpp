@@ -153,7 +153,8 @@ struct Multibody::Impl {
   std::unique_ptr<TreeDynamics> tree;
   std::unique_ptr<LoopConstraints> loops;  // with the tree, when the system has constraints
   bool tree_enabled = true;
-  bool uses_tree() const { return tree && tree_enabled && !reactions_wanted; }
+  // Joint reactions with loops are Simbody's (its reactions count the constraint forces).
+  bool uses_tree() const { return tree && tree_enabled && !(reactions_wanted && has_constraints); }
 
   // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
   // multibody/time
@@ -244,6 +245,7 @@ struct Multibody::Impl {
   SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
   SimTK::Vector udot, qdot;
   SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the fast path's loads (uses_tree)
+  std::vector<Wrench> tree_reactions;                 // its mobilizer reactions, one per mobod
   SimTK::Vector tree_mobility_forces;
   std::vector<double> loop_q, loop_u, loop_du, loop_dq;  // the loop projections' (fast_path.cpp)
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
@@ -354,6 +356,9 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
 
 /// Joint reactions (joint_reactions.cpp) from a state realized to Acceleration.
 void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
+/// The same on the fast path, from its tree's kinematics, loads and accelerations (after
+/// tree_accelerations: systems without constraints).
+void compute_tree_joint_reactions(Multibody::Impl& m);
 /// The reactions carried with body1 to its pose at the step's end.
 void carry_joint_reactions(Multibody::Impl& m, const Pose* poses);
 

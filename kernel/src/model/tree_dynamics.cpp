@@ -156,6 +156,10 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   relative_angular_.assign(n, Vec3{});
   relative_linear_.assign(n, Vec3{});
   relative_bias_.assign(n, Vec3{});
+  bias_increment_.assign(n, Twist{});
+  acceleration_.assign(n, Twist{});
+  reaction_load_.assign(n, Wrench{});
+  frame_origin_.assign(n, Vec3{});
   column_.assign(static_cast<std::size_t>(nu), Twist{});
   bias_acceleration_.assign(n, Twist{});
   subtree_load_.assign(n, Wrench{});
@@ -204,6 +208,7 @@ void TreeDynamics::positions(const double* q) {
     const Pose X_GM = X_GF * X_FM;
     pose_[i] = X_GM * b.X_MB;
     joint_origin_[i] = X_GM.position;
+    frame_origin_[i] = X_GF.position;
     const Mat3& R_GF = X_GF.rotation;
     frame_rotation_[i] = R_GF;
     const Vec3 d = pose_[i].position - X_GM.position;  // M origin to body origin
@@ -315,11 +320,58 @@ void TreeDynamics::bias_accelerations() {
     // The relative ω's change at u' = 0: its axes turning with the parent, and a Universal's
     // second axis with its first.
     const Vec3 w_rel_rate = cross(w_P, w_rel) + relative_bias_[i];
+    const Vec3 c1 = cross(w_P, twist_[i].linear_m_s - twist_[p].linear_m_s);
+    const Vec3 c2 = cross(w_P, relative_linear_[i]), c3 = cross(w_rel_rate, d);
+    const Vec3 c4 = cross(w_rel, cross(twist_[i].angular_rad_s, d));
     bias_acceleration_[i] = {A_P.angular_rad_s + w_rel_rate,
-                             A_P.linear_m_s + cross(A_P.angular_rad_s, r) +
-                                 cross(w_P, twist_[i].linear_m_s - twist_[p].linear_m_s) +
-                                 cross(w_P, relative_linear_[i]) + cross(w_rel_rate, d) +
-                                 cross(w_rel, cross(twist_[i].angular_rad_s, d))};
+                             A_P.linear_m_s + cross(A_P.angular_rad_s, r) + c1 + c2 + c3 + c4};
+    bias_increment_[i] = {w_rel_rate, c1 + c2 + c3 + c4};  // for reactions()
+  }
+}
+
+void TreeDynamics::reactions(const double* body_loads, const double* udot, Wrench* at_M) {
+  const std::size_t n = bodies_.size();
+  // Each body's acceleration for udot, base to tip: the parent's carried over, the velocity
+  // products of its own mobilizer (bias_increment_) and its own speeds' columns.
+  for (std::size_t i = 1; i < n; ++i) {
+    const Body& b = bodies_[i];
+    const auto p = static_cast<std::size_t>(b.parent);
+    const Twist& A_P = acceleration_[p];
+    const Vec3 r = pose_[i].position - pose_[p].position;
+    Twist A{A_P.angular_rad_s + bias_increment_[i].angular_rad_s,
+            A_P.linear_m_s + cross(A_P.angular_rad_s, r) + bias_increment_[i].linear_m_s};
+    for (int k = b.u0; k < b.u0 + b.dofs; ++k) {
+      const Twist& h = column_[static_cast<std::size_t>(k)];
+      A.angular_rad_s += h.angular_rad_s * udot[k];
+      A.linear_m_s += h.linear_m_s * udot[k];
+    }
+    acceleration_[i] = A;
+    reaction_load_[i] = Wrench{};
+  }
+  // Tip to base: what each subtree needs for them less what is applied to it (Newton–Euler
+  // about each centre of mass, moved to the body's origin, summed into the parent's): what the
+  // parent gives it through the mobilizer, here moved to M's origin.
+  for (std::size_t i = n - 1; i >= 1; --i) {
+    const Body& b = bodies_[i];
+    const Mat3& R = pose_[i].rotation;
+    const Vec3 c = R * b.com_B;
+    const Vec3& w = twist_[i].angular_rad_s;
+    const Twist& A = acceleration_[i];
+    const Vec3 a_com = A.linear_m_s + cross(A.angular_rad_s, c) + cross(w, cross(w, c));
+    const Mat3 I = rotate_inertia(R, b.central_inertia_B);
+    const Vec3 momentum_rate = a_com * b.mass_kg;
+    const double* applied = body_loads + 6 * i;
+    Wrench& load = reaction_load_[i];
+    load.force_N += momentum_rate - Vec3{applied[3], applied[4], applied[5]};
+    load.torque_Nm += I * A.angular_rad_s + cross(w, I * w) + cross(c, momentum_rate) -
+                      Vec3{applied[0], applied[1], applied[2]};
+    at_M[i] = {load.torque_Nm + cross(pose_[i].position - joint_origin_[i], load.force_N),
+               load.force_N};
+    const auto p = static_cast<std::size_t>(b.parent);
+    if (p == 0) continue;
+    reaction_load_[p].force_N += load.force_N;
+    reaction_load_[p].torque_Nm +=
+        load.torque_Nm + cross(pose_[i].position - pose_[p].position, load.force_N);
   }
 }
 

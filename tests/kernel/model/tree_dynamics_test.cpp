@@ -5,6 +5,7 @@
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
+#include "sim/state_layout.hpp"
 
 #include <gtest/gtest.h>
 
@@ -166,14 +167,87 @@ TEST(TreeDynamics, BallJointsMatchSimbodysToOnePartInATrillion) {
   expect_simbodys_velocity_changes("ball chain", ball_chain());
 }
 
-TEST(TreeDynamics, JointReactionsKeepSimbody) {
-  // Joint reactions come from Simbody's Acceleration stage.
-  test::Runner with_reactions(rover());
-  EXPECT_TRUE(with_reactions.mb.uses_tree_fast_path());
-  with_reactions.mb.request_joint_reactions();
-  EXPECT_FALSE(with_reactions.mb.uses_tree_fast_path());
-  with_reactions.step(10);
-  EXPECT_GT(norm(with_reactions.mb.joint_reactions()[0].force_N), 0.0);
+/// Per tick from the same state under the same loads, the joint reactions of the fast path
+/// (TreeDynamics::reactions) against Simbody's (calcMobilizerReactionForces): the worst
+/// difference relative to 1 N (N·m) plus the reaction's size.
+double worst_reaction_difference(const scene::Scene& s, int ticks) {
+  test::Runner fast(s), simbody(s);
+  simbody.mb.set_tree_fast_path(false);
+  for (test::Runner* r : {&fast, &simbody})
+    r->mb.request_joint_reactions();
+  EXPECT_TRUE(fast.mb.uses_tree_fast_path()) << "joint reactions keep the fast path";
+  sim::StateLayout fast_layout, simbody_layout;
+  fast.mb.declare_state(fast_layout);
+  simbody.mb.declare_state(simbody_layout);
+  std::vector<double> state;
+  double worst = 0, largest = 0;
+  for (int tick = 0; tick < ticks; ++tick) {
+    state.clear();
+    fast_layout.save(state);
+    simbody_layout.restore(simbody_layout.id(), simbody_layout.entries(), state);
+    simbody.mb.restored();
+    for (test::Runner* r : {&fast, &simbody})
+      test::load_everywhere(r->mb, tick);
+    fast.step();
+    simbody.step();
+    for (std::size_t j = 0; j < s.joints.size(); ++j) {
+      const Wrench &f = fast.mb.joint_reactions()[j], &g = simbody.mb.joint_reactions()[j];
+      const double size = std::max(norm(g.force_N), norm(g.torque_Nm));
+      const double differs = std::max(norm(f.force_N - g.force_N), norm(f.torque_Nm - g.torque_Nm));
+      worst = std::max(worst, differs / (1 + size));
+      largest = std::max(largest, size);
+    }
+  }
+  EXPECT_GT(largest, 1.0) << "the joints must carry loads";
+  return worst;
+}
+
+/// A free base with a carriage on a slider whose child is the joint's body 2 (its reaction is
+/// reported on body 1, the base, moved from M's origin to F's as the carriage travels), and a
+/// flap hinged to the carriage the same way round.
+scene::Scene reversed_slider() {
+  scene::Scene s;
+  s.bodies.push_back(
+      test::box("base", 1.0, {0.4, 0.1, 0.1}, {0, 0, 1}, test::rotation_about({0, 1, 2}, 0.3)));
+  s.bodies.push_back(test::box("carriage", 0.3, {0.1, 0.08, 0.05}, {0.05, 0, 1.08}));
+  s.bodies[1].com_m = {0.01, 0.005, 0.0};
+  s.bodies.push_back(test::box("flap", 0.1, {0.02, 0.1, 0.06}, {0.12, 0, 1.1}));
+  s.joints.push_back(test::joint("rail", JointType::slider, 0, 1, {0.05, 0, 1.05}, {1, 0.1, 0}));
+  s.joints.push_back(test::joint("flap", JointType::hinge, 1, 2, {0.1, 0, 1.1}, {0, 1, 0.2}));
+  test::add_robot(s, "slide");
+  return s;
+}
+
+TEST(TreeDynamics, JointReactionsOnTheFastPathMatchSimbodys) {
+  // Every joint kind: free roots, hinges on tilted axes, a slider (whose reaction moves from
+  // M's origin to F's when the child is body 2), welds, Universal and Ball joints.
+  for (const auto& [name, scene] :
+       {std::pair{"rover", rover()}, std::pair{"arm and box", arm_and_box()},
+        std::pair{"welded chain", welded_chain()}, std::pair{"cardan chain", cardan_chain()},
+        std::pair{"ball chain", ball_chain()}, std::pair{"reversed slider", reversed_slider()}}) {
+    const double worst = worst_reaction_difference(scene, 300);
+    std::printf("%s: worst joint reaction difference %.3g\n", name, worst);
+    EXPECT_LT(worst, 1e-9) << name;
+  }
+}
+
+TEST(TreeDynamics, JointReactionsWithLoopsKeepSimbody) {
+  // With a loop, a reaction counts the constraint forces: Simbody's.
+  scene::Scene four_bar;
+  four_bar.bodies.push_back(test::box("crank", 0.5, {0.03, 0.03, 0.4}, {0, 0, 1.3}));
+  four_bar.bodies.push_back(test::box("rocker", 0.5, {0.03, 0.03, 0.4}, {0.5, 0, 1.3}));
+  four_bar.bodies.push_back(test::box("coupler", 1.0, {0.5, 0.03, 0.03}, {0.25, 0, 1.1}));
+  four_bar.joints.push_back(test::joint("a", JointType::hinge, 0, -1, {0, 0, 1.5}, {0, 1, 0}));
+  four_bar.joints.push_back(test::joint("b", JointType::hinge, 1, -1, {0.5, 0, 1.5}, {0, 1, 0}));
+  four_bar.joints.push_back(test::joint("c", JointType::hinge, 2, 0, {0, 0, 1.1}, {0, 1, 0}));
+  four_bar.joints.push_back(test::joint("d", JointType::hinge, 2, 1, {0.5, 0, 1.1}, {0, 1, 0}));
+  test::add_robot(four_bar, "four_bar");
+  test::Runner loop(four_bar);
+  EXPECT_TRUE(loop.mb.uses_tree_fast_path());
+  loop.mb.request_joint_reactions();
+  EXPECT_FALSE(loop.mb.uses_tree_fast_path());
+  loop.step(10);
+  EXPECT_GT(norm(loop.mb.joint_reactions()[0].force_N), 0.0);
 }
 
 }  // namespace
