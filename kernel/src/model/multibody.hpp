@@ -105,13 +105,14 @@ class Multibody {
   /// Whether a scene joint closes a kinematic loop (constraints: no reaction reported).
   bool joint_is_loop(int joint) const;
 
-  /// Whether the small-tree fast path computes the dynamics (tree_dynamics.hpp): a system
-  /// without constraints whose joints are all free, hinge, slider or fixed, whose
-  /// accelerations matched Simbody's at load, while no joint reactions are read.
+  /// Whether the small-tree fast path computes the dynamics (tree_dynamics.hpp): a system of
+  /// free, hinge, slider, universal, ball and fixed joints, with loop joints of any kind, whose
+  /// accelerations matched Simbody's at load; not a system with loops while joint reactions
+  /// are read.
   bool uses_tree_fast_path() const;
   /// Whether Simbody must compute this system's dynamics: it has mobilized bodies and the fast
-  /// path could not be built for them (constraints, a joint it does not take, its check at
-  /// load failed), whatever set_tree_fast_path() says.
+  /// path could not be built for them (its check at load failed, say), whatever
+  /// set_tree_fast_path() says.
   bool needs_simbody_dynamics() const;
   /// Switches the fast path off (Simbody's realize chain for everything) or back on where
   /// it is possible: for tests and benchmarks that compare the two.
