@@ -329,6 +329,22 @@ void TreeDynamics::bias_accelerations() {
   }
 }
 
+const Wrench& TreeDynamics::add_own_load(std::size_t i, const Twist& A, const double* body_loads,
+                                         Wrench& load, Vec3& c, Mat3& I) const {
+  const Body& b = bodies_[i];
+  const Mat3& R = pose_[i].rotation;
+  c = R * b.com_B;
+  const Vec3& w = twist_[i].angular_rad_s;
+  const Vec3 a_com = A.linear_m_s + cross(A.angular_rad_s, c) + cross(w, cross(w, c));
+  I = rotate_inertia(R, b.central_inertia_B);
+  const Vec3 momentum_rate = a_com * b.mass_kg;
+  const double* applied = body_loads + 6 * i;
+  load.force_N += momentum_rate - Vec3{applied[3], applied[4], applied[5]};
+  load.torque_Nm += I * A.angular_rad_s + cross(w, I * w) + cross(c, momentum_rate) -
+                    Vec3{applied[0], applied[1], applied[2]};
+  return load;
+}
+
 void TreeDynamics::reactions(const double* body_loads, const double* udot, Wrench* at_M) {
   const std::size_t n = bodies_.size();
   // Each body's acceleration for udot, base to tip: the parent's carried over, the velocity
@@ -353,18 +369,9 @@ void TreeDynamics::reactions(const double* body_loads, const double* udot, Wrenc
   // parent gives it through the mobilizer, here moved to M's origin.
   for (std::size_t i = n - 1; i >= 1; --i) {
     const Body& b = bodies_[i];
-    const Mat3& R = pose_[i].rotation;
-    const Vec3 c = R * b.com_B;
-    const Vec3& w = twist_[i].angular_rad_s;
-    const Twist& A = acceleration_[i];
-    const Vec3 a_com = A.linear_m_s + cross(A.angular_rad_s, c) + cross(w, cross(w, c));
-    const Mat3 I = rotate_inertia(R, b.central_inertia_B);
-    const Vec3 momentum_rate = a_com * b.mass_kg;
-    const double* applied = body_loads + 6 * i;
-    Wrench& load = reaction_load_[i];
-    load.force_N += momentum_rate - Vec3{applied[3], applied[4], applied[5]};
-    load.torque_Nm += I * A.angular_rad_s + cross(w, I * w) + cross(c, momentum_rate) -
-                      Vec3{applied[0], applied[1], applied[2]};
+    Vec3 c;
+    Mat3 I;
+    const Wrench& load = add_own_load(i, acceleration_[i], body_loads, reaction_load_[i], c, I);
     at_M[i] = {load.torque_Nm + cross(pose_[i].position - joint_origin_[i], load.force_N),
                load.force_N};
     const auto p = static_cast<std::size_t>(b.parent);
@@ -386,18 +393,9 @@ void TreeDynamics::subtree_loads(const double* body_loads) {
   // second moments about its origin, each subtree's summed into its parent's.
   for (std::size_t i = n - 1; i >= 1; --i) {
     const Body& b = bodies_[i];
-    const Mat3& R = pose_[i].rotation;
-    const Vec3 c = R * b.com_B;
-    const Vec3& w = twist_[i].angular_rad_s;
-    const Twist& A = bias_acceleration_[i];
-    const Vec3 a_com = A.linear_m_s + cross(A.angular_rad_s, c) + cross(w, cross(w, c));
-    const Mat3 I = rotate_inertia(R, b.central_inertia_B);
-    const Vec3 momentum_rate = a_com * b.mass_kg;
-    const double* applied = body_loads + 6 * i;
-    Wrench& load = subtree_load_[i];
-    load.force_N += momentum_rate - Vec3{applied[3], applied[4], applied[5]};
-    load.torque_Nm += I * A.angular_rad_s + cross(w, I * w) + cross(c, momentum_rate) -
-                      Vec3{applied[0], applied[1], applied[2]};
+    Vec3 c;
+    Mat3 I;
+    const Wrench& load = add_own_load(i, bias_acceleration_[i], body_loads, subtree_load_[i], c, I);
     Composite& comp = composite_[i];
     comp.mass_kg += b.mass_kg;
     comp.first_moment += c * b.mass_kg;

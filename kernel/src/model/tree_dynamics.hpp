@@ -141,6 +141,12 @@ class TreeDynamics {
   /// base); the mass matrix's lower triangle and the right side τ − bias.
   void bias_accelerations();
   void subtree_loads(const double* body_loads);
+  /// Adds to `load` (about body i's origin, Ground) what body i needs for the acceleration A
+  /// (α, a of its origin) less what is applied to it: Newton–Euler about its centre of mass,
+  /// moved to its origin. Returns `load`; its centre of mass's arm c and its inertia I about it
+  /// (Ground) come out too.
+  const Wrench& add_own_load(std::size_t i, const Twist& A, const double* body_loads, Wrench& load,
+                             Vec3& c, Mat3& I) const;
   void mass_matrix_and_right_side(const double* mobility_forces);
   /// M = Lᵀ·L, tip to base, without fill-in (Featherstone's LTL factorisation).
   void factor(const Tree& t);

@@ -36,6 +36,26 @@ struct FastPathTolerance {
   double axis_velocity = 1e-12;  // relative to 1 + |v|
 };
 
+/// One scene twice, on the fast path and on Simbody's realize chain, and the copy of the first
+/// one's state into the second that starts each compared tick.
+struct FastAndSimbody {
+  explicit FastAndSimbody(const scene::Scene& s) : fast(s), simbody(s) {
+    simbody.mb.set_tree_fast_path(false);
+    fast.mb.declare_state(fast_layout);
+    simbody.mb.declare_state(simbody_layout);
+  }
+  /// Simbody's run takes the fast path's state.
+  void sync() {
+    state.clear();
+    fast_layout.save(state);
+    simbody_layout.restore(simbody_layout.id(), simbody_layout.entries(), state);
+    simbody.mb.restored();
+  }
+  Runner fast, simbody;
+  sim::StateLayout fast_layout, simbody_layout;
+  std::vector<double> state;
+};
+
 /// Per tick: Simbody takes the fast path's state, both step under the same loads (`load`,
 /// then `extra` if given), and the change of every body's velocity over the tick
 /// (h·acceleration) is compared. Returns the worst difference relative to that change, once
@@ -43,20 +63,13 @@ struct FastPathTolerance {
 inline double worst_relative_difference(
     const scene::Scene& s, int ticks, FastPathTolerance tolerance = {},
     const std::function<void(model::Multibody&, int)>& extra = nullptr) {
-  Runner fast(s), simbody(s);
-  simbody.mb.set_tree_fast_path(false);
+  FastAndSimbody runs(s);
+  Runner &fast = runs.fast, &simbody = runs.simbody;
   EXPECT_TRUE(fast.mb.uses_tree_fast_path());
   EXPECT_FALSE(simbody.mb.uses_tree_fast_path());
-  sim::StateLayout fast_layout, simbody_layout;
-  fast.mb.declare_state(fast_layout);
-  simbody.mb.declare_state(simbody_layout);
-  std::vector<double> state;
   double worst = 0, fastest = 0;
   for (int tick = 0; tick < ticks; ++tick) {
-    state.clear();
-    fast_layout.save(state);
-    simbody_layout.restore(simbody_layout.id(), simbody_layout.entries(), state);
-    simbody.mb.restored();
+    runs.sync();
     fast.read();
     const std::vector<Twist> before = fast.twists;
     for (Runner* r : {&fast, &simbody}) {

@@ -5,7 +5,6 @@
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
-#include "sim/state_layout.hpp"
 
 #include <gtest/gtest.h>
 
@@ -171,21 +170,14 @@ TEST(TreeDynamics, BallJointsMatchSimbodysToOnePartInATrillion) {
 /// (TreeDynamics::reactions) against Simbody's (calcMobilizerReactionForces): the worst
 /// difference relative to 1 N (N·m) plus the reaction's size.
 double worst_reaction_difference(const scene::Scene& s, int ticks) {
-  test::Runner fast(s), simbody(s);
-  simbody.mb.set_tree_fast_path(false);
+  test::FastAndSimbody runs(s);
+  test::Runner &fast = runs.fast, &simbody = runs.simbody;
   for (test::Runner* r : {&fast, &simbody})
     r->mb.request_joint_reactions();
   EXPECT_TRUE(fast.mb.uses_tree_fast_path()) << "joint reactions keep the fast path";
-  sim::StateLayout fast_layout, simbody_layout;
-  fast.mb.declare_state(fast_layout);
-  simbody.mb.declare_state(simbody_layout);
-  std::vector<double> state;
   double worst = 0, largest = 0;
   for (int tick = 0; tick < ticks; ++tick) {
-    state.clear();
-    fast_layout.save(state);
-    simbody_layout.restore(simbody_layout.id(), simbody_layout.entries(), state);
-    simbody.mb.restored();
+    runs.sync();
     for (test::Runner* r : {&fast, &simbody})
       test::load_everywhere(r->mb, tick);
     fast.step();
