@@ -159,7 +159,6 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   bias_increment_.assign(n, Twist{});
   acceleration_.assign(n, Twist{});
   reaction_load_.assign(n, Wrench{});
-  frame_origin_.assign(n, Vec3{});
   column_.assign(static_cast<std::size_t>(nu), Twist{});
   bias_acceleration_.assign(n, Twist{});
   subtree_load_.assign(n, Wrench{});
@@ -208,7 +207,6 @@ void TreeDynamics::positions(const double* q) {
     const Pose X_GM = X_GF * X_FM;
     pose_[i] = X_GM * b.X_MB;
     joint_origin_[i] = X_GM.position;
-    frame_origin_[i] = X_GF.position;
     const Mat3& R_GF = X_GF.rotation;
     frame_rotation_[i] = R_GF;
     const Vec3 d = pose_[i].position - X_GM.position;  // M origin to body origin
@@ -343,6 +341,11 @@ const Wrench& TreeDynamics::add_own_load(std::size_t i, const Twist& A, const do
   load.torque_Nm += I * A.angular_rad_s + cross(w, I * w) + cross(c, momentum_rate) -
                     Vec3{applied[0], applied[1], applied[2]};
   return load;
+}
+
+Vec3 TreeDynamics::frame_origin(int body) const {
+  const Body& b = bodies_[static_cast<std::size_t>(body)];
+  return (pose_[static_cast<std::size_t>(b.parent)] * b.X_PF).position;  // as positions() has it
 }
 
 void TreeDynamics::reactions(const double* body_loads, const double* udot, Wrench* at_M) {

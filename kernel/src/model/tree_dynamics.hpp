@@ -64,7 +64,7 @@ class TreeDynamics {
   /// The origin of a body's mobilizer frame M, Ground; after kinematics().
   const Vec3& joint_origin(int body) const { return joint_origin_[static_cast<std::size_t>(body)]; }
   /// The origin of a body's mobilizer frame F on its parent, Ground; after kinematics().
-  const Vec3& frame_origin(int body) const { return frame_origin_[static_cast<std::size_t>(body)]; }
+  Vec3 frame_origin(int body) const;
   /// x = M^-1·g with the mass matrix of the last accelerations() (its configuration).
   void solve(const double* g, double* x) const;
   /// f = Jᵀ·loads: the generalized forces of body loads (six numbers per body as in
@@ -110,7 +110,6 @@ class TreeDynamics {
   std::vector<Vec3> relative_angular_;  // ω of the body relative to its parent, Ground
   std::vector<Vec3> relative_linear_;   // v of M's origin relative to F, Ground
   std::vector<Vec3> relative_bias_;     // a Universal's ω_1 × ω_2: its axis turning (Ground)
-  std::vector<Vec3> frame_origin_;      // p_GF: the mobilizer's F origin in Ground
   std::vector<Twist> bias_increment_;   // a body's velocity products beyond its parent's
   std::vector<Twist> acceleration_;     // reactions(): each body's (α, a of its origin)
   std::vector<Wrench> reaction_load_;   // reactions(): each subtree's, about its body origin
