@@ -137,11 +137,9 @@ constexpr double kLoopFrictionSpeed = 1e-2;
 /// loose bodies take theirs in LooseBodies::kick.
 void add_wrenches(const Multibody::Impl& mb, const std::vector<Wrench>& wrenches,
                   SimTK::Vector_<SimTK::SpatialVec>& body_forces) {
-  for (std::size_t b = 1; b < wrenches.size(); ++b) {
-    if (!mb.mobod_of_body[b].isValid()) continue;
+  for (const auto& [b, mobod] : mb.jointed_bodies) {
     const Wrench& w = wrenches[b];
-    body_forces[mb.mobod_of_body[b]] +=
-        SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
+    body_forces[mobod] += SimTK::SpatialVec(to_simtk(w.torque_Nm), to_simtk(w.force_N));
   }
 }
 

@@ -129,14 +129,13 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
   twists[0] = Twist{};
   const bool tree = m.uses_tree();
   if (tree) update_tree_kinematics(m);
-  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-    if (!m.mobod_of_body[b].isValid()) continue;
+  for (const auto& [b, mobod] : m.jointed_bodies) {
     if (tree) {
-      poses[b] = m.tree->pose(m.mobod_of_body[b]);
-      twists[b] = m.tree->twist(m.mobod_of_body[b]);
+      poses[b] = m.tree->pose(mobod);
+      twists[b] = m.tree->twist(mobod);
       continue;
     }
-    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
+    const auto& mob = m.matter.getMobilizedBody(mobod);
     const SimTK::Transform& X = mob.getBodyTransform(s);
     poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
     const SimTK::SpatialVec& V = mob.getBodyVelocity(s);

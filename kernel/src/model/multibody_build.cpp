@@ -334,6 +334,8 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
       m.own_n = false;  // another kind: leave it to Simbody
     }
   }
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
+    if (m.mobod_of_body[b].isValid()) m.jointed_bodies.push_back({b, m.mobod_of_body[b]});
   m.has_constraints = m.matter.getNumConstraints() > 0;
   m.has_mobilized_bodies = m.matter.getNumBodies() > 1;
   find_mass_matrix_coordinates(m);

@@ -95,7 +95,15 @@ struct Multibody::Impl {
   };
   std::vector<Weight> weights;
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
-  std::vector<Pose> initial_pose;                        // kernel body -> pose at load
+  // The kernel bodies this system moves with a mobilizer, ascending, with their mobods: what
+  // the per-substep loops walk. A part of the island-parallel step holds the scene's kernel
+  // indices but moves a fraction of them; walking mobod_of_body cost each part the whole scene.
+  struct JointedBody {
+    std::size_t body;
+    SimTK::MobilizedBodyIndex mobod;
+  };
+  std::vector<JointedBody> jointed_bodies;
+  std::vector<Pose> initial_pose;       // kernel body -> pose at load
   std::vector<std::string> body_names;  // kernel body -> "'id' of robot 'r'", for errors
   std::vector<AxisInfo> axes;
   std::vector<AxisImpl> axis_impl;
