@@ -11,17 +11,22 @@
 #include <iterator>
 #include <string>
 
+#include <unistd.h>
+
 namespace s2sim::test {
 
 /// Copies `source` (a scene folder) and replaces the first `from` in `file` with `to`; the
-/// copy's name is derived from all four, so distinct edits never share a folder.
+/// copy's name is derived from all four and the process, so distinct edits never share a
+/// folder, nor do two tests making the same edit at once (CTest runs each test as its own
+/// process, two at a time: one removed the folder the other was reading).
 inline std::filesystem::path edited_copy(const std::filesystem::path& source,
                                          const std::string& file, const std::string& from,
                                          const std::string& to) {
   namespace fs = std::filesystem;
   const fs::path dir =
       fs::path(testing::TempDir()) /
-      ("s2sim_" + std::to_string(std::hash<std::string>{}(source.string() + file + from + to)));
+      ("s2sim_" + std::to_string(std::hash<std::string>{}(source.string() + file + from + to)) +
+       "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::copy(source, dir, fs::copy_options::recursive);
   std::ifstream in(dir / file);
