@@ -19,6 +19,16 @@ ImU32 series_colour(std::size_t k) {
   return palette[k % (sizeof palette / sizeof palette[0])];
 }
 
+/// A legend entry's coloured swatch for series `k`, the cursor left on its line for the text.
+void legend_swatch(ImDrawList* dl, std::size_t k) {
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float h = ImGui::GetTextLineHeight();
+  dl->AddRectFilled(ImVec2(p.x, p.y + h * 0.3f), ImVec2(p.x + 16, p.y + h * 0.7f),
+                    series_colour(k));
+  ImGui::Dummy(ImVec2(20, h));
+  ImGui::SameLine();
+}
+
 /// A "nice" tick spacing (1, 2 or 5 times a power of ten) for about `count` ticks.
 double tick_step(double span, int count) {
   const double raw = span / std::max(1, count);
@@ -139,12 +149,7 @@ void plot(ViewerState& state) {
   // Legend with each signal's latest shown value.
   for (std::size_t k = 0; k < chart.signals().size(); ++k) {
     const SignalInfo& info = sim.signal_info(chart.signals()[k]);
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    const float h = ImGui::GetTextLineHeight();
-    dl->AddRectFilled(ImVec2(p.x, p.y + h * 0.3f), ImVec2(p.x + 16, p.y + h * 0.7f),
-                      series_colour(k));
-    ImGui::Dummy(ImVec2(20, h));
-    ImGui::SameLine();
+    legend_swatch(dl, k);
     const double latest = last > first ? chart.values(k)[last - 1] : NAN;
     ImGui::Text("%s [%s]  %.6g", info.name.c_str(), info.unit.c_str(), latest);
   }
@@ -268,12 +273,7 @@ void plot_xy(ViewerState& state) {
   dl->PopClipRect();
   dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
   for (std::size_t k = 0; k < curves.size(); ++k) {
-    const ImVec2 p = ImGui::GetCursorScreenPos();
-    const float h = ImGui::GetTextLineHeight();
-    dl->AddRectFilled(ImVec2(p.x, p.y + h * 0.3f), ImVec2(p.x + 16, p.y + h * 0.7f),
-                      series_colour(k));
-    ImGui::Dummy(ImVec2(20, h));
-    ImGui::SameLine();
+    legend_swatch(dl, k);
     ImGui::Text("%s  (%zu points)", curves[k].name.c_str(), curves[k].points.size());
   }
   if (curves.empty())
