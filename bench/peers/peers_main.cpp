@@ -96,6 +96,44 @@ double thread_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+/// Each vCPU's time as the guest kernel counts it (/proc/stat, in USER_HZ ticks): `steal` is
+/// what the hypervisor gave another guest while this vCPU had work. Empty where unreadable.
+struct VcpuTimes {
+  long long steal = 0, total = 0;
+};
+std::vector<VcpuTimes> read_vcpu_times() {
+  std::vector<VcpuTimes> out;
+  std::ifstream stat("/proc/stat");
+  for (std::string line; std::getline(stat, line);) {
+    // "cpuN user nice system idle iowait irq softirq steal guest guest_nice"; not the "cpu" sum.
+    if (line.rfind("cpu", 0) != 0 || line.size() < 4 || line[3] < '0' || line[3] > '9') continue;
+    std::istringstream fields(line.substr(line.find(' ')));
+    VcpuTimes t;
+    long long v = 0;
+    for (int k = 0; k < 8 && (fields >> v); ++k) {
+      t.total += v;  // guest time is counted in user already
+      if (k == 7) t.steal = v;
+    }
+    out.push_back(t);
+  }
+  return out;
+}
+
+/// The largest share of a vCPU's time that the hypervisor took between two readings (0..1;
+/// NaN without /proc/stat): a round where it is large ran on a host that was busy elsewhere.
+double largest_steal_share(const std::vector<VcpuTimes>& before,
+                           const std::vector<VcpuTimes>& after) {
+  if (before.empty() || before.size() != after.size()) return NAN;
+  double largest = 0;
+  for (std::size_t c = 0; c < before.size(); ++c) {
+    const long long total = after[c].total - before[c].total;
+    if (total > 0)
+      largest = std::max(largest, static_cast<double>(after[c].steal - before[c].steal) /
+                                      static_cast<double>(total));
+  }
+  return largest;
+}
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
@@ -116,6 +154,7 @@ struct Result {
   std::string scene, engine;
   int robots = 1;
   std::vector<double> cpu_us, wall_us;  // per step, one per round
+  std::vector<double> steal_share;      // per round, largest_steal_share over the round
   Outcome outcome;
   std::string error;  // the engine could not load the scene
 };
@@ -207,12 +246,12 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   std::ostringstream csv;
   csv << "scene,engine,rounds,cpu_us_median,cpu_us_min,cpu_us_max,wall_us_median,cpu_us_per_robot,"
          "s2sim_speedup,distance_m,lateral_m,yaw_deg,rise_m,penetration_mm,settled_penetration_mm,"
-         "finite\n";
+         "finite,largest_vcpu_steal_pct_median\n";
   for (const auto& r : results) {
     if (!r.error.empty()) {
       md << "| " << r.scene << " | " << r.engine << " | failed: " << r.error
          << " | | | | | | | | | | |\n";
-      csv << r.scene << ',' << r.engine << ",0,,,,,,,,,,,,,0\n";
+      csv << r.scene << ',' << r.engine << ",0,,,,,,,,,,,,,0,\n";
       continue;
     }
     const double cpu = median(r.cpu_us), wall = median(r.wall_us);
@@ -232,7 +271,7 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
         << *hi << ',' << wall << ',' << cpu / r.robots << ',' << (std::isnan(up) ? 1.0 : up) << ','
         << oc.distance_m << ',' << oc.lateral_m << ',' << oc.yaw_deg << ',' << oc.rise_m << ','
         << oc.penetration_m * 1e3 << ',' << oc.settled_penetration_m * 1e3 << ','
-        << (oc.finite ? 1 : 0) << '\n';
+        << (oc.finite ? 1 : 0) << ',' << 100 * median(r.steal_share) << '\n';
   }
   // The parallel step against what the machine gave two threads on the same work, in the same
   // rounds: how much of the shortfall is S2Sim's and how much the host's.
@@ -246,7 +285,12 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
         md << "\n"
            << par.scene << ": " << par.engine << " " << fixed(up, 2)
            << "× the serial run, where two threads gave " << fixed(ceiling, 2)
-           << "× on two copies (s2sim-copies2): " << fixed(up / ceiling, 2) << " of it\n";
+           << "× on two copies (s2sim-copies2): " << fixed(up / ceiling, 2) << " of it";
+        const double steal_par = median(par.steal_share), steal_copies = median(copies.steal_share);
+        if (!std::isnan(steal_par) && !std::isnan(steal_copies))
+          md << "; the hypervisor took up to " << fixed(100 * steal_par, 1) << " % and "
+             << fixed(100 * steal_copies, 1) << " % of a vCPU (median rounds)";
+        md << "\n";
       }
   }
   std::fputs(md.str().c_str(), stdout);
@@ -254,11 +298,11 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
   if (!o.csv.empty()) std::ofstream(o.csv) << csv.str();
   if (!o.rounds_csv.empty()) {
     std::ofstream raw(o.rounds_csv);
-    raw << "scene,engine,round,cpu_us,wall_us\n";
+    raw << "scene,engine,round,cpu_us,wall_us,largest_vcpu_steal_pct\n";
     for (const auto& r : results)
       for (std::size_t i = 0; i < r.cpu_us.size(); ++i)
         raw << r.scene << ',' << r.engine << ',' << i << ',' << r.cpu_us[i] << ',' << r.wall_us[i]
-            << '\n';
+            << ',' << 100 * r.steal_share[i] << '\n';
   }
 }
 
@@ -323,12 +367,14 @@ int run(const Options& o) {
         if (!loaded[i]) continue;
         loaded[i]->reset();
         warm_up(*loaded[i], warmup);
+        const auto vcpus0 = read_vcpu_times();
         const double cpu0 = thread_cpu_s();
         const auto wall0 = std::chrono::steady_clock::now();
         loaded[i]->step(steps);
         const auto wall1 = std::chrono::steady_clock::now();
         const double cpu1 = thread_cpu_s();
         Result& r = results[first + i];
+        r.steal_share.push_back(largest_steal_share(vcpus0, read_vcpu_times()));
         r.cpu_us.push_back(1e6 * (cpu1 - cpu0) / static_cast<double>(steps));
         r.wall_us.push_back(1e6 * std::chrono::duration<double>(wall1 - wall0).count() /
                             static_cast<double>(steps));
