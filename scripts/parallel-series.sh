@@ -15,6 +15,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 runs=${1:-10}
 out=${2:-$(mktemp -d /tmp/s2sim-parallel-series.XXXXXX)}
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "parallel-series: RUNS must be a whole number of at least 1, got '$runs'" >&2; exit 2; }
 peers=build/bin/s2sim-peers
 [ -x "$peers" ] || { echo "parallel-series: $peers not built (cmake --build build --target s2sim-peers)" >&2; exit 2; }
 [ "$(nproc)" -ge 2 ] || { echo "parallel-series: one hardware thread: nothing to run in parallel" >&2; exit 2; }
