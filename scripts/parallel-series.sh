@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The parallel step against the machine's own two-thread ceiling, run after run (issue 17,
-# docs/benchmarks.md "Parallel series"): each run is one `s2sim-peers` call on robots_16 and
+# docs/benchmarks.md "Re-measured on 2026-11-29"): each run is one `s2sim-peers` call on robots_16 and
 # robots_64 with the serial step, the parallel step (running ahead and tick by tick) and two
 # serial copies at once (the ceiling), five rounds each. A table row per run gives each
 # parallel engine's speed-up over the serial run in wall time, the ceiling, the parallel step
