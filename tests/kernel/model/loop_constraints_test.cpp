@@ -7,12 +7,16 @@
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
+#include "sim/state_layout.hpp"
+
+#include <s2sim/error.hpp>
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 namespace s2sim::model {
@@ -217,6 +221,47 @@ TEST(LoopConstraints, SliderBetweenTurningBodiesMatchesSimbody) {
   const scene::Scene frame = welded_frame();
   const scene::Scene s = with_slider(frame, 3, frame.bodies[0].pose.rotation * Vec3{1, 0, 0});
   EXPECT_LT(driven_difference(s, 1, spin_chassis, "sliding frame"), 1e-11);
+}
+
+// A loop that no correction can close: a bar hinged to the world about z at one end, its other
+// end held at its load position by a ball to the world (nothing left free). Restored half a
+// turn about the hinge, the tip's error (twice the bar's length) is perpendicular to every
+// correction the hinge allows, so the projection's Gauss-Newton steps move nothing: the tick
+// stops with a runtime error saying so, rather than stepping on with the loop open.
+TEST(LoopConstraints, ALoopThatCannotBeClosedStopsTheTickWithAnError) {
+  scene::Scene s;
+  s.bodies.push_back(test::box("bar", 1.0, {0.5, 0.04, 0.04}, {0.25, 0, 1}));
+  s.joints.push_back(test::joint("hinge", JointType::hinge, 0, -1, {0, 0, 1}, {0, 0, 1}));
+  s.joints.push_back(test::joint("tip", JointType::ball, 0, -1, {0.5, 0, 1}));
+  test::add_robot(s, "pinned bar");
+  test::Runner r(s);
+  ASSERT_TRUE(r.mb.uses_tree_fast_path());
+  ASSERT_EQ(r.mb.axes().size(), 1u);
+  r.step(20);  // closed at load: it stays so
+  EXPECT_LT(std::abs(r.pos[0]), 1e-12);
+
+  sim::StateLayout layout;
+  r.mb.declare_state(layout);
+  std::vector<double> state;
+  layout.save(state);
+  const auto ranges = sim::StateLayout::locate(layout.entries(), state);
+  std::size_t q = 0;
+  while (layout.entries()[q].name != "multibody/q")
+    ++q;
+  ASSERT_EQ(ranges[q].size, 1u);  // the hinge's angle
+  state[ranges[q].offset] = M_PI;
+  layout.restore(layout.id(), layout.entries(), state);
+  r.mb.restored();
+  try {
+    r.step();
+    ADD_FAILURE() << "a loop open by 1 m stepped on";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::runtime);
+    EXPECT_NE(std::string(e.what()).find("the loop joints could not be closed"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("RMS error"), std::string::npos) << e.what();
+    std::printf("%s\n", e.what());
+  }
 }
 
 // Redundant rows: a planar loop's five equations have rank two. The solve leaves the redundant
