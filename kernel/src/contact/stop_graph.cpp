@@ -1,5 +1,7 @@
 #include "contact/stop_graph.hpp"
 
+#include "model/cholesky.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,6 +13,11 @@ constexpr int kMaxSweeps = 16;
 constexpr int kMaxSweepsHeldOnly = 4;
 /// Sweeps end once no row's separating speed moves by more than this.
 constexpr double kConverged_m_s = 1e-5;
+/// The exact solve (groups of up to StopGraph::kExactRows rows): its regularisation, of the
+/// Delassus matrix's largest diagonal, and how far short of its wanted change an inactive row
+/// may be before it joins.
+constexpr double kRegularisation = 1e-9;
+constexpr double kShort_m_s = 1e-9;
 }  // namespace
 
 void StopGraph::reserve(std::size_t bodies, std::size_t rows) {
@@ -24,6 +31,15 @@ void StopGraph::reserve(std::size_t bodies, std::size_t rows) {
   reached_.assign(bodies, 0);
   linear_.assign(bodies, Vec3{});
   angular_.assign(bodies, Vec3{});
+  constexpr auto n = static_cast<std::size_t>(kExactRows);
+  delassus_.assign(n * n, 0.0);
+  block_.assign(n * n, 0.0);
+  exact_b_.assign(n, 0.0);
+  exact_pb_.assign(n, 0.0);
+  exact_px_.assign(n, 0.0);
+  exact_impulse_.assign(n, 0.0);
+  active_.assign(n, 0);
+  active_list_.assign(n, 0);
 }
 
 void StopGraph::clear() {
@@ -138,6 +154,137 @@ std::size_t StopGraph::group_rows(std::size_t count) {
   return groups;
 }
 
+bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::size_t* first,
+                                    const std::size_t* last) {
+  const auto n = static_cast<int>(last - first);
+  if (n > kExactRows || delassus_.empty()) return false;
+  const auto row = [&](int i) -> Row& { return rows_[first[i]]; };
+  // A_ij: the change of row i's separating speed per unit impulse of row j, through the bodies
+  // they share (the world moves for none). b_i: what row i needs from the impulses alone, its
+  // wanted change less what the forces so far give (the change now, less its impulses' share).
+  double* A = delassus_.data();
+  const auto effect = [&](const Row& on, const Row& by) {
+    double e = 0;
+    const auto through = [&](std::int32_t body, const Vec3& lever_on, double sign_on) {
+      if (body == 0) return;
+      const auto k = static_cast<std::size_t>(body);
+      if (by.body_a == body)
+        e += sign_on *
+             (dot(on.normal, by.normal) * bodies.inverse_mass[k] + dot(lever_on, by.turn_a));
+      if (by.body_b == body)
+        e -= sign_on *
+             (dot(on.normal, by.normal) * bodies.inverse_mass[k] + dot(lever_on, by.turn_b));
+    };
+    through(on.body_a, on.lever_a, 1.0);
+    through(on.body_b, on.lever_b, -1.0);
+    return e;
+  };
+  double largest_diagonal = 0;
+  for (int i = 0; i < n; ++i) {
+    const Row& r = row(i);
+    const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+    double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
+    if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
+    for (int j = 0; j <= i; ++j)
+      A[i * n + j] = A[j * n + i] = effect(r, row(j));
+    largest_diagonal = std::max(largest_diagonal, A[i * n + i]);
+    exact_b_[static_cast<std::size_t>(i)] = r.wanted_m_s - change;
+  }
+  if (!(largest_diagonal > 0)) return false;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j)
+      exact_b_[static_cast<std::size_t>(i)] += A[i * n + j] * row(j).impulse_N_s;
+
+  // Active set: at first the rows that pushed last step (a load held from step to step: one
+  // round) and those the other forces leave short of their change; then, each round, the most
+  // negative impulse leaves, or else the row most short of its wanted change joins, until
+  // neither is left.
+  for (int i = 0; i < n; ++i) {
+    // exact_b_: the change the row is short of with no impulse at all.
+    active_[static_cast<std::size_t>(i)] =
+        row(i).impulse_N_s > 0 || exact_b_[static_cast<std::size_t>(i)] > 0;
+  }
+  double* x = exact_impulse_.data();
+  for (int round = 0; round < 4 * n + 4; ++round) {
+    int m = 0;
+    for (int i = 0; i < n; ++i)
+      if (active_[static_cast<std::size_t>(i)]) active_list_[static_cast<std::size_t>(m++)] = i;
+    for (int i = 0; i < n; ++i)
+      x[i] = 0;
+    if (m > 0) {
+      double* block = block_.data();
+      for (int p = 0; p < m; ++p) {
+        const int i = active_list_[static_cast<std::size_t>(p)];
+        exact_pb_[static_cast<std::size_t>(p)] = exact_b_[static_cast<std::size_t>(i)];
+        for (int q = 0; q <= p; ++q)
+          block[p * m + q] = A[i * n + active_list_[static_cast<std::size_t>(q)]];
+      }
+      // Coplanar points are redundant rows (four corners of a face, three unknowns): a
+      // regularisation of 1e-9 of the largest diagonal picks, among the impulses that give
+      // every active row its change (to that share), the least-norm one, shared evenly.
+      for (int p = 0; p < m; ++p)
+        block[p * m + p] += kRegularisation * largest_diagonal;
+      if (!model::cholesky_factor(block, m)) return false;
+      model::cholesky_substitute(block, m, exact_pb_.data(), exact_px_.data());
+      // Two rounds of refinement against A itself take the regularisation's bias out of the
+      // rows' changes (to rounding) and leave the shares as they are.
+      for (int refine = 0; refine < 2; ++refine) {
+        for (int p = 0; p < m; ++p) {
+          const int i = active_list_[static_cast<std::size_t>(p)];
+          double residual = exact_b_[static_cast<std::size_t>(i)];
+          for (int q = 0; q < m; ++q)
+            residual -= A[i * n + active_list_[static_cast<std::size_t>(q)]] *
+                        exact_px_[static_cast<std::size_t>(q)];
+          exact_pb_[static_cast<std::size_t>(p)] = residual;
+        }
+        model::cholesky_substitute(block, m, exact_pb_.data(), exact_pb_.data());
+        for (int p = 0; p < m; ++p)
+          exact_px_[static_cast<std::size_t>(p)] += exact_pb_[static_cast<std::size_t>(p)];
+      }
+      for (int p = 0; p < m; ++p)
+        x[active_list_[static_cast<std::size_t>(p)]] = exact_px_[static_cast<std::size_t>(p)];
+    }
+    int leave = -1;
+    double most_negative = 0;
+    for (int p = 0; p < m; ++p) {
+      const int i = active_list_[static_cast<std::size_t>(p)];
+      if (x[i] < most_negative) most_negative = x[i], leave = i;
+    }
+    if (leave >= 0) {
+      active_[static_cast<std::size_t>(leave)] = 0;
+      continue;
+    }
+    int join = -1;
+    double most_short = kShort_m_s;
+    for (int i = 0; i < n; ++i) {
+      if (active_[static_cast<std::size_t>(i)]) continue;
+      double change = -exact_b_[static_cast<std::size_t>(i)];
+      for (int j = 0; j < n; ++j)
+        change += A[i * n + j] * x[j];
+      if (-change > most_short) most_short = -change, join = i;
+    }
+    if (join < 0) {
+      // Settled: every impulse pushes and every row gets its wanted change. The velocity
+      // changes follow the impulses' differences.
+      for (int i = 0; i < n; ++i) {
+        Row& r = row(i);
+        const double d = x[i] - r.impulse_N_s;
+        r.impulse_N_s = x[i];
+        const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+        linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
+        angular_[a] += r.turn_a * d;
+        if (b != 0) {
+          linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
+          angular_[b] -= r.turn_b * d;
+        }
+      }
+      return true;
+    }
+    active_[static_cast<std::size_t>(join)] = 1;
+  }
+  return false;
+}
+
 void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wrenches,
                       ContactInfo* info) {
   if (empty()) return;
@@ -186,14 +333,16 @@ void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wren
       angular_[b] -= r.turn_b * r.impulse_N_s;
     }
   }
-  // Projected Gauss–Seidel on the velocity changes: each row in turn takes the impulse that
-  // gives it its wanted change, never pulling. Each group of rows joined through their bodies
-  // (the world joins nothing) sweeps until it converges, as it would alone: a part of the
-  // island-parallel step, which holds whole groups, then solves its own to the same bits.
+  // Each group of rows joined through their bodies (the world joins nothing) is solved as it
+  // would be alone, so that a part of the island-parallel step, which holds whole groups, solves
+  // its own to the same bits: exactly when small; else by projected Gauss–Seidel on the velocity
+  // changes, each row in turn taking the impulse that gives it its wanted change, never
+  // pulling, until the group converges.
   const std::size_t groups = group_rows(count);
   for (std::size_t g = 0; g < groups; ++g) {
     const std::size_t* first = order_.data() + group_begin_[g];
     const std::size_t* last = order_.data() + group_begin_[g + 1];
+    if (solve_group_exactly(bodies, first, last)) continue;
     bool has_stop = false;
     for (const std::size_t* i = first; i != last; ++i)
       has_stop = has_stop || rows_[*i].info < 0;

@@ -6,9 +6,10 @@
 /// box stopped on a box that rests on the ground pushes that box into the ground, which a
 /// penalty spring alone would let sink by the stopped momentum (millimetres at 1 ms). Here the
 /// resting contacts of jointless bodies reached from a stop through other such contacts take
-/// part: they may not close faster than they already do. Projected Gauss–Seidel on the
-/// bodies' velocity changes, rows in the order they were added (deterministic), each group of
-/// rows joined through their bodies sweeping until it alone converges.
+/// part: they may not close faster than they already do. Each group of rows joined through
+/// their bodies is solved as it would be alone: exactly (an active set over the rows' Delassus
+/// matrix) up to kExactRows rows, else by projected Gauss–Seidel on the bodies' velocity
+/// changes, rows in the order they were added (deterministic), sweeping until it converges.
 
 #include <s2sim/component.hpp>
 #include <s2sim/math.hpp>
@@ -97,6 +98,11 @@ class StopGraph {
   /// [group_begin_[g], group_begin_[g + 1]). Returns the number of groups.
   std::size_t group_rows(std::size_t count);
   std::int32_t root(std::int32_t body);
+  /// The rows order_[first, last) of one group solved exactly (an active set over their
+  /// Delassus matrix) from the velocity changes so far; false, changing nothing, when the group
+  /// has more rows than kExactRows or the active set does not settle.
+  bool solve_group_exactly(const BodyInertiaView& bodies, const std::size_t* first,
+                           const std::size_t* last);
 
   std::vector<Row> rows_;         // stops (in order), then held, then reached resting points
   std::vector<Resting> resting_;  // candidates, in order
@@ -108,6 +114,18 @@ class StopGraph {
   std::vector<std::int32_t> group_of_root_;  // per body: its group while grouping (-1: none)
   std::vector<std::int32_t> row_group_;      // per row
   std::vector<std::size_t> order_, group_begin_;
+
+ public:
+  /// Groups of up to this many rows are solved exactly; larger ones (a pile's settled heap)
+  /// by projected Gauss–Seidel.
+  static constexpr int kExactRows = 24;
+
+ private:
+  // solve_group_exactly's scratch, sized by reserve(): the Delassus matrix and its active
+  // block, the right sides (all rows, then packed), the packed solution, the impulses, the
+  // active flags and the active rows' list.
+  std::vector<double> delassus_, block_, exact_b_, exact_pb_, exact_px_, exact_impulse_;
+  std::vector<int> active_, active_list_;
 };
 
 }  // namespace s2sim::contact
