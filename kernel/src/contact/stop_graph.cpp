@@ -154,6 +154,23 @@ std::size_t StopGraph::group_rows(std::size_t count) {
   return groups;
 }
 
+double StopGraph::change_of(const Row& r) const {
+  const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+  double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
+  if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
+  return change;
+}
+
+void StopGraph::push(const Row& r, double impulse_N_s, const BodyInertiaView& bodies) {
+  const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
+  linear_[a] += r.normal * (impulse_N_s * bodies.inverse_mass[a]);
+  angular_[a] += r.turn_a * impulse_N_s;
+  if (b != 0) {
+    linear_[b] -= r.normal * (impulse_N_s * bodies.inverse_mass[b]);
+    angular_[b] -= r.turn_b * impulse_N_s;
+  }
+}
+
 bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::size_t* first,
                                     const std::size_t* last) {
   const auto n = static_cast<int>(last - first);
@@ -182,9 +199,7 @@ bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::si
   double largest_diagonal = 0;
   for (int i = 0; i < n; ++i) {
     const Row& r = row(i);
-    const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
-    double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
-    if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
+    const double change = change_of(r);
     for (int j = 0; j <= i; ++j)
       A[i * n + j] = A[j * n + i] = effect(r, row(j));
     largest_diagonal = std::max(largest_diagonal, A[i * n + i]);
@@ -268,15 +283,8 @@ bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::si
       // changes follow the impulses' differences.
       for (int i = 0; i < n; ++i) {
         Row& r = row(i);
-        const double d = x[i] - r.impulse_N_s;
+        push(r, x[i] - r.impulse_N_s, bodies);
         r.impulse_N_s = x[i];
-        const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
-        linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
-        angular_[a] += r.turn_a * d;
-        if (b != 0) {
-          linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
-          angular_[b] -= r.turn_b * d;
-        }
       }
       return true;
     }
@@ -324,14 +332,7 @@ void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wren
                            lever(r.body_b, r.point_m, r.normal, r.lever_b, r.turn_b);
     r.mass_kg = inverse > 0 ? 1 / inverse : 0;
     // Warm start: the resting rows begin with last step's impulse.
-    if (r.impulse_N_s == 0) continue;
-    const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
-    linear_[a] += r.normal * (r.impulse_N_s * bodies.inverse_mass[a]);
-    angular_[a] += r.turn_a * r.impulse_N_s;
-    if (b != 0) {
-      linear_[b] -= r.normal * (r.impulse_N_s * bodies.inverse_mass[b]);
-      angular_[b] -= r.turn_b * r.impulse_N_s;
-    }
+    if (r.impulse_N_s != 0) push(r, r.impulse_N_s, bodies);
   }
   // Each group of rows joined through their bodies (the world joins nothing) is solved as it
   // would be alone, so that a part of the island-parallel step, which holds whole groups, solves
@@ -351,20 +352,13 @@ void StopGraph::solve(const BodyInertiaView& bodies, double step_s, Wrench* wren
       double largest = 0;
       for (const std::size_t* i = first; i != last; ++i) {
         Row& r = rows_[*i];
-        const auto a = static_cast<std::size_t>(r.body_a), b = static_cast<std::size_t>(r.body_b);
-        double change = dot(r.normal, linear_[a]) + dot(r.lever_a, angular_[a]);
-        if (b != 0) change -= dot(r.normal, linear_[b]) + dot(r.lever_b, angular_[b]);
-        const double impulse = std::max(0.0, r.impulse_N_s + (r.wanted_m_s - change) * r.mass_kg);
+        const double impulse =
+            std::max(0.0, r.impulse_N_s + (r.wanted_m_s - change_of(r)) * r.mass_kg);
         const double d = impulse - r.impulse_N_s;
         if (d == 0) continue;
         r.impulse_N_s = impulse;
         largest = std::max(largest, std::abs(d) / r.mass_kg);
-        linear_[a] += r.normal * (d * bodies.inverse_mass[a]);
-        angular_[a] += r.turn_a * d;
-        if (b != 0) {
-          linear_[b] -= r.normal * (d * bodies.inverse_mass[b]);
-          angular_[b] -= r.turn_b * d;
-        }
+        push(r, d, bodies);
       }
       if (largest < kConverged_m_s) break;
     }

@@ -98,6 +98,10 @@ class StopGraph {
   /// [group_begin_[g], group_begin_[g + 1]). Returns the number of groups.
   std::size_t group_rows(std::size_t count);
   std::int32_t root(std::int32_t body);
+  /// The change of r's separating speed that the velocity changes so far give.
+  double change_of(const Row& r) const;
+  /// Adds an impulse of r's (its bodies' velocity changes).
+  void push(const Row& r, double impulse_N_s, const BodyInertiaView& bodies);
   /// The rows order_[first, last) of one group solved exactly (an active set over their
   /// Delassus matrix) from the velocity changes so far; false, changing nothing, when the group
   /// has more rows than kExactRows or the active set does not settle.
