@@ -33,6 +33,10 @@ struct BodyInertiaView {
 
 class StopGraph {
  public:
+  /// Groups of up to this many rows are solved exactly; larger ones (a pile's settled heap)
+  /// by projected Gauss–Seidel.
+  static constexpr int kExactRows = 24;
+
   /// Capacity for `bodies` kernel bodies (index 0 the world) and about `rows` points.
   void reserve(std::size_t bodies, std::size_t rows);
   /// Forgets the last substep's rows.
@@ -119,12 +123,6 @@ class StopGraph {
   std::vector<std::int32_t> row_group_;      // per row
   std::vector<std::size_t> order_, group_begin_;
 
- public:
-  /// Groups of up to this many rows are solved exactly; larger ones (a pile's settled heap)
-  /// by projected Gauss–Seidel.
-  static constexpr int kExactRows = 24;
-
- private:
   // solve_group_exactly's scratch, sized by reserve(): the Delassus matrix and its active
   // block, the right sides (all rows, then packed), the packed solution, the impulses, the
   // active flags and the active rows' list.
