@@ -9,6 +9,12 @@
 #                                                          files themselves (first differing line)
 #   scripts/check-behaviour.sh [--bin DIR] --threads N     run every case with --threads N: the
 #                                                          same hashes (results do not depend on it)
+#   scripts/check-behaviour.sh [--bin DIR] --check-dynamics
+#                                                          run every case with --check-dynamics:
+#                                                          Simbody's accelerations compared with
+#                                                          the small-tree dynamics' at every
+#                                                          substep (a case fails beyond their
+#                                                          agreement), and the same hashes
 #
 # A restructuring must leave the hashes unchanged; a deliberate change of physics updates them in
 # the same commit, which then shows which cases it changed. DIR defaults to build/bin. Cases whose
@@ -19,12 +25,14 @@ bin="$root/build/bin"
 mode=check
 against=""
 threads=""
+check_dynamics=""
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --bin) bin="$(cd "$2" && pwd)"; shift 2 ;;
     --update) mode=update; shift ;;
     --against) mode=against; against="$2"; shift 2 ;;
     --threads) threads="--threads $2"; shift 2 ;;
+    --check-dynamics) check_dynamics="--check-dynamics"; shift ;;
     *) echo "check-behaviour: unknown option '$1'" >&2; exit 2 ;;
   esac
 done
@@ -40,7 +48,7 @@ trap 'rm -rf "$work"' EXIT
 run_cases() {
   local runner="$1/s2sim-run" out="$2"
   mkdir -p "$out"
-  while IFS='|' read -r name scene args; do
+  while IFS='|' read -r name scene args flags; do
     name="$(echo "$name" | xargs)"
     [[ -z "$name" || "$name" == \#* ]] && continue
     scene="$(echo "$scene" | xargs)"
@@ -48,9 +56,19 @@ run_cases() {
       echo "skipped: $name ($scene not found)" >&2
       continue
     fi
+    local check="$check_dynamics"
+    if [[ -n "$check" && "$flags" == *no-dynamics-check* ]]; then
+      echo "  $name: dynamics check skipped (${flags#*no-dynamics-check: })"
+      check=""
+    fi
     # shellcheck disable=SC2086
-    (cd "$root" && "$runner" "$scene" $args $threads --quiet --no-timing --log "$out/$name.csv" \
-      --summary "$out/$name.json") || { echo "check-behaviour: case $name failed (exit $?)" >&2; exit 1; }
+    (cd "$root" && "$runner" "$scene" $args $threads $check --quiet --no-timing \
+      --log "$out/$name.csv" --summary "$out/$name.json" 2> "$out/$name.err") ||
+      { echo "check-behaviour: case $name failed (exit $?):" >&2; cat "$out/$name.err" >&2; exit 1; }
+    cat "$out/$name.err" >&2
+    if [[ -n "$check" ]]; then
+      echo "  $name: $(grep '^dynamics check:' "$out/$name.err" || echo 'no dynamics check line')"
+    fi
   done < "$root/scripts/behaviour-cases.txt"
 }
 

@@ -18,6 +18,7 @@ SimulationOptions simulation_options(const CommandLine& o) {
   if constexpr (requires { o.threads; }) so.threads = o.threads;
   if constexpr (requires { o.simbody_dynamics_only; })
     so.simbody_dynamics_only = o.simbody_dynamics_only;
+  if constexpr (requires { o.check_dynamics; }) so.check_dynamics = o.check_dynamics;
   for (const auto& p : o.plugin_path)
     so.plugin_path.emplace_back(p);
   if constexpr (requires { o.default_plugin_path; }) so.default_plugin_path = o.default_plugin_path;

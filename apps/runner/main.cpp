@@ -141,6 +141,7 @@ int run(const s2sim::runner::Options& o) {
   if (log) log->close();
 
   if (!o.quiet) std::fputs(runner::summary_text(*sim, timing).c_str(), stdout);
+  if (o.check_dynamics) std::fputs(runner::dynamics_check_text(*sim).c_str(), stderr);
   if (!o.summary_file.empty()) {
     std::ofstream out(o.summary_file, std::ios::binary);
     out << runner::summary_json(*sim, timing, o.summary_timing);

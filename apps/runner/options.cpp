@@ -74,8 +74,12 @@ Options:
                        threads, 1 to the machine's hardware threads (default 1); the
                        results are the same for every N (a note says when the components
                        cannot run on their islands' threads, and why)
-  --simbody-dynamics   Simbody's realize chain for every system, not the small-tree fast
-                       path (the same dynamics to rounding, slower): for comparing the two
+  --simbody-dynamics   Simbody's realize chain for every system, not the small-tree
+                       dynamics (the same dynamics to rounding, slower): the reference
+  --check-dynamics     step on the small-tree dynamics and have Simbody compute the same
+                       accelerations at every substep: a difference beyond the agreement
+                       stops the run (exit 5); the largest and the agreement are printed
+                       at the end (the results are the unchecked run's, bit for bit)
   --plugin-path DIR    search DIR for plugins before the default folders (repeatable;
                        the first library on the path that provides a kind wins)
   --no-default-plugin-path
@@ -165,6 +169,8 @@ Options parse_options(int argc, char** argv) {
       o.threads = static_cast<int>(n);
     } else if (a == "--simbody-dynamics") {
       o.simbody_dynamics_only = true;
+    } else if (a == "--check-dynamics") {
+      o.check_dynamics = true;
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value());
     } else if (a == "--no-default-plugin-path") {

@@ -150,6 +150,28 @@ std::string summary_text(const Simulation& sim, const RunTiming& t) {
   return s;
 }
 
+std::string dynamics_check_text(const Simulation& sim) {
+  const Simulation::DynamicsCheck check = sim.dynamics_check();
+  char line[256];
+  if (sim.dynamics() == "loose") {
+    std::snprintf(line, sizeof line,
+                  "dynamics check: nothing compared, no body of this scene has a joint (each "
+                  "is integrated on its own)\n");
+  } else if (sim.dynamics() != "checked") {
+    std::snprintf(line, sizeof line,
+                  "dynamics check: nothing compared, the %s dynamics step this scene (the "
+                  "small-tree dynamics cannot take it)\n",
+                  sim.dynamics().c_str());
+  } else {
+    std::snprintf(line, sizeof line,
+                  "dynamics check: %" PRId64
+                  " accelerations compared with Simbody's, the largest difference %.3g of the "
+                  "largest acceleration (at t = %.4f s), within the agreement of %g\n",
+                  check.compared, check.worst_relative, check.worst_time_s, check.agreement);
+  }
+  return line;
+}
+
 std::string summary_json(const Simulation& sim, const RunTiming& t, bool with_timing) {
   std::string s = "{\n";
   s += "  \"sim_time\": " + json_number(sim.time_s()) + ",\n";

@@ -51,6 +51,8 @@ struct RunTiming {
 
 /// The summary as text for the terminal.
 std::string summary_text(const Simulation& sim, const RunTiming& timing);
+/// The dynamics check's one line (--check-dynamics), for stderr.
+std::string dynamics_check_text(const Simulation& sim);
 /// The summary as JSON: sim_time, wall_time, rtf, steps, robots, things, axes.
 std::string summary_json(const Simulation& sim, const RunTiming& timing, bool with_timing);
 

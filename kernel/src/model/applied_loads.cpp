@@ -1,6 +1,6 @@
 // The kernel's loads as one Simbody force: gravity, body wrenches (controllers, contact), axis
 // forces (motors), plain Coulomb friction on sliding axes and joint stops.
-#include "model/multibody_impl.hpp"
+#include "model/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,26 +8,6 @@
 namespace s2sim::model {
 
 namespace {
-
-/// A loop axis's body as the fast path has it (Simbody's stages are not realized there): its
-/// pose and velocity from the tree, for the current state.
-struct TreeBody {
-  SimTK::Rotation R;  // body to Ground
-  SimTK::Vec3 origin, angular, linear;
-};
-
-TreeBody tree_body(const Multibody::Impl& m, int body) {
-  update_tree_kinematics(m);  // kept while q and u are unchanged
-  const SimTK::MobilizedBodyIndex i = m.mobod_of_body[static_cast<std::size_t>(body)];
-  const Pose& pose = m.tree->pose(i);
-  const Twist& twist = m.tree->twist(i);
-  SimTK::Mat33 R;
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      R(r, c) = pose.rotation.m[r][c];
-  return {SimTK::Rotation(R, true), to_simtk(pose.position), to_simtk(twist.angular_rad_s),
-          to_simtk(twist.linear_m_s)};
-}
 
 /// The rotation of body1 relative to body2 since load, about the axis (in (-pi, pi]).
 double loop_angle(const AxisImpl& ax, const SimTK::Rotation& R1, const SimTK::Rotation& R2) {
@@ -45,47 +25,30 @@ double axis_value(const Multibody::Impl& m, const SimTK::State& s, std::size_t a
     // q by index, as MobilizedBody::getOneQ reads it (its look-ups cost more).
     return ax.sign * element(s.getQ(), m.axis_q[a]);
   }
-  if (m.uses_tree()) {
-    const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
-    if (m.axes[a].linear)
-      return SimTK::dot(~b2.R * (b1.origin - b2.origin) - ax.offset0_in_body2, ax.axis_in_body2);
-    return loop_angle(ax, b1.R, b2.R);
-  }
-  const auto& b1 = m.mobod(ax.body1);
-  const auto& b2 = m.mobod(ax.body2);
-  const SimTK::Rotation& R2 = b2.getBodyRotation(s);
-  if (m.axes[a].linear) {
-    const SimTK::Vec3 offset = ~R2 * (b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s));
-    return SimTK::dot(offset - ax.offset0_in_body2, ax.axis_in_body2);
-  }
-  return loop_angle(ax, b1.getBodyRotation(s), R2);
+  const BodyFrame b1 = m.dynamics->body_frame(m, s, m.mobod_of_body[ax.body1]);
+  const BodyFrame b2 = m.dynamics->body_frame(m, s, m.mobod_of_body[ax.body2]);
+  if (m.axes[a].linear)
+    return SimTK::dot(~b2.R * (b1.origin - b2.origin) - ax.offset0_in_body2, ax.axis_in_body2);
+  return loop_angle(ax, b1.R, b2.R);
 }
 
 double axis_rate(const Multibody::Impl& m, const SimTK::State& s, std::size_t a) {
   const AxisImpl& ax = m.axis_impl[a];
   if (!m.axes[a].loop) return ax.sign * element(s.getU(), m.axis_u[a]);  // by index
-  if (m.uses_tree()) {
-    const TreeBody b1 = tree_body(m, ax.body1), b2 = tree_body(m, ax.body2);
-    const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
-    if (m.axes[a].linear)
-      return SimTK::dot(b1.linear - b2.linear - SimTK::cross(b2.angular, b1.origin - b2.origin),
-                        axis_G);
-    return SimTK::dot(b1.angular - b2.angular, axis_G);
-  }
-  const auto& b1 = m.mobod(ax.body1);
-  const auto& b2 = m.mobod(ax.body2);
-  const SimTK::Vec3 axis_G = b2.getBodyRotation(s) * ax.axis_in_body2;
-  if (m.axes[a].linear) {
-    const SimTK::Vec3 r = b1.getBodyOriginLocation(s) - b2.getBodyOriginLocation(s);
-    const SimTK::Vec3 v = b1.getBodyOriginVelocity(s) - b2.getBodyOriginVelocity(s) -
-                          SimTK::cross(b2.getBodyAngularVelocity(s), r);
-    return SimTK::dot(v, axis_G);
-  }
-  return SimTK::dot(b1.getBodyAngularVelocity(s) - b2.getBodyAngularVelocity(s), axis_G);
+  const SimTK::MobilizedBodyIndex i1 = m.mobod_of_body[ax.body1], i2 = m.mobod_of_body[ax.body2];
+  const BodyFrame b1 = m.dynamics->body_frame(m, s, i1), b2 = m.dynamics->body_frame(m, s, i2);
+  const BodyVelocity v1 = m.dynamics->body_velocity(m, s, i1);
+  const BodyVelocity v2 = m.dynamics->body_velocity(m, s, i2);
+  const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
+  if (m.axes[a].linear)
+    return SimTK::dot(v1.linear - v2.linear - SimTK::cross(v2.angular, b1.origin - b2.origin),
+                      axis_G);
+  return SimTK::dot(v1.angular - v2.angular, axis_G);
 }
 
 /// A generalized force on one axis: a mobility force for a tree joint, equal and opposite
-/// body loads about / along the axis for a loop joint.
+/// body loads about / along the axis for a loop joint (what Simbody's applyBodyTorque and
+/// applyForceToBodyPoint add: a torque about the body origin, then the force).
 void apply_axis_load(const Multibody::Impl& mb, const SimTK::State& state, std::size_t a, double f,
                      SimTK::Vector_<SimTK::SpatialVec>& body_forces,
                      SimTK::Vector& mobility_forces) {
@@ -97,34 +60,18 @@ void apply_axis_load(const Multibody::Impl& mb, const SimTK::State& state, std::
   }
   const SimTK::MobilizedBodyIndex i1 = mb.mobod_of_body[static_cast<std::size_t>(ax.body1)];
   const SimTK::MobilizedBodyIndex i2 = mb.mobod_of_body[static_cast<std::size_t>(ax.body2)];
-  if (mb.uses_tree()) {
-    // What the MobilizedBody calls below add (torque about the body origin, then force).
-    const TreeBody b1 = tree_body(mb, ax.body1), b2 = tree_body(mb, ax.body2);
-    const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
-    if (mb.axes[a].linear) {
-      const SimTK::Vec3 arm1 = b1.R * ax.anchor_in_body1;  // from body1's origin
-      const SimTK::Vec3 arm2 = b1.origin + arm1 - b2.origin;
-      const SimTK::Vec3 force = f * axis_G;
-      body_forces[i1] += SimTK::SpatialVec(SimTK::cross(arm1, force), force);
-      body_forces[i2] -= SimTK::SpatialVec(SimTK::cross(arm2, force), force);
-    } else {
-      body_forces[i1][0] += f * axis_G;
-      body_forces[i2][0] -= f * axis_G;
-    }
-    return;
-  }
-  const auto& b1 = mb.matter.getMobilizedBody(i1);
-  const auto& b2 = mb.matter.getMobilizedBody(i2);
-  const SimTK::Vec3 axis_G = b2.getBodyRotation(state) * ax.axis_in_body2;
+  const BodyFrame b1 = mb.dynamics->body_frame(mb, state, i1);
+  const BodyFrame b2 = mb.dynamics->body_frame(mb, state, i2);
+  const SimTK::Vec3 axis_G = b2.R * ax.axis_in_body2;
   if (mb.axes[a].linear) {
-    const SimTK::Vec3 point_G = b1.findStationLocationInGround(state, ax.anchor_in_body1);
+    const SimTK::Vec3 arm1 = b1.R * ax.anchor_in_body1;  // from body1's origin
+    const SimTK::Vec3 arm2 = b1.origin + arm1 - b2.origin;
     const SimTK::Vec3 force = f * axis_G;
-    b1.applyForceToBodyPoint(state, ax.anchor_in_body1, force, body_forces);
-    b2.applyForceToBodyPoint(state, b2.findStationAtGroundPoint(state, point_G), -force,
-                             body_forces);
+    body_forces[i1] += SimTK::SpatialVec(SimTK::cross(arm1, force), force);
+    body_forces[i2] -= SimTK::SpatialVec(SimTK::cross(arm2, force), force);
   } else {
-    b1.applyBodyTorque(state, f * axis_G, body_forces);
-    b2.applyBodyTorque(state, -f * axis_G, body_forces);
+    body_forces[i1][0] += f * axis_G;
+    body_forces[i2][0] -= f * axis_G;
   }
 }
 
@@ -171,7 +118,7 @@ void add_applied_loads(const Multibody::Impl& mb, const SimTK::State& state,
                        SimTK::Vector& mobility_forces) {
   for (const auto& w : mb.weights) {
     const SimTK::Vec3 force(0, 0, -kGravity_m_s2 * w.mass_kg);
-    const SimTK::Vec3 com_G = to_ground(mb, state, w.mobod, w.com_m);
+    const SimTK::Vec3 com_G = mb.dynamics->to_ground(mb, state, w.mobod, w.com_m);
     body_forces[w.mobod] += SimTK::SpatialVec(SimTK::cross(com_G, force), force);
   }
   add_wrenches(mb, mb.wrenches, body_forces);

@@ -1,7 +1,7 @@
 // M^-1 columns of the axes: the generalized-speed response to a unit impulse on an axis. The
 // implicit axis solve (implicit_axes.cpp: drives and Coulomb friction) works in the axes'
 // Delassus matrix W_ab = g_a·M^-1·g_b built from them.
-#include "model/multibody_impl.hpp"
+#include "model/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -72,29 +72,14 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
       rotate_with_root(m, s, a);
       continue;
     }
-    if (!m.axes[a].loop && m.uses_tree()) {
-      // g: a unit load along the axis; M factored by this substep's accelerations, at this q.
-      double& g = m.unit_speed[static_cast<std::size_t>(m.axis_u[a])];
-      g = m.axis_impl[a].sign;
-      m.tree->solve(m.unit_speed.data(), m.minv_column[a].updContiguousScalarData());
-      g = 0.0;
-    } else if (!m.axes[a].loop) {
-      m.unit_force = 0.0;
-      m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;
-      m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
+    if (!m.axes[a].loop) {
+      m.dynamics->tree_axis_column(m, s, a);
     } else {
       // g = Jᵀ·(the body loads of a unit axis load), then M^-1·g.
-      SimTK::Vector& g = m.loop_unit_force[a];
       m.unit_body_forces.setToZero();
       m.unit_force = 0.0;
       apply_axis_load(m, s, static_cast<std::size_t>(a), 1.0, m.unit_body_forces, m.unit_force);
-      if (m.uses_tree()) {
-        m.tree->generalized_forces(&m.unit_body_forces[0][0][0], g.updContiguousScalarData());
-        m.tree->solve(g.getContiguousScalarData(), m.minv_column[a].updContiguousScalarData());
-      } else {
-        m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, g);
-        m.matter.multiplyByMInv(s, g, m.minv_column[a]);
-      }
+      m.dynamics->loop_axis_column(m, s, a);
     }
     m.axis_mobility[a] = axis_dot(m, static_cast<std::size_t>(a), m.minv_column[a]);
     m.column_valid[a] = 1;

@@ -1,7 +1,7 @@
-// The small-tree fast path between Simbody's model and TreeDynamics (with LoopConstraints for
-// the loop joints): which systems take it, the check at load that it gives Simbody's
-// accelerations, and its use while stepping, projections included.
-#include "model/multibody_impl.hpp"
+// The small-tree dynamics built from Simbody's model (TreeDynamics, with LoopConstraints for
+// the loop joints): which systems can take it, and the check at load that it gives Simbody's
+// accelerations. Stepping on it: tree_path.cpp.
+#include "model/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,12 +12,6 @@ namespace {
 
 Pose pose_of(const SimTK::Transform& X) {
   return {from_simtk(X.p()), from_simtk(X.R())};
-}
-
-const double* data_of(const SimTK::Vector& v) {
-  // A State's q and u are contiguous (Simbody allocates them as one block per subsystem).
-  if (!v.hasContiguousData()) throw std::logic_error("fast path: a non-contiguous state vector");
-  return v.getContiguousScalarData();
 }
 
 /// The tree's model from Simbody's, or null when a mobilizer is not one the tree knows.
@@ -119,72 +113,6 @@ std::unique_ptr<LoopConstraints> loops_of(const Multibody::Impl& m) {
 
 }  // namespace
 
-void update_tree_kinematics(const Multibody::Impl& m) {
-  m.tree->kinematics(data_of(m.current.getQ()), data_of(m.current.getU()));
-}
-
-SimTK::Vec3 to_ground(const Multibody::Impl& m, const SimTK::State& state,
-                      SimTK::MobilizedBodyIndex body, const SimTK::Vec3& v_B) {
-  if (m.uses_tree()) return to_simtk(m.tree->pose(body).rotation * from_simtk(v_B));
-  return m.matter.getMobilizedBody(body).getBodyRotation(state) * v_B;
-}
-
-void tree_accelerations(Multibody::Impl& m) {
-  update_tree_kinematics(m);
-  m.tree_body_loads.setToZero();
-  m.tree_mobility_forces = 0.0;
-  add_applied_loads(m, m.current, m.tree_body_loads, m.tree_mobility_forces);
-  m.tree->accelerations(&m.tree_body_loads[0][0][0], data_of(m.tree_mobility_forces),
-                        m.udot.updContiguousScalarData());
-  if (m.loops) m.loops->constrain_accelerations(*m.tree, m.udot.updContiguousScalarData());
-}
-
-void project_loop_speeds(Multibody::Impl& m) {
-  update_tree_kinematics(m);
-  // u is changed in place only when the errors call for it: updU() would drop what Simbody
-  // realized (nothing on the fast path, but a state it reads later must stay coherent).
-  const SimTK::Vector& u = m.current.getU();
-  std::copy(data_of(u), data_of(u) + u.size(), m.loop_u.begin());
-  if (m.loops->project_speeds(*m.tree, m.loop_u.data(), kLoopTolerance))
-    std::copy(m.loop_u.begin(), m.loop_u.end(), m.current.updU().updContiguousScalarData());
-}
-
-void project_loops(Multibody::Impl& m) {
-  // Positions first (Gauss-Newton on the errors, in the speeds' least change mapped by N), then
-  // the speeds at the new configuration: the order of Simbody's project(). As Simbody's, a
-  // projection starts when the errors exceed the tolerance, then aims ten times below it
-  // (its overshoot factor) and settles for the tolerance. The iterations work on a copy of q:
-  // each updQ() would walk Simbody's cache invalidation.
-  const SimTK::Vector& q_now = m.current.getQ();
-  const double* u = data_of(m.current.getU());
-  double* q = m.loop_q.data();
-  std::copy(data_of(q_now), data_of(q_now) + q_now.size(), q);
-  double target = kLoopTolerance;
-  bool moved = false;
-  for (int iteration = 0;; ++iteration) {
-    m.tree->kinematics(q, u);
-    if (!m.loops->position_correction(*m.tree, target, m.loop_du.data())) break;
-    if (iteration == kLoopIterations) {
-      const double error = m.loops->rms_position_error(*m.tree);
-      if (error <= kLoopTolerance) break;
-      std::ostringstream out;
-      out << "the loop joints could not be closed to " << kLoopTolerance << " (RMS error " << error
-          << " after " << kLoopIterations
-          << " corrections): the mechanism cannot be assembled here";
-      throw Error(ErrorKind::runtime, out.str());
-    }
-    target = kLoopTolerance * kLoopOvershoot;
-    calc_qdot(m, m.loop_du.data(), q, m.loop_dq.data());
-    for (std::size_t i = 0; i < m.loop_q.size(); ++i)
-      q[i] += m.loop_dq[i];
-    normalize_quaternions(m, q);
-    moved = true;
-  }
-  if (moved)
-    std::copy(m.loop_q.begin(), m.loop_q.end(), m.current.updQ().updContiguousScalarData());
-  project_loop_speeds(m);
-}
-
 void build_fast_path(Multibody::Impl& m) {
   if (!m.own_n || !m.has_mobilized_bodies) return;
   std::unique_ptr<TreeDynamics> tree = tree_of(m);
@@ -212,10 +140,12 @@ void build_fast_path(Multibody::Impl& m) {
       u[i] = std::sin(1.7 * i + 0.3);
     // With loops, a state on the constraints: redundant rows (a planar loop's) then agree.
     if (loops) m.system.project(m.current, kLoopTolerance);
+    m.dynamics = &simbody_dynamics();
     realize_accelerations(m);
     const SimTK::Vector simbody = m.current.getUDot();
     m.tree = std::move(tree);
     m.loops = std::move(loops);
+    m.dynamics = &tree_dynamics();  // the tree's own kinematics for its loads
     tree_accelerations(m);
     for (int i = 0; i < nu; ++i) {
       scale = std::max(scale, std::abs(simbody[i]));
@@ -227,10 +157,12 @@ void build_fast_path(Multibody::Impl& m) {
     m.tree.reset();
     m.loops.reset();
     m.current = m.initial_state;
+    m.dynamics = &simbody_dynamics();
     return;
   }
   m.current = m.initial_state;
-  if (!(worst <= 1e-9 * scale)) {
+  m.dynamics = &simbody_dynamics();  // until select_dynamics chooses
+  if (!(worst <= kDynamicsAgreement * scale)) {
     m.tree.reset();
     m.loops.reset();
     std::ostringstream out;

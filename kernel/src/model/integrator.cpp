@@ -1,7 +1,7 @@
 // The leapfrog integrator's operations on the Simbody state, one substep at a time:
 // accelerations, kick, drift, projection, and the end-of-tick read-out and finite check. The
 // order in which they run is sim/step.cpp's (docs/models/multibody.md).
-#include "model/multibody_impl.hpp"
+#include "model/dynamics.hpp"
 
 #include <cmath>
 
@@ -86,42 +86,15 @@ void Multibody::forces() {
 }
 
 void realize_velocity(const Multibody::Impl& m, const SimTK::State& s) {
-  // The fast path's systems have no loop axis: bodies come from the tree, axes from q and u.
-  if (!m.uses_tree()) m.system.realize(s, SimTK::Stage::Velocity);
-}
-
-void realize_accelerations(Multibody::Impl& m) {
-  SimTK::State& s = m.current;
-  // The loads changed outside Simbody's knowledge: drop what was realized from them.
-  s.invalidateAllCacheAtOrAbove(SimTK::Stage::Dynamics);
-  if (!m.has_constraints) {
-    // The system's force arrays are zeroed at Dynamics; the loads go straight in, as a force
-    // subsystem would add them (its Force::Custom is disabled in these states).
-    m.system.realize(s, SimTK::Stage::Dynamics);
-    add_applied_loads(m, s, m.system.updRigidBodyForces(s, SimTK::Stage::Dynamics),
-                      m.system.updMobilityForces(s, SimTK::Stage::Dynamics));
-  }
-  m.system.realize(s, SimTK::Stage::Acceleration);
+  m.dynamics->realize_velocity(m, s);
 }
 
 void Multibody::accelerations(bool last_substep) {
   Impl& m = *impl_;
-  SimTK::State& s = m.current;
   // Only loose bodies (a pile of things): Simbody has nothing to integrate, and its realize
   // chain would still cost its bookkeeping.
   if (!m.has_mobilized_bodies) return;
-  if (m.uses_tree()) {
-    tree_accelerations(m);
-    // The reactions of the tick's last acceleration evaluation, as below.
-    if (m.reactions_wanted && last_substep) compute_tree_joint_reactions(m);
-    return;
-  }
-  realize_accelerations(m);
-  m.udot = 0.0;
-  add_scaled(m.udot, 1.0, s.getUDot());  // a copy: updU() below invalidates UDot
-  // The reactions of the tick's last acceleration evaluation: no extra realize, and the
-  // same loads as the kick that follows (the implicit axis solve's corrections excepted).
-  if (m.reactions_wanted && last_substep) compute_joint_reactions(m, s);
+  m.dynamics->accelerations(m, last_substep);
 }
 
 // Semi-explicit Euler, u first (implicit in the declared damping) then q with the new u, started
@@ -147,11 +120,7 @@ void Multibody::solve_axes() {
   // Loops: the speeds the drift integrates satisfy the velocity constraints (the solve above
   // works in the tree's coordinates), so that positions move by h times the speeds reported.
   if (!m.has_constraints || m.rows.empty()) return;
-  if (m.uses_tree()) {
-    project_loop_speeds(m);
-  } else {
-    m.system.projectU(m.current, kLoopTolerance);
-  }
+  m.dynamics->project_speeds(m);
 }
 
 void Multibody::drift(int substep) {
@@ -163,13 +132,7 @@ void Multibody::drift(int substep) {
   // and realize the Time stage of every subsystem each substep, for nothing that reads it.
   m.substep = substep + 1;
   if (!m.has_mobilized_bodies) return;  // updQ would invalidate Simbody's empty state
-  // (A State's q and u are contiguous: Simbody allocates them as one block per subsystem.)
-  if (m.own_n) {
-    calc_qdot(m, s.getU().getContiguousScalarData(), s.getQ().getContiguousScalarData(),
-              m.qdot.updContiguousScalarData());
-  } else {
-    m.matter.multiplyByN(s, false, s.getU(), m.qdot);
-  }
+  m.dynamics->qdot(m);
   SimTK::Vector& q = s.updQ();
   add_scaled(q, h, m.qdot);
   normalize_quaternions(m, q.updContiguousScalarData());
@@ -178,11 +141,7 @@ void Multibody::drift(int substep) {
 void Multibody::project() {
   Impl& m = *impl_;
   if (!m.has_constraints) return;
-  if (m.uses_tree()) {
-    project_loops(m);
-  } else {
-    m.system.project(m.current, kLoopTolerance);
-  }
+  m.dynamics->project(m);
 }
 
 void Multibody::finish_tick() {

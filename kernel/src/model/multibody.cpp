@@ -1,6 +1,6 @@
 // Multibody: the scene's bodies and joints as a Simbody system, seen by the kernel as plain
 // arrays (the constructor is in multibody_build.cpp, the integrator in integrator.cpp).
-#include "model/multibody_impl.hpp"
+#include "model/dynamics.hpp"
 
 #include "sim/state_layout.hpp"
 
@@ -43,6 +43,7 @@ const double* Multibody::drive_force_applied() const {
 }
 void Multibody::request_joint_reactions() {
   impl_->reactions_wanted = true;
+  select_dynamics(*impl_);
 }
 const Wrench* Multibody::joint_reactions() const {
   return impl_->joint_reactions.data();
@@ -50,15 +51,24 @@ const Wrench* Multibody::joint_reactions() const {
 bool Multibody::joint_is_loop(int joint) const {
   return !impl_->joint_reaction_source.at(static_cast<std::size_t>(joint)).mobod.isValid();
 }
+void Multibody::choose_dynamics(DynamicsChoice choice) {
+  impl_->choice = choice;
+  select_dynamics(*impl_);
+}
 bool Multibody::uses_tree_fast_path() const {
-  return impl_->uses_tree();
+  return impl_->dynamics != &simbody_dynamics();
+}
+const char* Multibody::dynamics_name() const {
+  // Without a joint every body is a loose one: no equations of motion of a tree to choose.
+  return impl_->has_mobilized_bodies ? impl_->dynamics->name() : "loose";
 }
 bool Multibody::needs_simbody_dynamics() const {
   return impl_->has_mobilized_bodies && !impl_->tree;
 }
-void Multibody::set_tree_fast_path(bool enabled) {
-  impl_->tree_enabled = enabled;
-  impl_->bodies_fresh = false;
+DynamicsCheck Multibody::dynamics_check() const {
+  DynamicsCheck check = impl_->check;
+  check.agreement = kDynamicsAgreement;
+  return check;
 }
 Wrench* Multibody::use_contact_wrenches() {
   impl_->contact_wrenches_used = true;
@@ -127,20 +137,7 @@ void Multibody::reset() {
 void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, Twist* twists) {
   poses[0] = Pose{};
   twists[0] = Twist{};
-  const bool tree = m.uses_tree();
-  if (tree) update_tree_kinematics(m);
-  for (const auto& [b, mobod] : m.jointed_bodies) {
-    if (tree) {
-      poses[b] = m.tree->pose(mobod);
-      twists[b] = m.tree->twist(mobod);
-      continue;
-    }
-    const auto& mob = m.matter.getMobilizedBody(mobod);
-    const SimTK::Transform& X = mob.getBodyTransform(s);
-    poses[b] = Pose{from_simtk(X.p()), from_simtk(X.R())};
-    const SimTK::SpatialVec& V = mob.getBodyVelocity(s);
-    twists[b] = Twist{from_simtk(V[0]), from_simtk(V[1])};
-  }
+  m.dynamics->read_bodies(m, s, poses, twists);
   m.loose.read(poses, twists);
 }
 

@@ -8,6 +8,7 @@
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -47,6 +48,22 @@ struct Topology {
 /// realise in any tree (a joint from the world to itself). Bodies without any joint are loose
 /// unless `lone_bodies_in_simbody` (for tests that compare the two).
 Topology plan_topology(const scene::Scene& scene, bool lone_bodies_in_simbody = false);
+
+/// Which equations of motion step a multibody (model/dynamics.hpp says what each is).
+enum class DynamicsChoice {
+  tree_where_possible,  ///< the small-tree dynamics wherever they were built, else Simbody's
+  simbody,              ///< Simbody's realize chain for everything (the reference)
+  checked,              ///< the tree steps, Simbody computes the same accelerations to compare
+};
+
+/// What the checked dynamics found: how many accelerations it compared, and the largest
+/// difference relative to the largest acceleration of its substep (at least 1).
+struct DynamicsCheck {
+  std::int64_t compared = 0;
+  double worst_relative = 0;
+  double worst_time_s = 0;  ///< when the worst one was seen
+  double agreement = 0;     ///< the largest relative difference allowed (kDynamicsAgreement)
+};
 
 /// The scene's bodies and joints as a Simbody system, and the integrator's operations on it.
 /// Body index 0 is the world; scene body i is body i + 1. The kernel writes the loads for the
@@ -105,18 +122,21 @@ class Multibody {
   /// Whether a scene joint closes a kinematic loop (constraints: no reaction reported).
   bool joint_is_loop(int joint) const;
 
-  /// Whether the small-tree fast path computes the dynamics (tree_dynamics.hpp): a system of
-  /// free, hinge, slider, universal, ball and fixed joints, with loop joints of any kind, whose
-  /// accelerations matched Simbody's at load; not a system with loops while joint reactions
-  /// are read.
+  /// Which equations of motion step the system, chosen at load (model/dynamics.hpp).
+  void choose_dynamics(DynamicsChoice choice);
+  /// Whether the small-tree dynamics step the system (tree_dynamics.hpp; alone or checked): a
+  /// system of free, hinge, slider, universal, ball and fixed joints, with loop joints of any
+  /// kind, whose accelerations matched Simbody's at load; not a system with loops while joint
+  /// reactions are read, nor one whose choice is DynamicsChoice::simbody.
   bool uses_tree_fast_path() const;
-  /// Whether Simbody must compute this system's dynamics: it has mobilized bodies and the fast
-  /// path could not be built for them (its check at load failed, say), whatever
-  /// set_tree_fast_path() says.
+  /// "tree", "simbody" or "checked": the dynamics that step the system ("loose": it has no
+  /// joint, its bodies are LooseBodies').
+  const char* dynamics_name() const;
+  /// Whether Simbody must compute this system's dynamics: it has mobilized bodies and the tree
+  /// could not be built for them (its check at load failed, say), whatever the choice.
   bool needs_simbody_dynamics() const;
-  /// Switches the fast path off (Simbody's realize chain for everything) or back on where
-  /// it is possible: for tests and benchmarks that compare the two.
-  void set_tree_fast_path(bool enabled);
+  /// What DynamicsChoice::checked compared so far (zeros otherwise).
+  DynamicsCheck dynamics_check() const;
 
   /// The per-body wrenches recomputed from the state at every substep (contact), applied
   /// from now on; the caller writes them before each substep's forces().

@@ -3,7 +3,7 @@
 // against these axes and may declare axis inertias). The constructor: bodies and mobilizers in
 // tree order, loop-closing joints as constraints, limits as stops, then the initial state and
 // the stepping buffers.
-#include "model/multibody_impl.hpp"
+#include "model/dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -485,6 +485,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
                      std::int32_t drive_slots)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
+  m.dynamics = &simbody_dynamics();  // the builder's, until select_dynamics chooses
   m.tick_s = tick_s;
   const int n_bodies = static_cast<int>(scene.bodies.size());
   const auto n_joints = scene.joints.size();
@@ -533,6 +534,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   build_initial_state(m, b, tick_s, substeps);
   m.substeps = substeps;
   prepare_stepping(m, drive_slots > 0 ? static_cast<std::size_t>(drive_slots) : 4 * m.axes.size());
+  select_dynamics(m);
   reset();
 }
 

@@ -21,6 +21,8 @@
 
 namespace s2sim::model {
 
+class Dynamics;
+
 inline SimTK::Vec3 to_simtk(const Vec3& v) {
   return {v.x, v.y, v.z};
 }
@@ -153,16 +155,17 @@ struct Multibody::Impl {
   bool has_mobilized_bodies = true;  // false: every body is loose (Simbody holds only Ground)
   double tick_s = 1e-3;
   int substeps = 1;
-  // The small-tree fast path (tree_dynamics.hpp, fast_path.cpp): built at load when the system
-  // has only Free, Pin, Slider and Weld mobilizers and its constraints (if any) are of the
-  // kinds loop_constraints.hpp knows, and it agreed with Simbody on a probe state; used
-  // while no component reads joint reactions (those come from Simbody's Acceleration stage)
-  // and unless a test switched it off.
+  // The small-tree dynamics (tree_dynamics.hpp, fast_path.cpp): built at load when every
+  // mobilizer is Free, Pin, Slider, Universal, Ball or Weld and the constraints (if any) are
+  // of the kinds loop_constraints.hpp knows, and it agreed with Simbody on a probe state.
   std::unique_ptr<TreeDynamics> tree;
   std::unique_ptr<LoopConstraints> loops;  // with the tree, when the system has constraints
-  bool tree_enabled = true;
-  // Joint reactions with loops are Simbody's (its reactions count the constraint forces).
-  bool uses_tree() const { return tree && tree_enabled && !(reactions_wanted && has_constraints); }
+  // The equations of motion stepped (dynamics.hpp), chosen once by select_dynamics from
+  // `choice`, the tree above and the joint reactions wanted.
+  DynamicsChoice choice = DynamicsChoice::tree_where_possible;
+  const Dynamics* dynamics = nullptr;
+  DynamicsCheck check;           // what the checked dynamics found so far (not state)
+  SimTK::Vector reference_udot;  // the checked dynamics' scratch: Simbody's accelerations
 
   // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
   // multibody/time
@@ -252,10 +255,10 @@ struct Multibody::Impl {
   std::vector<Wrench> joint_reactions_in_body1;      // body1's frame, as computed
   SimTK::Vector_<SimTK::SpatialVec> reactions_at_M;  // preallocated, one per mobilized body
   SimTK::Vector udot, qdot;
-  SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the fast path's loads (uses_tree)
+  SimTK::Vector_<SimTK::SpatialVec> tree_body_loads;  // the tree dynamics' loads
   std::vector<Wrench> tree_reactions;                 // its mobilizer reactions, one per mobod
   SimTK::Vector tree_mobility_forces;
-  std::vector<double> loop_q, loop_u, loop_du, loop_dq;  // the loop projections' (fast_path.cpp)
+  std::vector<double> loop_q, loop_u, loop_du, loop_dq;  // the loop projections' (tree_path.cpp)
   double last_kick_s = 0;  // the kick of the current substep (the axis solve is implicit over it)
 
   const SimTK::State& state() const { return current; }
@@ -294,35 +297,29 @@ void add_applied_loads(const Multibody::Impl& m, const SimTK::State& state,
                        SimTK::Vector& mobility_forces);
 /// Registers the kernel's loads as a Simbody Force::Custom (add_applied_loads).
 void register_applied_loads(Multibody::Impl& m);
-/// Simbody's Velocity stage for reading bodies and axes (read_bodies, axis_value, axis_rate),
-/// unless the fast path computes them (uses_tree()).
+/// The bodies' kinematics of `s` made readable by the chosen dynamics (read_bodies,
+/// axis_value, axis_rate).
 void realize_velocity(const Multibody::Impl& m, const SimTK::State& s);
 /// Realizes `m.current` to Acceleration with this substep's loads (Multibody::accelerations,
 /// and reset for the first joint reactions): without constraints the loads go straight into
 /// the system's force arrays after Dynamics, with constraints through the Force::Custom.
 void realize_accelerations(Multibody::Impl& m);
 
-/// The small-tree fast path (fast_path.cpp). Builds m.tree where the system allows it and the
+/// The small-tree dynamics (fast_path.cpp). Builds m.tree where the system allows it and the
 /// tree's accelerations match Simbody's on a probe state (else leaves it null, with a warning
 /// when they disagree); after prepare_stepping's maps.
 void build_fast_path(Multibody::Impl& m);
 /// The tree's kinematics for the current state (kept while q and u are unchanged).
 void update_tree_kinematics(const Multibody::Impl& m);
-/// m.udot for this substep's loads, through the tree (uses_tree()).
+/// m.udot for this substep's loads, through the tree (tree_path.cpp).
 void tree_accelerations(Multibody::Impl& m);
-/// The fast path's projections onto the loop constraints (uses_tree() with m.loops), in place
-/// of Simbody's projectU() and project() at the same accuracy: the speeds; the positions then
-/// the speeds (throws s2sim::Error, runtime, when the loops cannot be closed).
-void project_loop_speeds(Multibody::Impl& m);
-void project_loops(Multibody::Impl& m);
-/// q' = N(q)·u (own_n: every mobilizer Free or with q' = u), over raw arrays.
+/// q' = N(q)·u (own_n: every mobilizer Free, Ball or with q' = u), over raw arrays.
 void calc_qdot(const Multibody::Impl& m, const double* u, const double* q, double* qdot);
-/// Normalises each quaternion of q (Free mobilizers).
+/// Normalises each quaternion of q (Free and Ball mobilizers).
 void normalize_quaternions(const Multibody::Impl& m, double* q);
-/// A direction fixed in a mobilized body, in Ground: through the tree or Simbody (`state`
-/// realized to Position then).
-SimTK::Vec3 to_ground(const Multibody::Impl& m, const SimTK::State& state,
-                      SimTK::MobilizedBodyIndex body, const SimTK::Vec3& v_B);
+/// A state vector's contiguous storage (a State's q and u are: Simbody allocates them as one
+/// block per subsystem).
+const double* contiguous_data(const SimTK::Vector& v);
 
 /// Axis Coulomb friction (implicit_axes.cpp): marks the axes that slide clearly, which get a
 /// plain force, before the accelerations are computed.
@@ -364,7 +361,7 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
 
 /// Joint reactions (joint_reactions.cpp) from a state realized to Acceleration.
 void compute_joint_reactions(Multibody::Impl& m, const SimTK::State& s);
-/// The same on the fast path, from its tree's kinematics, loads and accelerations (after
+/// The same on the tree, from its kinematics, loads and accelerations (after
 /// tree_accelerations: systems without constraints).
 void compute_tree_joint_reactions(Multibody::Impl& m);
 /// The reactions carried with body1 to its pose at the step's end.

@@ -78,7 +78,7 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
     fast_path_possible_ = fast_path_possible_ && !part.multibody->needs_simbody_dynamics();
   if (!fast_path_possible_)
     for (Part& part : parts_)
-      part.multibody->set_tree_fast_path(false);
+      part.multibody->choose_dynamics(DynamicsChoice::simbody);
   pool_ = std::make_unique<WorkerPool>(parts(), parts());
 }
 
@@ -111,10 +111,26 @@ void MultibodyIslands::request_joint_reactions() {
     part.multibody->request_joint_reactions();
   reactions_wanted_ = true;
 }
-void MultibodyIslands::set_tree_fast_path(bool enabled) {
+void MultibodyIslands::choose_dynamics(DynamicsChoice choice) {
   for (auto& part : parts_)
-    part.multibody->set_tree_fast_path(enabled && fast_path_possible_);
+    part.multibody->choose_dynamics(fast_path_possible_ ? choice : DynamicsChoice::simbody);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
+}
+const char* MultibodyIslands::dynamics_name() const {
+  return parts_[0].multibody->dynamics_name();  // the parts choose alike (the constructor)
+}
+DynamicsCheck MultibodyIslands::dynamics_check() const {
+  DynamicsCheck all = parts_[0].multibody->dynamics_check();
+  all.compared = 0;
+  for (const auto& part : parts_) {
+    const DynamicsCheck check = part.multibody->dynamics_check();
+    all.compared += check.compared;
+    if (check.worst_relative > all.worst_relative) {
+      all.worst_relative = check.worst_relative;
+      all.worst_time_s = check.worst_time_s;
+    }
+  }
+  return all;
 }
 const Wrench* MultibodyIslands::joint_reactions() const {
   return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();

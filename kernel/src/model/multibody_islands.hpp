@@ -55,7 +55,9 @@ class MultibodyIslands {
   std::int32_t axis_drive_capacity() const;
   const double* drive_force_applied() const;
   void request_joint_reactions();
-  void set_tree_fast_path(bool enabled);
+  void choose_dynamics(DynamicsChoice choice);
+  const char* dynamics_name() const;
+  DynamicsCheck dynamics_check() const;
   const Wrench* joint_reactions() const;
   bool joint_is_loop(int joint) const;
   Wrench* use_contact_wrenches();

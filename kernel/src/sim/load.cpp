@@ -150,7 +150,11 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.multibody = std::make_unique<model::MultibodyIslands>(
       m.scene, m.topology, m.axis_inertia, m.tick_s, m.scene.settings.substeps, options.threads);
   if (m.joint_reactions_wanted) m.multibody->request_joint_reactions();
-  if (options.simbody_dynamics_only) m.multibody->set_tree_fast_path(false);
+  if (options.simbody_dynamics_only) {
+    m.multibody->choose_dynamics(model::DynamicsChoice::simbody);
+  } else if (options.check_dynamics) {
+    m.multibody->choose_dynamics(model::DynamicsChoice::checked);
+  }
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   m.contacts->set_mobility(m.multibody->contact_mobility());

@@ -40,6 +40,14 @@ double Simulation::tick_s() const {
   return impl_->tick_s;
 }
 
+std::string Simulation::dynamics() const {
+  return impl_->multibody->dynamics_name();
+}
+Simulation::DynamicsCheck Simulation::dynamics_check() const {
+  const model::DynamicsCheck check = impl_->multibody->dynamics_check();
+  return {check.compared, check.worst_relative, check.worst_time_s, check.agreement};
+}
+
 int Simulation::body_count() const {
   return static_cast<int>(impl_->poses.size());
 }

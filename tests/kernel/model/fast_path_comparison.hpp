@@ -40,7 +40,7 @@ struct FastPathTolerance {
 /// one's state into the second that starts each compared tick.
 struct FastAndSimbody {
   explicit FastAndSimbody(const scene::Scene& s) : fast(s), simbody(s) {
-    simbody.mb.set_tree_fast_path(false);
+    simbody.mb.choose_dynamics(model::DynamicsChoice::simbody);
     fast.mb.declare_state(fast_layout);
     simbody.mb.declare_state(simbody_layout);
   }

@@ -156,7 +156,7 @@ TEST(LoopConstraints, SpatialBallLoopMatchesSimbody) {
 // follows Simbody's trajectory, and its loop stays closed.
 TEST(LoopConstraints, TwoSecondsOfADrivenFourBarFollowSimbodysTrajectory) {
   test::Runner fast(test::four_bar()), simbody(test::four_bar());
-  simbody.mb.set_tree_fast_path(false);
+  simbody.mb.choose_dynamics(model::DynamicsChoice::simbody);
   ASSERT_TRUE(fast.mb.uses_tree_fast_path());
   double worst = 0, worst_closure = 0, travel = 0;
   for (int tick = 0; tick < 2000; ++tick) {

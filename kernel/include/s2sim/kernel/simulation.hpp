@@ -42,6 +42,13 @@ struct SimulationOptions {
   /// compute the same dynamics without it (docs/models/multibody.md, "Small-tree fast path"):
   /// for comparing the two. The results differ only by rounding.
   bool simbody_dynamics_only = false;
+  /// The dynamics check (docs/models/multibody.md, "Dynamics check"): the small-tree dynamics
+  /// step, and at every substep Simbody's realize chain computes the same accelerations from
+  /// the same state and loads; a relative difference beyond the agreement
+  /// (Simulation::DynamicsCheck::agreement) stops the run with an s2sim::Error (runtime)
+  /// naming the body. The results are the unchecked run's, bit for bit;
+  /// it costs Simbody's realize per substep. Ignored with simbody_dynamics_only.
+  bool check_dynamics = false;
   /// Plugin folders searched first, before the default ones (S2SIM_PLUGIN_PATH, then the
   /// plugin folder of the kernel's own prefix: docs/plugins.md). When two libraries provide
   /// one kind, the first on the path wins (a load warning names both).
@@ -98,7 +105,7 @@ class Simulation {
   /// Steps until time_s() >= t (rounded to the nearest tick).
   void run_until(double t_s);
   /// Per-stage timing of the tick pipeline (sense, control, motor control, actuate, then per
-  /// substep collide, forces, accelerations, kick, brakes, drift, project; finish), for
+  /// substep collide, forces, accelerations, kick, axes, drift, project; finish), for
   /// profiling (`s2sim-bench --profile`). Off by default; turning it on starts from zero.
   void set_profiling(bool on);
   struct StageTime {
@@ -122,6 +129,20 @@ class Simulation {
     std::int64_t lost = 0;       ///< stretches gone back (run again tick by tick)
   };
   RunAheadCounts run_ahead_counts() const;
+  /// The dynamics that step the scene: "tree" (the small-tree dynamics), "simbody" (Simbody's
+  /// realize chain: SimulationOptions::simbody_dynamics_only, or a system the tree cannot
+  /// take), "checked" (SimulationOptions::check_dynamics) or "loose" (no body has a joint:
+  /// every one is integrated on its own).
+  std::string dynamics() const;
+  /// What the dynamics check compared so far (SimulationOptions::check_dynamics; zeros
+  /// otherwise): accelerations compared, the largest relative difference and when.
+  struct DynamicsCheck {
+    std::int64_t compared = 0;
+    double worst_relative = 0;
+    double worst_time_s = 0;
+    double agreement = 0;  ///< the largest relative difference allowed
+  };
+  DynamicsCheck dynamics_check() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
   /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
   void reset();
