@@ -2,12 +2,12 @@
 // forward dynamics and projections: every kind of constraint row (a ball's three, a constant
 // angle's one), on trees hinged to the world and on a free root, with drives and friction on
 // the loop joint's own axis; and the semidefinite solve of redundant rows (cholesky.hpp).
+#include "common/state_layout.hpp"
 #include "fast_path_comparison.hpp"
 #include "model/cholesky.hpp"
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
-#include "sim/state_layout.hpp"
 
 #include <s2sim/error.hpp>
 
@@ -240,11 +240,11 @@ TEST(LoopConstraints, ALoopThatCannotBeClosedStopsTheTickWithAnError) {
   r.step(20);  // closed at load: it stays so
   EXPECT_LT(std::abs(r.pos[0]), 1e-12);
 
-  sim::StateLayout layout;
+  common::StateLayout layout;
   r.mb.declare_state(layout);
   std::vector<double> state;
   layout.save(state);
-  const auto ranges = sim::StateLayout::locate(layout.entries(), state);
+  const auto ranges = common::StateLayout::locate(layout.entries(), state);
   std::size_t q = 0;
   while (layout.entries()[q].name != "multibody/q")
     ++q;
