@@ -2,13 +2,13 @@
 // memory and the last substep's contact list, as variable-length segments.
 #include "contact/contact_world.hpp"
 
-#include "sim/state_layout.hpp"
+#include "common/state_layout.hpp"
 
 #include <algorithm>
 
 namespace s2sim::contact {
 
-void ContactWorld::declare_state(sim::StateLayout& layout) {
+void ContactWorld::declare_state(common::StateLayout& layout) {
   constexpr std::size_t kPer = 10;
   layout.add_variable(
       "contact/memory", kPer,

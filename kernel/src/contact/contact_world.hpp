@@ -21,7 +21,7 @@
 #include <memory>
 #include <vector>
 
-namespace s2sim::sim {
+namespace s2sim::common {
 class StateLayout;
 }
 
@@ -94,7 +94,7 @@ class ContactWorld final : public model::SubstepForces {
   /// and
   /// `contact/points`, the last substep's contacts (what the touch sensors and the contact
   /// signals read before the next one), 12 numbers per ContactInfo.
-  void declare_state(sim::StateLayout& layout);
+  void declare_state(common::StateLayout& layout);
 
  private:
   struct Memory {

@@ -1,6 +1,6 @@
 #include "contact/stop_graph.hpp"
 
-#include "model/cholesky.hpp"
+#include "common/cholesky.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -239,8 +239,8 @@ bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::si
       // every active row its change (to that share), the least-norm one, shared evenly.
       for (int p = 0; p < m; ++p)
         block[p * m + p] += kRegularisation * largest_diagonal;
-      if (!model::cholesky_factor(block, m)) return false;
-      model::cholesky_substitute(block, m, exact_pb_.data(), exact_px_.data());
+      if (!common::cholesky_factor(block, m)) return false;
+      common::cholesky_substitute(block, m, exact_pb_.data(), exact_px_.data());
       // Two rounds of refinement against A itself take the regularisation's bias out of the
       // rows' changes (to rounding) and leave the shares as they are.
       for (int refine = 0; refine < 2; ++refine) {
@@ -252,7 +252,7 @@ bool StopGraph::solve_group_exactly(const BodyInertiaView& bodies, const std::si
                         exact_px_[static_cast<std::size_t>(q)];
           exact_pb_[static_cast<std::size_t>(p)] = residual;
         }
-        model::cholesky_substitute(block, m, exact_pb_.data(), exact_pb_.data());
+        common::cholesky_substitute(block, m, exact_pb_.data(), exact_pb_.data());
         for (int p = 0; p < m; ++p)
           exact_px_[static_cast<std::size_t>(p)] += exact_pb_[static_cast<std::size_t>(p)];
       }

@@ -14,7 +14,7 @@
 // by Cholesky. An answer that leaves a mode (a stuck axis's friction beyond ±F, a sliding one
 // moving with its friction, a row off its piece) changes those modes and is solved again, a few
 // times at most (an active set); only an answer in its own modes is applied.
-#include "model/cholesky.hpp"
+#include "common/cholesky.hpp"
 #include "model/multibody_impl.hpp"
 
 #include <cmath>
@@ -107,8 +107,8 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
       }
       y[p] = rhs;
     }
-    if (!cholesky_factor(A, count)) return false;
-    cholesky_substitute(A, count, y, y);
+    if (!common::cholesky_factor(A, count)) return false;
+    common::cholesky_substitute(A, count, y, y);
     for (int p = 0; p < count; ++p)
       x[unknown[p]] = y[p];
     // The speeds it gives (into r), and the modes it leaves.

@@ -20,7 +20,7 @@
 // An axis alone: its speed change is the explicit one divided by 1 + κ·c·w, never
 // overshooting, whatever c·κ/inertia; a motor stronger than its friction turns, a weaker one
 // sticks.
-#include "model/cholesky.hpp"
+#include "common/cholesky.hpp"
 #include "model/multibody_impl.hpp"
 
 #include <algorithm>
@@ -238,8 +238,8 @@ void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int ax
                                                 W[with_rows[i] * axes + with_rows[k]] *
                                                 scale[with_rows[k]];
   if (n == 0) return;
-  cholesky_factor(A, n);  // SPD: I + κ·S·W·S
-  cholesky_substitute(A, n, b, b);
+  common::cholesky_factor(A, n);  // SPD: I + κ·S·W·S
+  common::cholesky_substitute(A, n, b, b);
   for (int i = 0; i < n; ++i) {
     const int p = with_rows[i];
     const auto a = static_cast<std::size_t>(axis[p]);

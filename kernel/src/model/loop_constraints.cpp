@@ -2,7 +2,7 @@
 // docs/models/multibody.md, "Loops on the fast path").
 #include "model/loop_constraints.hpp"
 
-#include "model/cholesky.hpp"
+#include "common/cholesky.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -170,8 +170,8 @@ void LoopConstraints::solve_rows(const std::vector<double>& right, const double*
       A_[static_cast<std::size_t>(r * rows_ + c)] = sum;
     }
   }
-  semidefinite_solve(A_.data(), rows_, rhs_.data(), x_.data(), order_.data(), solve_scratch_.data(),
-                     kRankTolerance);
+  common::semidefinite_solve(A_.data(), rows_, rhs_.data(), x_.data(), order_.data(),
+                             solve_scratch_.data(), kRankTolerance);
 }
 
 void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) {

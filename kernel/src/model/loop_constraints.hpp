@@ -12,7 +12,7 @@
 ///   positions      Δu = −Gᵀ·(G·Gᵀ)⁺·perr, q ← q + N·Δu, repeated (its projectQ, Gauss-Newton);
 /// each projection only when the RMS of the errors exceeds the tolerance, as Simbody's.
 /// Redundant rows (a planar loop's out-of-plane equations) are solved by a pivoted Cholesky
-/// (cholesky.hpp). Conventions are TreeDynamics's (body 0 is Ground).
+/// (common/cholesky.hpp). Conventions are TreeDynamics's (body 0 is Ground).
 
 #include "model/tree_dynamics.hpp"
 

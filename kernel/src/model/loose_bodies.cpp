@@ -1,6 +1,6 @@
 #include "model/loose_bodies.hpp"
 
-#include "sim/state_layout.hpp"
+#include "common/state_layout.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -123,7 +123,7 @@ double LooseBodies::checksum() const {
   return sum;
 }
 
-void LooseBodies::declare_state(sim::StateLayout& layout, const std::string& prefix) {
+void LooseBodies::declare_state(common::StateLayout& layout, const std::string& prefix) {
   layout.add(
       prefix + "/position", 7 * state_.size(),
       [this](double* out) {

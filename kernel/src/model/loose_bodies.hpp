@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace s2sim::sim {
+namespace s2sim::common {
 class StateLayout;
 }
 
@@ -58,7 +58,7 @@ class LooseBodies {
   /// Registers the state segments `<prefix>/position` (per body its centre of mass and
   /// orientation quaternion w, x, y, z: 7 numbers) and `<prefix>/velocity` (its centre of
   /// mass's velocity and its angular velocity: 6 numbers), in the order the bodies were added.
-  void declare_state(sim::StateLayout& layout, const std::string& prefix);
+  void declare_state(common::StateLayout& layout, const std::string& prefix);
 
  private:
   struct Model {

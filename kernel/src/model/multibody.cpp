@@ -2,7 +2,7 @@
 // arrays (the constructor is in multibody_build.cpp, the integrator in integrator.cpp).
 #include "model/dynamics.hpp"
 
-#include "sim/state_layout.hpp"
+#include "common/state_layout.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -178,7 +178,7 @@ double Multibody::potential_energy_J() const {
 namespace {
 
 /// A segment over a SimTK::Vector of the current state (q, u or z), written in place.
-void add_state_vector(sim::StateLayout& layout, const std::string& name, Multibody::Impl& m,
+void add_state_vector(common::StateLayout& layout, const std::string& name, Multibody::Impl& m,
                       const SimTK::Vector& (SimTK::State::*get)() const,
                       SimTK::Vector& (SimTK::State::*upd)()) {
   layout.add(
@@ -227,7 +227,7 @@ void for_each_column_number(M& m, F&& f) {
 
 }  // namespace
 
-void Multibody::declare_state(sim::StateLayout& layout, const std::string& prefix) {
+void Multibody::declare_state(common::StateLayout& layout, const std::string& prefix) {
   Impl& m = *impl_;
   layout.add(
       prefix + "/time", 2,

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace s2sim::sim {
+namespace s2sim::common {
 class StateLayout;
 }
 
@@ -204,7 +204,7 @@ class Multibody {
   /// After the layout restored them, call restored(). `prefix` replaces `multibody` in the
   /// names (one part of several, multibody_islands.hpp), and the loose bodies' are then
   /// `<prefix>/loose/…`, declared only by a part that has loose bodies.
-  void declare_state(sim::StateLayout& layout, const std::string& prefix = "multibody");
+  void declare_state(common::StateLayout& layout, const std::string& prefix = "multibody");
   /// Makes the restored segments the current state (time, realized; mid-tick caches dropped).
   void restored();
 

@@ -277,7 +277,7 @@ double MultibodyIslands::potential_energy_J() const {
   return energy;
 }
 
-void MultibodyIslands::declare_state(sim::StateLayout& layout) {
+void MultibodyIslands::declare_state(common::StateLayout& layout) {
   if (parts() == 1) return parts_[0].multibody->declare_state(layout);
   for (std::size_t p = 0; p < parts_.size(); ++p)
     parts_[p].multibody->declare_state(layout, "multibody/part" + std::to_string(p));

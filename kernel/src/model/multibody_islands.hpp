@@ -79,7 +79,7 @@ class MultibodyIslands {
   double potential_energy_J() const;
   /// One part: Multibody's segments. Several: each part's, named `multibody/part<p>/…`
   /// (a snapshot restores only into a simulation with as many parts).
-  void declare_state(sim::StateLayout& layout);
+  void declare_state(common::StateLayout& layout);
   void restored();
   bool place_free_body(int body, const Pose& pose);
   bool move_body(int body, const Pose& pose);

@@ -1,6 +1,6 @@
 #include "plugin/plugin_loader.hpp"
 
-#include "sim/names.hpp"
+#include "common/closest_names.hpp"
 
 #include <s2sim/error.hpp>
 #include <s2sim/version.hpp>
@@ -299,8 +299,8 @@ struct PluginRegistry::Impl {
     // A kind within a third of its length in edits (at least 2): a typo, not another word.
     const std::size_t allowed = std::max<std::size_t>(2, kind.size() / 3);
     std::vector<std::string> close;
-    for (const std::string& name : sim::closest_names(kind, names, 3))
-      if (sim::edit_distance(kind, name) <= allowed) close.push_back(name);
+    for (const std::string& name : common::closest_names(kind, names, 3))
+      if (common::edit_distance(kind, name) <= allowed) close.push_back(name);
     if (close.empty()) return "";
     std::string s = " (did you mean ";
     for (std::size_t i = 0; i < close.size(); ++i)

@@ -1,6 +1,7 @@
 // Component instances: creation from the plugin registry, and the ConfigureContext through
 // which each declares its signals, inputs, state and schedule.
 #include "common/assert.hpp"
+#include "common/closest_names.hpp"
 #include "sim/names.hpp"
 #include "sim/running_component.hpp"
 #include "sim/simulation_impl.hpp"
@@ -315,7 +316,7 @@ class ConfigureContextImpl final : public ConfigureContext {
   }
   static std::string unknown(const char* what, const std::string& name,
                              const std::vector<std::string>& names) {
-    return sim::unknown_name_message(what, name, names);
+    return common::unknown_name_message(what, name, names);
   }
   std::vector<std::string> robot_body_names(int robot) const {
     std::vector<std::string> names;
@@ -438,8 +439,8 @@ void collect_unread(const scene::ElementParams& params, const scene::Element& el
       if (element.attribute(asked) == nullptr) missing.push_back(asked);
     const std::size_t allowed = std::max<std::size_t>(2, name.size() / 3);
     std::vector<std::string> close;
-    for (const std::string& c : sim::closest_names(name, missing, 2))
-      if (sim::edit_distance(name, c) <= allowed) close.push_back("'" + c + "'");
+    for (const std::string& c : common::closest_names(name, missing, 2))
+      if (common::edit_distance(name, c) <= allowed) close.push_back("'" + c + "'");
     if (!close.empty()) {
       message += "; did you mean " + close[0];
       if (close.size() > 1) message += " or " + close[1];

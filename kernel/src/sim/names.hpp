@@ -1,6 +1,7 @@
 #pragma once
 /// \file
-/// Signal-name helpers: the paths of signals and inputs, glob matching, "did you mean".
+/// Signal-name helpers: the paths of signals and inputs, glob matching (the "did you mean" of
+/// an unknown name is common/closest_names.hpp).
 ///
 /// Path index: every signal and input name is built by one of these functions (docs/signals.md
 /// lists the names themselves). A scene ID becomes one segment (`segment`); a `scope` is a
@@ -17,7 +18,6 @@
 
 #include <string>
 #include <string_view>
-#include <vector>
 
 namespace s2sim::sim {
 
@@ -50,17 +50,5 @@ bool glob_match(std::string_view pattern, std::string_view text);
 /// A double as exact decimal text ("%.17g": it reads back bit for bit through the expression
 /// parser), for attributes the kernel writes into a component's element.
 std::string exact_decimal(double v);
-
-/// Levenshtein distance: the edits (insert, delete, replace) that turn `a` into `b`.
-std::size_t edit_distance(std::string_view a, std::string_view b);
-
-/// Up to `count` names closest to `wanted` (edit distance), for error messages.
-std::vector<std::string> closest_names(std::string_view wanted,
-                                       const std::vector<std::string>& names,
-                                       std::size_t count = 3);
-
-/// "unknown signal 'x'; did you mean 'a', 'b'?" from closest_names.
-std::string unknown_name_message(std::string_view what, std::string_view wanted,
-                                 const std::vector<std::string>& names);
 
 }  // namespace s2sim::sim

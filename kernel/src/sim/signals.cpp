@@ -1,5 +1,6 @@
 // The signal and input registry: every readable value has a name, a unit and a source.
 #include "common/assert.hpp"
+#include "common/closest_names.hpp"
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -199,7 +200,7 @@ std::size_t Simulation::signal_index(std::string_view name) const {
   std::vector<std::string> names;
   for (const auto& s : impl_->signal_infos)
     names.push_back(s.name);
-  throw Error(ErrorKind::usage, sim::unknown_name_message("signal", name, names));
+  throw Error(ErrorKind::usage, common::unknown_name_message("signal", name, names));
 }
 double Simulation::signal(std::size_t index) const {
   return impl_->read_signal(index);
@@ -223,7 +224,7 @@ std::size_t Simulation::input_index(std::string_view name) const {
   std::vector<std::string> names;
   for (const auto& s : impl_->input_infos)
     names.push_back(s.name);
-  throw Error(ErrorKind::usage, sim::unknown_name_message("input", name, names));
+  throw Error(ErrorKind::usage, common::unknown_name_message("input", name, names));
 }
 void Simulation::set_input(std::size_t index, double value) {
   if (!std::isfinite(value))

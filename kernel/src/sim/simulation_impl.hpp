@@ -13,6 +13,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "collision/ray_caster.hpp"
+#include "common/state_layout.hpp"
 #include "contact/contact_world.hpp"
 #include "model/multibody.hpp"
 #include "model/multibody_islands.hpp"
@@ -20,7 +21,6 @@
 #include "scene/element_params.hpp"
 #include "sim/component_parts.hpp"
 #include "sim/stage_profile.hpp"
-#include "sim/state_layout.hpp"
 
 #include <array>
 #include <cstdint>
@@ -193,7 +193,7 @@ struct Simulation::Impl {
   std::unique_ptr<sim::StageProfile> profile;
 
   // What a snapshot holds: every subsystem's state segments (snapshot.cpp), declared at load.
-  sim::StateLayout layout;
+  common::StateLayout layout;
 
   // --- registration (signals.cpp) --------------------------------------------------------------
   std::size_t add_signal(std::string name, std::string unit, sim::Source source,

@@ -10,8 +10,8 @@ namespace s2sim {
 
 namespace {
 
-std::vector<sim::StateLayout::Entry> entries_of(const Simulation::Snapshot& s) {
-  std::vector<sim::StateLayout::Entry> out;
+std::vector<common::StateLayout::Entry> entries_of(const Simulation::Snapshot& s) {
+  std::vector<common::StateLayout::Entry> out;
   out.reserve(s.segments.size());
   for (const auto& seg : s.segments)
     out.push_back({seg.name, seg.size, seg.unit});
@@ -20,7 +20,7 @@ std::vector<sim::StateLayout::Entry> entries_of(const Simulation::Snapshot& s) {
 
 /// A segment over one of the façade's buffers (their sizes are fixed at load).
 template <class T>
-void add_buffer(sim::StateLayout& layout, const char* name, std::vector<T>& buffer) {
+void add_buffer(common::StateLayout& layout, const char* name, std::vector<T>& buffer) {
   layout.add(
       name, buffer.size(),
       [&buffer](double* out) {
@@ -53,11 +53,11 @@ void Simulation::Impl::declare_state() {
 }
 
 Simulation::Snapshot::Range Simulation::Snapshot::find(std::string_view name) const {
-  const auto ranges = sim::StateLayout::locate(entries_of(*this), values);
+  const auto ranges = common::StateLayout::locate(entries_of(*this), values);
   for (std::size_t i = 0; i < segments.size(); ++i)
     if (segments[i].name == name) return {ranges[i].offset, ranges[i].size};
   throw Error(ErrorKind::usage, "the snapshot has no segment '" + std::string(name) + "' (" +
-                                    sim::StateLayout::describe(entries_of(*this)) + ")");
+                                    common::StateLayout::describe(entries_of(*this)) + ")");
 }
 
 Simulation::Snapshot Simulation::save() const {

@@ -2,9 +2,9 @@
 // The fast path (tree_dynamics.cpp, loop_constraints.cpp) against Simbody's realize chain, tick
 // by tick from the same state under the same loads (tree_dynamics_test, loop_constraints_test).
 
+#include "common/state_layout.hpp"
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
-#include "sim/state_layout.hpp"
 
 #include <gtest/gtest.h>
 
@@ -52,7 +52,7 @@ struct FastAndSimbody {
     simbody.mb.restored();
   }
   Runner fast, simbody;
-  sim::StateLayout fast_layout, simbody_layout;
+  common::StateLayout fast_layout, simbody_layout;
   std::vector<double> state;
 };
 

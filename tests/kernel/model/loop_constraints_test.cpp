@@ -1,13 +1,13 @@
 // Loop joints on the fast path (kernel/src/model/loop_constraints.cpp) against Simbody's loop
 // forward dynamics and projections: every kind of constraint row (a ball's three, a constant
 // angle's one), on trees hinged to the world and on a free root, with drives and friction on
-// the loop joint's own axis; and the semidefinite solve of redundant rows (cholesky.hpp).
+// the loop joint's own axis; and the semidefinite solve of redundant rows (common/cholesky.hpp).
+#include "common/cholesky.hpp"
+#include "common/state_layout.hpp"
 #include "fast_path_comparison.hpp"
-#include "model/cholesky.hpp"
 #include "model/multibody.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
-#include "sim/state_layout.hpp"
 
 #include <s2sim/error.hpp>
 
@@ -240,11 +240,11 @@ TEST(LoopConstraints, ALoopThatCannotBeClosedStopsTheTickWithAnError) {
   r.step(20);  // closed at load: it stays so
   EXPECT_LT(std::abs(r.pos[0]), 1e-12);
 
-  sim::StateLayout layout;
+  common::StateLayout layout;
   r.mb.declare_state(layout);
   std::vector<double> state;
   layout.save(state);
-  const auto ranges = sim::StateLayout::locate(layout.entries(), state);
+  const auto ranges = common::StateLayout::locate(layout.entries(), state);
   std::size_t q = 0;
   while (layout.entries()[q].name != "multibody/q")
     ++q;
@@ -287,7 +287,7 @@ TEST(SemidefiniteSolve, RankDeficientSystemsAreSolvedOnTheirRange) {
   std::copy(A, A + 25, A0);
   std::copy(b, b + 5, b0);
   double scratch[5 * 5 + 2 * 5];
-  EXPECT_EQ(model::semidefinite_solve(A, 5, b, x, order, scratch, 1e-12), 2);
+  EXPECT_EQ(common::semidefinite_solve(A, 5, b, x, order, scratch, 1e-12), 2);
   for (int r = 0; r < 5; ++r) {
     double Ax = 0;
     for (int c = 0; c < 5; ++c)
@@ -308,7 +308,7 @@ TEST(SemidefiniteSolve, RankDeficientSystemsAreSolvedOnTheirRange) {
   double B[4] = {4, 1, 1, 3}, c[2] = {1, 2}, y[2];
   int order2[2];
   double scratch2[2 * 2 + 2 * 2];
-  EXPECT_EQ(model::semidefinite_solve(B, 2, c, y, order2, scratch2, 1e-12), 2);
+  EXPECT_EQ(common::semidefinite_solve(B, 2, c, y, order2, scratch2, 1e-12), 2);
   EXPECT_NEAR(4 * y[0] + y[1], 1, 1e-15);
   EXPECT_NEAR(y[0] + 3 * y[1], 2, 1e-15);
 }

@@ -1,8 +1,8 @@
 // Physics of the multibody model against analytic answers (docs/models/multibody.md).
 #include "model/multibody.hpp"
+#include "common/state_layout.hpp"
 #include "model_runner.hpp"
 #include "scene_builder.hpp"
-#include "sim/state_layout.hpp"
 
 #include <gtest/gtest.h>
 
@@ -284,7 +284,7 @@ TEST(Multibody, SaveAndRestoreContinueBitForBit) {
   Runner r(s);
   for (int n = 0; n < 300; ++n)
     r.step();
-  sim::StateLayout layout;
+  common::StateLayout layout;
   r.mb.declare_state(layout);
   std::vector<double> saved;
   layout.save(saved);

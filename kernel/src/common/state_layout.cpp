@@ -1,5 +1,5 @@
 // The state layout: named segments, a layout id, save and checked restore.
-#include "sim/state_layout.hpp"
+#include "common/state_layout.hpp"
 
 #include <s2sim/error.hpp>
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <utility>
 
-namespace s2sim::sim {
+namespace s2sim::common {
 namespace {
 
 std::string size_text(const StateLayout::Entry& e) {
@@ -131,4 +131,4 @@ void StateLayout::restore(std::uint64_t id, const std::vector<Entry>& entries,
     segments_[i].restore(values.data() + ranges[i].offset, ranges[i].size);
 }
 
-}  // namespace s2sim::sim
+}  // namespace s2sim::common

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-namespace s2sim::sim {
+namespace s2sim::common {
 
 class StateLayout {
  public:
@@ -75,4 +75,4 @@ class StateLayout {
   std::uint64_t id_ = id_of({});
 };
 
-}  // namespace s2sim::sim
+}  // namespace s2sim::common

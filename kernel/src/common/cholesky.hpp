@@ -1,14 +1,14 @@
 #pragma once
 /// \file
-/// Dense Cholesky factorisation and substitution for the model's small symmetric positive
-/// definite systems: the implicit axis solve's rows (implicit_axes.cpp, axis_modes.cpp; the
-/// tree's mass matrix has its own sparse factor, tree_dynamics.cpp); and a pivoted one for the
-/// semidefinite systems of redundant loop constraints (loop_constraints.cpp). Row-major n x n;
-/// a few dozen rows at most.
+/// Dense Cholesky factorisation and substitution for small symmetric positive definite
+/// systems: the implicit axis solve's rows (model/implicit_axes.cpp, model/axis_modes.cpp; the
+/// tree's mass matrix has its own sparse factor, model/tree_dynamics.cpp) and the exact stop
+/// groups (contact/stop_graph.cpp); and a pivoted one for the semidefinite systems of redundant
+/// loop constraints (model/loop_constraints.cpp). Row-major n x n; a few dozen rows at most.
 
 #include <cmath>
 
-namespace s2sim::model {
+namespace s2sim::common {
 
 /// Replaces A's lower triangle with L, A = L·Lᵀ (the upper triangle is not read). Returns
 /// whether every pivot was positive; past a bad one it goes on (its NaNs propagate) so that the
@@ -114,4 +114,4 @@ inline int semidefinite_solve(const double* A, int n, const double* b, double* x
   return rank;
 }
 
-}  // namespace s2sim::model
+}  // namespace s2sim::common

@@ -1,11 +1,11 @@
-// The state layout (kernel/src/sim/state_layout.hpp, docs/scheduling.md "Snapshots"): every
+// The state layout (kernel/src/common/state_layout.hpp, docs/scheduling.md "Snapshots"): every
 // registered segment is restored exactly and is needed. Per segment, a scene that exercises it
 // is saved at t1 and run to t2 recording every signal; restoring the snapshot and replaying to
 // t2 repeats the record bit for bit, and restoring it with that one segment zeroed (a variable
 // segment: dropped) or taken from another time changes the replay.
 #include <s2sim/kernel/simulation.hpp>
 
-#include "sim/state_layout.hpp"
+#include "common/state_layout.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -258,8 +258,8 @@ TEST(StateLayout, AMalformedSnapshotIsAUsageError) {
 }
 
 TEST(StateLayout, TheIdHashesNamesAndSizesInOrder) {
-  using Entry = sim::StateLayout::Entry;
-  const auto id = sim::StateLayout::id_of;
+  using Entry = common::StateLayout::Entry;
+  const auto id = common::StateLayout::id_of;
   EXPECT_NE(id({Entry{"a", 1}, Entry{"b", 2}}), id({Entry{"b", 2}, Entry{"a", 1}}));
   EXPECT_NE(id({Entry{"a", 1}}), id({Entry{"a", 2}}));
   EXPECT_NE(id({Entry{"a", 1}, Entry{"bc", 1}}), id({Entry{"ab", 1}, Entry{"c", 1}}));
