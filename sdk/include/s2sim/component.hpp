@@ -19,6 +19,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -229,15 +230,21 @@ enum class Annotation : std::int32_t {
 #endif
 
 /// Throws the error of a handle that does not name one of the `count` things of its kind.
+/// Formats with snprintf: std::to_string would give every plugin a unique symbol of
+/// libstdc++'s, which keeps its library from ever being unloaded.
 [[noreturn]] S2SIM_DETAIL_COLD inline void throw_invalid_handle(const char* accessor,
                                                                 const char* kind,
                                                                 std::int64_t index,
                                                                 std::int64_t count) {
-  throw Error(ErrorKind::runtime,
-              std::string("StepContext::") + accessor + ": invalid " + kind + " handle (index " +
-                  std::to_string(index) + ", " +
-                  (count > 0 ? "valid 0 to " + std::to_string(count - 1) : "none exist") +
-                  "): get handles from the ConfigureContext in configure()");
+  char detail[96];
+  if (count > 0)
+    std::snprintf(detail, sizeof detail, "index %lld, valid 0 to %lld",
+                  static_cast<long long>(index), static_cast<long long>(count - 1));
+  else
+    std::snprintf(detail, sizeof detail, "index %lld, none exist", static_cast<long long>(index));
+  throw Error(ErrorKind::runtime, std::string("StepContext::") + accessor + ": invalid " + kind +
+                                      " handle (" + detail +
+                                      "): get handles from the ConfigureContext in configure()");
 }
 
 /// `index` when 0 <= index < count, else throws naming the accessor: one unsigned compare on
