@@ -82,8 +82,8 @@ void DcMotor::configure(ConfigureContext& ctx) {
 }
 
 void DcMotor::initialize(StepContext& ctx) {
-  *ctx.state(current_state_) = 0.0;
-  *ctx.state(energy_) = 0.0;
+  ctx.state(current_state_)[0] = 0.0;
+  ctx.state(energy_)[0] = 0.0;
 }
 
 DcMotor::Parameters DcMotor::parameters(const StepContext& ctx) const {
@@ -111,8 +111,8 @@ void DcMotor::update(StepContext& ctx) {
   const double w = ctx.axis_velocity(axis_);  // mid-step speed of the last step
   const double q = ctx.axis_position(axis_);
   const double dt = ctx.tick_s();
-  double& i = *ctx.state(current_state_);
-  double& energy = *ctx.state(energy_);
+  double& i = ctx.state(current_state_)[0];
+  double& energy = ctx.state(energy_)[0];
 
   double v = 0, e = 0, motor_torque = 0, power = 0;
   if (ctx.input(active_in_) != 0.0) {

@@ -39,13 +39,13 @@ void Encoder::configure(ConfigureContext& ctx) {
 }
 
 void Encoder::initialize(StepContext& ctx) {
-  double* s = ctx.state(state_);
+  const Span<double> s = ctx.state(state_);
   s[kLast] = ctx.axis_position(axis_);
   s[kTravel] = s[kNoise] = s[kCount] = 0.0;
 }
 
 void Encoder::update(StepContext& ctx) {
-  double* s = ctx.state(state_);
+  const Span<double> s = ctx.state(state_);
   const double q = ctx.axis_position(axis_);
   double delta = q - s[kLast];
   if (!linear_) delta = wrap_pi(delta);  // loop axes live in (−π, π]

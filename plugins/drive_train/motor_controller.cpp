@@ -68,13 +68,13 @@ void MotorController::configure(ConfigureContext& ctx) {
 }
 
 void MotorController::initialize(StepContext& ctx) {
-  double* s = ctx.state(state_);
+  const Span<double> s = ctx.state(state_);
   for (int k = 0; k < kSize; ++k)
     s[k] = 0.0;
 }
 
 void MotorController::update(StepContext& ctx) {
-  double* s = ctx.state(state_);
+  const Span<double> s = ctx.state(state_);
   // A switched-off motor (SimTwo's SetMotorActive false) stops the controller where it is:
   // its integral and previous error wait for the motor to come back.
   if (ctx.input(motor_active_) == 0.0) return;

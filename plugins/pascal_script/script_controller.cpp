@@ -174,7 +174,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
       library_path_ = compiled.library;
       break;
   }
-  if (period_s_ <= 0) period_s_ = 0.04;
+  if (period_s_ <= 0) period_s_ = kDefaultControlPeriod_s;
   const double ticks = std::round(period_s_ / ctx.tick_s());
   ctx.set_schedule(Stage::control, ticks * ctx.tick_s(), (ticks - 1) * ctx.tick_s());
 
@@ -224,7 +224,7 @@ void ScriptController::initialize(StepContext& ctx) {
 }
 
 void ScriptController::update(StepContext& ctx) {
-  double* s = ctx.state(state_);
+  const Span<double> s = ctx.state(state_);
   if (!available_) return;  // no compiler: the scene runs without its controller
   moves_.clear();
   velocities_.clear();

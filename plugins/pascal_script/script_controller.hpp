@@ -140,7 +140,7 @@ class ScriptController final : public Component {
   std::filesystem::path script_;
   std::filesystem::path library_path_;
   bool available_ = false;  // compiled and loadable
-  double period_s_ = 0.04;
+  double period_s_ = kDefaultControlPeriod_s;
   std::uint64_t seed_ = 1;
   std::vector<RobotRef> robots_;
   std::vector<SensorRef> sensors_;  // SimTwo's global list

@@ -89,9 +89,9 @@ double ziggurat_normal(RandomStream& r, const ZigguratTables& t) {
 void SensorSetup::read(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   if (const SensorSpec* s = ctx.sensor_spec()) {
-    spec = *s;
+    spec = *s;  // the loader checked it by the rules of s2sim/sensor.hpp, at each element
   } else {
-    // A `<plugin kind='IRSharp' ...>` placement: the same children, read here.
+    // A `<plugin kind='IRSharp' ...>` placement: the same children, read and checked here.
     spec = SensorSpec{};
     if (p.has("solid.id"))
       spec.body = ctx.body(p.text("solid.id"));
@@ -102,35 +102,29 @@ void SensorSetup::read(ConfigureContext& ctx) {
       spec.body = BodyHandle{0};
     spec.pose.position = p.vec3("pos");
     spec.pose.rotation = sensor_rotation_deg(p.vec3("rot_deg"));
-    spec.beam.length_m = p.number("beam.length", spec.beam.length_m);
-    spec.beam.initial_width_m = p.number("beam.initial_width", spec.beam.initial_width_m);
-    spec.beam.final_width_m = p.number("beam.final_width", spec.beam.final_width_m);
-    if (p.has("beam.angle")) spec.beam.angle_rad = p.number("beam.angle") * kPi / 180;
-    spec.beam.rays = p.integer_in("beam.rays", spec.beam.rays, 1, kMaxBeamRays);
-    spec.noise.present = p.has_element("noise");
-    spec.noise.stdev = p.number("noise.stdev", 0.0);
-    spec.noise.stdev_p = p.number("noise.stdev_p", 0.0);
-    spec.noise.offset = p.number("noise.offset", 0.0);
-    spec.noise.gain = p.number("noise.gain", 1.0);
-    spec.noise.var_k = p.number("noise.var_k", 0.0);
-    spec.noise.var_d = p.number("noise.var_d", 0.0);
-    if (p.has("tag.value")) spec.tags.push_back(p.text("tag.value"));
-    spec.period_s = p.number("period.value", spec.period_s, Range::positive());
+    SensorBeam& b = spec.beam;
+    b.length_m = p.number("beam.length", b.length_m);
+    b.initial_width_m = p.number("beam.initial_width", b.initial_width_m);
+    b.final_width_m = p.number("beam.final_width", b.final_width_m);
+    if (p.has("beam.angle")) b.angle_rad = p.number("beam.angle") * kPi / 180;
+    b.rays = p.integer_in("beam.rays", b.rays, 1, kMaxBeamRays);
+    if (const SensorRuleBroken broken = check_beam(b))
+      fail(p, "beam", broken.attribute, broken.message);
+    SensorNoise& z = spec.noise;
+    z.present = p.has_element("noise");
+    z.stdev = p.number("noise.stdev", z.stdev);
+    z.stdev_p = p.number("noise.stdev_p", z.stdev_p);
+    z.offset = p.number("noise.offset", z.offset);
+    z.gain = p.number("noise.gain", z.gain);
+    z.var_k = p.number("noise.var_k", z.var_k);
+    z.var_d = p.number("noise.var_d", z.var_d);
+    if (const SensorRuleBroken broken = check_noise(z))
+      fail(p, "noise", broken.attribute, broken.message);
+    if (p.has("tag.value")) spec.simtwo.tags.push_back(p.text("tag.value"));
+    spec.period_s = p.number("period.value", spec.period_s);
+    if (const SensorRuleBroken broken = check_sensor_period(spec.period_s))
+      fail(p, "period", broken.attribute, broken.message);
   }
-  const SensorBeam& b = spec.beam;
-  if (!(b.length_m > 0)) fail(p, "beam", "length", "must be > 0 m, got " + num(b.length_m));
-  if (!(b.initial_width_m >= 0))
-    fail(p, "beam", "initial_width", "must be >= 0 m, got " + num(b.initial_width_m));
-  if (!(b.final_width_m >= 0))
-    fail(p, "beam", "final_width", "must be >= 0 m, got " + num(b.final_width_m));
-  if (!(b.angle_rad >= 0) || !(b.angle_rad <= 2 * kPi + 1e-12))
-    fail(p, "beam", "angle", "must be in 0..360 degrees, got " + num(b.angle_rad * 180 / kPi));
-  if (b.rays < 1) fail(p, "beam", "rays", "must be >= 1, got " + std::to_string(b.rays));
-  if (!(spec.period_s > 0)) fail(p, "period", "value", "must be > 0 s, got " + num(spec.period_s));
-  if (spec.noise.present && !(spec.noise.stdev >= 0))
-    fail(p, "noise", "stdev", "must be >= 0, got " + num(spec.noise.stdev));
-  if (spec.noise.present && !(spec.noise.stdev_p >= 0))
-    fail(p, "noise", "stdev_p", "must be >= 0, got " + num(spec.noise.stdev_p));
   body = spec.body;
   ignore = body.index > 0 ? body : BodyHandle{};
   noise.on = spec.noise.present;

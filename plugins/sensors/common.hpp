@@ -45,9 +45,6 @@ struct ZigguratTables {
 const ZigguratTables& ziggurat_tables();
 double ziggurat_normal(RandomStream& r, const ZigguratTables& t);
 
-/// Rays of one beam, at most (the kernel's scene limit, docs/reliability.md).
-inline constexpr int kMaxBeamRays = 100000;
-
 /// The common part of every scene sensor: mount, beam, noise, tags, period.
 struct SensorSetup {
   SensorSpec spec;    ///< as resolved by the loader (or read from `<plugin>` parameters)
@@ -58,7 +55,7 @@ struct SensorSetup {
 
   /// Reads the setup; for a `<plugin kind=...>` placement (no scene sensor element) the same
   /// children are read from the parameters: `solid id`, `pos`, `rot_deg`, `beam`, `noise`,
-  /// `tag`, `period value`. Validates the beam. Does not schedule.
+  /// `tag`, `period value`, checked by the rules of s2sim/sensor.hpp. Does not schedule.
   void read(ConfigureContext& ctx);
   /// Schedules `update()` at the sensor's period in `stage` (the period rounded to a whole
   /// number of ticks, at least one).

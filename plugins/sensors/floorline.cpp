@@ -19,7 +19,7 @@ void FloorLine::configure(ConfigureContext& ctx) {
     known.insert(poly.tag);
   // SimTwo accepts a tag no polygon carries (one shipped project has one): the sensor then
   // never sees that tag. A warning, not an error, so such a scene loads as in SimTwo.
-  for (const auto& tag : s_.spec.tags) {
+  for (const auto& tag : s_.spec.simtwo.tags) {
     if (known.count(tag)) continue;
     std::string have;
     for (const auto& k : known)
@@ -30,7 +30,8 @@ void FloorLine::configure(ConfigureContext& ctx) {
   }
   poly_start_.push_back(0);
   for (const auto& poly : polys) {
-    if (std::find(s_.spec.tags.begin(), s_.spec.tags.end(), poly.tag) == s_.spec.tags.end() ||
+    if (std::find(s_.spec.simtwo.tags.begin(), s_.spec.simtwo.tags.end(), poly.tag) ==
+            s_.spec.simtwo.tags.end() ||
         poly.x_m.size() < 3)
       continue;
     vx_.insert(vx_.end(), poly.x_m.begin(), poly.x_m.end());

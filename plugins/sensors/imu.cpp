@@ -46,7 +46,7 @@ void Imu::configure(ConfigureContext& ctx) {
 
 void Imu::initialize(StepContext& ctx) {
   RandomStream r = ctx.random();
-  double* b = ctx.state(bias_);
+  const Span<double> b = ctx.state(bias_);
   for (int i = 0; i < 3; ++i)
     b[i] = acc_.bias_mean + (acc_.bias > 0 ? r.normal(0, acc_.bias) : 0.0);
   for (int i = 3; i < 6; ++i)
@@ -59,7 +59,7 @@ void Imu::update(StepContext& ctx) {
   const Twist& tw = ctx.body_twist(s_.body);
   const Pose w = body * s_.spec.pose;
   const Vec3 v = tw.linear_m_s + cross(tw.angular_rad_s, w.position - body.position);
-  double* prev = ctx.state(prev_v_);
+  const Span<double> prev = ctx.state(prev_v_);
   const double dt = ctx.period_s();
   Vec3 a;
   if (prev[3] != 0) a = (v - Vec3{prev[0], prev[1], prev[2]}) / dt;
@@ -73,7 +73,7 @@ void Imu::update(StepContext& ctx) {
   // half a period of rotation: turn it forward by ω·T/2 (exact for a steady rotation).
   const Vec3 f = rotate(rt * (a + Vec3{0, 0, kGravity_m_s2}), g, 0.5 * dt);
   RandomStream r = ctx.random();
-  double* b = ctx.state(bias_);
+  const Span<double> b = ctx.state(bias_);
   const double fs[3] = {f.x, f.y, f.z}, gs[3] = {g.x, g.y, g.z};
   const double sq = std::sqrt(dt);
   for (int i = 0; i < 3; ++i) {

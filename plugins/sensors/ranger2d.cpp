@@ -64,11 +64,11 @@ void Ranger2D::add_noise(StepContext& ctx, double* d, int first, int last) const
 void Ranger2D::update(StepContext& ctx) {
   const Pose w = s_.world_pose(ctx);
   double& count = ctx.state(sweep_count_)[0];
-  double* pending = ctx.state(pending_);
+  const Span<double> pending = ctx.state(pending_);
   if (!sweep_) {
     for (int i = 0; i < n_; ++i)
       pending[i] = cast(ctx, w, i);
-    add_noise(ctx, pending, 0, n_);
+    add_noise(ctx, pending.data(), 0, n_);
     for (int i = 0; i < n_; ++i)
       ctx.publish(rays_[static_cast<std::size_t>(i)], pending[i]);
     ctx.publish(sweeps_, ++count);
@@ -81,7 +81,7 @@ void Ranger2D::update(StepContext& ctx) {
       std::min(n_, static_cast<int>((static_cast<std::int64_t>(n_) * (j + 1) + p / 2) / p));
   for (int i = first; i < last; ++i)
     pending[i] = cast(ctx, w, i);
-  add_noise(ctx, pending, first, last);
+  add_noise(ctx, pending.data(), first, last);
   if (j == p - 1) {
     for (int i = 0; i < n_; ++i)
       ctx.publish(rays_[static_cast<std::size_t>(i)], pending[i]);

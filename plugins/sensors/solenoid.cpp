@@ -7,10 +7,10 @@ namespace s2sim::sensors {
 
 void Solenoid::configure(ConfigureContext& ctx) {
   s_.read(ctx);
-  if (!(s_.spec.force_fmax_N >= 0))
-    fail(ctx.params(), "force", "fmax", "must be >= 0 N, got " + num(s_.spec.force_fmax_N));
-  if (!(s_.spec.force_k2 >= 0))
-    fail(ctx.params(), "force", "k2", "must be >= 0, got " + num(s_.spec.force_k2));
+  const SolenoidForce& force = s_.spec.simtwo.solenoid_force;
+  if (!(force.fmax_N >= 0))
+    fail(ctx.params(), "force", "fmax", "must be >= 0 N, got " + num(force.fmax_N));
+  if (!(force.k2 >= 0)) fail(ctx.params(), "force", "k2", "must be >= 0, got " + num(force.k2));
   ctx.set_schedule(Stage::actuate, ctx.tick_s());
   vin_ = ctx.declare_input("vin", "1", 0.0);
   value_ = ctx.declare_signal("value", "1");
@@ -26,8 +26,8 @@ void Solenoid::update(StepContext& ctx) {
   double f = 0;
   if (ferro && vin > 0) {
     const double d = h.distance_m > 0 ? h.distance_m : 0;
-    const double k = 1 + s_.spec.force_k2 * d;
-    f = 0.5 * vin * s_.spec.force_fmax_N / (k * k);
+    const double k = 1 + s_.spec.simtwo.solenoid_force.k2 * d;
+    f = 0.5 * vin * s_.spec.simtwo.solenoid_force.fmax_N / (k * k);
     // Toward the sensor on the hit body; the reaction on the sensor's body.
     if (h.body.index > 0) ctx.apply_force(h.body, dir * -f, h.point_m);
     if (s_.body.index > 0) ctx.apply_force(s_.body, dir * f, w.position);

@@ -54,13 +54,13 @@ class Servo final : public s2sim::Component {
   }
 
   void initialize(s2sim::StepContext& ctx) override {
-    double* s = ctx.state(state_);
+    const s2sim::Span<double> s = ctx.state(state_);
     s[0] = ctx.axis_position(axis_);
     s[1] = s[2] = 0.0;
   }
 
   void update(s2sim::StepContext& ctx) override {
-    double* s = ctx.state(state_);
+    const s2sim::Span<double> s = ctx.state(state_);
     if (ctx.tick() % period_ticks_ == 0) {
       const double T = static_cast<double>(period_ticks_) * ctx.tick_s();
       const double goal = std::clamp(ctx.input(ref_pos_), min_, max_);

@@ -58,7 +58,7 @@ class BlimpPilot final : public Component {
   }
 
   void update(StepContext& ctx) override {
-    double* s = ctx.state(state_);
+    const Span<double> s = ctx.state(state_);
     const Pose& pose = ctx.body_pose(body_);
     const Twist& tw = ctx.body_twist(body_);
     int index = static_cast<int>(s[0]);

@@ -80,7 +80,7 @@ class QuadrotorPilot final : public Component {
     // Position: PD to an acceleration, bounded (a tilt of at most ~17°).
     const Vec3& p = pose.position;
     const Vec3& v = tw.linear_m_s;
-    double* integral = ctx.state(integral_);
+    const Span<double> integral = ctx.state(integral_);
     const double ez = ctx.input(z_ref_) - p.z;
     // The integral trims the motors' model errors; frozen while far off (no take-off windup).
     if (std::abs(ez) < 0.1) integral[0] = std::clamp(integral[0] + ez * h, -0.5, 0.5);

@@ -5,7 +5,8 @@
 namespace s2sim::collision {
 
 ContactQuery::ContactQuery(const ShapeTable& table)
-    : count_(table.size()), max_pairs_(1024 + 64 * static_cast<std::size_t>(table.size())) {
+    : count_(table.size()),
+      max_pairs_(kMaxPairsBase + kMaxPairsPerShape * static_cast<std::size_t>(table.size())) {
   broad_phase_.resize(count_);
   pairs_.reserve(64 + 16 * static_cast<std::size_t>(count_));
 }

@@ -17,16 +17,26 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 
 namespace s2sim::collision {
+
+/// How many shape pairs may overlap at once: kMaxPairsBase + kMaxPairsPerShape per shape, far
+/// above any pile that is not bodies placed into one another (docs/reliability.md, "Limits").
+inline constexpr std::size_t kMaxPairsBase = 1024;
+inline constexpr std::size_t kMaxPairsPerShape = 64;
 
 /// Thrown by ContactQuery::overlapping_pairs when more shape pairs overlap than its limit:
 /// `shape_a`, `shape_b` is one of them. The simulation turns it into a located runtime error.
 struct TooManyPairs {
   std::size_t limit;
   std::int32_t shape_a, shape_b;
+  /// The rule of the limit in words: "1024 + 64 per shape".
+  static std::string rule() {
+    return std::to_string(kMaxPairsBase) + " + " + std::to_string(kMaxPairsPerShape) + " per shape";
+  }
 };
 
 class ContactQuery {
@@ -65,8 +75,7 @@ class ContactQuery {
   /// (which holds every shape). Throws TooManyPairs as overlapping_pairs() does.
   const std::vector<std::pair<std::int32_t, std::int32_t>>& overlapping_pairs_searched(
       const Placement& placement);
-  /// How many pairs may overlap at once: 1024 + 64 per shape, far above any pile that is not
-  /// bodies placed into one another (docs/reliability.md, "Limits").
+  /// How many pairs may overlap at once: kMaxPairsBase + kMaxPairsPerShape per shape.
   std::size_t max_pairs() const { return max_pairs_; }
 
   /// Points of shape `a` against shape `b` (at most 4, written to `out`). `renumbered` is set

@@ -25,8 +25,7 @@ inline constexpr std::int64_t kMaxTrackRepeats = 10000;
 /// Segments of one track arc ((stop − start) / step).
 inline constexpr std::int64_t kMaxArcSegments = 100000;
 
-/// Rays of one sensor beam (a 360-ray lidar at 0.1° would be 3 600).
-inline constexpr int kMaxBeamRays = 100000;
+// Rays of one sensor beam: s2sim::kMaxBeamRays (s2sim/sensor.hpp, shared with the plugins).
 /// A camera's or canvas's width or height in pixels, and a camera's frame decimation.
 inline constexpr int kMaxImageSide_px = 16384;
 

@@ -3,7 +3,6 @@
 /// Only the common children are parsed here; a sensor's behaviour reads the rest through its
 /// ParamSource.
 
-#include "scene/limits.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
@@ -65,13 +64,9 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
         b.initial_width_m = r.number(c, "initial_width", b.initial_width_m);
         b.final_width_m = r.number(c, "final_width", b.final_width_m);
         if (auto deg = r.optional_number(c, "angle")) b.angle_rad = deg_to_rad(*deg);
-        b.rays = r.integer_in(c, "rays", b.rays, 1, limits::kMaxBeamRays);
-        if (!(b.length_m > 0))
-          r.fail(c, "length", "must be > 0 m, got " + format_number(b.length_m));
-        if (!(b.initial_width_m >= 0))
-          r.fail(c, "initial_width", "must be >= 0 m, got " + format_number(b.initial_width_m));
-        if (!(b.final_width_m >= 0))
-          r.fail(c, "final_width", "must be >= 0 m, got " + format_number(b.final_width_m));
+        b.rays = r.integer_in(c, "rays", b.rays, 1, kMaxBeamRays);
+        if (const SensorRuleBroken broken = check_beam(b))
+          r.fail(c, broken.attribute, broken.message);
       } else if (n == "noise") {
         Noise& z = s.noise;
         z.present = true;
@@ -81,11 +76,14 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
         z.gain = r.number(c, "gain", z.gain);
         z.var_k = r.number(c, "var_k", z.var_k);
         z.var_d = r.number(c, "var_d", z.var_d);
+        if (const SensorRuleBroken broken = check_noise(z))
+          r.fail(c, broken.attribute, broken.message);
       } else if (n == "tag") {
         s.tags.push_back(r.text(c, "value", ""));
       } else if (n == "period") {
         s.period_s = r.number(c, "value", s.period_s);
-        if (!(s.period_s > 0)) r.fail(c, "value", "must be > 0, got " + format_number(s.period_s));
+        if (const SensorRuleBroken broken = check_sensor_period(s.period_s))
+          r.fail(c, broken.attribute, broken.message);
       } else if (n == "force") {
         s.force.fmax_N = r.number(c, "fmax", s.force.fmax_N);
         s.force.k1 = r.number(c, "k1", s.force.k1);

@@ -156,17 +156,13 @@ class ConfigureContextImpl final : public ConfigureContext {
     o.body = BodyHandle{s.body + 1};  // scene body i is body i + 1; -1 (world) is 0
     if (s.body >= 0) slot().footprint.bodies.push_back(s.body + 1);
     o.pose = s.pose;
-    o.absolute_coords = s.absolute_coords;
-    o.is_tool = s.is_tool;
-    o.beam = {s.beam.length_m, s.beam.initial_width_m, s.beam.final_width_m, s.beam.angle_rad,
-              s.beam.rays};
-    o.noise = {s.noise.present, s.noise.stdev, s.noise.stdev_p, s.noise.offset,
-               s.noise.gain,    s.noise.var_k, s.noise.var_d};
-    o.tags = s.tags;
+    o.beam = s.beam;  // the SDK's types: the loader's defaults and rules
+    o.noise = s.noise;
     o.period_s = s.period_s;
-    o.force_fmax_N = s.force.fmax_N;
-    o.force_k1 = s.force.k1;
-    o.force_k2 = s.force.k2;
+    o.simtwo.absolute_coords = s.absolute_coords;
+    o.simtwo.is_tool = s.is_tool;
+    o.simtwo.tags = s.tags;
+    o.simtwo.solenoid_force = s.force;
     return &o;
   }
   std::vector<FloorPolygon> floor_polygons() const override {

@@ -169,6 +169,13 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
 
   m.state = m.state_initial;
   m.random.assign(4 * m.components.size(), 0);
+  // The counts StepContext checks every handle against; the buffers keep their sizes from here.
+  m.world.body_count = static_cast<std::int32_t>(m.poses.size());
+  m.world.axis_count = static_cast<std::int32_t>(m.axis_position.size());
+  m.world.joint_count = static_cast<std::int32_t>(m.scene.joints.size());
+  m.world.input_count = static_cast<std::int32_t>(m.inputs.size());
+  m.world.signal_count = static_cast<std::int32_t>(m.published.size());
+  m.world.state_count = static_cast<std::int32_t>(m.state.size());
   m.world.body_pose = m.poses.data();
   m.world.body_twist = m.twists.data();
   m.world.body_wrench = m.multibody->applied_wrenches();

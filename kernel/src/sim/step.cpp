@@ -247,7 +247,8 @@ void Simulation::Impl::step_once() {
     throw Error(ErrorKind::runtime,
                 "at t = " + std::to_string(multibody->time_s()) + " s more than " +
                     std::to_string(too_many.limit) +
-                    " pairs of collision shapes overlap (the limit: 1024 + 64 per shape), "
+                    " pairs of collision shapes overlap (the limit: " + too_many.rule() +
+                    "), "
                     "among them bodies " +
                     multibody->body_name(body[static_cast<std::size_t>(too_many.shape_a)]) +
                     " and " +

@@ -7,14 +7,19 @@
 /// A component keeps no mutable state in its own members: it declares state slots with
 /// `ConfigureContext::declare_state` and reads and writes them through `StepContext::state`.
 /// The kernel owns that memory, so a simulation's whole state is copyable and `reset()` is
-/// exact. `update()` must not allocate.
+/// exact. `update()` must not allocate; it may throw `s2sim::Error` to stop the run.
 
+#include <s2sim/error.hpp>
 #include <s2sim/math.hpp>
 #include <s2sim/params.hpp>
 #include <s2sim/random.hpp>
+#include <s2sim/schedule.hpp>
+#include <s2sim/sensor.hpp>
+#include <s2sim/span.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <string_view>
@@ -58,7 +63,7 @@ enum class Category : std::uint32_t { body = 1, actuator = 2, sensor = 3, contro
 /// physics advances by one tick; inside one stage components run in scene order.
 enum class Stage : std::uint8_t {
   sense = 0,          ///< sensors sample the state at the start of the tick
-  control = 1,        ///< high-level controllers (script, remote, C++), 40 ms by default
+  control = 1,        ///< high-level controllers (script, remote, C++), kDefaultControlPeriod_s
   motor_control = 2,  ///< motor controllers (PID), 10 ms by default
   actuate = 3,        ///< actuators and special bodies apply forces for the coming tick
 };
@@ -92,21 +97,6 @@ struct RayHit {
   std::uint32_t material = 0;  ///< MaterialFlag bits of the surface hit
 };
 
-/// A sensor's beam as the scene gives it (SimTwo's `<beam>`, several merged).
-struct SensorBeam {
-  double length_m = 0.8;
-  double initial_width_m = 0.01;
-  double final_width_m = 0.015;
-  double angle_rad = 0.5235987755982988;  ///< 30 degrees
-  int rays = 9;
-};
-
-/// A sensor's `<noise>` (simtwo-format.md §12.3); `present` is whether the element is there.
-struct SensorNoise {
-  bool present = false;
-  double stdev = 0, stdev_p = 0, offset = 0, gain = 1, var_k = 0, var_d = 0;
-};
-
 /// What the scene loader resolved for a scene sensor element (`<IRSharp>`, `<ranger2d>`...,
 /// robot or world-fixed): see `ConfigureContext::sensor_spec()`.
 struct SensorSpec {
@@ -114,13 +104,10 @@ struct SensorSpec {
   BodyHandle body;   ///< the body it is attached to; index 0 for a world-fixed sensor
   Pose pose;         ///< sensor frame in the body frame (world frame for a world-fixed sensor);
                      ///< the beam points along the frame's +X
-  bool absolute_coords = false;
-  bool is_tool = false;
   SensorBeam beam;
   SensorNoise noise;
-  std::vector<std::string> tags;                        ///< `<tag value>`s in order
-  double period_s = 0.01;                               ///< measurement period
-  double force_fmax_N = 1, force_k1 = 0, force_k2 = 1;  ///< solenoid `<force>`
+  double period_s = kDefaultSensorPeriod_s;  ///< measurement period
+  SimTwoSensorFields simtwo;                 ///< what only SimTwo's elements give
 };
 
 /// A flat floor polygon of the scene's tracks (simtwo-format.md §7), x/y vertices in order.
@@ -148,7 +135,7 @@ struct NamedUnit {
 
 /// Reads any signal of the simulation (a body's pose field, an axis position, an input, a
 /// component's published value...) from `update()`: the kernel's reader and the signal's
-/// index, resolved once by `ConfigureContext::signal_reader` (SDK 0.7). Read it with
+/// index, resolved once by `ConfigureContext::signal_reader`. Read it with
 /// `StepContext::signal(reader)`.
 struct SignalReader {
   double (*read)(const void* kernel, std::int32_t index) = nullptr;
@@ -160,51 +147,68 @@ namespace detail {
 /// Raw views of the kernel's per-tick buffers. Filled by the kernel; plugins use them only
 /// through `StepContext`. Its layout is part of the plugin ABI.
 struct WorldView {
-  const Pose* body_pose = nullptr;        ///< per body, body frame in world
-  const Twist* body_twist = nullptr;      ///< per body, world frame
-  Wrench* body_wrench = nullptr;          ///< per body, accumulated for the coming tick
-  const double* axis_position = nullptr;  ///< rad or m
-  const double* axis_velocity = nullptr;  ///< rad/s or m/s
-  double* axis_force = nullptr;           ///< N·m or N, accumulated for the coming tick
-  double* inputs = nullptr;
-  double* signals = nullptr;
-  double* state = nullptr;
-  std::uint64_t* random_state = nullptr;  ///< four words per component
+  // Time.
   double time_s = 0;
   std::int64_t tick = 0;
   double tick_s = 0;  ///< length of one tick (the physics step)
-  /// Per axis, Coulomb friction bound (N·m or N) accumulated for the coming tick; the kernel
-  /// applies it implicitly as a brake (stick-slip, no chatter).
+
+  // Bodies, `body_count` of each (the world at index 0).
+  std::int32_t body_count = 0;
+  const Pose* body_pose = nullptr;    ///< body frame in world
+  const Twist* body_twist = nullptr;  ///< world frame
+  Wrench* body_wrench = nullptr;      ///< accumulated for the coming tick
+
+  // Axes, `axis_count` of each.
+  std::int32_t axis_count = 0;
+  const double* axis_position = nullptr;  ///< rad or m
+  const double* axis_velocity = nullptr;  ///< rad/s or m/s
+  double* axis_force = nullptr;           ///< N·m or N, accumulated for the coming tick
+  /// Coulomb friction bound (N·m or N) accumulated for the coming tick; the kernel applies it
+  /// implicitly as a brake (stick-slip, no chatter).
   double* axis_friction = nullptr;
-  const ContactInfo* contacts = nullptr;  ///< contacts of the last physics step
-  const std::int32_t* contact_count = nullptr;
-  const void* kernel = nullptr;  ///< passed back to the kernel's callbacks below
-  /// Casts a ray against every collision shape except `ignore_body`'s (-1 = none).
-  RayHit (*cast_ray)(const void* kernel, const Vec3& origin_m, const Vec3& direction,
-                     double max_distance_m, std::int32_t ignore_body) = nullptr;
-  /// Per joint (SDK 0.4, ABI 3): the load body2 exerts on body1 through the joint, world
-  /// frame, torque about the joint anchor carried by body1, from the last physics step. Zeros
-  /// until some component looked a joint up with `ConfigureContext::joint()`.
-  const Wrench* joint_reaction = nullptr;
-  /// Velocity-dependent axis forces for the coming tick (SDK 0.5, ABI 4), integrated
-  /// implicitly by the kernel: `axis_drive_capacity` slots, `*axis_drive_count` used.
+  /// Velocity-dependent axis forces for the coming tick, integrated implicitly by the kernel:
+  /// `axis_drive_capacity` slots, `*axis_drive_count` used.
   AxisDrive* axis_drives = nullptr;
   std::int32_t* axis_drive_count = nullptr;
   std::int32_t axis_drive_capacity = 0;
-  /// Re-placements asked for during the tick (SDK 0.8, ABI 5): the kernel moves the body
-  /// after the stage that asked, before the physics (`StepContext::request_place`).
+
+  // Joints, `joint_count`: the load body2 exerts on body1 through the joint, world frame,
+  // torque about the joint anchor carried by body1, from the last physics step. Zeros until
+  // some component looked a joint up with `ConfigureContext::joint()`.
+  std::int32_t joint_count = 0;
+  const Wrench* joint_reaction = nullptr;
+
+  // Contacts of the last physics step.
+  const ContactInfo* contacts = nullptr;
+  const std::int32_t* contact_count = nullptr;
+
+  // Inputs, published signals, state (doubles) and random streams (four words per component).
+  std::int32_t input_count = 0;
+  double* inputs = nullptr;
+  std::int32_t signal_count = 0;
+  double* signals = nullptr;
+  std::int32_t state_count = 0;
+  double* state = nullptr;
+  std::uint64_t* random_state = nullptr;
+
+  // Callbacks into the kernel, each given back its own first argument.
+  const void* kernel = nullptr;
+  /// Casts a ray against every collision shape except `ignore_body`'s (-1 = none).
+  RayHit (*cast_ray)(const void* kernel, const Vec3& origin_m, const Vec3& direction,
+                     double max_distance_m, std::int32_t ignore_body) = nullptr;
+  /// Re-placements, moves and velocities asked for during the tick, applied after the stage
+  /// that asked, before the physics (`StepContext::request_place`, `request_move`,
+  /// `request_velocity`).
   const void* placer = nullptr;
   void (*request_place)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
-  /// What components show the people watching (SDK 0.9, ABI 6): `StepContext::log_line`,
-  /// `set_hud_text`, `add_trail_point`... `what` is a `detail::Annotation`.
+  void (*request_move)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
+  void (*request_velocity)(const void* placer, std::int32_t body, const Twist& twist) = nullptr;
+  /// What components show the people watching (`StepContext::log_line`, `set_hud_text`,
+  /// `add_trail_point`...); `what` is a `detail::Annotation`.
   const void* annotator = nullptr;
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
                    const double* values) = nullptr;
-  /// Moves and velocities of any body (SDK 0.10, ABI 7), applied after the stage that asked,
-  /// after its re-placements (`StepContext::request_move`, `request_velocity`).
-  void (*request_move)(const void* placer, std::int32_t body, const Pose& pose) = nullptr;
-  void (*request_velocity)(const void* placer, std::int32_t body, const Twist& twist) = nullptr;
 };
 
 /// The kinds of `WorldView::annotate` calls; new kinds may be added without an ABI change (a
@@ -216,16 +220,54 @@ enum class Annotation : std::int32_t {
   clear_trail = 3,  ///< id: trail
   xy_point = 4,     ///< id: series, values: x, y
   clear_xy = 5,     ///< id: series
-  body_color = 6,   ///< id: body, values: red, green, blue in 0..1 (SDK 0.10)
+  body_color = 6,   ///< id: body, values: red, green, blue in 0..1
 };
+
+#if defined(__GNUC__)
+#define S2SIM_DETAIL_COLD __attribute__((cold, noinline))
+#else
+#define S2SIM_DETAIL_COLD
+#endif
+
+/// Throws the error of a handle that does not name one of the `count` things of its kind.
+/// Formats with snprintf: std::to_string would give every plugin a unique symbol of
+/// libstdc++'s, which keeps its library from ever being unloaded.
+[[noreturn]] S2SIM_DETAIL_COLD inline void throw_invalid_handle(const char* accessor,
+                                                                const char* kind,
+                                                                std::int64_t index,
+                                                                std::int64_t count) {
+  char detail[96];
+  if (count > 0)
+    std::snprintf(detail, sizeof detail, "index %lld, valid 0 to %lld",
+                  static_cast<long long>(index), static_cast<long long>(count - 1));
+  else
+    std::snprintf(detail, sizeof detail, "index %lld, none exist", static_cast<long long>(index));
+  throw Error(ErrorKind::runtime, std::string("StepContext::") + accessor + ": invalid " + kind +
+                                      " handle (" + detail +
+                                      "): get handles from the ConfigureContext in configure()");
+}
+
+/// `index` when 0 <= index < count, else throws naming the accessor: one unsigned compare on
+/// the good path.
+inline std::int32_t checked(std::int32_t index, std::int32_t count, const char* accessor,
+                            const char* kind) {
+  if (static_cast<std::uint32_t>(index) >= static_cast<std::uint32_t>(count))
+    throw_invalid_handle(accessor, kind, index, count);
+  return index;
+}
 }  // namespace detail
 
 /// What a component sees on each tick of its schedule. Every accessor is inline and reads the
-/// kernel's arrays directly: no virtual call, no lookup by name, no allocation.
+/// kernel's arrays directly: no virtual call, no lookup by name, no allocation. Every handle
+/// is checked (one compare): a handle that is default-constructed or out of range throws
+/// `s2sim::Error` naming the accessor and the index, which stops the run with the component's
+/// name.
 class StepContext {
  public:
   StepContext(detail::WorldView* world, std::int32_t component_index, std::int64_t period_ticks)
       : w_(world), component_(component_index), period_ticks_(period_ticks) {}
+
+  // --- time ---
 
   /// Simulated time at the start of this tick, seconds.
   double time_s() const { return w_->time_s; }
@@ -236,34 +278,41 @@ class StepContext {
   /// The component's period, seconds: the time since its previous update.
   double period_s() const { return static_cast<double>(period_ticks_) * w_->tick_s; }
 
+  // --- bodies ---
+
   /// Pose of a body frame in the world at the start of the tick.
-  const Pose& body_pose(BodyHandle b) const { return w_->body_pose[b.index]; }
+  const Pose& body_pose(BodyHandle b) const { return w_->body_pose[body(b, "body_pose")]; }
   /// Velocity of a body (world frame) at the start of the tick.
-  const Twist& body_twist(BodyHandle b) const { return w_->body_twist[b.index]; }
+  const Twist& body_twist(BodyHandle b) const { return w_->body_twist[body(b, "body_twist")]; }
   /// Applies `force_N` (world frame) at `point_m` (world frame) for the coming tick.
   void apply_force(BodyHandle b, const Vec3& force_N, const Vec3& point_m) {
-    Wrench& wr = w_->body_wrench[b.index];
+    const std::int32_t i = body(b, "apply_force");
+    Wrench& wr = w_->body_wrench[i];
     wr.force_N += force_N;
-    wr.torque_Nm += cross(point_m - w_->body_pose[b.index].position, force_N);
+    wr.torque_Nm += cross(point_m - w_->body_pose[i].position, force_N);
   }
   /// Applies a pure torque (world frame) for the coming tick.
   void apply_torque(BodyHandle b, const Vec3& torque_Nm) {
-    w_->body_wrench[b.index].torque_Nm += torque_Nm;
+    w_->body_wrench[body(b, "apply_torque")].torque_Nm += torque_Nm;
   }
 
+  // --- axes ---
+
   /// Joint position of an axis (rad, or m for a slider).
-  double axis_position(AxisHandle a) const { return w_->axis_position[a.index]; }
+  double axis_position(AxisHandle a) const { return w_->axis_position[axis(a, "axis_position")]; }
   /// Joint velocity of an axis (rad/s, or m/s).
-  double axis_velocity(AxisHandle a) const { return w_->axis_velocity[a.index]; }
+  double axis_velocity(AxisHandle a) const { return w_->axis_velocity[axis(a, "axis_velocity")]; }
   /// Adds a generalised force (N·m, or N) on an axis for the coming tick; positive drives the
   /// axis position up.
-  void apply_axis_force(AxisHandle a, double force) { w_->axis_force[a.index] += force; }
+  void apply_axis_force(AxisHandle a, double force) {
+    w_->axis_force[axis(a, "apply_axis_force")] += force;
+  }
   /// Adds Coulomb friction of at most `max_force` (N·m, or N; >= 0) on an axis for the coming
   /// tick. The kernel solves it at velocity level after the other forces: an axis whose load
   /// stays below the bound stands still (true stick, no creep), otherwise it slides against
   /// the full bound.
   void apply_axis_friction(AxisHandle a, double max_force) {
-    w_->axis_friction[a.index] += max_force;
+    w_->axis_friction[axis(a, "apply_axis_friction")] += max_force;
   }
   /// Applies a force on an axis for the coming tick that falls as the axis speeds up, as a
   /// motor's back-EMF or a viscous friction does: with v the axis velocity during the tick,
@@ -278,20 +327,33 @@ class StepContext {
   void apply_axis_drive(AxisHandle a, double force, double damping,
                         double min_force = -std::numeric_limits<double>::infinity(),
                         double max_force = std::numeric_limits<double>::infinity()) {
+    const std::int32_t i = axis(a, "apply_axis_drive");
     if (*w_->axis_drive_count < w_->axis_drive_capacity) {
       w_->axis_drives[(*w_->axis_drive_count)++] =
-          AxisDrive{a.index, force, damping, min_force, max_force};
+          AxisDrive{i, force, damping, min_force, max_force};
     } else {  // more drives than the kernel reserved: applied explicitly
-      w_->axis_force[a.index] += force < min_force   ? min_force
-                                 : force > max_force ? max_force
-                                                     : force;
+      w_->axis_force[i] += force < min_force ? min_force : force > max_force ? max_force : force;
     }
   }
+
+  // --- joints ---
+
+  /// The load body2 exerts on body1 through a joint (ODE's body1/body2 of `<connect>`), in
+  /// the world frame, the torque about the joint anchor as carried by body1, over the last
+  /// physics step: constraint and drive loads together (what an F/T cell in the joint reads).
+  /// The joint must have been looked up with `ConfigureContext::joint()`.
+  const Wrench& joint_reaction(JointHandle j) const {
+    return w_->joint_reaction[detail::checked(j.index, w_->joint_count, "joint_reaction", "joint")];
+  }
+
+  // --- contacts and rays ---
 
   /// Number of contacts found in the last physics step.
   int contact_count() const { return *w_->contact_count; }
   /// A contact of the last physics step, 0 <= i < contact_count().
-  const ContactInfo& contact(int i) const { return w_->contacts[i]; }
+  const ContactInfo& contact(int i) const {
+    return w_->contacts[detail::checked(i, *w_->contact_count, "contact", "contact")];
+  }
   /// The first collision surface along a ray from `origin_m` in the unit `direction`, within
   /// `max_distance_m`; the shapes of `ignore` (for example the sensor's own body) are skipped.
   RayHit cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
@@ -299,86 +361,110 @@ class StepContext {
     return w_->cast_ray(w_->kernel, origin_m, direction, max_distance_m, ignore.index);
   }
 
-  /// The load body2 exerts on body1 through a joint (ODE's body1/body2 of `<connect>`), in
-  /// the world frame, the torque about the joint anchor as carried by body1, over the last
-  /// physics step: constraint and drive loads together (what an F/T cell in the joint reads).
-  /// The joint must have been looked up with `ConfigureContext::joint()`.
-  const Wrench& joint_reaction(JointHandle j) const { return w_->joint_reaction[j.index]; }
+  // --- moving bodies by hand ---
 
   /// Asks the kernel to move a body that hangs freely from the world (a thing, or a robot's
   /// root body, which carries its whole robot) to `pose` in the world frame, at rest, once the
-  /// current stage has run (SDK 0.8): SimTwo's `SetRobotPos`, `SetThingPos`. A body jointed
-  /// to something else cannot be placed: the kernel then stops with a runtime error naming it.
+  /// current stage has run: SimTwo's `SetRobotPos`, `SetThingPos`. A body jointed to
+  /// something else cannot be placed: the kernel then stops with a runtime error naming it.
   /// Does not allocate.
   void request_place(BodyHandle b, const Pose& pose) {
-    w_->request_place(w_->placer, b.index, pose);
+    w_->request_place(w_->placer, body(b, "request_place"), pose);
   }
   /// Asks the kernel to move any body to `pose` (world frame) once the current stage has run,
-  /// its speeds kept (SDK 0.10, SimTwo's `SetSolidPos`, `SetSolidRotationMat`): a thing or a
-  /// robot's root body goes exactly there, carrying what is jointed to it; a jointed body goes
-  /// as close as its joint allows (its joint coordinates fitted: a hinge keeps only the
-  /// rotation about its axis), its children following. Applied after `request_place`; a later
-  /// request for the same body replaces an earlier one. Does not allocate.
-  void request_move(BodyHandle b, const Pose& pose) { w_->request_move(w_->placer, b.index, pose); }
+  /// its speeds kept (SimTwo's `SetSolidPos`, `SetSolidRotationMat`): a thing or a robot's
+  /// root body goes exactly there, carrying what is jointed to it; a jointed body goes as
+  /// close as its joint allows (its joint coordinates fitted: a hinge keeps only the rotation
+  /// about its axis), its children following. Applied after `request_place`; a later request
+  /// for the same body replaces an earlier one. Does not allocate.
+  void request_move(BodyHandle b, const Pose& pose) {
+    w_->request_move(w_->placer, body(b, "request_move"), pose);
+  }
   /// Asks the kernel to set a body's velocity (world frame, of the body origin) once the
-  /// current stage has run, as closely as its joint allows, the same way (SDK 0.10, SimTwo's
+  /// current stage has run, as closely as its joint allows, the same way (SimTwo's
   /// `SetSolidLinearVel`, `SetSolidAngularVel`); applied after the moves. Does not allocate.
   void request_velocity(BodyHandle b, const Twist& twist) {
-    w_->request_velocity(w_->placer, b.index, twist);
+    w_->request_velocity(w_->placer, body(b, "request_velocity"), twist);
   }
 
-  /// Publishes one line of text for the people watching (SDK 0.9): the viewer's Log window
-  /// shows it with the simulated time and the component's path. Not part of the simulation's
-  /// state (a reset forgets it, a snapshot does not hold it); the kernel keeps the last 1000
-  /// lines. Copies the text, so it may allocate: call it on events, not every tick.
+  // --- what the people watching see (not part of the simulation's state) ---
+
+  /// Publishes one line of text: the viewer's Log window shows it with the simulated time and
+  /// the component's path. A reset forgets it, a snapshot does not hold it; the kernel keeps
+  /// the last 1000 lines. Copies the text, so it may allocate: call it on events, not every
+  /// tick.
   void log_line(std::string_view text) { annotate(detail::Annotation::log_line, 0, text); }
-  /// Sets the component's head-up text (SDK 0.9), drawn over the 3-D view's top-left corner
-  /// until set again; lines separated by '\n', empty to clear it. Not part of the state.
+  /// Sets the component's head-up text, drawn over the 3-D view's top-left corner until set
+  /// again; lines separated by '\n', empty to clear it.
   void set_hud_text(std::string_view text) { annotate(detail::Annotation::hud_text, 0, text); }
-  /// Appends a world point to the component's trail `trail` (SDK 0.9), drawn as a polyline
-  /// in the 3-D view; the kernel keeps the latest 10 000 points of each trail. Not part of
-  /// the state.
+  /// Appends a world point to the component's trail `trail`, drawn as a polyline in the 3-D
+  /// view; the kernel keeps the latest 10 000 points of each trail.
   void add_trail_point(int trail, const Vec3& point_m) {
     const double xyz[3] = {point_m.x, point_m.y, point_m.z};
     annotate(detail::Annotation::trail_point, trail, {}, xyz);
   }
-  /// Removes every point of trail `trail` (SDK 0.9).
+  /// Removes every point of trail `trail`.
   void clear_trail(int trail) { annotate(detail::Annotation::clear_trail, trail, {}); }
-  /// Appends a point (x, y) to the component's XY series `series` (SDK 0.9), which the
-  /// viewer's chart can plot; the kernel keeps the latest 10 000 points of each series.
+  /// Appends a point (x, y) to the component's XY series `series`, which the viewer's chart
+  /// can plot; the kernel keeps the latest 10 000 points of each series.
   void add_xy_point(int series, double x, double y) {
     const double xy[2] = {x, y};
     annotate(detail::Annotation::xy_point, series, {}, xy);
   }
-  /// Removes every point of XY series `series` (SDK 0.9).
+  /// Removes every point of XY series `series`.
   void clear_xy_series(int series) { annotate(detail::Annotation::clear_xy, series, {}); }
-  /// Paints a body's solid (not its shells) in the 3-D view (SDK 0.10, SimTwo's
-  /// `SetSolidColor`): red, green, blue in 0..1, opaque, until painted again. Not part of the
-  /// state: a reset restores the scene's colours.
-  void set_body_color(BodyHandle body, double red, double green, double blue) {
+  /// Paints a body's solid (not its shells) in the 3-D view (SimTwo's `SetSolidColor`): red,
+  /// green, blue in 0..1, opaque, until painted again. A reset restores the scene's colours.
+  void set_body_color(BodyHandle b, double red, double green, double blue) {
     const double rgb[3] = {red, green, blue};
-    annotate(detail::Annotation::body_color, body.index, {}, rgb);
+    annotate(detail::Annotation::body_color, body(b, "set_body_color"), {}, rgb);
   }
 
+  // --- inputs and signals ---
+
   /// Current value of an input.
-  double input(InputHandle i) const { return w_->inputs[i.index]; }
+  double input(InputHandle i) const {
+    return w_->inputs[detail::checked(i.index, w_->input_count, "input", "input")];
+  }
   /// Sets an input (controllers set the references that motor controllers read).
-  void set_input(InputHandle i, double v) { w_->inputs[i.index] = v; }
+  void set_input(InputHandle i, double v) {
+    w_->inputs[detail::checked(i.index, w_->input_count, "set_input", "input")] = v;
+  }
   /// Publishes a signal value; it holds until published again.
-  void publish(SignalHandle s, double v) { w_->signals[s.index] = v; }
+  void publish(SignalHandle s, double v) {
+    w_->signals[detail::checked(s.index, w_->signal_count, "publish", "signal")] = v;
+  }
   /// The current value of a signal a component publishes (found with
   /// `ConfigureContext::published_signal`): how a controller reads a sensor. Sensors run
   /// first in a tick, so a controller sees the readings of the same tick.
-  double signal(SignalHandle s) const { return w_->signals[s.index]; }
-  /// The current value of any signal (SDK 0.7): kernel signals such as a body's `x` read the
-  /// state at the start of this tick, published and input values as they stand now.
-  double signal(const SignalReader& r) const { return r.read(r.kernel, r.index); }
-  /// The component's state block.
-  double* state(StateHandle h) { return w_->state + h.offset; }
+  double signal(SignalHandle s) const {
+    return w_->signals[detail::checked(s.index, w_->signal_count, "signal", "signal")];
+  }
+  /// The current value of any signal: kernel signals such as a body's `x` read the state at
+  /// the start of this tick, published and input values as they stand now.
+  double signal(const SignalReader& r) const {
+    if (r.read == nullptr) detail::throw_invalid_handle("signal", "signal reader", r.index, 0);
+    return r.read(r.kernel, r.index);
+  }
+
+  // --- the component's own state and random stream ---
+
+  /// The component's state block: `h.count` doubles.
+  Span<double> state(StateHandle h) {
+    if (h.offset < 0 || h.count < 0 || h.offset > w_->state_count - h.count)
+      detail::throw_invalid_handle("state", "state", h.offset, w_->state_count);
+    return Span<double>(w_->state + h.offset, static_cast<std::size_t>(h.count));
+  }
   /// The component's own random stream.
   RandomStream random() { return RandomStream(w_->random_state + 4 * component_); }
 
  private:
+  std::int32_t body(BodyHandle b, const char* accessor) const {
+    return detail::checked(b.index, w_->body_count, accessor, "body");
+  }
+  std::int32_t axis(AxisHandle a, const char* accessor) const {
+    return detail::checked(a.index, w_->axis_count, accessor, "axis");
+  }
   void annotate(detail::Annotation what, std::int32_t id, std::string_view text,
                 const double* values = nullptr) {
     if (w_->annotate != nullptr)
@@ -391,29 +477,41 @@ class StepContext {
   std::int64_t period_ticks_;
 };
 
-/// What a component sees once, at load: its parameters, the bodies and axes it may use, and
-/// the declarations of its signals, inputs, state and schedule. Every lookup throws
+/// What a component sees once, at load: its parameters, the bodies, axes and joints it may
+/// use, and the declarations of its signals, inputs, state and schedule. Every lookup throws
 /// `s2sim::Error` with the component's location when the name is unknown.
 class ConfigureContext {
  public:
   virtual ~ConfigureContext() = default;
 
+  // --- the component and its run ---
+
   /// The component's XML element.
   virtual const Params& params() const = 0;
   /// Its instance ID as written in the scene.
   virtual std::string_view id() const = 0;
-  /// The prefix of its signals: `robots/<robot>/<kind>s/<id>` or `<kind>s/<id>` at scene level.
-  virtual std::string_view signal_prefix() const = 0;
   /// The owning robot's ID, empty for a scene-level component.
   virtual std::string_view robot() const = 0;
   /// Length of one physics tick, seconds.
   virtual double tick_s() const = 0;
+  /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
+  /// not own (a compiled script's RTL random numbers); 1 outside the kernel.
+  virtual std::uint64_t seed() const { return 1; }
+
+  // --- bodies ---
 
   /// A body by name: a solid ID of the owning robot, `world`, or a full path
   /// `robots/<robot>/solids/<solid>` or `things/<thing>`.
   virtual BodyHandle body(std::string_view name) = 0;
+  /// Number of bodies, the world (index 0) included.
+  virtual int body_count() const = 0;
+  /// The scene ID of a body as written (a solid, tyre or thing ID); empty for the world.
+  virtual std::string body_id(BodyHandle b) const = 0;
   /// Mass of a body, kg (0 for the world).
   virtual double body_mass_kg(BodyHandle b) const = 0;
+
+  // --- axes ---
+
   /// An axis by name: a joint ID of the owning robot (`<joint>:2` for a Universal joint's
   /// second axis) or a full path `robots/<robot>/axes/<axis>`.
   virtual AxisHandle axis(std::string_view name) = 0;
@@ -421,42 +519,16 @@ class ConfigureContext {
   virtual bool axis_is_linear(AxisHandle a) const = 0;
   /// The signal prefix of an axis, `robots/<robot>/axes/<axis>`.
   virtual std::string axis_prefix(AxisHandle a) const = 0;
+  /// Adds `inertia` to the axis's own inertia, as MuJoCo's joint "armature": kg·m² on a
+  /// rotational axis, e.g. a motor's rotor inertia reflected through its gear, N²·J_rotor.
+  /// Declarations on one axis add up. The kernel carries it on a hinge or Universal axis as a
+  /// massless disk on the axis fixed to the joint's child body (axial `inertia`, half of it
+  /// across): exact for the spin of the axis while the parent does not turn about it
+  /// (docs/models/multibody.md). A slider or a loop-closing axis does not carry it (a
+  /// load-time warning says so). Throws for a negative or non-finite value.
+  virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
 
-  /// Declares a signal `<signal_prefix>/<name>` with its unit ("m", "rad/s", "A", "1"...).
-  virtual SignalHandle declare_signal(std::string_view name, std::string_view unit) = 0;
-  /// Declares a signal by its full name (for example an axis's `.../current`).
-  virtual SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) = 0;
-  /// Declares, or joins when another component declared it already, the input
-  /// `<signal_prefix>/<name>`; `initial` is its value at reset.
-  virtual InputHandle declare_input(std::string_view name, std::string_view unit,
-                                    double initial) = 0;
-  /// Same with a full name, e.g. `robots/r/axes/left/ref_speed`.
-  virtual InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
-                                       double initial) = 0;
-  /// Declares `count` doubles of state set to `initial` at reset.
-  virtual StateHandle declare_state(std::string_view name, int count, double initial) = 0;
-  /// Runs `update()` in `stage` every `period_s` from `phase_s`; both must be whole multiples
-  /// of the tick. Without a call the component runs every tick in its kind's default stage.
-  virtual void set_schedule(Stage stage, double period_s, double phase_s = 0.0) = 0;
-
-  // --- sensors (SDK 0.2 additions, appended so the earlier vtable slots keep their place) ---
-
-  /// For a component made for a scene sensor element (`<IRSharp>`...): what the loader
-  /// resolved (body, pose in the body frame, merged beam, noise, tags, period). nullptr for a
-  /// component placed with `<plugin>`. Valid until configure() returns: copy what you need.
-  virtual const SensorSpec* sensor_spec() const = 0;
-  /// A copy of every floor polygon of the scene's tracks, in scene order.
-  virtual std::vector<FloorPolygon> floor_polygons() const = 0;
-  /// Number of bodies, the world (index 0) included.
-  virtual int body_count() const = 0;
-  /// The scene ID of a body as written (a solid, tyre or thing ID); empty for the world.
-  virtual std::string body_id(BodyHandle b) const = 0;
-  /// A signal published by a component configured before this one, by its full name (e.g.
-  /// `robots/r/sensors/ir0/value`), to read with `StepContext::signal()`. Scene sensors are
-  /// configured before `<plugin>` components, in scene order. Throws when there is none.
-  virtual SignalHandle published_signal(std::string_view full_name) const = 0;
-
-  // --- joint reactions (SDK 0.4 additions, appended) ---
+  // --- joints ---
 
   /// A joint by name: a joint ID of the owning robot or a full path
   /// `robots/<robot>/joints/<joint>` (`world/joints/<joint>` for a scene-level joint). Asks the
@@ -469,59 +541,61 @@ class ConfigureContext {
   /// index 0 for the world.
   virtual BodyHandle joint_body(JointHandle j, int which) const = 0;
 
-  // --- axis inertia (SDK 0.5 addition, appended) ---
+  // --- scene sensors and the floor ---
 
-  /// Adds `inertia` to the axis's own inertia, as MuJoCo's joint "armature": kg·m² on a
-  /// rotational axis, e.g. a motor's rotor inertia reflected through its gear, N²·J_rotor.
-  /// Declarations on one axis add up. The kernel carries it on a hinge or Universal axis as a
-  /// massless disk on the axis fixed to the joint's child body (axial `inertia`, half of it
-  /// across): exact for the spin of the axis while the parent does not turn about it
-  /// (docs/models/multibody.md). A slider or a loop-closing axis does not carry it (a
-  /// load-time warning says so). Throws for a negative or non-finite value.
-  virtual void add_axis_inertia(AxisHandle axis, double inertia) = 0;
+  /// For a component made for a scene sensor element (`<IRSharp>`...): what the loader
+  /// resolved (body, pose in the body frame, merged beam, noise, period, SimTwo's tags...),
+  /// its beam, noise and period checked by the rules of s2sim/sensor.hpp. nullptr for a
+  /// component placed with `<plugin>`. Valid until configure() returns: copy what you need.
+  virtual const SensorSpec* sensor_spec() const = 0;
+  /// A copy of every floor polygon of the scene's tracks, in scene order.
+  virtual std::vector<FloorPolygon> floor_polygons() const = 0;
 
-  // --- warnings (SDK 0.6 addition, appended) ---
+  // --- the component's signals and inputs ---
 
-  /// A load-time warning about the component's input that it tolerates (SimTwo accepts it),
-  /// located by the kernel at the component's element and listed with the scene's warnings
-  /// (the runner prints them, the viewer's log shows them). For input that would change
-  /// physics silently, throw instead.
-  virtual void warn(std::string_view message) = 0;
+  /// The prefix of its signals: `robots/<robot>/<kind>s/<id>` or `<kind>s/<id>` at scene level.
+  virtual std::string_view signal_prefix() const = 0;
+  /// Declares a signal `<signal_prefix>/<name>` with its unit ("m", "rad/s", "A", "1"...).
+  virtual SignalHandle declare_signal(std::string_view name, std::string_view unit) = 0;
+  /// Declares a signal by its full name (for example an axis's `.../current`).
+  virtual SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) = 0;
+  /// Declares, or joins when another component declared it already, the input
+  /// `<signal_prefix>/<name>`; `initial` is its value at reset.
+  virtual InputHandle declare_input(std::string_view name, std::string_view unit,
+                                    double initial) = 0;
+  /// Same with a full name, e.g. `robots/r/axes/left/ref_speed`.
+  virtual InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
+                                       double initial) = 0;
 
-  // --- every signal and input by name (SDK 0.7 additions, appended) ---
-  // For links to programs outside the simulation (the `remote` and `serial` controllers),
-  // which serve a robot's or the scene's signals and inputs as a whole. A `<plugin>` of
-  // category controller is configured after every other component (sensors, other plugins,
-  // the drive train), so it sees all of them.
+  // --- other components' signals and inputs ---
+  // A `<plugin>` of category controller is configured after every other component (sensors,
+  // other plugins, the drive train), so it sees all of them; scene sensors are configured
+  // before `<plugin>` components, in scene order. The name lists serve links to programs
+  // outside the simulation (the `remote` and `serial` controllers).
 
+  /// A signal published by a component configured before this one, by its full name (e.g.
+  /// `robots/r/sensors/ir0/value`), to read with `StepContext::signal()`. Throws when there is
+  /// none.
+  virtual SignalHandle published_signal(std::string_view full_name) const = 0;
+  /// A reader of any signal by full name. Throws naming close names when unknown.
+  virtual SignalReader signal_reader(std::string_view full_name) const = 0;
+  /// An input that exists already, by full name, to set with `StepContext::set_input` (unlike
+  /// `declare_input_at`, it never creates one). Throws naming close names when unknown.
+  virtual InputHandle input(std::string_view full_name) = 0;
   /// Every signal declared so far whose full name matches the glob `pattern` (`*` any run of
   /// characters, `?` one), in declaration order: the kernel's (time, bodies, axes), inputs,
   /// and the published signals of the components configured before this one.
   virtual std::vector<NamedUnit> signal_names(std::string_view pattern) const = 0;
   /// Every input declared so far whose full name matches the glob `pattern`.
   virtual std::vector<NamedUnit> input_names(std::string_view pattern) const = 0;
-  /// An input that exists already, by full name, to set with `StepContext::set_input` (unlike
-  /// `declare_input_at`, it never creates one). Throws naming close names when unknown.
-  virtual InputHandle input(std::string_view full_name) = 0;
-  /// A reader of any signal by full name. Throws naming close names when unknown.
-  virtual SignalReader signal_reader(std::string_view full_name) const = 0;
 
-  // --- the run's seed (SDK 0.8 addition, appended) ---
+  // --- state and schedule ---
 
-  /// The run's seed (SimulationOptions::seed), for a component that seeds a generator it does
-  /// not own (a compiled script's RTL random numbers); 1 outside the kernel.
-  virtual std::uint64_t seed() const { return 1; }
-
-  // --- strict parameters (SDK 0.9 addition, appended) ---
-
-  /// Asks the kernel to refuse the scene, rather than warn, when the component's `<plugin>`
-  /// element holds an attribute the component did not read: for a kind whose misspelt
-  /// parameter would silently leave a physical default in place (`cD` for `cd`). The error
-  /// names the file, the element and the attribute, with the closest names it did read.
-  virtual void refuse_unread_attributes() {}
-
-  // --- local components (SDK 0.11 addition, appended) ---
-
+  /// Declares `count` doubles of state set to `initial` at reset.
+  virtual StateHandle declare_state(std::string_view name, int count, double initial) = 0;
+  /// Runs `update()` in `stage` every `period_s` from `phase_s`; both must be whole multiples
+  /// of the tick. Without a call the component runs every tick in its kind's default stage.
+  virtual void set_schedule(Stage stage, double period_s, double phase_s = 0.0) = 0;
   /// Declares that `update()` touches nothing but what this context resolved: the bodies,
   /// axes and joints it looked up (`body`, `joint_body`, `axis`, `joint`), the inputs it
   /// declared or looked up, the published signals and signal readers it resolved, and its own
@@ -533,13 +607,26 @@ class ConfigureContext {
   /// inputs and signals are then grouped with the bodies and axes they touch; with several
   /// threads (SimulationOptions::threads) and every component of the scene local, each group
   /// runs on the thread that steps its bodies, at the same time as the others, with the
-  /// serial run's results (docs/scheduling.md, "Components in parts"). A local component that casts
-  /// a ray, requests a move or annotates stops the simulation with an error naming it, at any
-  /// number of threads. Its parts may then also run ahead of the calling thread and go back
-  /// (docs/scheduling.md, "Running ahead"): an `update()` may run again for a tick it ran
+  /// serial run's results (docs/scheduling.md, "Components in parts"). A local component that
+  /// casts a ray, requests a move or annotates stops the simulation with an error naming it,
+  /// at any number of threads. Its parts may then also run ahead of the calling thread and go
+  /// back (docs/scheduling.md, "Running ahead"): an `update()` may run again for a tick it ran
   /// already, after its state was restored, so all it carries from tick to tick is in its
   /// declared state, as a snapshot requires of every component.
   virtual void declare_local() {}
+
+  // --- checking the scene's input ---
+
+  /// A load-time warning about the component's input that it tolerates (SimTwo accepts it),
+  /// located by the kernel at the component's element and listed with the scene's warnings
+  /// (the runner prints them, the viewer's log shows them). For input that would change
+  /// physics silently, throw instead.
+  virtual void warn(std::string_view message) = 0;
+  /// Asks the kernel to refuse the scene, rather than warn, when the component's `<plugin>`
+  /// element holds an attribute the component did not read: for a kind whose misspelt
+  /// parameter would silently leave a physical default in place (`cD` for `cd`). The error
+  /// names the file, the element and the attribute, with the closest names it did read.
+  virtual void refuse_unread_attributes() {}
 };
 
 /// Base of every plugin component.
@@ -550,9 +637,14 @@ class Component {
   /// the scene; the message should say which parameter is wrong (Params does this for you).
   virtual void configure(ConfigureContext& ctx) = 0;
   /// Sets the state declared in configure() to its starting values (after `initial`s are
-  /// applied). Called before the first tick and at every reset.
+  /// applied). Called before the first tick and at every reset. May throw as update() does.
   virtual void initialize(StepContext& /*ctx*/) {}
-  /// One update on a tick of the component's schedule. Must not allocate or throw.
+  /// One update on a tick of the component's schedule. Must not allocate. May throw
+  /// `s2sim::Error` (kind `runtime`) for a condition it cannot go on from, such as an input
+  /// set to a value out of its range or a script's run-time error: the kernel stops the run
+  /// and reports the error with the component's name and place. A `StepContext` accessor
+  /// given an invalid handle throws the same way. Throwing is for failures only (it
+  /// allocates).
   virtual void update(StepContext& ctx) = 0;
 };
 

@@ -64,8 +64,6 @@ class Params {
   /// "file: element" of the component's element, for messages of the component's own.
   virtual std::string location() const = 0;
 
-  // --- SDK 0.5 addition, appended so the earlier vtable slots keep their place ---
-
   /// Where the attribute at `path` is written (or would be, when absent): file, element path
   /// and attribute, to locate a component's own checks as the getters locate theirs:
   /// `throw Error(ErrorKind::scene, p.where("controller.mode"), "unknown mode 'x'")`. The
@@ -74,16 +72,11 @@ class Params {
     return Location{"", location(), std::string(path)};
   }
 
-  // Appended in SDK 0.5: new virtual functions go after the existing ones, so that the slots
-  // of the older ones keep their place in the vtable.
-
   /// A keyword out of `allowed` (whitespace-trimmed, compared exactly), or `fallback` when
   /// absent: `p.choice("scan.mode", {"sweep", "instant"}, "sweep")`. A present value that is
   /// not in `allowed` throws naming the attribute and listing the allowed values.
   virtual std::string choice(std::string_view path, std::initializer_list<std::string_view> allowed,
                              std::string_view fallback) const = 0;
-
-  // SDK 0.9: non-virtual, so the vtable is unchanged.
 
   /// An integer from `min` to `max` (inclusive), or `fallback` when absent, as an `int`. A
   /// value outside throws naming the attribute: the checked way to read a count, so that no

@@ -8,4 +8,7 @@
 #include <s2sim/params.hpp>
 #include <s2sim/plugin.hpp>
 #include <s2sim/random.hpp>
+#include <s2sim/schedule.hpp>
+#include <s2sim/sensor.hpp>
+#include <s2sim/span.hpp>
 #include <s2sim/version.hpp>

@@ -92,6 +92,11 @@ std::vector<Refusal> refusals() {
       {"bad_abi",
        {"plugin ABI version " + std::to_string(S2SIM_PLUGIN_ABI_VERSION + 1) + ", kernel's is " +
         std::to_string(S2SIM_PLUGIN_ABI_VERSION)}},
+      // A plugin built with the SDK before this one: its ABI no longer matches.
+      {"previous_sdk",
+       {"plugin ABI version " + std::to_string(S2SIM_PLUGIN_ABI_VERSION - 1) + ", kernel's is " +
+            std::to_string(S2SIM_PLUGIN_ABI_VERSION),
+        "rebuild the plugin against this SDK"}},
       {"bad_struct_size",
        {"descriptor struct size " + std::to_string(sizeof(s2sim_plugin_descriptor) - 8) +
         ", kernel expects " + std::to_string(sizeof(s2sim_plugin_descriptor))}},

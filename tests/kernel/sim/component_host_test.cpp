@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace s2sim {
 namespace {
@@ -64,6 +66,24 @@ TEST(ComponentHost, ExceptionsFromUpdateNameTheComponentAndAreRuntimeErrors) {
     const Error x = error_in(mode);
     EXPECT_EQ(x.kind(), ErrorKind::runtime) << mode;
     EXPECT_THAT(x.message(), HasSubstr("controllers/villain (kind 'test_hostile')")) << mode;
+  }
+}
+
+// A handle that was never looked up (or is out of range) is refused by the StepContext
+// accessor, as an error of the component that used it, rather than read out of bounds.
+TEST(ComponentHost, AnInvalidHandleInUpdateIsARuntimeErrorNamingTheComponentAndTheAccessor) {
+  const std::vector<std::pair<const char*, const char*>> cases = {
+      {"unset_body", "StepContext::apply_force: invalid body handle (index -1, valid 0 to "},
+      {"unset_axis", "StepContext::apply_axis_force: invalid axis handle (index -1"},
+      {"unset_input", "StepContext::set_input: invalid input handle (index -1"},
+      {"unset_state", "StepContext::state: invalid state handle (index -1"},
+      {"far_body", "StepContext::body_pose: invalid body handle (index 1073741824, valid 0 to "},
+  };
+  for (const auto& [mode, what] : cases) {
+    const Error e = error_in(mode);
+    EXPECT_EQ(e.kind(), ErrorKind::runtime) << mode;
+    EXPECT_THAT(e.message(), HasSubstr("controllers/villain (kind 'test_hostile')")) << mode;
+    EXPECT_THAT(e.message(), HasSubstr(what)) << mode;
   }
 }
 

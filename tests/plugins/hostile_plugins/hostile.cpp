@@ -38,6 +38,12 @@ class Hostile : public Component {
     if (mode_ == "update_std") throw std::runtime_error("hostile: a std::runtime_error in update");
     if (mode_ == "update_int") throw 7;
     if (mode_ == "nan_force") ctx.apply_torque(body_, Vec3{0, 0, std::nan("")});
+    // Handles never looked up: the accessors refuse them rather than read out of bounds.
+    if (mode_ == "unset_body") ctx.apply_force(body_, Vec3{1, 0, 0}, Vec3{});
+    if (mode_ == "unset_axis") ctx.apply_axis_force(AxisHandle{}, 1.0);
+    if (mode_ == "unset_input") ctx.set_input(InputHandle{}, 1.0);
+    if (mode_ == "unset_state") ctx.state(StateHandle{})[0] = 1.0;
+    if (mode_ == "far_body") ctx.body_pose(BodyHandle{1 << 30});
     if (mode_ == "update_segv") std::raise(SIGSEGV);  // a crash, without undefined behaviour
   }
 

@@ -117,7 +117,7 @@ class BodyMover : public Component {
     done_ = ctx.declare_state("done", 1, 0.0);
   }
   void update(StepContext& ctx) override {
-    double& done = *ctx.state(done_);
+    double& done = ctx.state(done_)[0];
     if (done != 0 || ctx.time_s() < at_s_ - 1e-12) return;
     done = 1;
     Pose pose = ctx.body_pose(body_);

@@ -79,8 +79,10 @@ struct World {
   std::int32_t count = 0;
   detail::WorldView view;
   World() {
+    view.body_count = static_cast<std::int32_t>(poses.size());
     view.body_pose = poses.data();
     view.body_twist = twists.data();
+    view.signal_count = static_cast<std::int32_t>(signals.size());
     view.signals = signals.data();
     view.random_state = random.data();
     view.tick_s = 0.001;

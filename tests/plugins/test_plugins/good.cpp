@@ -31,7 +31,7 @@ class TestCounter : public s2sim::Component {
   }
   void initialize(s2sim::StepContext& ctx) override { ctx.state(count_)[0] = 0.0; }
   void update(s2sim::StepContext& ctx) override {
-    double* count = ctx.state(count_);
+    const s2sim::Span<double> count = ctx.state(count_);
     count[0] += 1.0;
     ctx.publish(signal_, count[0]);
   }

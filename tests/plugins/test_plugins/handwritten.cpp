@@ -48,8 +48,11 @@ constexpr std::uint32_t kCategory = static_cast<std::uint32_t>(s2sim::Category::
 };
 
 [[maybe_unused]] const s2sim_plugin_descriptor descriptor = {
-#ifdef S2SIM_TEST_BAD_ABI
+#if defined(S2SIM_TEST_BAD_ABI)
     S2SIM_PLUGIN_ABI_VERSION + 1,
+#elif defined(S2SIM_TEST_PREVIOUS_SDK)
+    // As the previous SDK built it: its ABI, and an older SDK minor, which alone is accepted.
+    S2SIM_PLUGIN_ABI_VERSION - 1,
 #else
     S2SIM_PLUGIN_ABI_VERSION,
 #endif
@@ -69,8 +72,10 @@ constexpr std::uint32_t kCategory = static_cast<std::uint32_t>(s2sim::Category::
 #else
     S2SIM_SDK_VERSION_MAJOR,
 #endif
-#ifdef S2SIM_TEST_BAD_SDK_MINOR
+#if defined(S2SIM_TEST_BAD_SDK_MINOR)
     S2SIM_SDK_VERSION_MINOR + 1,
+#elif defined(S2SIM_TEST_PREVIOUS_SDK)
+    S2SIM_SDK_VERSION_MINOR - 1,
 #else
     S2SIM_SDK_VERSION_MINOR,
 #endif

@@ -7,6 +7,8 @@
 
 #include <s2sim/error.hpp>
 #include <s2sim/math.hpp>
+#include <s2sim/schedule.hpp>
+#include <s2sim/sensor.hpp>
 
 #include <cstdint>
 #include <filesystem>
@@ -215,21 +217,12 @@ struct Joint {
   Location where;
 };
 
-/// Sensor beam (§4.11); several `<beam>` elements merge into one.
-struct Beam {
-  double length_m = 0.8;
-  double initial_width_m = 0.01;
-  double final_width_m = 0.015;
-  double angle_rad = 30 * kPi / 180;
-  int rays = 9;
-};
-struct Noise {
-  bool present = false;
-  double stdev = 0, stdev_p = 0, offset = 0, gain = 1, var_k = 0, var_d = 0;
-};
-struct SolenoidForce {
-  double fmax_N = 1, k1 = 0, k2 = 1;
-};
+/// Sensor beam (§4.11; several `<beam>` elements merge into one), noise and solenoid force:
+/// the SDK's types, so that the loader and the sensor plugins share one set of defaults and
+/// rules (s2sim/sensor.hpp).
+using Beam = SensorBeam;
+using Noise = SensorNoise;
+using s2sim::SolenoidForce;
 
 /// A robot or world sensor (or tool), parsed; its behaviour is a component's.
 struct Sensor {
@@ -244,7 +237,7 @@ struct Sensor {
   Beam beam;
   Noise noise;
   std::vector<std::string> tags;
-  double period_s = 0.01;
+  double period_s = kDefaultSensorPeriod_s;
   SolenoidForce force;
   Color color;
   ParamSource params;
@@ -296,8 +289,8 @@ enum class ControlSemantics { simtwo, s2sim };
 
 struct Settings {
   double physics_step_s = 1e-3;
-  int substeps = 1;                ///< physics substeps per tick
-  double control_period_s = 0.04;  ///< script / high-level controller period
+  int substeps = 1;                                   ///< physics substeps per tick
+  double control_period_s = kDefaultControlPeriod_s;  ///< script / high-level controller period
   double default_friction = 0.95;
   Vec3 wind_m_s;
   /// ODE's ERP: the contact stiffness is erp / (surface softness · 1 ms) (contact_force.cpp,
