@@ -78,7 +78,7 @@ void Multibody::current_bodies(const Pose*& poses, const Twist*& twists) {
   twists = m.substep_twists.data();
 }
 
-void Multibody::forces() {
+void Multibody::prepare_axes() {
   Impl& m = *impl_;
   m.bodies_fresh = false;
   if (!m.axis_friction.empty()) classify_sliding(m, m.current, substep_s());

@@ -69,8 +69,8 @@ struct DynamicsCheck {
 /// Body index 0 is the world; scene body i is body i + 1. The kernel writes the loads for the
 /// coming tick into `applied_wrenches()` and `applied_axis_forces()`; they are held constant
 /// over the tick's substeps. sim/step.cpp runs a tick as, per substep: current_bodies() (for
-/// contact) → forces() → accelerations() → kick() → solve_axes() → drift() → project(); then
-/// finish_tick().
+/// contact) → prepare_axes() → accelerations() → kick() → solve_axes() → drift() → project();
+/// then finish_tick().
 class Multibody {
  public:
   /// Throws s2sim::Error (scene) naming the joint or body Simbody refuses. Bodies without
@@ -166,9 +166,11 @@ class Multibody {
   double substep_s() const;
   /// Body poses and velocities at the current state, per kernel body (read once per state).
   void current_bodies(const Pose*& poses, const Twist*& twists);
-  /// The substep's loads are final: classifies sliding axes, drops Simbody's cached forces.
-  void forces();
-  /// M·u' = f (Simbody's realize); the joint reactions on the tick's last substep.
+  /// The substep's loads are final: the axis drives' rows and their explicit values
+  /// (implicit_axes.cpp), and which axes slide clearly (their Coulomb friction as a force).
+  void prepare_axes();
+  /// M·u' = f under every load (the chosen dynamics); the joint reactions on the tick's last
+  /// substep.
   void accelerations(bool last_substep);
   /// u += h·u' (half a substep on the first one after a reset: leapfrog); loose bodies too.
   void kick();

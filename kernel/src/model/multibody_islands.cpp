@@ -334,27 +334,27 @@ void MultibodyIslands::stage_drives_by_part(bool on) {
   }
 }
 
-void MultibodyIslands::run_tick_starts(const TickHooks& hooks) {
+void MultibodyIslands::run_tick_starts(TickHooks& hooks) {
   hooks_ = &hooks;
-  pool_->run(
-      [](void* self, int p, int thread) {
-        const auto& me = *static_cast<MultibodyIslands*>(self);
-        me.hooks_->start(me.hooks_->context, p, thread == 0, 0);
-      },
-      this, parts());
+  starts_job_.self = this;
+  pool_->run(starts_job_, parts());
 }
 
-void MultibodyIslands::run_substep(int substep, PartStages stages, void* context,
-                                   bool contact_in_parts, const TickHooks* hooks, bool start_ran) {
+void MultibodyIslands::StartsJob::run_task(int p, int thread) {
+  self->hooks_->start(p, thread == 0, 0);
+}
+
+void MultibodyIslands::run_substep(int substep, PartStages& stages, bool contact_in_parts,
+                                   TickHooks* hooks, bool start_ran) {
   substep_ = substep;
-  stages_ = stages;
-  stages_context_ = context;
+  stages_ = &stages;
   contact_in_parts_ = contact_in_parts;
   hooks_ = hooks;
   run_starts_ = hooks && substep == 0 && !start_ran;
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   try {
-    pool_->run(&MultibodyIslands::run_part, this, parts());
+    substep_job_.self = this;
+    pool_->run(substep_job_, parts());
   } catch (const Error& e) {
     // A part's finish found its state non-finite: name the first body of the whole scene.
     const int body = e.kind() == ErrorKind::runtime ? first_non_finite_body() : -1;
@@ -369,36 +369,35 @@ void MultibodyIslands::run_substep(int substep, PartStages stages, void* context
   published_ = read_fresh_ && bound_.poses;
 }
 
-void MultibodyIslands::run_part(void* self, int p, int thread) {
-  auto& me = *static_cast<MultibodyIslands*>(self);
+void MultibodyIslands::SubstepJob::run_task(int p, int thread) {
+  MultibodyIslands& me = *self;
   Part& part = me.parts_[static_cast<std::size_t>(p)];
-  if (me.run_starts_) me.hooks_->start(me.hooks_->context, p, thread == 0, 0);
+  if (me.run_starts_) me.hooks_->start(p, thread == 0, 0);
   me.step_part(part, p, thread, me.substep_);
 }
 
 bool MultibodyIslands::step_part(Part& part, int p, int thread, int substep) {
   load_part(part, substep);
-  const bool inside = stages_(stages_context_, p, *part.multibody, thread == 0, substep);
+  const bool inside = stages_->run(p, *part.multibody, thread == 0, substep);
   // For the next substep's contact (its realize runs here, in parallel); split forces read
   // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
   if (!split_forces_) copy_bodies(part);
   if (substep == substeps() - 1) {
     publish_tick(part);
-    if (hooks_) hooks_->end(hooks_->context, p);
+    if (hooks_) hooks_->end(p);
   }
   return inside;
 }
 
-bool MultibodyIslands::run_ticks(int ticks, PartStages stages, void* context,
-                                 const TickHooks& hooks) {
-  stages_ = stages;
-  stages_context_ = context;
+bool MultibodyIslands::run_ticks(int ticks, PartStages& stages, TickHooks& hooks) {
+  stages_ = &stages;
   hooks_ = &hooks;
   contact_in_parts_ = true;
   ahead_ticks_ = ticks;
   ahead_stopped_.store(false, std::memory_order_relaxed);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
-  pool_->run(&MultibodyIslands::run_part_ticks, this, parts());
+  ticks_job_.self = this;
+  pool_->run(ticks_job_, parts());
   if (ahead_stopped_.load(std::memory_order_relaxed)) return false;
   untouched_ = true;
   read_fresh_ = true;
@@ -406,14 +405,14 @@ bool MultibodyIslands::run_ticks(int ticks, PartStages stages, void* context,
   return true;
 }
 
-void MultibodyIslands::run_part_ticks(void* self, int p, int thread) {
-  auto& me = *static_cast<MultibodyIslands*>(self);
+void MultibodyIslands::TicksJob::run_task(int p, int thread) {
+  MultibodyIslands& me = *self;
   Part& part = me.parts_[static_cast<std::size_t>(p)];
   try {
     for (int k = 0; k < me.ahead_ticks_; ++k) {
       // Another part left its fence: what follows would be thrown away.
       if (me.ahead_stopped_.load(std::memory_order_relaxed)) return;
-      me.hooks_->start(me.hooks_->context, p, thread == 0, k);
+      me.hooks_->start(p, thread == 0, k);
       for (int substep = 0; substep < me.substeps(); ++substep) {
         if (!me.step_part(part, p, thread, substep)) {
           me.ahead_stopped_.store(true, std::memory_order_relaxed);

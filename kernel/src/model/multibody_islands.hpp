@@ -23,12 +23,18 @@ namespace s2sim::model {
 
 class MultibodyIslands {
  public:
-  /// The work of one part in a substep (sim/step.cpp: forces … project, and the tick's finish
-  /// on its last substep), called on whichever thread takes the part; `calling_thread`: the
-  /// one that called run_substep. Returns whether the part may go on alone (run_ticks(): its
-  /// shapes are still inside their fence); run_substep() ignores it.
-  using PartStages = bool (*)(void* context, int part, Multibody& multibody, bool calling_thread,
-                              int substep);
+  /// The work of one part in a substep (sim/step.cpp: its contact, prepare axes … project,
+  /// and the tick's finish on its last substep), called on whichever thread takes the part.
+  class PartStages {
+   public:
+    /// `calling_thread`: the part runs on the thread that called run_substep() or
+    /// run_ticks(). Returns whether the part may go on alone (run_ticks(): its shapes are
+    /// still inside their fence); run_substep() ignores it.
+    virtual bool run(int part, Multibody& multibody, bool calling_thread, int substep) = 0;
+
+   protected:
+    ~PartStages() = default;
+  };
 
   /// Builds the planned `topology` of `scene` as at most `threads` parts (fewer when the scene
   /// has fewer islands; threads ≤ 1: one). Throws what Multibody's constructor throws.
@@ -86,15 +92,19 @@ class MultibodyIslands {
   bool set_body_velocity(int body, const Twist& twist);
 
   /// What the kernel runs in each part at the tick's edges, on the part's thread, when its
-  /// components are stepped in the parts (sim/component_parts.hpp): `start` before the
-  /// tick's first substep takes the loads (the part's components, which write its slices of
-  /// the scene-wide load arrays and its own drive slots, part_drives()); `end` after the last
-  /// substep's read-out. `calling_thread` as for PartStages; `ahead`: the tick's distance
-  /// from the kernel's current one (run_ticks(); 0 otherwise).
-  struct TickHooks {
-    void* context = nullptr;
-    void (*start)(void* context, int part, bool calling_thread, int ahead) = nullptr;
-    void (*end)(void* context, int part) = nullptr;
+  /// components are stepped in the parts (sim/component_parts.hpp).
+  class TickHooks {
+   public:
+    /// Before the tick's first substep takes the loads: the part's components, which write
+    /// its slices of the scene-wide load arrays and its own drive slots (part_drives()).
+    /// `calling_thread` as for PartStages; `ahead`: the tick's distance from the kernel's
+    /// current one (run_ticks(); 0 otherwise).
+    virtual void start(int part, bool calling_thread, int ahead) = 0;
+    /// After the last substep's read-out.
+    virtual void end(int part) = 0;
+
+   protected:
+    ~TickHooks() = default;
   };
 
   /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
@@ -105,18 +115,18 @@ class MultibodyIslands {
   /// kernel order, as the serial run does.
   /// With `hooks`: their `start` first on substep 0 unless `start_ran` (run_tick_starts()
   /// ran them already), their `end` last on the last substep.
-  void run_substep(int substep, PartStages stages, void* context, bool contact_in_parts = false,
-                   const TickHooks* hooks = nullptr, bool start_ran = false);
+  void run_substep(int substep, PartStages& stages, bool contact_in_parts = false,
+                   TickHooks* hooks = nullptr, bool start_ran = false);
   /// Only the hooks' `start` of every part, at once (for a tick whose contact must be
   /// computed whole, between them and the substep).
-  void run_tick_starts(const TickHooks& hooks);
+  void run_tick_starts(TickHooks& hooks);
   /// Runs ahead (sim/run_ahead.cpp): `ticks` whole ticks of every part at once, each part on
   /// its own thread without waiting for the others between ticks: at each tick the hooks'
   /// `start`, then per substep its loads and `stages` (its contact computed in the part), then
   /// the read-out and the hooks' `end`. A part whose `stages` return false stops there, and so
   /// do the others at their next tick: returns false, and the state is then only good for a
   /// restore. Exceptions: as run_substep().
-  bool run_ticks(int ticks, PartStages stages, void* context, const TickHooks& hooks);
+  bool run_ticks(int ticks, PartStages& stages, TickHooks& hooks);
 
   /// A part's kernel bodies (ascending) and its axes (scene-wide indices, the part's order).
   const std::vector<int>& part_bodies(int p) const {
@@ -157,8 +167,19 @@ class MultibodyIslands {
     mutable std::vector<Twist> twists;
     mutable std::vector<double> axis_position, axis_velocity;
   };
-  static void run_part(void* self, int part, int thread);
-  static void run_part_ticks(void* self, int part, int thread);
+  /// The pool's three kinds of run: each part's tick start, substep, stretch of ticks.
+  struct StartsJob final : WorkerPool::Job {
+    MultibodyIslands* self = nullptr;
+    void run_task(int part, int thread) override;
+  };
+  struct SubstepJob final : WorkerPool::Job {
+    MultibodyIslands* self = nullptr;
+    void run_task(int part, int thread) override;
+  };
+  struct TicksJob final : WorkerPool::Job {
+    MultibodyIslands* self = nullptr;
+    void run_task(int part, int thread) override;
+  };
   /// Part `p`'s substep on `thread` (run_substep(), run_ticks()): its loads, the stages, its
   /// bodies out, and on the tick's last substep its read-out and the hooks' `end`. Returns
   /// what the stages returned.
@@ -211,9 +232,11 @@ class MultibodyIslands {
   bool published_ = false;           // the parts wrote the current state into bound_
   // The running substep (run_substep).
   int substep_ = 0;
-  PartStages stages_ = nullptr;
-  void* stages_context_ = nullptr;
-  const TickHooks* hooks_ = nullptr;
+  PartStages* stages_ = nullptr;
+  TickHooks* hooks_ = nullptr;
+  StartsJob starts_job_;
+  SubstepJob substep_job_;
+  TicksJob ticks_job_;
   bool run_starts_ = false;  // the substep runs the hooks' start
   // The running run_ticks(): how many, and whether a part stopped (read by every part).
   int ahead_ticks_ = 0;

@@ -67,7 +67,7 @@ bool WorkerPool::claim(int index, std::uint64_t generation) noexcept {
 
 void WorkerPool::run_task(int index, int thread) noexcept {
   try {
-    task_(context_, index, thread);
+    job_->run_task(index, thread);
   } catch (...) {
     errors_[static_cast<std::size_t>(index)] = std::current_exception();
   }
@@ -88,12 +88,11 @@ void WorkerPool::take_tasks(std::uint64_t generation, int thread) noexcept {
     if (i % threads != thread && claim(i, generation)) run_task(i, thread);
 }
 
-void WorkerPool::run(Task task, void* context, int count) {
+void WorkerPool::run(Job& job, int count) {
   if (count <= 0) return;
   if (static_cast<std::size_t>(count) > errors_.size())
     throw std::logic_error("WorkerPool::run: more tasks than the pool was made for");
-  task_ = task;
-  context_ = context;
+  job_ = &job;
   for (int i = 0; i < count; ++i)
     errors_[static_cast<std::size_t>(i)] = nullptr;
   done_.store(0, std::memory_order_relaxed);
@@ -101,8 +100,7 @@ void WorkerPool::run(Task task, void* context, int count) {
   const std::uint64_t generation = generation_of(ticket_.load()) + 1;
   // Sequentially consistent with the sleepers' count (a worker going to sleep increments it,
   // then reads the ticket): either it sees this generation or this run sees it asleep.
-  ticket_.store((generation << 16) |
-                static_cast<std::uint64_t>(count));  // publishes task_, context_
+  ticket_.store((generation << 16) | static_cast<std::uint64_t>(count));  // publishes job_
   if (sleepers_.load() > 0) {
     std::lock_guard<std::mutex> lock(mutex_);
     wake_.notify_all();

@@ -23,9 +23,16 @@ namespace s2sim::model {
 
 class WorkerPool {
  public:
-  /// One task: `index` in [0, count) of the run; `thread` 0 is the calling thread, and the
-  /// thread that ran it (its home, index mod threads(), unless stolen).
-  using Task = void (*)(void* context, int index, int thread);
+  /// The work of one run, task by task.
+  class Job {
+   public:
+    /// Task `index` in [0, count) of the run, on `thread`: 0 is the calling thread; the task's
+    /// home is index mod threads(), unless another thread stole it.
+    virtual void run_task(int index, int thread) = 0;
+
+   protected:
+    ~Job() = default;
+  };
 
   /// `threads` ≥ 1: threads − 1 workers beside the caller; runs of up to `max_tasks` tasks
   /// (at most 65535).
@@ -36,11 +43,20 @@ class WorkerPool {
 
   int threads() const { return static_cast<int>(threads_.size()) + 1; }
 
-  /// Runs task(context, i, thread) for every i in [0, count), count ≤ max_tasks, and returns
-  /// when all have finished. An exception of a
-  /// task is kept; after every task finished, the one of the lowest index is rethrown
-  /// (deterministic whatever the threads' timing).
-  void run(Task task, void* context, int count);
+  /// Runs job.run_task(i, thread) for every i in [0, count), count ≤ max_tasks, and returns
+  /// when all have finished. An exception of a task is kept; after every task finished, the
+  /// one of the lowest index is rethrown (deterministic whatever the threads' timing).
+  void run(Job& job, int count);
+  /// The same for a callable f(index, thread), kept by reference for the run.
+  template <class F>
+  void run_each(F&& f, int count) {
+    struct Call final : Job {
+      explicit Call(F& f) : f_(f) {}
+      void run_task(int index, int thread) override { f_(index, thread); }
+      F& f_;
+    } call(f);
+    run(call, count);
+  }
 
  private:
   void work(int thread);
@@ -53,8 +69,7 @@ class WorkerPool {
 
   std::vector<std::thread> threads_;
   std::vector<std::exception_ptr> errors_;  // per task, preallocated
-  Task task_ = nullptr;
-  void* context_ = nullptr;
+  Job* job_ = nullptr;
   // The run's ticket: generation (bits 16..63), task count (0..15). A worker that wakes late
   // sees another generation and takes nothing of a run it did not start.
   std::atomic<std::uint64_t> ticket_{0};

@@ -56,7 +56,7 @@ std::int64_t Simulation::Impl::step_ahead(std::int64_t ticks) {
   multibody->applied_wrenches()[0] = Wrench{};  // the world's entry, as step_once() clears it
   bool ran = false;
   try {
-    ran = sim::physics_ticks_ahead(*multibody, *contacts, profile.get(), part_tick_hooks(),
+    ran = sim::physics_ticks_ahead(*multibody, *contacts, profile.get(), part_hooks,
                                    static_cast<int>(ticks));
   } catch (...) {
     // Thrown again, with its tick and its names, when the stretch runs tick by tick.
@@ -67,7 +67,7 @@ std::int64_t Simulation::Impl::step_ahead(std::int64_t ticks) {
     if ((kFirstStretchTicks << ahead_growth) < kLongestStretchTicks) ++ahead_growth;
     ++ahead_counts.stretches;
     ahead_counts.ticks += ticks;
-    sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
+    sim::StageTimer timer(profile.get(), sim::PipelineStage::read_out);
     refresh();
     return ticks;
   }

@@ -153,7 +153,7 @@ struct Simulation::Impl {
   void plan_component_parts();
   /// The local views' copies of `world` (its time, tick and contacts change every tick).
   void sync_local_views();
-  /// Part `part`'s components at the tick's start, on its thread (MultibodyIslands::TickHooks),
+  /// Part `part`'s components at the tick's start, on its thread (part_hooks),
   /// then its reference torques and the check of its loads; `end_part_tick` after its physics.
   /// `ahead`: the tick's distance from `tick` (running ahead; 0 otherwise).
   void start_part_tick(int part, bool calling_thread, int ahead);
@@ -243,7 +243,15 @@ struct Simulation::Impl {
   /// component_parts has them).
   void step_once();
   /// What the parts run at a tick's edges when the components are in the parts.
-  model::MultibodyIslands::TickHooks part_tick_hooks();
+  struct PartHooks final : model::MultibodyIslands::TickHooks {
+    explicit PartHooks(Impl& owner) : impl(owner) {}
+    void start(int part, bool calling_thread, int ahead) override {
+      impl.start_part_tick(part, calling_thread, ahead);
+    }
+    void end(int part) override { impl.end_part_tick(part); }
+    Impl& impl;
+  };
+  PartHooks part_hooks{*this};
   /// `ticks` ticks, run ahead in stretches where it can (run_ahead.cpp), else one by one.
   void advance(std::int64_t ticks);
   /// Up to `ticks` ticks run ahead (run_ahead.cpp): how many ran; 0 when it could not start,

@@ -17,13 +17,14 @@ enum class PipelineStage : std::uint8_t {
   motor_control,  ///< motor controllers
   actuate,        ///< motors, servos and other actuators write their loads
   collide,        ///< contact: narrow phase and contact forces (per substep)
-  forces,         ///< the substep's loads handed to the multibody (per substep)
-  accelerations,  ///< M·u' = f, Simbody (per substep)
+  prepare_axes,   ///< axis drives' rows and sliding axes' friction for the substep
+  accelerations,  ///< M·u' = f under every load, the chosen dynamics (per substep)
   kick,           ///< u += h·u' (per substep)
   axes,           ///< axis drives (implicit) and Coulomb friction (per substep)
   drift,          ///< q += h·N(q)·u (per substep)
   project,        ///< loop constraints (per substep)
-  finish,         ///< finite check, body read-out, sensors' view refreshed
+  finish,         ///< the multibody's end of tick: drives' means, bodies read, finite check
+  read_out,       ///< the kernel's poses, twists and axes, the components' view refreshed
   count
 };
 

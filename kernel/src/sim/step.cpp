@@ -1,11 +1,14 @@
-// What happens in a tick, and in which order (docs/architecture.md):
+// What happens in a tick, and in which order (docs/architecture.md, "The tick"). Read
+// Simulation::Impl::step_once() below top to bottom:
 //
-//   scheduled stages   sense → control → motor control → actuate
-//                      (each component whose period is due; they read the state of the tick's
-//                      start and write loads, inputs and published signals)
-//   physics, per substep
-//                      collide → forces → accelerations → kick → axes → drift → project
-//   finish             finite check, bodies read out, the components' view refreshed
+//   1. scheduled stages   sense → control → motor control → actuate
+//                         (each component whose period is due; they read the state of the
+//                         tick's start and write loads, inputs and published signals)
+//   2. physics, per substep, part by part (one part unless --threads)
+//                         collide → prepare axes → accelerations → kick → axes → drift
+//                         → project
+//   3. finish             the multibody's end of tick: drives' means, bodies read, finite check
+//   4. read out           the kernel's poses, twists and axes, the components' view refreshed
 //
 // A motor's torque is computed in `actuate` (the dc_motor component), contact forces in
 // `collide` (contact::ContactWorld), sensor readings in `sense` of the next tick, from the
@@ -24,9 +27,9 @@ namespace s2sim {
 namespace sim {
 
 const char* stage_name(PipelineStage stage) {
-  static constexpr const char* kNames[] = {"sense",   "control", "motor control", "actuate",
-                                           "collide", "forces",  "accelerations", "kick",
-                                           "axes",    "drift",   "project",       "finish"};
+  static constexpr const char* kNames[] = {
+      "sense", "control", "motor control", "actuate", "collide", "prepare axes", "accelerations",
+      "kick",  "axes",    "drift",         "project", "finish",  "read out"};
   static_assert(std::size(kNames) == StageProfile::kStages);
   return kNames[static_cast<std::size_t>(stage)];
 }
@@ -44,11 +47,12 @@ void collide(Model& mb, model::SubstepForces* contact, StageProfile* profile) {
   contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
 }
 
-/// The multibody's stages of one substep of the leapfrog (docs/models/multibody.md).
+/// The multibody's stages of one substep of the leapfrog (docs/models/multibody.md), and its
+/// end of tick after the last.
 void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) {
   {
-    StageTimer timer(profile, PipelineStage::forces);
-    mb.forces();
+    StageTimer timer(profile, PipelineStage::prepare_axes);
+    mb.prepare_axes();
   }
   {
     StageTimer timer(profile, PipelineStage::accelerations);
@@ -70,42 +74,48 @@ void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) 
     StageTimer timer(profile, PipelineStage::project);
     mb.project();
   }
-}
-
-/// What the parts of a substep share (physics_tick below).
-struct PartsContext {
-  StageProfile* profile = nullptr;
-  model::SubstepForces* contact = nullptr;  // split part by part (MultibodyIslands::split_forces)
-  bool contact_in_parts = false;            // this substep's contact is computed in the parts
-  bool fenced = false;                      // running ahead: each part keeps to its fence
-};
-
-/// One part's substep (MultibodyIslands::run_substep, run_ticks): its contact when the substep
-/// is split, its stages, and the placing of its shapes for the next substep's contact. Only
-/// the parts the calling thread takes are profiled (StageProfile is not shared between
-/// threads). Returns whether the part's shapes are still inside their fence (running ahead).
-bool part_stages(void* context, int part, model::Multibody& mb, bool calling_thread, int substep) {
-  const auto& parts = *static_cast<const PartsContext*>(context);
-  StageProfile* profile = calling_thread ? parts.profile : nullptr;
-  const Pose* poses = nullptr;
-  const Twist* twists = nullptr;
-  if (parts.contact_in_parts) {
-    StageTimer timer(profile, PipelineStage::collide);
-    mb.current_bodies(poses, twists);
-    parts.contact->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches());
-  }
-  multibody_stages(mb, substep, profile);
   if (substep == mb.substeps() - 1) {
     StageTimer timer(profile, PipelineStage::finish);
     mb.finish_tick();
   }
-  if (parts.contact) {
-    StageTimer timer(profile, PipelineStage::collide);
-    mb.current_bodies(poses, twists);
-    parts.contact->place_part(part, poses, twists, mb.substep_s());
-  }
-  return !parts.fenced || parts.contact->part_inside_fence(part);
 }
+
+/// One part's substep (MultibodyIslands::run_substep, run_ticks): its contact when the substep
+/// is split, its stages, and the placing of its shapes for the next substep's contact. Only
+/// the parts the calling thread takes are profiled (StageProfile is not shared between
+/// threads).
+class PartStages final : public model::MultibodyIslands::PartStages {
+ public:
+  PartStages(StageProfile* profile, model::SubstepForces* contact, bool fenced)
+      : profile_(profile), contact_(contact), fenced_(fenced) {}
+  /// This substep's contact is computed in the parts.
+  void set_contact_in_parts(bool in_parts) { contact_in_parts_ = in_parts; }
+
+  /// Returns whether the part's shapes are still inside their fence (running ahead).
+  bool run(int part, model::Multibody& mb, bool calling_thread, int substep) override {
+    StageProfile* profile = calling_thread ? profile_ : nullptr;
+    const Pose* poses = nullptr;
+    const Twist* twists = nullptr;
+    if (contact_in_parts_) {
+      StageTimer timer(profile, PipelineStage::collide);
+      mb.current_bodies(poses, twists);
+      contact_->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+    }
+    multibody_stages(mb, substep, profile);
+    if (contact_) {  // placed here, on the part's thread, for the next substep's contact
+      StageTimer timer(profile, PipelineStage::collide);
+      mb.current_bodies(poses, twists);
+      contact_->place_part(part, poses, twists, mb.substep_s());
+    }
+    return !fenced_ || contact_->part_inside_fence(part);
+  }
+
+ private:
+  StageProfile* profile_;
+  model::SubstepForces* contact_;  // split part by part (MultibodyIslands::split_forces), or null
+  bool fenced_;                    // running ahead: each part keeps to its fence
+  bool contact_in_parts_ = false;
+};
 
 /// The substep's contact when it is split part by part: the calling thread's share (the pairs;
 /// the whole contact when two parts' bodies meet). Returns whether the parts compute the rest.
@@ -152,8 +162,6 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
       collide(mb, contact, profile);
       multibody_stages(mb, k, profile);
     }
-    StageTimer timer(profile, PipelineStage::finish);
-    mb.finish_tick();
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
@@ -162,11 +170,10 @@ void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProf
 }
 
 void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, StageProfile* profile,
-                  const model::MultibodyIslands::TickHooks* hooks) {
+                  model::MultibodyIslands::TickHooks* hooks) {
   if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
-  PartsContext parts;
-  parts.profile = profile;
-  parts.contact = contact && mb.split_forces() == contact ? contact : nullptr;
+  const bool split = contact && mb.split_forces() == contact;
+  PartStages stages(profile, split ? contact : nullptr, false);
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
       bool start_ran = false;
@@ -175,14 +182,16 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
         mb.run_tick_starts(*hooks);
         start_ran = true;
       };
-      if (parts.contact) {
-        parts.contact_in_parts = begin_contact_in_parts(mb, *contact, profile, starts_first);
+      bool contact_in_parts = false;
+      if (split) {
+        contact_in_parts = begin_contact_in_parts(mb, *contact, profile, starts_first);
       } else {
         starts_first();
         collide(mb, contact, profile);
       }
-      mb.run_substep(k, &part_stages, &parts, parts.contact_in_parts, hooks, start_ran);
-      if (parts.contact_in_parts) {
+      stages.set_contact_in_parts(contact_in_parts);
+      mb.run_substep(k, stages, contact_in_parts, hooks, start_ran);
+      if (contact_in_parts) {
         StageTimer timer(profile, PipelineStage::collide);
         contact->end_parts();
       }
@@ -200,14 +209,11 @@ bool fence_parts(model::MultibodyIslands& mb, model::SubstepForces* contact) {
 }
 
 bool physics_ticks_ahead(model::MultibodyIslands& mb, model::SubstepForces& contact,
-                         StageProfile* profile, const model::MultibodyIslands::TickHooks& hooks,
+                         StageProfile* profile, model::MultibodyIslands::TickHooks& hooks,
                          int ticks) {
-  PartsContext parts;
-  parts.profile = profile;
-  parts.contact = &contact;
-  parts.contact_in_parts = true;
-  parts.fenced = true;
-  if (!mb.run_ticks(ticks, &part_stages, &parts, hooks)) return false;
+  PartStages stages(profile, &contact, true);
+  stages.set_contact_in_parts(true);
+  if (!mb.run_ticks(ticks, stages, hooks)) return false;
   contact.end_parts_ahead(static_cast<std::int64_t>(ticks) * mb.substeps());
   return true;
 }
@@ -223,9 +229,8 @@ void Simulation::Impl::step_once() {
   } else {
     run_components();
   }
-  const model::MultibodyIslands::TickHooks hooks = part_tick_hooks();
   try {
-    sim::physics_tick(*multibody, contacts.get(), profile.get(), in_parts ? &hooks : nullptr);
+    sim::physics_tick(*multibody, contacts.get(), profile.get(), in_parts ? &part_hooks : nullptr);
   } catch (const Error& e) {
     // A divergence names its first body: add where that body last was, finite (the kernel's
     // poses and twists still hold the previous tick's).
@@ -263,16 +268,8 @@ void Simulation::Impl::step_once() {
       axis_force_applied[a] = axis_force[a] + drive[a];
   }
   ++tick;
-  sim::StageTimer timer(profile.get(), sim::PipelineStage::finish);
+  sim::StageTimer timer(profile.get(), sim::PipelineStage::read_out);
   refresh();
-}
-
-model::MultibodyIslands::TickHooks Simulation::Impl::part_tick_hooks() {
-  return {this,
-          [](void* impl, int part, bool calling_thread, int ahead) {
-            static_cast<Impl*>(impl)->start_part_tick(part, calling_thread, ahead);
-          },
-          [](void* impl, int part) { static_cast<Impl*>(impl)->end_part_tick(part); }};
 }
 
 void Simulation::Impl::run_components() {

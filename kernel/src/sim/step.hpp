@@ -11,23 +11,24 @@
 
 namespace s2sim::sim {
 
-/// Advances `multibody` by one tick: per substep, collide (`contact`, may be null) → forces →
-/// accelerations → kick → axes → drift → project; then the end-of-tick read-out and finite
-/// check. Throws s2sim::Error (runtime) when the state becomes non-finite or Simbody refuses
-/// it. `profile` (may be null) accumulates the time per stage.
+/// Advances `multibody` by one tick: per substep, collide (`contact`, may be null) → prepare
+/// axes → accelerations → kick → axes → drift → project; after the last, finish (the
+/// multibody's end of tick: bodies read, finite check). Throws s2sim::Error (runtime) when the
+/// state becomes non-finite or Simbody refuses it. `profile` (may be null) accumulates the time per
+/// stage.
 void physics_tick(model::Multibody& multibody, model::SubstepForces* contact,
                   StageProfile* profile = nullptr);
 /// The same tick over the scene's parts: one part is the call above; several run each
-/// substep's collide serially, then every part's forces … project (and the finish on the last
-/// substep) at once on the worker pool. `profile` then times collide and the stages of the parts
-/// the calling thread took, not the wait for the other threads' parts. With `hooks` (several
+/// substep's collide serially, then every part's prepare axes … project (and the finish on the
+/// last substep) at once on the worker pool. `profile` then times collide and the stages of the
+/// parts the calling thread took, not the wait for the other threads' parts. With `hooks` (several
 /// parts: the components in the parts), each part runs their `start` before its first
 /// substep, after the calling thread's pairs of that substep (the contact of the tick's start
 /// does not depend on the components), or before the contact when the contact is computed
 /// whole (it writes the contact list the components read); `end` after its last.
 void physics_tick(model::MultibodyIslands& multibody, model::SubstepForces* contact,
                   StageProfile* profile = nullptr,
-                  const model::MultibodyIslands::TickHooks* hooks = nullptr);
+                  model::MultibodyIslands::TickHooks* hooks = nullptr);
 
 /// Whether `multibody` can run ahead (sim/run_ahead.cpp) now: several parts, whose shapes are
 /// placed at the current poses, `contact` split by them and each part's shapes apart from the
@@ -37,7 +38,7 @@ bool fence_parts(model::MultibodyIslands& multibody, model::SubstepForces* conta
 /// `hooks`, its contact, its stages), stopping when a part's shapes leave their fence.
 /// Returns whether all ran; if not, or if it throws, the state is only good for a restore.
 bool physics_ticks_ahead(model::MultibodyIslands& multibody, model::SubstepForces& contact,
-                         StageProfile* profile, const model::MultibodyIslands::TickHooks& hooks,
+                         StageProfile* profile, model::MultibodyIslands::TickHooks& hooks,
                          int ticks);
 
 }  // namespace s2sim::sim

@@ -21,13 +21,12 @@ TEST(WorkerPool, RunsEveryTaskOnceAndReturnsAfterAll) {
   WorkerPool pool(2, 8);
   for (int round = 0; round < 50; ++round) {
     Record record;
-    pool.run(
-        [](void* context, int index, int thread) {
-          auto& r = *static_cast<Record*>(context);
-          r.runs[index].fetch_add(1);
-          r.thread[index].store(thread);
+    pool.run_each(
+        [&record](int index, int thread) {
+          record.runs[index].fetch_add(1);
+          record.thread[index].store(thread);
         },
-        &record, 5);
+        5);
     for (int i = 0; i < 5; ++i)
       EXPECT_EQ(record.runs[i].load(), 1) << "task " << i << ", round " << round;
     for (int i = 5; i < 8; ++i)
@@ -39,12 +38,12 @@ TEST(WorkerPool, RethrowsTheLowestTasksErrorAfterEveryTaskFinished) {
   WorkerPool pool(2, 4);
   std::atomic<int> finished{0};
   try {
-    pool.run(
-        [](void* context, int index, int) {
-          static_cast<std::atomic<int>*>(context)->fetch_add(1);
+    pool.run_each(
+        [&finished](int index, int) {
+          finished.fetch_add(1);
           if (index >= 1) throw std::runtime_error("task " + std::to_string(index));
         },
-        &finished, 4);
+        4);
     FAIL() << "no error";
   } catch (const std::runtime_error& e) {
     EXPECT_STREQ(e.what(), "task 1");
@@ -52,17 +51,14 @@ TEST(WorkerPool, RethrowsTheLowestTasksErrorAfterEveryTaskFinished) {
   EXPECT_EQ(finished.load(), 4);
   // The pool is usable after an error.
   Record record;
-  pool.run([](void* context, int index, int) { static_cast<Record*>(context)->runs[index]++; },
-           &record, 2);
+  pool.run_each([&record](int index, int) { record.runs[index]++; }, 2);
   EXPECT_EQ(record.runs[0] + record.runs[1], 2);
 }
 
 TEST(WorkerPool, OneThreadRunsEveryTaskOnTheCaller) {
   WorkerPool pool(1, 4);
   Record record;
-  pool.run([](void* context, int index,
-              int thread) { static_cast<Record*>(context)->thread[index].store(thread + 10); },
-           &record, 4);
+  pool.run_each([&record](int index, int thread) { record.thread[index].store(thread + 10); }, 4);
   for (int i = 0; i < 4; ++i)
     EXPECT_EQ(record.thread[i].load(), 10);
 }
@@ -80,14 +76,14 @@ TEST(WorkerPool, EachTaskRunsOnItsHomeThreadRunAfterRun) {
   int even = 0, even_at_home = 0;
   for (int run = 0; run < 300 && even < 40; ++run) {
     Record record;
-    pool.run(
-        [](void* context, int index, int thread) {
-          static_cast<Record*>(context)->thread[index].store(thread);
+    pool.run_each(
+        [&record](int index, int thread) {
+          record.thread[index].store(thread);
           const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(300);
           while (std::chrono::steady_clock::now() < until) {
           }
         },
-        &record, 4);
+        4);
     int on_worker = 0;
     bool home = true;
     for (int i = 0; i < 4; ++i) {
