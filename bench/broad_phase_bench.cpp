@@ -1,7 +1,7 @@
-// s2sim-broadphase-bench: cost of the contact broad phase (sweep and prune) as objects are
-// added, to check that it stays near N log N. Boxes of 0.1 m scattered over a floor whose area
-// grows with N (constant density, as objects added to a world), each moving a little per
-// step; the time per call is divided by N·log2(N).
+// s2sim-broadphase-bench: cost of the contact broad phase (a uniform grid kept in a sorted
+// array, collision/broad_phase.hpp) as objects are added, to check that it stays near N log N.
+// Boxes of 0.1 m scattered over a floor whose area grows with N (constant density, as objects added
+// to a world), each moving a little per step; the time per call is divided by N·log2(N).
 #include "collision/broad_phase.hpp"
 
 #include <chrono>

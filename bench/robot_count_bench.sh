@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Step cost against the number of robots (issue 16: it grew with the square, then the cube,
-# of the count). N copies of scenes/nxt, 0.3 m apart on a grid, standing (no voltage), 2 s at
+# Step cost against the number of robots (it once grew with the square, then the cube, of the
+# count; it should stay linear). N copies of scenes/nxt, 0.3 m apart on a grid, standing (no voltage), 2 s at
 # 1 ms; prints the wall time per step and per robot-step from s2sim-run's summary.
 #   bench/robot_count_bench.sh [BUILD_DIR] [COUNTS...]
 set -euo pipefail

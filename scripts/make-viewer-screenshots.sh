@@ -32,11 +32,11 @@ shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
   --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
 shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
-# Trails, names, axes and scale bar (issue 15): the NXT turning a small circle for 4 s.
+# Trails, names, axes and scale bar: the NXT turning a small circle for 4 s.
 shot viewer-trail "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --set robots/nxt/axes/left/ref_voltage=3 --show-window configuration \
   --do "overlay trails on" --do "overlay labels on" --do "run-until 4" --do "frame" --do "wait 1"
-# The default layout (issue 15): the Run window and the Log on the left, the Chart and the
+# The default layout: the Run window and the Log on the left, the Chart and the
 # Sheet as tabs of the bottom row, the 3-D view framed in the rest.
 shot viewer-layout "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --set robots/nxt/axes/left/ref_voltage=-6 --show-window log --show-window sheet \
@@ -58,7 +58,7 @@ if [ -d "$plugins" ]; then
 fi
 
 # A SimTwo project with its author's saved camera (config_Viewer.ini, config_Params.ini), floor
-# texture (ground.jpg), grid and sky (issue 15).
+# texture (ground.jpg), grid and sky.
 if [ -d "$shared/Manipulator6DoF" ]; then
   shot viewer-simtwo-camera "$shared/Manipulator6DoF" --show-window log --do "run-until 0.5"
 fi
@@ -68,7 +68,7 @@ if [ -d "$shared/base" ]; then
     --do "camera -120 35 2.2" --do "run-until 1"
 fi
 
-# SimTwo scripts in the viewer (issues 11, 15). The compile cache of the tests, if built.
+# SimTwo scripts in the viewer: compile errors, sheets, trails and XY charts. The compile cache of the tests, if built.
 export S2SIM_PASCAL_CACHE="${S2SIM_PASCAL_CACHE:-$build/pascal-cache}"
 if [ -d "$shared/MotorModel_V3AGM" ] && command -v fpc >/dev/null; then
   # The script editor after Compile: fpc's located error, its line shown (the project's named
@@ -89,6 +89,6 @@ if [ -d "$shared/base" ] && command -v fpc >/dev/null; then
     --script-file "$repo/tests/apps/viewer/fixtures/trail_xy.pas" --show-window log \
     --do "chart-xy robots/Classic/x robots/Classic/y" --do "show chart" --do "run-until 4"
 fi
-# Shadows on bodies as well as on the floor (issue 15): the pile settling, seen close.
+# Shadows on bodies as well as on the floor: the pile settling, seen close.
 shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "camera -60 25 1.4" \
   --do "wait 1"

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# The parallel step against the machine's own two-thread ceiling, run after run (issue 17,
-# docs/benchmarks.md "Re-measured on 2026-11-29"): each run is one `s2sim-peers` call on robots_16 and
-# robots_64 with the serial step, the parallel step (running ahead and tick by tick) and two
-# serial copies at once (the ceiling), five rounds each. A table row per run gives each
-# parallel engine's speed-up over the serial run in wall time, the ceiling, the parallel step
-# as a share of it, the serial step's and the parallel step's wall µs, and the largest share of
-# a vCPU the hypervisor took (median round). Then, RUNS times, the serial step on robots_16
-# pinned to each vCPU at once (taskset): each vCPU's own speed at that moment, which on a shared
-# host differ (docs/benchmarks.md, "Re-measured on 2026-11-29").
+# The parallel step against the machine's own two-thread ceiling, run after run
+# (docs/benchmarks.md#the-parallel-step, "The parallel step"): each run is one `s2sim-peers`
+# call on robots_16 and robots_64 with the serial step, the parallel step (running ahead and
+# tick by tick) and two serial copies at once (the ceiling), five rounds each. A table row per
+# run gives each parallel engine's speed-up over the serial run in wall time, the ceiling, the
+# parallel step as a share of it, the serial step's and the parallel step's wall µs, and the
+# largest share of a vCPU the hypervisor took (median round). Then, RUNS times, the serial step
+# on robots_16 pinned to each vCPU at once (taskset): each vCPU's own speed at that moment,
+# which on a shared host differ (bench/peers/results/history.md, "What the host gives two
+# threads").
 #   scripts/parallel-series.sh [RUNS (10)] [OUT_DIR (a new temporary folder)]
 # Every run's CSVs stay in OUT_DIR (series-rounds.csv: all rounds, a column for the run); needs
 # build/bin/s2sim-peers and two hardware threads.

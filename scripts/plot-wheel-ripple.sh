@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 10: the step-to-step wheel-speed ripple of the NXT-class two-wheeler
+# The step-to-step wheel-speed ripple of the NXT-class two-wheeler
 # (tests/plugins/drive_train/fixtures/two_wheeler) driven straight at 6 V, before and after a
 # change. Runs the fixture for 1 s with each runner binary (1 ms step, 1 substep, every step
 # logged) and draws the right wheel's speed per physics step from 0.4 s to 0.5 s, one panel
@@ -9,7 +9,8 @@
 #
 # OUT_PNG defaults to docs/images/wheel-speed-ripple.png. NAME=VALUE pairs are passed to both
 # runs as --define, e.g. li=0 (the motor's inductance neglected) or wheel_mass=0.02 (the NXT's
-# own tyre): the fixture's variants that ring on the code of issue 10.
+# own tyre): the fixture's variants that ring when the stiff axis forces act explicitly,
+# through the previous step's speed.
 #   scripts/plot-wheel-ripple.sh /work/main/build/bin/s2sim-run build/bin/s2sim-run '' li=0
 set -euo pipefail
 
@@ -54,7 +55,7 @@ ripple() {
            END { mean = s / n; if (mean < 0) mean = -mean;
                  printf "mean %.3f rad/s, step-to-step ripple %.3g %%", s / n, 100 * m / mean }' "$1"
 }
-label="${*:-li 4.88 mH, as in the issue}"
+label="${*:-li 4.88 mH, the fixture's default}"
 gnuplot <<GP
 set terminal pngcairo size 900,700 font ",11"
 set output "$out"

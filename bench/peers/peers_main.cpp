@@ -309,8 +309,8 @@ void write_reports(const std::vector<Result>& results, const Options& o) {
 /// The untimed steps before a round: `steps` (none: none), and more until kWarmupWall has
 /// passed. A vCPU that idled runs the first milliseconds of a second thread's work at a
 /// fraction of its speed on this machine's host (two threads at once against one: 1.0× over
-/// 3 ms, 1.25× over 10 ms, 1.6–2.1× over 30 ms; docs/benchmarks.md): the parallel engines would
-/// otherwise time the host waking up.
+/// 3 ms, 1.25× over 10 ms, 1.6–2.1× over 30 ms; bench/peers/results/history.md, "What the host
+/// gives two threads"): the parallel engines would otherwise time the host waking up.
 constexpr auto kWarmupWall = std::chrono::milliseconds(30);
 void warm_up(peers::Engine& engine, long steps) {
   if (steps <= 0) return;

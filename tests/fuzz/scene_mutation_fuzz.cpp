@@ -8,7 +8,7 @@
 ///
 /// With `--threads N` (N ≥ 2) each case is run twice, on one thread and on N, every axis's
 /// `ref_voltage` input driven at its own value (robots ahead): the two must end with the same
-/// signals bit for bit, or fail with the same error (issue 17: the parallel step, its parts'
+/// signals bit for bit, or fail with the same error (the parallel step, its parts'
 /// components and running ahead are exact). A difference is a finding (exit 6).
 ///
 ///   s2sim-fuzz-scenes --corpus scenes --corpus ../shared/simtwo-scenes --cases 2000 --jobs 2

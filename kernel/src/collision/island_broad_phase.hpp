@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The broad phase by islands (issue 17): shapes grouped by island (the bodies a chain of
+/// The broad phase by islands: shapes grouped by island (the bodies a chain of
 /// joints connects, so a robot is one), found in two levels. First the islands' boxes (each
 /// the union of its shapes' boxes) and the static shapes against each other, by a BroadPhase;
 /// then, for each pair of overlapping islands, their shapes against each other, and within

@@ -2,7 +2,7 @@
 // solve_tree_in_modes; docs/models/multibody.md, "Axis friction and bounds"). The block
 // Gauss-Seidel sweeps of implicit_axes.cpp converge slowly where the axes are strongly coupled:
 // a humanoid standing on its 20 braked hinges ran all 16 sweeps at every step and still ended
-// short of the law, its joints creeping (issue 17). A sweep finds the modes, though: which axes
+// short of the law, its joints creeping. A sweep finds the modes, though: which axes
 // stick and, for the others, which way they slide and which drive rows sit at a bound. In given
 // modes the law is linear, so the exact answer is one linear system:
 //   v = v_now + κ·W·x,  x: the change of each axis's total force G (friction + drive rows),

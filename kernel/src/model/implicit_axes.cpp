@@ -307,8 +307,8 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
     m.first_row[a] = i;
   }
   // Which trees sweep in step 2 below, each for itself: whether another tree's axis has friction
-  // or hit a bound must not change this tree's numbers (issue 17: a part of the parallel islands
-  // holds only some trees; the last bits once differed from the whole system's).
+  // or hit a bound must not change this tree's numbers (a part of the parallel islands holds
+  // only some trees; the last bits once differed from the whole system's).
   std::fill(m.tree_sweeps.begin(), m.tree_sweeps.end(), 0);
   for (std::size_t a = 0; a < m.axes.size(); ++a)
     if (m.axis_friction[a] > 0.0 && !m.axes[a].loop && !m.sliding[a]) {
@@ -321,7 +321,8 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   SimTK::Vector& u = s.updU();
   // Tree by tree (axis_trees.cpp): 1. the drive rows without bounds, all at once; 2. where a
   // bound binds or an axis has friction, the sweeps. Each tree until its own axes converge, so
-  // that a robot's numbers do not depend on another's (issue 17: the parallel islands' parts).
+  // that a robot's numbers do not depend on another's (the parallel islands' parts must match
+  // the serial run).
   group_solve_list_by_tree(m);
   for (std::size_t t = 0; t + 1 < m.tree_solve_start.size(); ++t) {
     const int begin = m.tree_solve_start[t], end = m.tree_solve_start[t + 1];

@@ -460,7 +460,7 @@ TEST_F(Runner, WriteFailuresAreNotReportedAsSuccess) {
   EXPECT_THAT(summary.err, HasSubstr("/dev/full"));
 }
 
-// Issue 16: a crash inside a plugin's code is named (component, kind, plugin), exits 7, and the
+// A crash inside a plugin's code is named (component, kind, plugin), exits 7, and the
 // log keeps every complete row. The hostile controller raises SIGSEGV in its update at 40 ms
 // (controllers run every 40 ms, from tick 0; it acts from tick 3), after the row of t = 40 ms.
 TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) {
@@ -480,7 +480,7 @@ TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) 
   EXPECT_EQ(csv.rows.back().front(), "0.040000");
 }
 
-// Issue 16: a crash in a component's constructor (the plugin's factory) or its destructor is
+// A crash in a component's constructor (the plugin's factory) or its destructor is
 // named like one in its update: the kernel marks those calls too.
 TEST_F(Runner, ACrashInAComponentsConstructorOrDestructorIsNamed) {
   const std::string plugins = std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile";
@@ -538,8 +538,8 @@ TEST_F(Runner, AFileInAnUnreadableFolderIsALocatedSceneError) {
               HasSubstr("scene.xml: scene/things@file: cannot read 'locked/t.xml': "));
 }
 
-// Issue 16 (3 000 coincident cuboids took 3.1 GB): bodies placed into one another stop the
-// run at the first tick with a runtime error naming two of them, in bounded memory. 200
+// Bodies placed into one another stop the run at the first tick with a runtime error naming
+// two of them, in bounded memory (3 000 coincident cuboids once took 3.1 GB). 200
 // coincident boxes overlap in 19 900 pairs, above the limit of 1024 + 64 × 200.
 TEST_F(Runner, BodiesPlacedIntoOneAnotherStopTheRunNamingTwoOfThem) {
   {
@@ -559,7 +559,7 @@ TEST_F(Runner, BodiesPlacedIntoOneAnotherStopTheRunNamingTwoOfThem) {
   EXPECT_THAT(r.err, HasSubstr("bodies are placed into one another"));
 }
 
-// --- Plugin search (issue 13) ----------------------------------------------------------------
+// --- Plugin search ---------------------------------------------------------------------------
 
 const fs::path kDefaultScene = fs::path(S2SIM_SOURCE_DIR) / "scenes/default";
 const fs::path kScenePlugins = fs::path(S2SIM_TEST_PLUGIN_DIR) / "scene";

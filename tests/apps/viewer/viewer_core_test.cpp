@@ -140,7 +140,7 @@ TEST(RunControl, PacesTicksToWallTimeTimesSpeedAndStepsWhilePaused) {
   EXPECT_FALSE(run.playing);
 }
 
-// Issue 15: the camera starts framed. Whatever the box, its corners land inside the view.
+// The camera starts framed. Whatever the box, its corners land inside the view.
 TEST(Camera, FrameBoxPutsEveryCornerInsideTheView) {
   struct Case {
     Vec3f lo, hi;
@@ -164,7 +164,7 @@ TEST(Camera, FrameBoxPutsEveryCornerInsideTheView) {
   }
 }
 
-// Issue 15: a SimTwo project opens with its author's camera: the eye from config_Viewer.ini,
+// A SimTwo project opens with its author's camera: the eye from config_Viewer.ini,
 // the point looked at from config_Params.ini (SimTwo.ini when those are missing).
 TEST(SimTwoCamera, ReadsTheProjectsSavedEyeAndTarget) {
   const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
@@ -197,7 +197,7 @@ TEST(SimTwoCamera, ReadsTheProjectsSavedEyeAndTarget) {
   std::filesystem::remove_all(dir);
 }
 
-// Issue 15: a robot's trail keeps its recent path, skips standing still, starts anew on a
+// A robot's trail keeps its recent path, skips standing still, starts anew on a
 // reset and overwrites its oldest points when full.
 TEST(Trails, KeepTheRecentPathOfEachRobot) {
   Trails trails;
@@ -219,7 +219,7 @@ TEST(Trails, KeepTheRecentPathOfEachRobot) {
   EXPECT_FLOAT_EQ(trails.point(1, Trails::capacity, 0).x, 0.11f) << "the oldest overwritten";
 }
 
-// Issue 15: the tiled layout never lets the panels take more than half the window, and they
+// The tiled layout never lets the panels take more than half the window, and they
 // never overlap the 3-D view or each other, whatever the window size and column fractions.
 TEST(Layout, PanelsTileAroundAViewOfAtLeastHalfTheWindow) {
   for (const auto& [w, h] : {std::pair{1280.0f, 720.0f}, {800.0f, 600.0f}, {1920.0f, 1080.0f}})
@@ -243,7 +243,7 @@ TEST(Layout, PanelsTileAroundAViewOfAtLeastHalfTheWindow) {
   EXPECT_FLOAT_EQ(bare.world.area(), 1280.0f * 720) << "no panels: the view is the window";
 }
 
-// Issue 15: the Run window showed "0.00x" for the first half second (30 frames at 60 fps),
+// The Run window once showed "0.00x" for the first half second (30 frames at 60 fps),
 // because the factor was only computed when a half-second window of frame times closed.
 TEST(RtfMeter, IsSimulatedOverWallTimeFromTheSecondFrameOn) {
   RtfMeter meter;
@@ -268,7 +268,7 @@ TEST(RtfMeter, IsSimulatedOverWallTimeFromTheSecondFrameOn) {
   EXPECT_EQ(meter.rtf(), 0);
 }
 
-// ../shared/repro (issue 16): the viewer's Reset forgot the --set inputs, so a reset run was
+// ../shared/repro: the viewer's Reset once forgot the --set inputs, so a reset run was
 // not the run it had started as. Reset replays it tick for tick.
 TEST(RunControl, ResetKeepsTheHeldInputsAndReplaysTheRun) {
   auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt");
@@ -315,7 +315,7 @@ TEST(ChartData, RecordsEveryTickAndExportsTheRunnersFormat) {
   EXPECT_NE(chart.export_csv("/nonexistent/dir/x.csv", *sim), "");
 }
 
-// Issue 16: the chart keeps the last span of simulated time, and no more numbers than its
+// The chart keeps the last span of simulated time, and no more numbers than its
 // bound, whatever is charted and however long the run; once grown it does not grow further.
 TEST(ChartData, KeepsTheLastSpanAndAtMostItsBoundOfNumbers) {
   auto sim = Simulation::load(kDefaultScene);  // 1 ms ticks

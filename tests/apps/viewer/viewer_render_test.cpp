@@ -1,4 +1,4 @@
-// The world view's look (issue 15), on screenshots of the real s2sim-view under Xvfb: smooth
+// The world view's look, on screenshots of the real s2sim-view under Xvfb: smooth
 // edges with multisampling, a gradient sky, shadows that fall on bodies (shadow map), and a
 // SimTwo project's floor settings and texture. Each check compares two frames that differ in
 // one setting only, so it fails when that setting does nothing.

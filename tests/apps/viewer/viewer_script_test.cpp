@@ -1,4 +1,4 @@
-// The viewer's SimTwo side (issues 11, 15, 16), through the real binary under xvfb-run: a
+// The viewer's SimTwo side, through the real binary under xvfb-run: a
 // project's script runs with its sheet, the Script window lists located compile errors and
 // shows their line, Compile/Run/Stop/Save and reloading after an external edit; the HUD,
 // WriteLn lines in the Log, script trails and the XY chart; the chart's bounded memory;
@@ -67,7 +67,7 @@ class ViewerScript : public Viewer {
   }
 };
 
-// Issue 11, acceptance 5 (first picture): MotorModel_V3AGM names control_PosCascata.pas, which
+// MotorModel_V3AGM names control_PosCascata.pas, which
 // does not compile in SimTwo either. Its control block is None, so the project opens without
 // running it; Compile lists fpc's located error, the simulation goes on, and choosing the
 // error shows its line.
@@ -103,7 +103,7 @@ TEST_F(ViewerScript, CompileErrorIsListedWithItsLocationAndShowsItsLine) {
   EXPECT_GT(number_after(r.out, "time "), 0.0) << "the scene runs without its script";
 }
 
-// Issue 11, acceptance 5 (second picture) and the Run/Stop buttons: MotorModel's control.pas
+// The Run/Stop buttons: MotorModel's control.pas
 // runs (WriteLn, HUDStrings), Stop holds its calls, Run starts it afresh (Initialize again).
 TEST_F(ViewerScript, ProjectRunsUnderItsScriptAndStopAndRunControlIt) {
   const fs::path scene = project("MotorModel_V3AGM");
@@ -220,7 +220,7 @@ TEST_F(ViewerScript, CompileKeepsTheRunningScriptOnErrorAndExternalEditsAreReloa
   EXPECT_EQ(read_file(script), original);
 }
 
-// Issue 15, acceptance 2: a script's trail (AddTrailNode), its XY series (ChartSeriesAddXY),
+// A script's trail (AddTrailNode), its XY series (ChartSeriesAddXY),
 // its HUD lines, and the chart's XY mode plotting the robot's y against its x, whose CSV is
 // s2sim-run's for the same signals.
 TEST_F(ViewerScript, ScriptTrailHudAndXyChart) {
@@ -263,7 +263,7 @@ TEST_F(ViewerScript, ScriptTrailHudAndXyChart) {
   EXPECT_TRUE(expected == read_file(chart_csv)) << "the XY chart's CSV differs from s2sim-run's";
 }
 
-// Issue 16, acceptance 4: every signal of the largest shared SimTwo project (`default`, 881
+// Every signal of the largest shared SimTwo project (`default`, 881
 // signals at 1 kHz) charted for 60 s simulated stays under the documented bound
 // (docs/viewer.md, "Chart memory"): the chart holds at most ChartData::kMaxStoredValues numbers
 // (64 MB; here the last 7.3 s), so the process's peak memory exceeds that of a run without the
@@ -304,7 +304,7 @@ TEST_F(Viewer, ChartSpanKeepsTheLastSeconds) {
   EXPECT_EQ(lines_with(r.out, "chart-samples ").at(0), "2001 3.000000 5.000000");
 }
 
-// Issue 16, acceptance 4: Reset replays the run exactly, --set inputs included.
+// Reset replays the run exactly, --set inputs included.
 TEST_F(Viewer, ResetAfterSetReplaysTheFirstRunsCsvExactly) {
   const fs::path scene = robot_scene();
   const fs::path first = dir_ / "first.csv", second = dir_ / "second.csv";
@@ -330,7 +330,7 @@ TEST_F(Viewer, ResetAfterSetReplaysTheFirstRunsCsvExactly) {
   EXPECT_TRUE(a == b) << "the run after Reset differs from the first";
 }
 
-// Issue 16: an edit that does not load is refused before anything is written (the file keeps
+// An edit that does not load is refused before anything is written (the file keeps
 // its bytes and its time stamp); one that loads is written and the previous version is kept.
 TEST_F(Viewer, SceneEditorValidatesAnEditBeforeWritingAndKeepsThePreviousVersion) {
   const fs::path scene = dir_ / "scene";
@@ -366,7 +366,7 @@ TEST_F(Viewer, SceneEditorValidatesAnEditBeforeWritingAndKeepsThePreviousVersion
   EXPECT_EQ(read_file(scene / "scene.xml~"), original);
 }
 
-// SetSolidColor through StepContext::set_body_color (issue 11): CartPole's reset script paints
+// SetSolidColor through StepContext::set_body_color: CartPole's reset script paints
 // its pole (255, 0, 51) at its 25th call; before, the pole shows its scene colour (200, 60, 60),
 // whose shades keep green at 0.3 of red; after, green is gone.
 TEST_F(ViewerScript, SetSolidColorPaintsTheSolidInTheWorldView) {

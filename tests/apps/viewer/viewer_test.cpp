@@ -148,7 +148,7 @@ TEST_F(Viewer, PauseStepAndResetButtonsDriveTheSimulatedTime) {
   EXPECT_GT(t[5], 0.0) << "Play did not restart the run";
 }
 
-// Issue 15, acceptance 4: the Run window's real-time factor is the simulated time over the wall
+// The Run window's real-time factor is the simulated time over the wall
 // time. The run is paced by the wall clock as an interactive one is (`pace wall`); the test
 // reads the simulated time and the viewer's steady clock 60 frames apart and the factor the
 // Run window shows at the end.
@@ -354,7 +354,7 @@ TEST_F(Viewer, SheetCellsAreInputsThatControllersReadAndWrite) {
   EXPECT_NE(r.out.find("signal sensors/button/seen 1\n"), std::string::npos) << r.out;
 }
 
-// Issue 15: the NXT driving a curve leaves a trail as long as the path its body travelled,
+// The NXT driving a curve leaves a trail as long as the path its body travelled,
 // drawn over the view (the screenshot is kept in the test's folder for a look).
 TEST_F(Viewer, TrailFollowsTheRobotsPath) {
   const Result r = view(robot_scene().string(),
@@ -390,7 +390,7 @@ struct Box {
   double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-// Issue 15, acceptance 1 (first half): at start, and again after the camera was moved away and
+// The view framed: at start, and again after the camera was moved away and
 // F (`frame`) was pressed, the scene's bounding box (its solids, shells and obstacles) projects
 // inside the 3-D view (the window minus the Run window's column), and fills a good part of it
 // (scenes/nxt used to fill 10 % of the width).
@@ -436,7 +436,7 @@ TEST_F(Viewer, EveryShippedSceneStartsFramedAndFReframes) {
   }
 }
 
-// Issue 15, acceptance 1 (second half): with every panel open, what ImGui placed does not
+// The panels tiled: with every panel open, what ImGui placed does not
 // overlap, stays in the window, and the 3-D view keeps at least half of it. The screenshot is
 // kept in the test's folder for a look.
 TEST_F(Viewer, WithAllPanelsOpenNoPanelOverlapsAndTheViewKeepsHalfTheWindow) {

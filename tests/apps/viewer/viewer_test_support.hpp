@@ -65,7 +65,7 @@ inline bool have_xvfb() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
 }
 
-/// The scene the issue names: scenes/nxt once it exists, the default scene until then.
+/// The robot scene of the viewer's tests: scenes/nxt once it exists, the default scene until then.
 inline fs::path robot_scene() {
   return fs::exists(kSource / "scenes/nxt/scene.xml") ? kSource / "scenes/nxt"
                                                       : kSource / "scenes/default";

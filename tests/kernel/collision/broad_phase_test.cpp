@@ -44,7 +44,7 @@ TEST(BroadPhase, MatchesBruteForceWhileObjectsMove) {
   }
 }
 
-// Issue 17: the grid keeps its cell and its sorted entries from call to call and re-sorts only
+// The grid keeps its cell and its sorted entries from call to call and re-sorts only
 // the boxes that changed cells. Boxes that grow and shrink (the cell is chosen anew, some turn
 // large and back), a few that jump across the scene, and a reset half way: every call still
 // gives exactly the brute-force pairs.
@@ -80,7 +80,7 @@ TEST(BroadPhase, KeptCellsGiveTheSamePairsAsAFreshSearch) {
   }
 }
 
-// Issue 16: boxes placed into one another ask for pairs quadratic in their number; past the
+// Boxes placed into one another ask for pairs quadratic in their number; past the
 // caller's limit the search stops (false) instead of growing without bound. Both paths: a few
 // boxes (tested pairwise) and many (the grid).
 // Fuzzer finding (CI, case pile-533): a box flung to 1e20 m made the cell index's conversion

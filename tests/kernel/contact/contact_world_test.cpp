@@ -185,7 +185,7 @@ TEST(Contact, StackOfFiveBoxesStandsTenSeconds) {
   }
 }
 
-// Issue 17: surfaces are combined once per pair of distinct surfaces at load, up to 64 of them;
+// Surfaces are combined once per pair of distinct surfaces at load, up to 64 of them;
 // past that, per point as before. A leaning stack of boxes with three frictions and a bouncy
 // sphere, alone and with 70 far-away obstacles of distinct friction (which force the per-point
 // path): the same poses bit for bit.

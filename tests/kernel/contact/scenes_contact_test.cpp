@@ -46,7 +46,7 @@ TEST(PileScene, HundredBoxesAndFiftySpheresSettleWithoutPassingThroughAnything) 
 }
 
 TEST(PileScene, AtOneMillisecondWithoutSubstepsNothingSinksTwoMillimetres) {
-  // Issue 17, acceptance 3: the peers' configuration (bench/peers). The scene starts with every
+  // The peers' configuration (bench/peers). The scene starts with every
   // object apart (scripts/make-pile-scene.py), so the deepest point is the simulator's own.
   SimulationOptions options;
   options.physics_step_s = 1e-3;

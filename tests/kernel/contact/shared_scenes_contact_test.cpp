@@ -100,7 +100,7 @@ double classic_forward_speed(const fs::path& scene, double t0, double t1) {
   return v;
 }
 
-// Under SimTwo's control semantics (the default for this SimTwo file: issue 11) the PID's
+// Under SimTwo's control semantics (the default for a SimTwo file, docs/format.md §6) the PID's
 // derivative over the 1 ms physics step (kd·T/dt = 10 V per rad/s of change per period) makes
 // the voltage bang between ±12 V, and the 0.5 A-per-step slew lets the current climb to +4 A
 // but fall only to -1 A in each 10 ms period: the wheels overshoot the reference (r·w =

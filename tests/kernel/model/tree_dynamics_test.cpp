@@ -1,6 +1,6 @@
 // The small-tree fast path (kernel/src/model/tree_dynamics.cpp) against Simbody's realize
 // chain: the same accelerations to one part in 10^12, tick after tick, on trees of every
-// joint the fast path takes, moving fast and loaded everywhere (issue 17).
+// joint the fast path takes, moving fast and loaded everywhere.
 #include "fast_path_comparison.hpp"
 #include "model/multibody.hpp"
 #include "model_runner.hpp"

@@ -210,7 +210,7 @@ TEST(PluginLoader, ScanOfMixedFolderRegistersGoodAndWarnsAboutBad) {
 }
 
 TEST(PluginLoader, ScanWithDuplicateKindsAcrossFoldersFirstWinsWithAWarningNamingBoth) {
-  // A stale copy of a plugin later on the path must not stop every run (issue 13).
+  // A stale copy of a plugin later on the path must not stop every run.
   PluginRegistry registry({folder("good"), folder("duplicate_kind")});
   ASSERT_TRUE(registry.has("test_counter"));
   EXPECT_EQ(registry.find("test_counter").library, library("good"));

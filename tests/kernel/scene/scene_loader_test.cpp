@@ -514,7 +514,7 @@ TEST(SceneLoader, S2SimSettingsOverrideTheIni) {
   EXPECT_TRUE(st.ir_noise);
 }
 
-// Issue 11: a SimTwo file (no <s2sim>) follows SimTwo's control semantics, a scene with an
+// A SimTwo file (no <s2sim>) follows SimTwo's control semantics, a scene with an
 // <s2sim> element S2Sim's (docs/format.md §6).
 TEST(SceneLoader, ControlSemanticsAreSimTwosUnlessTheSceneHasAnS2SimElement) {
   EXPECT_EQ(load_scene(fixture("joints")).settings.control_semantics, ControlSemantics::simtwo);

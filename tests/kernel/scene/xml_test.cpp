@@ -63,7 +63,7 @@ TEST(Xml, SyntaxErrorNamesFileAndLine) {
   }
 }
 
-// Issue 16: 40 000 nested elements overflowed the stack of the runner and the viewer (the
+// 40 000 nested elements once overflowed the stack of the runner and the viewer (the
 // parsers recurse). Deeper than 256 levels is a located scene error; 256 itself still parses,
 // and comments, CDATA, quoted '>' and self-closing tags do not count as levels.
 TEST(Xml, NestingBeyondTheLimitIsALocatedErrorNotACrash) {
@@ -90,7 +90,7 @@ TEST(Xml, NestingBeyondTheLimitIsALocatedErrorNotACrash) {
   EXPECT_NO_THROW(parse_xml(fine, "fine.xml"));
 }
 
-// Issue 16: a million things in a 109 MB file needed 36 times its size in memory. A file of
+// A million things in a 109 MB file once needed 36 times its size in memory. A file of
 // more elements than the limit is refused, at the line of the first one over, before a tree is
 // built; a file at the limit loads.
 TEST(Xml, MoreElementsThanTheLimitAreALocatedErrorBeforeAnyTreeIsBuilt) {

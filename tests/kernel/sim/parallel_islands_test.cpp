@@ -1,4 +1,4 @@
-// Issue 17: the scene's islands stepped as parts on several threads give the serial run's
+// The scene's islands stepped as parts on several threads give the serial run's
 // numbers bit for bit (signals, snapshots, errors), and the parts are whole islands.
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>

@@ -1,4 +1,4 @@
-// Issue 11, SimTwo's control semantics per scene (docs/format.md §6): a SimTwo file without an
+// SimTwo's control semantics per scene (docs/format.md §6): a SimTwo file without an
 // <s2sim> element gets SimTwo's PID law and its 0.5 A-per-step current slew limit, for which
 // its gains are tuned; a scene with <s2sim> gets S2Sim's textbook law and no slew limit;
 // <s2sim><control semantics> says it explicitly.
@@ -81,7 +81,7 @@ TEST(ControlSemantics, SimTwosArmHoldsUnderSimTwosSemanticsAndIsUnstableUnderThe
   if (!fs::exists(kManipulator / "scene.xml"))
     GTEST_SKIP() << "SimTwo's reference scenes are not at " << S2SIM_SHARED_SCENES;
   // The control law alone: every plugin of the build but `fluids`, so that the arm's SimTwo
-  // <drag stokes='1e-2' roll='1e-1'> (issue 12) is left out; that damping steadies even the
+  // <drag stokes='1e-2' roll='1e-1'> is left out; that damping steadies even the
   // textbook law (J2 within 0.06 rad), which would hide the difference this test is about.
   const fs::path no_fluids = fs::path(testing::TempDir()) / "s2sim_plugins_but_fluids";
   fs::remove_all(no_fluids);

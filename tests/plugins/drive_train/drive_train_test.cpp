@@ -1,5 +1,5 @@
-// Acceptance of the drive train (issue 4) on scenes/motor_bench: the Lego NXT motor of the
-// SimTwo paper (Table 2) driving a 1e-3 kg·m² flywheel. Each test prints what it measured;
+// Acceptance of the drive train (docs/models/dc-motor.md) on scenes/motor_bench: the Lego NXT motor
+// of the SimTwo paper (Table 2) driving a 1e-3 kg·m² flywheel. Each test prints what it measured;
 // docs/models/dc-motor.md quotes these numbers.
 #include "bench_util.hpp"
 

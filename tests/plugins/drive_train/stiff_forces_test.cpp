@@ -1,18 +1,18 @@
-// Issue 10: stiff axis forces on light axes at the default 1 ms step with one substep.
+// Stiff axis forces on light axes at the default 1 ms step with one substep.
 //
 // The back-EMF damping (N K)²/R, the viscous friction bv, the contact's friction
 // regularisation and its bristle act on an axis through the speed of the previous step
 // (explicit evaluation, docs/models/dc-motor.md "A stability condition..."): when c·dt/I > 1
 // on a light axis the speed rings from step to step, and when c·dt/I > 2 it grows until a
 // limit (current, friction cone) bounds it into a period-2 oscillation whose mean may still
-// look right. These are the issue's acceptance tests; each prints what it measured.
+// look right. The tests below check that no axis rings so; each prints what it measured.
 //
 // Step-to-step ripple of a per-step signal x over a window (t0, t1]:
 //     ripple = max over steps k with t0 < t_k <= t1 of |x_k − x_{k−1}|  /  |mean of x_k|,
 // i.e. the largest change between two consecutive physics steps relative to the mean level.
-// A steady signal has ripple ≈ 0; the period-2 oscillation of the issue has ripple > 100 %.
+// A steady signal has ripple ≈ 0; the period-2 oscillation above has ripple > 100 %.
 //
-// Fixtures (tests/plugins/drive_train/fixtures/): two_wheeler (the issue's NXT-class robot),
+// Fixtures (tests/plugins/drive_train/fixtures/): two_wheeler (an NXT-class robot),
 // four_bar (a crank-rocker driven by the NXT motor), stiff_axes (1e-6 kg·m² axes under the
 // stiffest motor and contact). Also scenes/nxt and SimTwo's base project.
 #include "bench_util.hpp"
@@ -145,11 +145,11 @@ std::string wheel(const char* robot, const char* axis, const char* signal) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The two-wheeled robot of the issue (fixtures/two_wheeler), driven straight at 6 V, no
-// controller. Variants: the issue's numbers; the same motor with its inductance neglected
-// (li = 0, the algebraic current every SimTwo motor without `li` has: c = Ks²/R + B, c·dt/J =
-// 1.7 on the 50 g tyre); the NXT's own 20 g tyre with no rotor inertia (c·dt/J = 2.2, the case
-// docs/models/dc-motor.md works around with a rotor inertia in scenes/nxt).
+// The two-wheeled robot (fixtures/two_wheeler), driven straight at 6 V, no controller.
+// Variants: the fixture's own numbers (li 4.88 mH, 50 g tyres); the same motor with its inductance
+// neglected (li = 0, the algebraic current every SimTwo motor without `li` has: c = Ks²/R + B,
+// c·dt/J = 1.7 on the 50 g tyre); the NXT's own 20 g tyre with no rotor inertia (c·dt/J = 2.2, the
+// case docs/models/dc-motor.md works around with a rotor inertia in scenes/nxt).
 
 struct WheelerCase {
   const char* name;
@@ -178,7 +178,7 @@ std::vector<std::pair<std::string, double>> with(std::vector<std::pair<std::stri
 
 class TwoWheeler : public testing::TestWithParam<WheelerCase> {};
 
-// Acceptance 1: at 6 V the wheel speed is steady from step to step after 0.5 s (ripple <= 1 %
+// At 6 V the wheel speed is steady from step to step after 0.5 s (ripple <= 1 %
 // on both wheels over (0.5 s, 2 s]) and the robot drives forward (+X) at r·ω within 2 %.
 TEST_P(TwoWheeler, DrivesStraightAt6VoltsWithoutStepToStepRipple) {
   auto sim = Simulation::load(kWheeler, options(GetParam().defines));
@@ -206,7 +206,7 @@ TEST_P(TwoWheeler, DrivesStraightAt6VoltsWithoutStepToStepRipple) {
   EXPECT_NEAR(w, eq_3_11(6), 0.02 * eq_3_11(6)) << "mean wheel speed far from (3.11)";
 }
 
-// Acceptance 6 and the wheel in the air: lifted 5 m (a 1.0 s fall), the free-running wheel's
+// The wheel in the air: lifted 5 m (a 1.0 s fall), the free-running wheel's
 // mean speed over (0.5 s, 0.9 s] equals (3.11) within 0.1 %, its speed has no step-to-step
 // ripple (<= 1 %), and the axis torque signal never changes sign from one step to the next.
 TEST_P(TwoWheeler, InTheAirTurnsAtEq311WithoutRippleInSpeedOrTorque) {
@@ -234,7 +234,7 @@ TEST_P(TwoWheeler, InTheAirTurnsAtEq311WithoutRippleInSpeedOrTorque) {
   }
 }
 
-// Acceptance 6: over 20 s at 6 V the distance driven changes by less than 0.5 % between 1 and 4
+// Over 20 s at 6 V the distance driven changes by less than 0.5 % between 1 and 4
 // substeps per 1 ms tick.
 TEST_P(TwoWheeler, DistanceIn20SecondsIsTheSameWith1And4Substeps) {
   double distance[2] = {};
@@ -261,7 +261,7 @@ TEST_P(TwoWheeler, DistanceIn20SecondsIsTheSameWith1And4Substeps) {
 INSTANTIATE_TEST_SUITE_P(StiffForces, TwoWheeler, testing::ValuesIn(kWheelerCases), case_name);
 
 // ---------------------------------------------------------------------------------------------
-// Acceptance 2: scenes/nxt (as in the repository) under its own pidspeed loop, as its comment
+// scenes/nxt (as in the repository) under its own pidspeed loop, as its comment
 // says (controller_active, ref_speed). Forward is the right wheel positive and the left negative
 // (docs/format.md 7.3; Nxt.At6VoltsDrivesStraight... drives +X with right +6 V, left -6 V).
 // Every step from 0.5 s to 3 s each wheel is within 2 % of its 8 rad/s reference, and the robot
@@ -270,7 +270,7 @@ INSTANTIATE_TEST_SUITE_P(StiffForces, TwoWheeler, testing::ValuesIn(kWheelerCase
 // 1/1.92 (3.11), so the PI loop only removes the friction offset, with its integral time
 // kp/ki = 0.1 s; 0.5 s is five of those (on the motor bench the same loop is within 2 % after
 // 0.029 s).
-// Measured on the code of the issue: this fails the same way at a 0.1 ms step and with 10
+// Measured with the stiff forces explicit: this fails the same way at a 0.1 ms step and with 10
 // substeps (worst |ω − ref| 30 and 48 rad/s, the robot backing 1 m in 3 s). At 9 V the motor's
 // stall torque (0.58 N·m) overpowers the tyre's grip (μ·N·r ≈ 0.07 N·m): the wheel slips and
 // spins up within ~2 ms like a free wheel, so the 10 ms loop sees a plant that settles within
@@ -308,12 +308,12 @@ TEST(NxtSpeedLoop, TracksPlusMinus8RadPerSecondWithin2PercentAndDrivesForward) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Acceptance 3: SimTwo's base project. Its robot `Classic` (Differential2.xml) has three
+// SimTwo's base project. Its robot `Classic` (Differential2.xml) has three
 // <wheels>: W1 (-90°) and W2 (+90°) driven, their pidspeed controllers active from the start
 // (kp 0.2, kd 0.01, kf 0.05, 10 ms) with ref_speed 0, and W3 an unpowered omni caster. At a
 // zero speed reference every wheel stays within 0.05 rad/s of zero for 10 s, after 0.2 s for
 // the robot, built resting on the floor, to settle on the contact's springs.
-// Measured on the code of the issue: this fails the same way at a 0.1 ms step (max |ω| 3.7
+// Measured with the stiff forces explicit: this fails the same way at a 0.1 ms step (max |ω| 3.7
 // rad/s) and passes with kd = 0 (max |ω| 5e-21 rad/s): the textbook D term kd/T = 1 V per
 // rad/s times the plant's gain 1/(N K) = 5.95 rad/s per V drives a loop whose plant settles
 // within a few periods; the explicit stiffness (c·dt/J = 0.15 here) is not the cause.
@@ -344,17 +344,17 @@ void expect_classic_wheels_still(const fs::path& scene) {
   }
 }
 
-// The issue's point as written. Disabled: at the scene's own 1 ms step the wheels do not hold
-// under either law (the test below; they hold at 0.5 ms and finer under the textbook law).
-// Before 2026-11-25 the analysis here was a plant of the wheel alone: sampled every T = 10 ms,
+// The point above with the scene's own D term. Disabled: at the scene's own 1 ms step the wheels do
+// not hold under either law (the test below; they hold at 0.5 ms and finer under the textbook law).
+// An earlier analysis here took a plant of the wheel alone: sampled every T = 10 ms,
 // the wheel (DC gain 1/(N K) = 5.95 rad/s per V, time constant J/c ≈ 7..35 ms) under
 // V = −kp·ω − kd·(ω_n − ω_{n−1})/T with kd/T = 1 V per rad/s has a closed-loop pole below −1;
 // a wheel standing on the floor drags the robot, which the contact now counts, and that loop
-// holds once the step resolves the contact. Under SimTwo's semantics, this file's default since
-// issue 11, the derivative over the 1 ms physics step is ten times stronger: the 0.05 rad/s the
-// wheels turn while the robot settles on the floor kicks it, the motor's reaction pitches the
-// chassis (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's back-EMF
-// K·ω/N as well). With kd = 0 the wheels hold to 7.5e-14 rad/s under both laws (the test
+// holds once the step resolves the contact. Under SimTwo's semantics, this file's default
+// (docs/format.md §6), the derivative over the 1 ms physics step is ten times stronger: the 0.05
+// rad/s the wheels turn while the robot settles on the floor kicks it, the motor's reaction pitches
+// the chassis (0.3 rad at 0.5 s), and the wheels run away to 74 rad/s (136 rad/s with SimTwo's
+// back-EMF K·ω/N as well). With kd = 0 the wheels hold to 7.5e-14 rad/s under both laws (the test
 // below): what the stiff forces owe.
 TEST(SharedBase, DISABLED_ClassicRobotKeepsItsWheelsStillAtAZeroSpeedReference) {
   if (!fs::exists(kBase / "scene.xml"))
@@ -373,7 +373,7 @@ TEST(SharedBase, ClassicRobotWithoutItsDTermKeepsItsWheelsStillAtAZeroSpeedRefer
 // the step) the converged motion holds the wheels still with the scene's D term: max |ω| 0.000
 // rad/s at 0.5, 0.1 and 0.05 ms; at the 1 ms step the D term rings (7.8 rad/s), and under
 // SimTwo's law (D over the physics step, SimTwo's own semantics for this file) the wheels run
-// away at 1 ms (27.7 rad/s). Until 2026-11-25 the wheels rang up at every step (3.49 rad/s at
+// away at 1 ms (27.7 rad/s). Earlier the wheels rang up at every step (3.49 rad/s at
 // 0.1 ms, 3.64 at 0.025 ms): the contact took a wheel's sideways and rolling pushes at the
 // wheel's own inertia, so at the controller's frequencies the wheel turned almost free of the
 // robot it stands on; with the tree's mobility at the contact (docs/models/contact.md,
@@ -405,7 +405,7 @@ TEST(SharedBase, ClassicRobotWithItsDTermHoldsStillOnceTheStepResolvesTheContact
 }
 
 // ---------------------------------------------------------------------------------------------
-// Acceptance 4: fixtures/four_bar, a crank-rocker of light links (1 g, 2.5 g, 2 g) whose crank
+// fixtures/four_bar, a crank-rocker of light links (1 g, 2.5 g, 2 g) whose crank
 // A is driven by the NXT motor at 6 V; D closes the loop. Positions are updated with the
 // mid-step speeds (leapfrog: q_k = q_{k−1} + h·u_k), so over the run Σ h·speed_k, the
 // rectangle sum of the logged per-step speeds, must equal the change of position. The
@@ -449,7 +449,7 @@ TEST(FourBar, SpeedIntegralEqualsPositionChangeOnTheDrivenAxisAndTheLoopAxes) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Acceptance 5, stress: fixtures/stiff_axes, a 1 kg cart on two 1e-6 kg·m² wheels with the
+// Stress: fixtures/stiff_axes, a 1 kg cart on two 1e-6 kg·m² wheels with the
 // stiffest contact the format allows (softness 1e-9, mu 10), and a free 1e-6 kg·m² rotor, each
 // axis under a motor with ri 1e-3 Ω, li 0, ki 1, gear 100, vmax 24 V, imax 1000 A at 12 V:
 // c·dt/J = 1e10 at 1 ms. The wheels load the motor through the contact (friction

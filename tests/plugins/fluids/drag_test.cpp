@@ -78,7 +78,7 @@ TEST(Drag, RunsAreDeterministicAndResetAndRestoreAreExact) {
 }
 
 // A misspelt parameter of a fluids kind is a refusal, not a warning: the default it leaves in
-// place would change the physics silently (issue 12). `cD` for `cd`.
+// place would change the physics silently. `cD` for `cd`.
 TEST(Drag, AMisspeltParameterIsRefusedNamingTheClosestOne) {
   const auto dir = s2sim::test::edited_copy(
       std::filesystem::path(S2SIM_SOURCE_DIR) / "tests/plugins/fluids/fixtures/sphere_air",

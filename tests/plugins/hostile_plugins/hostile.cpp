@@ -1,4 +1,4 @@
-// A plugin that misbehaves on purpose (issue 16, ../shared/repro R07, R08): it throws from
+// A plugin that misbehaves on purpose (../shared/repro R07, R08): it throws from
 // configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
 // a std::exception or something that is not an exception at all, or crashes (SIGSEGV). Built like a
 // third party's. Its constructor crashes when the environment variable

@@ -195,8 +195,8 @@ TEST(FloorLine, OneOverTheLineZeroBesideItHalfOverItsEdge) {
   EXPECT_EQ(sim->signal("sensors/no_tag/value"), 0.0);     // no tag never sees anything
 }
 
-// SimTwo accepts a tag no track polygon carries (issue 11: a shipped project was refused for
-// it): a warning naming file, element and value, and the sensor reads 0 for that tag.
+// SimTwo accepts a tag no track polygon carries (a shipped SimTwo project was once refused
+// for it): a warning naming file, element and value, and the sensor reads 0 for that tag.
 TEST(FloorLine, AnUnknownTagIsAWarningNamingFileElementAndValueAndReadsZero) {
   const fs::path dir =
       fixture_with("floorline", "sensors.xml", "<tag value='black'/>", "<tag value='blak'/>");
