@@ -113,7 +113,7 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
 void ContactWorld::end_parts() {
   // The contact list stays in the lanes until someone reads it (contacts()): moving every
   // part's contacts to the calling thread at every substep cost the parallel step a
-  // microsecond of serial work (issue 17).
+  // microsecond of serial work.
   in_lanes_ = lanes_hold_last_ = true;
 }
 

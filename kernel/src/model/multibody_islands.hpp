@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// The scene's multibody as P parts stepped in parallel (issue 17): each part is its own
+/// The scene's multibody as P parts stepped in parallel each part is its own
 /// Simbody system holding whole islands of the joint graph (island_plan.hpp), and a persistent
 /// worker pool runs the parts' stages of a substep at once. The kernel still sees one body
 /// numbering and one axis table: the parts read their slices of the scene-wide load arrays and

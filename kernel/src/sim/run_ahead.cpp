@@ -1,4 +1,4 @@
-// Running ahead (issue 17): with the components in the parts and every part's shapes apart
+// Running ahead: with the components in the parts and every part's shapes apart
 // from the others', the parts step a stretch of ticks each on its own thread, without the
 // calling thread between their ticks. A tick stepped one by one makes both threads wait for
 // the slower at every tick and pays the start of a pool run; a stretch pays them once.
@@ -23,7 +23,8 @@ namespace {
 /// kept, up to the longest. What a stretch costs once (the saved state, about 10 µs for 16
 /// robots; the start of the pool run; the wait for the slower part at its end) shrinks per
 /// tick as stretches grow: on 16 robots, stretches of 1 000 ticks gave 0.93–0.96 of the
-/// machine's two-thread ceiling, of 64 ticks 0.88–1.0, of 16 ticks 0.75–0.94 (docs/benchmarks.md).
+/// machine's two-thread ceiling, of 64 ticks 0.88–1.03, of 16 ticks 0.75–0.94
+/// (bench/peers/results/history.md, "Tried and not kept").
 /// A part leaving its fence loses the ticks its stretch ran, so the length starts short.
 constexpr std::int64_t kFirstStretchTicks = 64;
 constexpr std::int64_t kLongestStretchTicks = 1024;
