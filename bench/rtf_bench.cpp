@@ -39,7 +39,7 @@ Options:
   --json FILE    also write the results as JSON
   --threads N    step each scene's islands on N threads (SimulationOptions::threads)
   --profile      after the timed repeats, one more run with per-stage timing: wall time per
-                 tick pipeline stage (sense ... finish, docs/architecture.md) in us/step
+                 tick pipeline stage (sense ... read out, docs/architecture.md) in us/step
   --help
 )";
 

@@ -68,12 +68,13 @@ class PySimulation {
                std::optional<double> physics_step_s, std::optional<int> substeps,
                const std::map<std::string, double>& defines,
                const std::vector<std::filesystem::path>& plugin_path, int threads,
-               bool simbody_dynamics, bool run_ahead) {
+               bool simbody_dynamics, bool run_ahead, bool check_dynamics) {
     SimulationOptions options;
     options.seed = seed;
     options.threads = threads;
     options.run_ahead = run_ahead;
     options.simbody_dynamics_only = simbody_dynamics;
+    options.check_dynamics = check_dynamics;
     options.physics_step_s = physics_step_s;
     options.substeps = substeps;
     options.plugin_path = plugin_path.empty() ? default_plugin_path() : plugin_path;
@@ -229,14 +230,16 @@ PYBIND11_MODULE(_s2sim, m) {
   py::class_<PySimulation>(m, "Simulation",
                            "A loaded scene ready to step (docs/python.md). Simulation(scene, "
                            "seed=1, physics_step=None, substeps=None, defines={}, "
-                           "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True).")
+                           "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True, "
+                           "check_dynamics=False).")
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,
-                    const std::vector<std::filesystem::path>&, int, bool, bool>(),
+                    const std::vector<std::filesystem::path>&, int, bool, bool, bool>(),
            py::arg("scene"), py::arg("seed") = 1, py::arg("physics_step") = py::none(),
            py::arg("substeps") = py::none(), py::arg("defines") = std::map<std::string, double>{},
            py::arg("plugin_path") = std::vector<std::filesystem::path>{}, py::arg("threads") = 1,
-           py::arg("simbody_dynamics") = false, py::arg("run_ahead") = true)
+           py::arg("simbody_dynamics") = false, py::arg("run_ahead") = true,
+           py::arg("check_dynamics") = false)
       .def("step", &PySimulation::step, py::arg("n") = 1,
            "Advances n ticks (physics steps); the GIL is released meanwhile.")
       .def("run_until", &PySimulation::run_until, py::arg("t"),
@@ -244,6 +247,23 @@ PYBIND11_MODULE(_s2sim, m) {
       .def_property_readonly(
           "time", [](const PySimulation& s) { return s.sim().time_s(); }, "Simulated time, s.")
       .def_property_readonly("tick", [](const PySimulation& s) { return s.sim().tick(); })
+      .def_property_readonly(
+          "dynamics", [](const PySimulation& s) { return s.sim().dynamics(); },
+          "The dynamics that step the scene: 'tree', 'simbody', 'checked' or 'loose' "
+          "(docs/models/multibody.md, 'The dynamics and their check').")
+      .def_property_readonly(
+          "dynamics_check",
+          [](const PySimulation& s) {
+            const Simulation::DynamicsCheck c = s.sim().dynamics_check();
+            py::dict d;
+            d["compared"] = c.compared;
+            d["worst_relative"] = c.worst_relative;
+            d["worst_time"] = c.worst_time_s;
+            d["agreement"] = c.agreement;
+            return d;
+          },
+          "With check_dynamics: the accelerations compared with Simbody's, the largest "
+          "difference relative to the largest acceleration, when, and the agreement allowed.")
       .def_property_readonly(
           "run_ahead_counts",
           [](const PySimulation& s) {

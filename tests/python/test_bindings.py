@@ -206,6 +206,22 @@ def test_run_ahead_keyword_gives_the_same_run_and_counts_its_stretches():
     assert lockstep.run_ahead_counts == {"stretches": 0, "ticks": 0, "lost": 0}
 
 
+def test_check_dynamics_keyword_compares_every_substep_and_changes_nothing():
+    checked = s2sim.Simulation(ROBOTS_4, check_dynamics=True)
+    plain = s2sim.Simulation(ROBOTS_4)
+    assert (checked.dynamics, plain.dynamics) == ("checked", "tree")
+    for sim in (checked, plain):
+        for name in sim.list_inputs():
+            if name.endswith("/ref_voltage"):
+                sim.set_input(name, 4.0)
+        sim.step(200)
+    assert np.array_equal(checked.signals("*"), plain.signals("*"))
+    check = checked.dynamics_check
+    assert check["compared"] == 200
+    assert 0 < check["worst_relative"] <= check["agreement"] == 1e-9
+    assert plain.dynamics_check["compared"] == 0
+
+
 def test_simbody_dynamics_keyword_gives_the_fast_paths_run_to_rounding():
     runs = [robots_4_signals(simbody_dynamics=simbody) for simbody in (False, True)]
     assert not np.array_equal(runs[0], runs[1])  # two computations, not one
