@@ -66,9 +66,10 @@ bool Multibody::needs_simbody_dynamics() const {
   return impl_->has_mobilized_bodies && !impl_->tree;
 }
 DynamicsCheck Multibody::dynamics_check() const {
-  DynamicsCheck check = impl_->check;
-  check.agreement = kDynamicsAgreement;
-  return check;
+  return impl_->check;
+}
+void Multibody::set_dynamics_agreement(double relative) {
+  impl_->check.agreement = relative;
 }
 Wrench* Multibody::use_contact_wrenches() {
   impl_->contact_wrenches_used = true;

@@ -63,6 +63,9 @@ struct DynamicsCheck {
   double worst_relative = 0;
   double worst_time_s = 0;  ///< when the worst one was seen
   double agreement = 0;     ///< the largest relative difference allowed (kDynamicsAgreement)
+  /// Substeps where the two parted because Simbody's accelerations broke the loops'
+  /// acceleration constraints while the tree's held them: no verdict there.
+  std::int64_t reference_off_constraints = 0;
 };
 
 /// The scene's bodies and joints as a Simbody system, and the integrator's operations on it.
@@ -124,6 +127,9 @@ class Multibody {
 
   /// Which equations of motion step the system, chosen at load (model/dynamics.hpp).
   void choose_dynamics(DynamicsChoice choice);
+  /// The checked dynamics' agreement (relative; kDynamicsAgreement unless set): a tighter one
+  /// finds the rounding between the two, a looser one tolerates more.
+  void set_dynamics_agreement(double relative);
   /// Whether the small-tree dynamics step the system (tree_dynamics.hpp; alone or checked): a
   /// system of free, hinge, slider, universal, ball and fixed joints, with loop joints of any
   /// kind, whose accelerations matched Simbody's at load; not a system with loops while joint

@@ -486,6 +486,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.dynamics = &simbody_dynamics();  // the builder's, until select_dynamics chooses
+  m.check.agreement = kDynamicsAgreement;
   m.tick_s = tick_s;
   const int n_bodies = static_cast<int>(scene.bodies.size());
   const auto n_joints = scene.joints.size();

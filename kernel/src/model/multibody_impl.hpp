@@ -164,8 +164,9 @@ struct Multibody::Impl {
   // `choice`, the tree above and the joint reactions wanted.
   DynamicsChoice choice = DynamicsChoice::tree_where_possible;
   const Dynamics* dynamics = nullptr;
-  DynamicsCheck check;           // what the checked dynamics found so far (not state)
-  SimTK::Vector reference_udot;  // the checked dynamics' scratch: Simbody's accelerations
+  DynamicsCheck check;              // what the checked dynamics found so far (not state)
+  SimTK::Vector reference_udot;     // the checked dynamics' scratch: Simbody's accelerations
+  SimTK::Vector constraint_errors;  // and the loops' acceleration errors of either
 
   // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
   // multibody/time

@@ -116,15 +116,20 @@ void MultibodyIslands::choose_dynamics(DynamicsChoice choice) {
     part.multibody->choose_dynamics(fast_path_possible_ ? choice : DynamicsChoice::simbody);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
 }
+void MultibodyIslands::set_dynamics_agreement(double relative) {
+  for (auto& part : parts_)
+    part.multibody->set_dynamics_agreement(relative);
+}
 const char* MultibodyIslands::dynamics_name() const {
   return parts_[0].multibody->dynamics_name();  // the parts choose alike (the constructor)
 }
 DynamicsCheck MultibodyIslands::dynamics_check() const {
   DynamicsCheck all = parts_[0].multibody->dynamics_check();
-  all.compared = 0;
+  all.compared = all.reference_off_constraints = 0;
   for (const auto& part : parts_) {
     const DynamicsCheck check = part.multibody->dynamics_check();
     all.compared += check.compared;
+    all.reference_off_constraints += check.reference_off_constraints;
     if (check.worst_relative > all.worst_relative) {
       all.worst_relative = check.worst_relative;
       all.worst_time_s = check.worst_time_s;

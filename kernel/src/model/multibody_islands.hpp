@@ -62,6 +62,7 @@ class MultibodyIslands {
   const double* drive_force_applied() const;
   void request_joint_reactions();
   void choose_dynamics(DynamicsChoice choice);
+  void set_dynamics_agreement(double relative);
   const char* dynamics_name() const;
   DynamicsCheck dynamics_check() const;
   const Wrench* joint_reactions() const;

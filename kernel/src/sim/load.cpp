@@ -155,6 +155,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   } else if (options.check_dynamics) {
     m.multibody->choose_dynamics(model::DynamicsChoice::checked);
   }
+  if (options.dynamics_agreement) {
+    if (!(*options.dynamics_agreement > 0))
+      throw Error(ErrorKind::usage, "SimulationOptions::dynamics_agreement must be positive, got " +
+                                        std::to_string(*options.dynamics_agreement));
+    m.multibody->set_dynamics_agreement(*options.dynamics_agreement);
+  }
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   m.contacts->set_mobility(m.multibody->contact_mobility());

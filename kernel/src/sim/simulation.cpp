@@ -45,7 +45,8 @@ std::string Simulation::dynamics() const {
 }
 Simulation::DynamicsCheck Simulation::dynamics_check() const {
   const model::DynamicsCheck check = impl_->multibody->dynamics_check();
-  return {check.compared, check.worst_relative, check.worst_time_s, check.agreement};
+  return {check.compared, check.worst_relative, check.worst_time_s, check.agreement,
+          check.reference_off_constraints};
 }
 
 int Simulation::body_count() const {

@@ -53,19 +53,38 @@ TEST(DynamicsCheck, ComparesEverySubstepAndLeavesTheRunAsItIs) {
   EXPECT_EQ(plain->dynamics_check().compared, 0);
 }
 
-// Where the two part (the walker's parallelogram, whose loop rows are redundant, landing on
-// the floor), the run stops with a runtime error naming the time, the body and both values.
-TEST(DynamicsCheck, StopsWhereTheTwoPartNamingTheBody) {
+// As the walker lands, its parallelogram (redundant loop rows) takes Simbody's constrained
+// solve off the loop constraints, which the tree's keeps: those substeps are counted, not
+// judged. The tree's 2.7e-6 difference at 0.499 s (docs/models/multibody.md) lies beyond.
+TEST(DynamicsCheck, DoesNotJudgeWhereSimbodysAccelerationsBreakTheLoops) {
   auto sim = loops(true);
+  sim->step(495);
+  const Simulation::DynamicsCheck check = sim->dynamics_check();
+  EXPECT_EQ(check.compared, 495);
+  EXPECT_EQ(check.reference_off_constraints, 2);
+  EXPECT_LT(check.worst_relative, 1e-9);
+}
+
+// Beyond the agreement the run stops with a runtime error naming the time, the body and both
+// values: the tree and Simbody agree to rounding, not to 1e-16.
+TEST(DynamicsCheck, StopsBeyondTheAgreementNamingTheBody) {
+  SimulationOptions o;
+  o.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
+  o.check_dynamics = true;
+  o.dynamics_agreement = 1e-16;
+  auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt", o);
+  sim->set_input("robots/nxt/axes/left/ref_voltage", 6);
   try {
-    sim->step(500);
-    FAIL() << "the check passed the walker's landing";
+    sim->step(1000);
+    FAIL() << "the tree and Simbody agreed to 1e-16 for a second";
   } catch (const Error& e) {
     EXPECT_EQ(e.kind(), ErrorKind::runtime);
-    EXPECT_THAT(e.what(), HasSubstr("the dynamics check failed at t = 0.478 s"));
-    EXPECT_THAT(e.what(), HasSubstr("'foot' of robot 'walker'"));
-    EXPECT_THAT(e.what(), HasSubstr("beyond the agreement of 1e-09"));
+    EXPECT_THAT(e.what(), HasSubstr("the dynamics check failed at t = "));
+    EXPECT_THAT(e.what(), HasSubstr("of robot 'nxt'"));
+    EXPECT_THAT(e.what(), HasSubstr("beyond the agreement of 1e-16"));
   }
+  o.dynamics_agreement = 0.0;
+  EXPECT_THROW(Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt", o), Error);
 }
 
 // The reference itself: Simbody's realize chain steps the same scene, its choice reported.

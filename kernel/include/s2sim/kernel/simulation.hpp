@@ -49,6 +49,9 @@ struct SimulationOptions {
   /// naming the body. The results are the unchecked run's, bit for bit;
   /// it costs Simbody's realize per substep. Ignored with simbody_dynamics_only.
   bool check_dynamics = false;
+  /// The dynamics check's agreement, relative to the largest acceleration (unset: 1e-9, the
+  /// check at load's).
+  std::optional<double> dynamics_agreement;
   /// Plugin folders searched first, before the default ones (S2SIM_PLUGIN_PATH, then the
   /// plugin folder of the kernel's own prefix: docs/plugins.md). When two libraries provide
   /// one kind, the first on the path wins (a load warning names both).
@@ -141,6 +144,9 @@ class Simulation {
     double worst_relative = 0;
     double worst_time_s = 0;
     double agreement = 0;  ///< the largest relative difference allowed
+    /// Substeps not judged: Simbody's accelerations broke the loops' acceleration
+    /// constraints there while the tree's held them (redundant loop rows).
+    std::int64_t reference_off_constraints = 0;
   };
   DynamicsCheck dynamics_check() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
