@@ -405,6 +405,41 @@ TEST_F(PascalScript, NonFiniteOrDegenerateTeleportsAreScriptErrorsNamingTheCall)
   }
 }
 
+/// A 0/0 voltage stops the script with an error naming the routine and the line; the motor
+/// keeps finite inputs, the simulation goes on, and the runner ends the run with exit 0.
+TEST_F(PascalScript, NonFiniteVoltageIsAScriptErrorNamingTheCallAndItsLine) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  const fs::path script = fs::path(S2SIM_PASCAL_FIXTURES) / "nan_voltage.pas";
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), with_script(script));
+  const std::string axis = "robots/Motor/axes/InertialBoard/";
+  sim->run_until(0.1);  // two calls at 6 V
+  EXPECT_GT(std::abs(sim->signal(axis + "current")), 0.1);
+  ::testing::internal::CaptureStderr();
+  sim->run_until(2.0);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NEAR(sim->time_s(), 2.0, 1e-9);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 1);
+  EXPECT_EQ(sig(*sim, "controllers/script/calls"), 3);  // none after the error
+  EXPECT_EQ(sig(*sim, "sheet/A1"), 3);
+  EXPECT_NE(err.find("run-time error in Control"), std::string::npos) << err;
+  EXPECT_NE(err.find("SetAxisVoltageRef: argument 3 is NaN"), std::string::npos) << err;
+  EXPECT_NE(err.find("nan_voltage.pas:13"), std::string::npos) << err;  // the call's line
+  EXPECT_EQ(sim->input(sim->input_index(axis + "ref_voltage")), 0);     // zeroed, never NaN
+  for (const char* s : {"voltage", "current", "pos", "speed"})
+    EXPECT_TRUE(std::isfinite(sim->signal(axis + s))) << s;
+
+  const fs::path log = fs::temp_directory_path() / ("s2sim-nan-" + std::to_string(::getpid()));
+  const std::string cmd = std::string(S2SIM_BIN_DIR) + "/s2sim-run " +
+                          shared("MotorModel_V3AGM").string() + " --script " + script.string() +
+                          " --duration 2 --quiet > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  const std::string out(std::istreambuf_iterator<char>(in), {});
+  fs::remove(log);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << "\n" << out;
+  EXPECT_NE(out.find("SetAxisVoltageRef: argument 3 is NaN"), std::string::npos) << out;
+}
+
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
