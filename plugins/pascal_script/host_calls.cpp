@@ -3,6 +3,8 @@
 // vector of numbers kept for the script to copy) or leaves an error the script raises.
 #include "script_controller.hpp"
 
+#include <algorithm>
+
 namespace s2sim::pascal {
 
 // --- the host functions ---------------------------------------------------------------------
@@ -18,6 +20,7 @@ void ScriptController::not_provided(HostFn fn, const char* why) {
 
 std::string number_text(double v) {
   if (std::isnan(v)) return "NaN";
+  if (std::isinf(v)) return v > 0 ? "+Inf" : "-Inf";
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.15g", v);
   return buf;
@@ -128,6 +131,16 @@ std::int32_t ScriptController::host_result(void* host, std::int32_t kind, const 
 double ScriptController::call(HostFn fn, const double* a, int n, const std::string& s,
                               const std::string& s2) {
   StepContext& ctx = *ctx_;
+  // A NaN or infinite number (a 0/0 in the script) would reach the simulation, or an index
+  // cast; it stops the script instead. SetMotorPars names its fields itself, and a rotation
+  // matrix may carry unused cells: past their indices they check their own.
+  const int checked = fn == HostFn::SetMotorPars          ? std::min(n, 2)
+                      : fn == HostFn::SetSolidRotationMat ? std::min(n, 4)
+                                                          : n;
+  for (int k = 0; k < checked; ++k)
+    if (!std::isfinite(a[k]))
+      fail(std::string(kHostFnNames[static_cast<int>(fn)]) + ": argument " + std::to_string(k + 1) +
+           " is " + number_text(a[k]));
   auto need = [&](int count) { require_arguments(fn, n, count); };
   auto drive = [&](double r, double i) -> AxisRef& {
     AxisRef& ax = axis(r, i);

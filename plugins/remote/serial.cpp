@@ -9,10 +9,11 @@
 //   simulation -> device, after "?":      # s2sim-serial 1\n # input <name> <unit>\n ...
 //                                         # signal <name> <unit>\n # end\n
 //
-// Numbers are C-locale decimal (%.17g: doubles round-trip). A malformed line (not exactly n
-// finite numbers, unknown command, longer than 4096 bytes) is dropped and counted. As for the
-// remote link, a device that stops sending for timeout_s (wall clock) leaves the inputs zeroed.
-// The link's bookkeeping stays in members (see remote.cpp: connection, not world state).
+// The device's lines may end in LF, CR LF or CR. Numbers are C-locale decimal (%.17g: doubles
+// round-trip). A malformed line (not exactly n finite numbers, unknown command, longer than
+// 4096 bytes) is dropped and counted. As for the remote link, a device that stops sending for
+// timeout_s (wall clock) leaves the inputs zeroed. The link's bookkeeping stays in members
+// (see remote.cpp: connection, not world state).
 #include "kinds.hpp"
 #include "served_set.hpp"
 
@@ -131,8 +132,11 @@ class Serial final : public Component {
 
  private:
   void take(StepContext& ctx, char c, Clock::time_point now) {
-    if (c == '\r') return;
-    if (c != '\n') {
+    // A line ends at LF, CR LF or CR: the LF of a CR LF ends no second, empty line.
+    const bool after_cr = after_cr_;
+    after_cr_ = c == '\r';
+    if (c == '\n' && after_cr) return;
+    if (c != '\n' && c != '\r') {
       if (length_ < kMaxLine) line_[length_] = c;
       ++length_;  // past kMaxLine: the line is too long, dropped at its end
       return;
@@ -185,7 +189,7 @@ class Serial final : public Component {
   std::vector<char> line_, out_;
   std::vector<double> values_;
   std::size_t length_ = 0;
-  bool inputs_seen_ = false;
+  bool inputs_seen_ = false, after_cr_ = false;
   Clock::time_point last_inputs_{};
 };
 

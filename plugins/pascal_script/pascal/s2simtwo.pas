@@ -72,8 +72,12 @@ type
     MessSize, ReadDisp: integer;
   end;
 
-  { SimTwo (Windows) joins lines with CR LF; FPC on Linux with LF. }
+  { SimTwo (Windows) joins lines with CR LF; FPC on Linux with LF. Setting Text splits on
+    LF, CR LF or CR alike, as SimTwo's does: FPC splits on LineBreak alone once it differs
+    from the platform's, so an LF-only datagram would stay one line. }
   TStringList = class(Classes.TStringList)
+  protected
+    procedure SetTextStr(const Value: string); override;
   public
     constructor Create;
   end;
@@ -257,6 +261,19 @@ constructor TStringList.Create;
 begin
   inherited Create;
   LineBreak := #13#10;
+end;
+
+procedure TStringList.SetTextStr(const Value: string);
+var s: string; p: SizeInt;
+begin
+  BeginUpdate;
+  try
+    Clear;
+    p := 1;
+    while GetNextLine(Value, s, p) do Add(s);
+  finally
+    EndUpdate;
+  end;
 end;
 
 { --- the host bridge --- }

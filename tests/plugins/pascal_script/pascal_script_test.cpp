@@ -405,6 +405,41 @@ TEST_F(PascalScript, NonFiniteOrDegenerateTeleportsAreScriptErrorsNamingTheCall)
   }
 }
 
+/// A 0/0 voltage stops the script with an error naming the routine and the line; the motor
+/// keeps finite inputs, the simulation goes on, and the runner ends the run with exit 0.
+TEST_F(PascalScript, NonFiniteVoltageIsAScriptErrorNamingTheCallAndItsLine) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  const fs::path script = fs::path(S2SIM_PASCAL_FIXTURES) / "nan_voltage.pas";
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), with_script(script));
+  const std::string axis = "robots/Motor/axes/InertialBoard/";
+  sim->run_until(0.1);  // two calls at 6 V
+  EXPECT_GT(std::abs(sim->signal(axis + "current")), 0.1);
+  ::testing::internal::CaptureStderr();
+  sim->run_until(2.0);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_NEAR(sim->time_s(), 2.0, 1e-9);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 1);
+  EXPECT_EQ(sig(*sim, "controllers/script/calls"), 3);  // none after the error
+  EXPECT_EQ(sig(*sim, "sheet/A1"), 3);
+  EXPECT_NE(err.find("run-time error in Control"), std::string::npos) << err;
+  EXPECT_NE(err.find("SetAxisVoltageRef: argument 3 is NaN"), std::string::npos) << err;
+  EXPECT_NE(err.find("nan_voltage.pas:13"), std::string::npos) << err;  // the call's line
+  EXPECT_EQ(sim->input(sim->input_index(axis + "ref_voltage")), 0);     // zeroed, never NaN
+  for (const char* s : {"voltage", "current", "pos", "speed"})
+    EXPECT_TRUE(std::isfinite(sim->signal(axis + s))) << s;
+
+  const fs::path log = fs::temp_directory_path() / ("s2sim-nan-" + std::to_string(::getpid()));
+  const std::string cmd = std::string(S2SIM_BIN_DIR) + "/s2sim-run " +
+                          shared("MotorModel_V3AGM").string() + " --script " + script.string() +
+                          " --duration 2 --quiet > " + log.string() + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  const std::string out(std::istreambuf_iterator<char>(in), {});
+  fs::remove(log);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status << "\n" << out;
+  EXPECT_NE(out.find("SetAxisVoltageRef: argument 3 is NaN"), std::string::npos) << out;
+}
+
 TEST_F(PascalScript, ResetRunsTheScriptAgainFromInitialize) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "runtime_error.pas");
@@ -525,6 +560,74 @@ TEST_F(PascalScript, SerialPortOnAPseudoTerminalIsByteExact) {
   sim->run_until(0.2);
   EXPECT_EQ(read_all(), "echo:" + bytes);
   ::close(master);
+}
+
+/// The same lines from a peer ending in LF, CR, CR LF or a mix: a script's TStringList.Text
+/// splits them alike (SimTwo's does; FPC's splits on CR LF alone), and a CR LF peer's text
+/// comes back unchanged.
+const std::vector<std::string> kLineEnds = {"u 0.3\nV\n6\n", "u 0.3\rV\r6\r", "u 0.3\r\nV\r\n6\r\n",
+                                            "u 0.3\nV\r\n6\r"};
+const std::string kParsed = "3|u 0.3|V|6|u 0.3\r\nV\r\n6\r\n";
+
+TEST_F(PascalScript, UdpTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  const int client = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+  sockaddr_in me{};
+  me.sin_family = AF_INET;
+  me.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ASSERT_EQ(::bind(client, reinterpret_cast<sockaddr*>(&me), sizeof me), 0);
+  socklen_t len = sizeof me;
+  ::getsockname(client, reinterpret_cast<sockaddr*>(&me), &len);
+  SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "text_lines.pas");
+  o.sheet_cells = {{1, 1, std::to_string(ntohs(me.sin_port))}};
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  to.sin_port = htons(static_cast<std::uint16_t>(udp_port_));
+  double t = 0.05;
+  for (const std::string& text : kLineEnds) {
+    ASSERT_EQ(
+        ::sendto(client, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
+        static_cast<ssize_t>(text.size()));
+    sim->run_until(t += 0.05);  // one script period at least
+    char buf[2048];
+    std::vector<std::string> replies;
+    for (ssize_t n; (n = ::recv(client, buf, sizeof buf, 0)) > 0;)
+      replies.emplace_back(buf, static_cast<std::size_t>(n));
+    ASSERT_EQ(replies.size(), 1u) << "for " << ::testing::PrintToString(text);
+    EXPECT_EQ(replies[0], kParsed) << "for " << ::testing::PrintToString(text);
+  }
+  ::close(client);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 0);
+}
+
+TEST_F(PascalScript, SerialTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
+  SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  ASSERT_GE(master, 0);
+  ASSERT_EQ(::grantpt(master), 0);
+  ASSERT_EQ(::unlockpt(master), 0);
+  termios tio{};
+  ::tcgetattr(master, &tio);
+  ::cfmakeraw(&tio);
+  ::tcsetattr(master, TCSANOW, &tio);
+  ::setenv("S2SIM_COM_PORT", ::ptsname(master), 1);
+  auto sim = Simulation::load(shared("MotorModel_V3AGM"),
+                              with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "text_lines.pas"));
+  ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
+  double t = 0.05;
+  for (const std::string& text : kLineEnds) {
+    ASSERT_EQ(::write(master, text.data(), text.size()), static_cast<ssize_t>(text.size()));
+    sim->run_until(t += 0.05);
+    std::string reply;
+    char buf[256];
+    for (ssize_t n; (n = ::read(master, buf, sizeof buf)) > 0;)
+      reply.append(buf, static_cast<std::size_t>(n));
+    EXPECT_EQ(reply, kParsed) << "for " << ::testing::PrintToString(text);
+  }
+  ::close(master);
+  EXPECT_EQ(sig(*sim, "controllers/script/error"), 0);
 }
 
 TEST_F(PascalScript, RunnerWritesIdenticalCsvLogsForTheSameSceneScriptSeedAndInputs) {

@@ -77,6 +77,22 @@ def test_malformed_lines_are_dropped_and_counted():
         os.close(fd)
 
 
+def test_input_lines_ending_in_lf_cr_or_crlf_are_applied_alike():
+    sim = s2sim.Simulation(SERIAL)
+    fd = open_device(sim)
+    try:
+        # The CR LF one split over two writes: its LF is no second, empty line.
+        for chunks, value in [([b"I 1.5\n"], 1.5), ([b"I 2.5\r"], 2.5), ([b"I 3.5\r\n"], 3.5),
+                              ([b"I 4.5\r", b"\n"], 4.5), ([b"I 5.5\rI 6.5\nI 7.5\r\n"], 7.5)]:
+            for chunk in chunks:
+                os.write(fd, chunk)
+                sim.step(20)
+            assert sim.input(FORCE) == value, chunks
+        assert sim.signal(UART + "received") == 7 and sim.signal(UART + "dropped") == 0
+    finally:
+        os.close(fd)
+
+
 def test_inputs_zeroed_after_the_timeout():
     sim = s2sim.Simulation(SERIAL)
     fd = open_device(sim)
