@@ -2,7 +2,7 @@
 //
 // The back-EMF damping (N K)²/R, the viscous friction bv, the contact's friction
 // regularisation and its bristle act on an axis through the speed of the previous step
-// (explicit evaluation, docs/models/dc-motor.md "A stability condition..."): when c·dt/I > 1
+// (explicit evaluation, docs/models/dc-motor.md "Implicit in the speed"): when c·dt/I > 1
 // on a light axis the speed rings from step to step, and when c·dt/I > 2 it grows until a
 // limit (current, friction cone) bounds it into a period-2 oscillation whose mean may still
 // look right. The tests below check that no axis rings so; each prints what it measured.
@@ -149,7 +149,7 @@ std::string wheel(const char* robot, const char* axis, const char* signal) {
 // Variants: the fixture's own numbers (li 4.88 mH, 50 g tyres); the same motor with its inductance
 // neglected (li = 0, the algebraic current every SimTwo motor without `li` has: c = Ks²/R + B,
 // c·dt/J = 1.7 on the 50 g tyre); the NXT's own 20 g tyre with no rotor inertia (c·dt/J = 2.2, the
-// case docs/models/dc-motor.md works around with a rotor inertia in scenes/nxt).
+// case the implicit axis drives hold still, docs/models/dc-motor.md "Implicit in the speed").
 
 struct WheelerCase {
   const char* name;
