@@ -27,6 +27,19 @@ TEST(SceneErrors, NonPositiveMass) {
   EXPECT_THAT(std::string(e.what()), HasSubstr("bot.xml: robot/solids/cuboid[2]/mass@value:"));
 }
 
+TEST(SceneErrors, AThingsFileWithoutThingsNamesItsRoot) {
+  const Error e = load_error(
+      test::edited_copy(fixture("things_defines"), "scene.xml", "flat.xml", "no_things.xml"));
+  EXPECT_EQ(e.where().file, "no_things.xml");
+  EXPECT_EQ(e.where().element, "root");
+  EXPECT_THAT(e.message(), HasSubstr("expected a <things> file, found <root>"));
+  const Error f = load_error(
+      test::edited_copy(fixture("things_defines"), "scene.xml", "flat.xml", "no_things_flat.xml"));
+  EXPECT_EQ(f.where().file, "no_things_flat.xml");
+  EXPECT_EQ(f.where().element, "defines");
+  EXPECT_THAT(f.message(), HasSubstr("found <defines>"));
+}
+
 TEST(SceneErrors, ZeroSize) {
   const Error e = load_error(fixture("err_size"));
   EXPECT_EQ(e.where().file, "bot.xml");
