@@ -119,7 +119,14 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
       if (solid_el) {
         const std::string sid = r.text(*solid_el, "id", "");
         s.body = find_body(scene, rb.bodies, sid, false);
-        if (s.body < 0) r.fail(*solid_el, "id", "no solid with ID '" + sid + "' in this robot");
+        if (s.body < 0 && rb.main_body >= 0) {
+          // SimTwo's fallback for an unknown mother (IndexFromID = -1): the main body.
+          ctx.warn(r.at(*solid_el, "id"),
+                   "no solid with ID '" + sid +
+                       "' in this robot; the sensor goes on the main body '" +
+                       scene.bodies[static_cast<std::size_t>(rb.main_body)].id + "'");
+          s.body = rb.main_body;
+        }
       }
       if (s.body < 0) r.fail(el, "", "sensor of a robot without solids");
       // absolute_coords: the pose is in the robot frame at load; keep it in the body frame.

@@ -40,6 +40,28 @@ TEST(SceneErrors, AThingsFileWithoutThingsNamesItsRoot) {
   EXPECT_THAT(f.message(), HasSubstr("found <defines>"));
 }
 
+// SimTwo puts a shell or a sensor whose <solid id> names no solid on the main body.
+TEST(SceneErrors, AnUnknownSolidOfASensorOrShellIsTheMainBodyWithAWarning) {
+  const Scene s = load_scene(test::edited_copy(fixture("sensors"), "robot.xml", "<solid id='Arm'/>",
+                                               "<solid id='Elbow'/>"));
+  const Sensor& r = sensor(s, "r");
+  EXPECT_EQ(r.body, s.robots.at(0).main_body);
+  EXPECT_THAT(s.warnings, ::testing::Contains(::testing::AllOf(
+                              HasSubstr("robot.xml: robot/sensors/ranger2d/solid@id"),
+                              HasSubstr("'Elbow'"), HasSubstr("main body 'Base'"))));
+
+  const Scene t =
+      load_scene(test::edited_copy(fixture("shells"), "robot.xml", "<ID value='Light'/>",
+                                   "<ID value='Light'/><solid id='Lid'/>"));
+  EXPECT_THAT(t.warnings, ::testing::Contains(::testing::AllOf(
+                              HasSubstr("robot.xml: robot/shells/cuboid"), HasSubstr("solid@id"),
+                              HasSubstr("'Lid'"), HasSubstr("main body 'Body'"))));
+  bool light_on_body = false;
+  for (const Geom& g : body(t, 0, "Body").geoms)
+    light_on_body = light_on_body || g.id == "Light";
+  EXPECT_TRUE(light_on_body);
+}
+
 TEST(SceneErrors, ZeroSize) {
   const Error e = load_error(fixture("err_size"));
   EXPECT_EQ(e.where().file, "bot.xml");
