@@ -9,6 +9,8 @@
 
 #include <array>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace s2sim::scene::detail {
 namespace {
@@ -22,6 +24,22 @@ bool is_sensor_element(std::string_view name) {
   for (auto k : kinds)
     if (k == name) return true;
   return false;
+}
+
+/// An index name equal to another sensor's ID would give both the same signals: refused, so
+/// that neither is renamed behind the script's back.
+void check_index_name(const Scene& scene, const Reader& r, const Element& el, const Sensor& s,
+                      const std::vector<int>& siblings) {
+  for (int i : siblings) {
+    const Sensor& other = scene.sensors[static_cast<std::size_t>(i)];
+    if (other.name != s.name || (!s.id.empty() && !other.id.empty())) continue;
+    const std::string why =
+        s.id.empty() ? "this sensor has no <ID>, so it is named by its index '" + s.name +
+                           "', which the sensor at " + other.where.str() + " has as its ID"
+                     : "the ID '" + s.id + "' is the index name of the ID-less sensor at " +
+                           other.where.str();
+    r.fail(el, "", why + "; give one of them another <ID>");
+  }
 }
 
 }  // namespace
@@ -101,7 +119,14 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
       if (solid_el) {
         const std::string sid = r.text(*solid_el, "id", "");
         s.body = find_body(scene, rb.bodies, sid, false);
-        if (s.body < 0) r.fail(*solid_el, "id", "no solid with ID '" + sid + "' in this robot");
+        if (s.body < 0 && rb.main_body >= 0) {
+          // SimTwo's fallback for an unknown mother (IndexFromID = -1): the main body.
+          ctx.warn(r.at(*solid_el, "id"),
+                   "no solid with ID '" + sid +
+                       "' in this robot; the sensor goes on the main body '" +
+                       scene.bodies[static_cast<std::size_t>(rb.main_body)].id + "'");
+          s.body = rb.main_body;
+        }
       }
       if (s.body < 0) r.fail(el, "", "sensor of a robot without solids");
       // absolute_coords: the pose is in the robot frame at load; keep it in the body frame.
@@ -112,6 +137,18 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
     }
 
     s.params = ParamSource{el, r.file(), std::make_shared<ConstantTable>(r.constants())};
+    // Scripts address an ID-less sensor by its index (SimTwo's ID is ""), so that index names
+    // its signals; the world's index for scene-level sensors (GetGlobalSensorVal).
+    std::vector<int> siblings;  // the sensors of the same list: the robot's, or scene-level
+    if (robot >= 0) {
+      siblings = scene.robots[static_cast<std::size_t>(robot)].sensors;
+    } else {
+      for (std::size_t i = 0; i < scene.sensors.size(); ++i)
+        if (scene.sensors[i].robot < 0) siblings.push_back(static_cast<int>(i));
+    }
+    const std::size_t index = robot >= 0 ? siblings.size() : scene.sensors.size();
+    s.name = s.id.empty() ? std::to_string(index) : s.id;
+    check_index_name(scene, r, el, s, siblings);
     scene.sensors.push_back(std::move(s));
     if (robot >= 0)
       scene.robots[static_cast<std::size_t>(robot)].sensors.push_back(

@@ -40,7 +40,14 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
       } else if (n == "solid") {
         const std::string id = r.text(c, "id", "");
         body = find_body(scene, rb.bodies, id, false);
-        if (body < 0) r.fail(c, "id", "no solid with ID '" + id + "' in this robot");
+        if (body < 0 && rb.main_body >= 0) {
+          // SimTwo's fallback for an unknown mother (IndexFromID = -1): the main body.
+          ctx.warn(r.at(c, "id"), "no solid with ID '" + id +
+                                      "' in this robot; the shell goes on the main body '" +
+                                      scene.bodies[static_cast<std::size_t>(rb.main_body)].id +
+                                      "'");
+          body = rb.main_body;
+        }
       } else if (n == "mass") {
         mass = r.number(c, "value", mass);
         mass_el = &c;

@@ -127,9 +127,7 @@ void check_nesting_depth(const std::string& text, const std::string& display_nam
   }
 }
 
-}  // namespace
-
-Element parse_xml(std::string text, const std::string& display_name) {
+pt::ptree parse_tree(std::string text, const std::string& display_name) {
   if (text.size() >= 3 && text.compare(0, 3, "\xEF\xBB\xBF") == 0) text.erase(0, 3);
   // SimTwo accepts text before the declaration (MotorModel_V3AGM/Motor.xml starts with a
   // space and a blank line). Drop it but keep its line breaks so error lines stay right.
@@ -150,17 +148,48 @@ Element parse_xml(std::string text, const std::string& display_name) {
     throw Error(ErrorKind::scene, Location{display_name + ":" + std::to_string(e.line()), "", ""},
                 e.message());
   }
+  return tree;
+}
+
+std::string read_text(const std::filesystem::path& path, const std::string& display_name) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(ErrorKind::scene, Location{display_name, "", ""}, "cannot open the file");
+  std::ostringstream content;
+  content << in.rdbuf();
+  return content.str();
+}
+
+}  // namespace
+
+Element parse_xml(std::string text, const std::string& display_name) {
+  const pt::ptree tree = parse_tree(std::move(text), display_name);
   for (const auto& [key, child] : tree)
     if (is_element_key(key)) return convert(key, child, key);
   throw Error(ErrorKind::scene, Location{display_name, "", ""}, "no XML element in the file");
 }
 
+std::vector<Element> parse_xml_elements(std::string text, const std::string& display_name) {
+  const pt::ptree tree = parse_tree(std::move(text), display_name);
+  std::map<std::string, int> count, seen;
+  for (const auto& [key, child] : tree)
+    if (is_element_key(key)) ++count[key];
+  std::vector<Element> out;
+  for (const auto& [key, child] : tree) {
+    if (!is_element_key(key)) continue;
+    std::string path = key;
+    if (count[key] > 1) path.append("[").append(std::to_string(++seen[key])).append("]");
+    out.push_back(convert(key, child, path));
+  }
+  return out;
+}
+
 Element read_xml_file(const std::filesystem::path& path, const std::string& display_name) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(ErrorKind::scene, Location{display_name, "", ""}, "cannot open the file");
-  std::ostringstream content;
-  content << in.rdbuf();
-  return parse_xml(content.str(), display_name);
+  return parse_xml(read_text(path, display_name), display_name);
+}
+
+std::vector<Element> read_xml_file_elements(const std::filesystem::path& path,
+                                            const std::string& display_name) {
+  return parse_xml_elements(read_text(path, display_name), display_name);
 }
 
 }  // namespace s2sim::scene

@@ -78,10 +78,10 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   for (const auto& sensor : m.scene.sensors) {
     if (!registry->has(sensor.kind)) {
       m.warnings.push_back(sensor.where.str() + ": no plugin provides the sensor kind '" +
-                           sensor.kind + "'; sensor '" + sensor.id + "' is inert");
+                           sensor.kind + "'; sensor '" + sensor.name + "' is inert");
       continue;
     }
-    m.add_component(*registry, sensor.kind, sensor.id, sensor.robot, sensor.params, sensor.where,
+    m.add_component(*registry, sensor.kind, sensor.name, sensor.robot, sensor.params, sensor.where,
                     Category::sensor);
     m.components.back().sensor = static_cast<int>(&sensor - m.scene.sensors.data());
   }

@@ -92,7 +92,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       const std::string sk = k + "sensor_" + std::to_string(i) + "_";
       set(sk + "id", s.id);
       set(sk + "kind", s.kind);
-      set(sk + "prefix", sim::component_path(rp, "sensors", s.id));
+      set(sk + "prefix", sim::component_path(rp, "sensors", s.name));
     }
   }
   // The world's sensor list: each robot's sensors, then the scene-level ones, in load order.
@@ -101,8 +101,8 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
     const std::string sk = "global_sensor_" + std::to_string(g++) + "_";
     set(sk + "id", s.id);
     set(sk + "kind", s.kind);
-    set(sk + "prefix",
-        sim::component_path(s.robot >= 0 ? robot_prefix(s.robot) : std::string(), "sensors", s.id));
+    set(sk + "prefix", sim::component_path(s.robot >= 0 ? robot_prefix(s.robot) : std::string(),
+                                           "sensors", s.name));
   }
   set("global_sensors", std::to_string(g));
   set("things", std::to_string(scene.things.size()));

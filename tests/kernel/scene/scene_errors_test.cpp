@@ -27,6 +27,41 @@ TEST(SceneErrors, NonPositiveMass) {
   EXPECT_THAT(std::string(e.what()), HasSubstr("bot.xml: robot/solids/cuboid[2]/mass@value:"));
 }
 
+TEST(SceneErrors, AThingsFileWithoutThingsNamesItsRoot) {
+  const Error e = load_error(
+      test::edited_copy(fixture("things_defines"), "scene.xml", "flat.xml", "no_things.xml"));
+  EXPECT_EQ(e.where().file, "no_things.xml");
+  EXPECT_EQ(e.where().element, "root");
+  EXPECT_THAT(e.message(), HasSubstr("expected a <things> file, found <root>"));
+  const Error f = load_error(
+      test::edited_copy(fixture("things_defines"), "scene.xml", "flat.xml", "no_things_flat.xml"));
+  EXPECT_EQ(f.where().file, "no_things_flat.xml");
+  EXPECT_EQ(f.where().element, "defines");
+  EXPECT_THAT(f.message(), HasSubstr("found <defines>"));
+}
+
+// SimTwo puts a shell or a sensor whose <solid id> names no solid on the main body.
+TEST(SceneErrors, AnUnknownSolidOfASensorOrShellIsTheMainBodyWithAWarning) {
+  const Scene s = load_scene(test::edited_copy(fixture("sensors"), "robot.xml", "<solid id='Arm'/>",
+                                               "<solid id='Elbow'/>"));
+  const Sensor& r = sensor(s, "r");
+  EXPECT_EQ(r.body, s.robots.at(0).main_body);
+  EXPECT_THAT(s.warnings, ::testing::Contains(::testing::AllOf(
+                              HasSubstr("robot.xml: robot/sensors/ranger2d/solid@id"),
+                              HasSubstr("'Elbow'"), HasSubstr("main body 'Base'"))));
+
+  const Scene t =
+      load_scene(test::edited_copy(fixture("shells"), "robot.xml", "<ID value='Light'/>",
+                                   "<ID value='Light'/><solid id='Lid'/>"));
+  EXPECT_THAT(t.warnings, ::testing::Contains(::testing::AllOf(
+                              HasSubstr("robot.xml: robot/shells/cuboid"), HasSubstr("solid@id"),
+                              HasSubstr("'Lid'"), HasSubstr("main body 'Body'"))));
+  bool light_on_body = false;
+  for (const Geom& g : body(t, 0, "Body").geoms)
+    light_on_body = light_on_body || g.id == "Light";
+  EXPECT_TRUE(light_on_body);
+}
+
 TEST(SceneErrors, ZeroSize) {
   const Error e = load_error(fixture("err_size"));
   EXPECT_EQ(e.where().file, "bot.xml");

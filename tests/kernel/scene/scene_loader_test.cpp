@@ -67,6 +67,24 @@ TEST(SceneLoader, ScopesOfDefines) {
   EXPECT_FALSE(s.globals.find("thing_local"));
 }
 
+TEST(SceneLoader, ThingsFileWithDefinesBesideThings) {
+  const Scene s = load_scene(fixture("things_defines"));
+  // Under a root of another name: L = 0.3 from the file, H = 0.1 from the scene.
+  const Body& wrapped = body(s, -1, "wrapped");
+  EXPECT_TRUE(near_vec(wrapped.geoms[0].shape.size_m, {0.3, 0.15, 0.1}, 1e-15));
+  // At the top of the file, beside <things>.
+  const Body& flat = body(s, -1, "flat");
+  EXPECT_TRUE(near_vec(flat.geoms[0].shape.size_m, {0.4, 0.1, 0.1}, 1e-15));
+  // The file's constants stay in its copy of G.
+  EXPECT_FALSE(s.globals.find("L"));
+  EXPECT_FALSE(s.globals.find("W"));
+  // Each departure from SimTwo (which reads only a root <things>) is a located warning.
+  EXPECT_THAT(s.warnings, ElementsAre(HasSubstr("wrapped.xml: root/defines: <defines> beside"),
+                                      HasSubstr("flat.xml: defines: <defines> beside"),
+                                      HasSubstr("flat.xml: notes: <notes> beside <things> "
+                                                "ignored")));
+}
+
 TEST(SceneLoader, LoadOptionsConstantsLeadTheSceneDefines) {
   LoadOptions options;
   options.constants = {{"width", 0.3}, {"base_mass", 5}};

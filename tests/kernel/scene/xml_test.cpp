@@ -35,6 +35,22 @@ TEST(Xml, ElementPathsIndexOnlyRepeatedNames) {
   EXPECT_EQ(solids.children[0].child("nothing"), nullptr);
 }
 
+TEST(Xml, EveryTopLevelElementInDocumentOrder) {
+  const std::vector<Element> top = parse_xml_elements(R"(<?xml version="1.0" ?>
+<defines><const name='L' value='1'/></defines>
+<!-- between -->
+<things><cuboid/></things>
+<things/>)",
+                                                      "t.xml");
+  ASSERT_EQ(top.size(), 3u);
+  EXPECT_EQ(top[0].path, "defines");
+  EXPECT_EQ(top[1].path, "things[1]");
+  EXPECT_EQ(top[1].children.at(0).path, "things[1]/cuboid");
+  EXPECT_EQ(top[2].path, "things[2]");
+  // parse_xml keeps returning the first one.
+  EXPECT_EQ(parse_xml("<a/><b/>", "t.xml").name, "a");
+}
+
 TEST(Xml, AttributesInDocumentOrder) {
   const Element e = parse_xml("<size z='3' x='1' y='2'/>", "s.xml");
   ASSERT_EQ(e.attributes.size(), 3u);

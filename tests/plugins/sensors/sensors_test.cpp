@@ -395,6 +395,47 @@ TEST(PoseSensor, NoisyGroundTruth) {
   EXPECT_NEAR(yaw.stdev / 0.02, 1.0, 0.05);
 }
 
+// --- sensors without an <ID> ------------------------------------------------------------------
+
+TEST(UnnamedSensors, ThreeOfOneKindAreNamedByTheirIndexInTheRobotsList) {
+  auto sim = load("unnamed");
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i < sim->signal_count(); ++i)
+    if (sim->signal_info(i).name.find("sensors/") != std::string::npos)
+      names.push_back(sim->signal_info(i).name);
+  EXPECT_THAT(names,
+              ::testing::ElementsAre("robots/bot/sensors/0/value", "robots/bot/sensors/0/valid",
+                                     "robots/bot/sensors/1/value", "robots/bot/sensors/1/valid",
+                                     "robots/bot/sensors/2/value", "robots/bot/sensors/2/valid",
+                                     "sensors/3/value", "sensors/3/valid"));
+  EXPECT_FALSE(sim->find_signal("robots/bot/sensors//value").has_value());
+  sim->step(1);
+  // In file order: each 0.1 m nearer the wall than the one before.
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/0/value"), 1.0, 1e-9);
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/1/value"), 0.9, 1e-9);
+  EXPECT_NEAR(sim->signal("robots/bot/sensors/2/value"), 0.8, 1e-9);
+  // World-fixed: the fourth of the world's list (GetGlobalSensorVal(3)).
+  EXPECT_NEAR(sim->signal("sensors/3/value"), 0.5, 1e-9);
+}
+
+TEST(UnnamedSensors, AnIdEqualToAnIndexNameIsALocatedError) {
+  // The first sensor takes the ID '1': the second, ID-less, would be named '1' too.
+  const fs::path before = fixture_with("unnamed", "bot.xml", "<IRSharp>\n      <pos x='0' ",
+                                       "<IRSharp>\n      <ID value='1'/>\n      <pos x='0' ");
+  EXPECT_THAT([&] { Simulation::load(before, options()); },
+              ::testing::ThrowsMessage<Error>(::testing::AllOf(
+                  HasSubstr("bot.xml: robot/sensors/IRSharp[2]"), HasSubstr("index '1'"),
+                  HasSubstr("robot/sensors/IRSharp[1] has as its ID"))));
+  // The third sensor takes the ID '0', the index name of the first.
+  const fs::path after = fixture_with("unnamed", "bot.xml", "<IRSharp>\n      <pos x='0.2' ",
+                                      "<IRSharp>\n      <ID value='0'/>\n      <pos x='0.2' ");
+  EXPECT_THAT([&] { Simulation::load(after, options()); },
+              ::testing::ThrowsMessage<Error>(::testing::AllOf(
+                  HasSubstr("bot.xml: robot/sensors/IRSharp[3]"),
+                  HasSubstr("the ID '0' is the index name of the ID-less sensor at bot.xml: "
+                            "robot/sensors/IRSharp[1]"))));
+}
+
 // --- errors ----------------------------------------------------------------------------------
 
 TEST(SensorErrors, NegativeBeamLengthNamesFileElementAttributeAndValue) {

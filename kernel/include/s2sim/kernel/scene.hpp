@@ -227,7 +227,11 @@ using s2sim::SolenoidForce;
 /// A robot or world sensor (or tool), parsed; its behaviour is a component's.
 struct Sensor {
   std::string kind;  ///< element name: IRSharp, ranger2d, ...
-  std::string id;
+  std::string id;    ///< `<ID>` as written, "" without one (what `GetSensorIndex` compares)
+  /// The signal-path name: `id`, or without an ID the sensor's index in its list (robot
+  /// sensors: the robot's, `GetSensorVal(R, i)`; scene-level ones: the world's,
+  /// `GetGlobalSensorVal(i)`), so ID-less sensors do not collide.
+  std::string name;
   int robot = -1;  ///< -1 for a scene-level sensor
   int body = -1;   ///< body it is attached to; -1 = world
   Pose pose;       ///< sensor frame in its body frame (world frame when body = -1); the beam
