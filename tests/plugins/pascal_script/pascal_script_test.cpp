@@ -532,17 +532,23 @@ TEST_F(PascalScript, UdpLoopbackClientDrivesTheMotorAndReadsItsSensors) {
   EXPECT_NEAR(std::remainder(std::stod(last.substr(at + 5)) - wrapped, 2 * M_PI), 0, 0.2);
 }
 
+/// A raw pseudo-terminal's master side, its slave named as the script's serial port
+/// (S2SIM_COM_PORT); -1 when none could be made.
+int open_raw_pty() {
+  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return -1;
+  termios raw{};
+  ::tcgetattr(master, &raw);
+  ::cfmakeraw(&raw);
+  ::tcsetattr(master, TCSANOW, &raw);
+  ::setenv("S2SIM_COM_PORT", ::ptsname(master), 1);
+  return master;
+}
+
 TEST_F(PascalScript, SerialPortOnAPseudoTerminalIsByteExact) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  const int master = open_raw_pty();
   ASSERT_GE(master, 0);
-  ASSERT_EQ(::grantpt(master), 0);
-  ASSERT_EQ(::unlockpt(master), 0);
-  termios t{};
-  ::tcgetattr(master, &t);
-  ::cfmakeraw(&t);
-  ::tcsetattr(master, TCSANOW, &t);
-  ::setenv("S2SIM_COM_PORT", ::ptsname(master), 1);
   auto sim = Simulation::load(shared("MotorModel_V3AGM"),
                               with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "serial_echo.pas"));
   ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
@@ -604,15 +610,8 @@ TEST_F(PascalScript, UdpTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
 
 TEST_F(PascalScript, SerialTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
-  const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+  const int master = open_raw_pty();
   ASSERT_GE(master, 0);
-  ASSERT_EQ(::grantpt(master), 0);
-  ASSERT_EQ(::unlockpt(master), 0);
-  termios tio{};
-  ::tcgetattr(master, &tio);
-  ::cfmakeraw(&tio);
-  ::tcsetattr(master, TCSANOW, &tio);
-  ::setenv("S2SIM_COM_PORT", ::ptsname(master), 1);
   auto sim = Simulation::load(shared("MotorModel_V3AGM"),
                               with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "text_lines.pas"));
   ::fcntl(master, F_SETFL, ::fcntl(master, F_GETFL) | O_NONBLOCK);
