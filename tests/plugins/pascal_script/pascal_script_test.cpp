@@ -490,28 +490,43 @@ TEST_F(PascalScript, SameSceneScriptSeedAndInputsGiveIdenticalRuns) {
     ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0) << "value " << i;
 }
 
+/// The loopback address at `port`.
+sockaddr_in loopback(int port) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  return a;
+}
+
+/// A test client's non-blocking UDP socket on an ephemeral loopback port (`port`); -1 when
+/// none could be bound.
+int loopback_client(int& port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+  sockaddr_in me = loopback(0);
+  socklen_t len = sizeof me;
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len) != 0)
+    return -1;
+  port = ntohs(me.sin_port);
+  return fd;
+}
+
 TEST_F(PascalScript, UdpLoopbackClientDrivesTheMotorAndReadsItsSensors) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   // The test's client socket on an ephemeral loopback port.
-  const int client = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-  sockaddr_in me{};
-  me.sin_family = AF_INET;
-  me.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::bind(client, reinterpret_cast<sockaddr*>(&me), sizeof me), 0);
-  socklen_t len = sizeof me;
-  ::getsockname(client, reinterpret_cast<sockaddr*>(&me), &len);
+  int client_port = 0;
+  const int client = loopback_client(client_port);
+  ASSERT_GE(client, 0);
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "udp_motor.pas");
-  o.sheet_cells = {{1, 1, std::to_string(ntohs(me.sin_port))}};
+  o.sheet_cells = {{1, 1, std::to_string(client_port)}};
   auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
   sim->run_until(0.5);
   EXPECT_NEAR(sim->signal("robots/Motor/axes/InertialBoard/pos"), 0, 1e-3);  // no command yet
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  to.sin_port = htons(static_cast<std::uint16_t>(udp_port_));
+  const sockaddr_in to = loopback(udp_port_);
   const std::string command = "V\r\n6\r\n";
-  ASSERT_EQ(::sendto(client, command.data(), command.size(), 0, reinterpret_cast<sockaddr*>(&to),
-                     sizeof to),
+  ASSERT_EQ(::sendto(client, command.data(), command.size(), 0,
+                     reinterpret_cast<const sockaddr*>(&to), sizeof to),
             static_cast<ssize_t>(command.size()));
   sim->run_until(2.0);
   // Read every packet the script sent; the last one carries the moved axis.
@@ -577,25 +592,18 @@ const std::string kParsed = "3|u 0.3|V|6|u 0.3\r\nV\r\n6\r\n";
 
 TEST_F(PascalScript, UdpTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
-  const int client = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-  sockaddr_in me{};
-  me.sin_family = AF_INET;
-  me.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  ASSERT_EQ(::bind(client, reinterpret_cast<sockaddr*>(&me), sizeof me), 0);
-  socklen_t len = sizeof me;
-  ::getsockname(client, reinterpret_cast<sockaddr*>(&me), &len);
+  int client_port = 0;
+  const int client = loopback_client(client_port);
+  ASSERT_GE(client, 0);
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "text_lines.pas");
-  o.sheet_cells = {{1, 1, std::to_string(ntohs(me.sin_port))}};
+  o.sheet_cells = {{1, 1, std::to_string(client_port)}};
   auto sim = Simulation::load(shared("MotorModel_V3AGM"), o);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  to.sin_port = htons(static_cast<std::uint16_t>(udp_port_));
+  const sockaddr_in to = loopback(udp_port_);
   double t = 0.05;
   for (const std::string& text : kLineEnds) {
-    ASSERT_EQ(
-        ::sendto(client, text.data(), text.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to),
-        static_cast<ssize_t>(text.size()));
+    ASSERT_EQ(::sendto(client, text.data(), text.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+                       sizeof to),
+              static_cast<ssize_t>(text.size()));
     sim->run_until(t += 0.05);  // one script period at least
     char buf[2048];
     std::vector<std::string> replies;
