@@ -124,8 +124,8 @@ const char* MultibodyIslands::dynamics_name() const {
   return parts_[0].multibody->dynamics_name();  // the parts choose alike (the constructor)
 }
 DynamicsCheck MultibodyIslands::dynamics_check() const {
-  DynamicsCheck all = parts_[0].multibody->dynamics_check();
-  all.compared = all.reference_off_constraints = 0;
+  DynamicsCheck all;
+  all.agreement = parts_[0].multibody->dynamics_check().agreement;  // the parts share it
   for (const auto& part : parts_) {
     const DynamicsCheck check = part.multibody->dynamics_check();
     all.compared += check.compared;
