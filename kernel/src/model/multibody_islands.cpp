@@ -30,8 +30,6 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
     for (const auto& w : part.multibody->warnings())
       warnings_.push_back(w);
   }
-  if (parts_.size() == 1) return;
-
   const auto bodies = static_cast<std::size_t>(body_count_);
   const std::size_t axes = axes_.size(), joints = scene.joints.size();
   part_of_body_.assign(bodies, 0);
@@ -40,6 +38,7 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
   local_axis_.assign(axes, 0);
   for (std::size_t p = 0; p < parts_.size(); ++p) {
     Part& part = parts_[p];
+    part.is_scene = parts_.size() == 1;
     for (int b : part.plan.bodies)
       part_of_body_[static_cast<std::size_t>(b)] = static_cast<int>(p);
     for (int j : part.plan.joints)
@@ -57,19 +56,41 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
   loose_.assign(bodies, 0);
   for (int b : topology.loose)
     loose_[static_cast<std::size_t>(b) + 1] = 1;
-  wrenches_.assign(bodies, Wrench{});
-  contact_wrenches_.assign(bodies, Wrench{});
-  reactions_.assign(joints, Wrench{});
-  axis_forces_.assign(axes, 0.0);
-  axis_friction_.assign(axes, 0.0);
-  drive_applied_.assign(axes, 0.0);
-  drives_.assign(static_cast<std::size_t>(scene_drive_slots), AxisDrive{});
-  for (const Part& part : parts_)
-    S2SIM_ASSERT(part.multibody->axis_drive_capacity() == scene_drive_slots,
-                 "a part without room for every drive of the scene");
-  poses_.assign(bodies, Pose{});
-  twists_.assign(bodies, Twist{});
-  gather_reactions();
+  if (parts_.front().is_scene) {
+    // The only part's arrays are the scene's: its bodies are numbered as the kernel's and
+    // its axes are the scene's in order (plan_parts), so nothing is copied between them.
+    Multibody& mb = *parts_.front().multibody;
+    scene_ = {mb.applied_wrenches(),
+              mb.applied_axis_forces(),
+              mb.applied_axis_friction(),
+              mb.axis_drives(),
+              mb.axis_drive_count(),
+              mb.axis_drive_capacity(),
+              mb.drive_force_applied(),
+              mb.joint_reactions(),
+              nullptr,
+              nullptr,
+              nullptr};
+    mb.current_bodies(scene_.poses, scene_.twists);
+  } else {
+    wrenches_.assign(bodies, Wrench{});
+    contact_wrenches_.assign(bodies, Wrench{});
+    reactions_.assign(joints, Wrench{});
+    axis_forces_.assign(axes, 0.0);
+    axis_friction_.assign(axes, 0.0);
+    drive_applied_.assign(axes, 0.0);
+    drives_.assign(static_cast<std::size_t>(scene_drive_slots), AxisDrive{});
+    for (const Part& part : parts_)
+      S2SIM_ASSERT(part.multibody->axis_drive_capacity() == scene_drive_slots,
+                   "a part without room for every drive of the scene");
+    poses_.assign(bodies, Pose{});
+    twists_.assign(bodies, Twist{});
+    scene_ = {wrenches_.data(),      axis_forces_.data(), axis_friction_.data(),
+              drives_.data(),        &drive_count_,       scene_drive_slots,
+              drive_applied_.data(), reactions_.data(),   contact_wrenches_.data(),
+              poses_.data(),         twists_.data()};
+    gather_reactions();
+  }
   // One system takes the fast path only if every tree of it can (one whose check at load
   // fails: Simbody for all), and the two compute the same dynamics only to rounding. The parts do
   // as the whole scene would, or a part without that tree would take the fast path's last
@@ -85,26 +106,25 @@ MultibodyIslands::MultibodyIslands(const scene::Scene& scene, const Topology& to
 MultibodyIslands::~MultibodyIslands() = default;
 
 Wrench* MultibodyIslands::applied_wrenches() {
-  return parts() == 1 ? parts_[0].multibody->applied_wrenches() : wrenches_.data();
+  return scene_.wrenches;
 }
 double* MultibodyIslands::applied_axis_forces() {
-  return parts() == 1 ? parts_[0].multibody->applied_axis_forces() : axis_forces_.data();
+  return scene_.axis_forces;
 }
 double* MultibodyIslands::applied_axis_friction() {
-  return parts() == 1 ? parts_[0].multibody->applied_axis_friction() : axis_friction_.data();
+  return scene_.axis_friction;
 }
 AxisDrive* MultibodyIslands::axis_drives() {
-  return parts() == 1 ? parts_[0].multibody->axis_drives() : drives_.data();
+  return scene_.drives;
 }
 std::int32_t* MultibodyIslands::axis_drive_count() {
-  return parts() == 1 ? parts_[0].multibody->axis_drive_count() : &drive_count_;
+  return scene_.drive_count;
 }
 std::int32_t MultibodyIslands::axis_drive_capacity() const {
-  return parts() == 1 ? parts_[0].multibody->axis_drive_capacity()
-                      : static_cast<std::int32_t>(drives_.size());
+  return scene_.drive_capacity;
 }
 const double* MultibodyIslands::drive_force_applied() const {
-  return parts() == 1 ? parts_[0].multibody->drive_force_applied() : drive_applied_.data();
+  return scene_.drive_applied;
 }
 void MultibodyIslands::request_joint_reactions() {
   for (auto& part : parts_)
@@ -138,24 +158,23 @@ DynamicsCheck MultibodyIslands::dynamics_check() const {
   return all;
 }
 const Wrench* MultibodyIslands::joint_reactions() const {
-  return parts() == 1 ? parts_[0].multibody->joint_reactions() : reactions_.data();
+  return scene_.reactions;
 }
 bool MultibodyIslands::joint_is_loop(int joint) const {
-  if (parts() == 1) return parts_[0].multibody->joint_is_loop(joint);
   return parts_[static_cast<std::size_t>(part_of_joint_.at(static_cast<std::size_t>(joint)))]
       .multibody->joint_is_loop(joint);
 }
 Wrench* MultibodyIslands::use_contact_wrenches() {
-  if (parts() == 1) return parts_[0].multibody->use_contact_wrenches();
   if (!contact_used_)
-    for (auto& part : parts_)
+    for (auto& part : parts_) {
       part.contact_wrenches = part.multibody->use_contact_wrenches();
+      if (part.is_scene) scene_.contact_wrenches = part.contact_wrenches;
+    }
   contact_used_ = true;
-  return contact_wrenches_.data();
+  return scene_.contact_wrenches;
 }
 
 std::vector<double> MultibodyIslands::apparent_mass_kg() const {
-  if (parts() == 1) return parts_[0].multibody->apparent_mass_kg();
   std::vector<double> out(static_cast<std::size_t>(body_count_), 0.0);
   for (const auto& part : parts_) {
     const std::vector<double> mass = part.multibody->apparent_mass_kg();
@@ -166,7 +185,6 @@ std::vector<double> MultibodyIslands::apparent_mass_kg() const {
 }
 
 std::vector<Multibody::Mobility> MultibodyIslands::contact_mobility() const {
-  if (parts() == 1) return parts_[0].multibody->contact_mobility();
   std::vector<Multibody::Mobility> out(static_cast<std::size_t>(body_count_));
   for (const auto& part : parts_) {
     const auto mobility = part.multibody->contact_mobility();
@@ -179,7 +197,6 @@ std::vector<Multibody::Mobility> MultibodyIslands::contact_mobility() const {
 void MultibodyIslands::reset() {
   for (auto& part : parts_)
     part.multibody->reset();
-  if (parts() == 1) return;
   drive_count_ = 0;
   std::fill(drive_applied_.begin(), drive_applied_.end(), 0.0);
   gather_reactions();
@@ -192,26 +209,31 @@ void MultibodyIslands::gather_reactions() {
 }
 
 void MultibodyIslands::gather_reactions(const Part& part) {
+  if (part.is_scene) return;  // the scene's reactions are the part's
   const Wrench* reactions = part.multibody->joint_reactions();
   for (int j : part.plan.joints)
     reactions_[static_cast<std::size_t>(j)] = reactions[j];
 }
 
 void MultibodyIslands::current_bodies(const Pose*& poses, const Twist*& twists) {
-  if (parts() == 1) return parts_[0].multibody->current_bodies(poses, twists);
   if (!bodies_fresh_) {
     for (auto& part : parts_)
       copy_bodies(part);
     bodies_fresh_ = true;
   }
-  poses = poses_.data();
-  twists = twists_.data();
+  poses = scene_.poses;
+  twists = scene_.twists;
 }
 
 void MultibodyIslands::copy_bodies(Part& part) {
   const Pose* poses = nullptr;
   const Twist* twists = nullptr;
   part.multibody->current_bodies(poses, twists);
+  if (part.is_scene) {  // the part's bodies are the scene's: hand its arrays out
+    scene_.poses = poses;
+    scene_.twists = twists;
+    return;
+  }
   for (int b : part.plan.bodies) {
     poses_[static_cast<std::size_t>(b)] = poses[b];
     twists_[static_cast<std::size_t>(b)] = twists[b];
@@ -219,7 +241,6 @@ void MultibodyIslands::copy_bodies(Part& part) {
 }
 
 int MultibodyIslands::first_non_finite_body() const {
-  if (parts() == 1) return parts_[0].multibody->first_non_finite_body();
   // As one system would say: the first mobilized body in kernel order, else a loose one.
   int mobilized = -1, loose = -1;
   for (const auto& part : parts_) {
@@ -233,7 +254,6 @@ int MultibodyIslands::first_non_finite_body() const {
 
 void MultibodyIslands::read(Pose* poses, Twist* twists, double* axis_position,
                             double* axis_velocity) const {
-  if (parts() == 1) return parts_[0].multibody->read(poses, twists, axis_position, axis_velocity);
   if (!read_fresh_) {
     for (const auto& part : parts_)
       part.multibody->read(part.poses.data(), part.twists.data(), part.axis_position.data(),
@@ -283,15 +303,14 @@ double MultibodyIslands::potential_energy_J() const {
 }
 
 void MultibodyIslands::declare_state(common::StateLayout& layout) {
-  if (parts() == 1) return parts_[0].multibody->declare_state(layout);
   for (std::size_t p = 0; p < parts_.size(); ++p)
-    parts_[p].multibody->declare_state(layout, "multibody/part" + std::to_string(p));
+    parts_[p].multibody->declare_state(
+        layout, parts_[p].is_scene ? "multibody" : "multibody/part" + std::to_string(p));
 }
 
 void MultibodyIslands::restored() {
   for (auto& part : parts_)
     part.multibody->restored();
-  if (parts() == 1) return;
   gather_reactions();
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
 }
@@ -301,17 +320,14 @@ int MultibodyIslands::owner(int body) const {
 }
 
 bool MultibodyIslands::place_free_body(int body, const Pose& pose) {
-  if (parts() == 1) return parts_[0].multibody->place_free_body(body, pose);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->place_free_body(body, pose);
 }
 bool MultibodyIslands::move_body(int body, const Pose& pose) {
-  if (parts() == 1) return parts_[0].multibody->move_body(body, pose);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->move_body(body, pose);
 }
 bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
-  if (parts() == 1) return parts_[0].multibody->set_body_velocity(body, twist);
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_body_velocity(body, twist);
 }
@@ -319,20 +335,21 @@ bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
 // --- The parallel substep ----------------------------------------------------------------------
 
 bool MultibodyIslands::split_forces(SubstepForces& forces) {
-  if (parts() == 1 || !forces.split(part_of_body_, parts())) return false;
+  if (!forces.split(part_of_body_, parts())) return false;
   split_forces_ = &forces;
   return true;
 }
 
 int MultibodyIslands::part_of_axis(int axis) const {
-  return parts() == 1 ? 0 : part_of_axis_.at(static_cast<std::size_t>(axis));
+  return part_of_axis_.at(static_cast<std::size_t>(axis));
 }
 int MultibodyIslands::part_of_joint(int joint) const {
-  return parts() == 1 ? 0 : part_of_joint_.at(static_cast<std::size_t>(joint));
+  return part_of_joint_.at(static_cast<std::size_t>(joint));
 }
 
 void MultibodyIslands::stage_drives_by_part(bool on) {
-  drives_by_part_ = on && parts() > 1;
+  S2SIM_ASSERT(!on || !parts_.front().is_scene, "drives staged by part with one part");
+  drives_by_part_ = on;
   for (Part& part : parts_) {
     part.drives.assign(drives_by_part_ ? drives_.size() : 0, AxisDrive{});
     part.drive_count = 0;
@@ -368,7 +385,7 @@ void MultibodyIslands::run_substep(int substep, PartStages& stages, bool contact
                 "the simulation state became non-finite at t = " + std::to_string(time_s()) +
                     " s, first at body " + body_name(body));
   }
-  bodies_fresh_ = split_forces_ == nullptr;
+  bodies_fresh_ = contact_used_ && split_forces_ == nullptr;
   untouched_ = true;
   read_fresh_ = substep == substeps() - 1;
   published_ = read_fresh_ && bound_.poses;
@@ -386,7 +403,7 @@ bool MultibodyIslands::step_part(Part& part, int p, int thread, int substep) {
   const bool inside = stages_->run(p, *part.multibody, thread == 0, substep);
   // For the next substep's contact (its realize runs here, in parallel); split forces read
   // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
-  if (!split_forces_) copy_bodies(part);
+  if (contact_used_ && !split_forces_) copy_bodies(part);
   if (substep == substeps() - 1) {
     publish_tick(part);
     if (hooks_) hooks_->end(p);
@@ -432,6 +449,7 @@ void MultibodyIslands::TicksJob::run_task(int p, int thread) {
 }
 
 void MultibodyIslands::load_part(Part& part, int substep) {
+  if (part.is_scene) return;  // the part's loads are the scene's
   Multibody& mb = *part.multibody;
   if (substep == 0) {  // the tick's loads, held over its substeps
     Wrench* wrenches = mb.applied_wrenches();
@@ -469,6 +487,7 @@ void MultibodyIslands::publish_tick(Part& part) {
   mb.read(part.poses.data(), part.twists.data(), part.axis_position.data(),
           part.axis_velocity.data());
   if (bound_.poses) copy_read(part, bound_);  // here, on the part's thread
+  if (part.is_scene) return;                  // its drives and reactions are the scene's
   const double* applied = mb.drive_force_applied();
   for (std::size_t a = 0; a < part.plan.global_axis.size(); ++a)
     drive_applied_[static_cast<std::size_t>(part.plan.global_axis[a])] = applied[a];

@@ -108,7 +108,8 @@ class MultibodyIslands {
     ~TickHooks() = default;
   };
 
-  /// Substep `substep` of the tick for every part at once (parts() > 1): the part's loads
+  /// Substep `substep` of the tick for every part at once (one part: on the calling thread,
+  /// the same code): the part's loads
   /// taken from the scene-wide arrays (on the first substep) and the contact wrenches (unless
   /// `contact_in_parts`: `stages` then write the part's own, Multibody::use_contact_wrenches),
   /// then `stages`, then its bodies (and after the last substep its axes, drives and reactions)
@@ -137,7 +138,7 @@ class MultibodyIslands {
     return parts_[static_cast<std::size_t>(p)].plan.global_axis;
   }
   /// The part that steps a kernel body (0 for the world), a scene-wide axis, a scene joint.
-  int part_of_body(int body) const { return parts() == 1 ? 0 : owner(body); }
+  int part_of_body(int body) const { return owner(body); }
   int part_of_axis(int axis) const;
   int part_of_joint(int joint) const;
   /// Drives staged by part (the components' drives when they run in the parts): part `p`'s
@@ -160,6 +161,7 @@ class MultibodyIslands {
   struct alignas(64) Part {  // a cache line apart: each is written by its own thread
     std::unique_ptr<Multibody> multibody;
     PartPlan plan;
+    bool is_scene = false;               // the only part: its arrays are the scene's (SceneArrays)
     Wrench* contact_wrenches = nullptr;  // the part's, when contact is used
     std::vector<AxisDrive> drives;       // staged by part (stage_drives_by_part)
     std::int32_t drive_count = 0;
@@ -214,7 +216,24 @@ class MultibodyIslands {
   std::vector<int> local_axis_;     // scene-wide axis -> its index in its part
   std::vector<char> loose_;         // kernel body -> integrated by LooseBodies
   std::unique_ptr<WorkerPool> pool_;
-  // Scene-wide arrays (parts() > 1; with one part the part's own are handed out).
+  /// The scene-wide arrays the kernel reads and writes: with one part that part's own, so that
+  /// the copies between a part and the scene (load_part, copy_bodies, publish_tick,
+  /// gather_reactions) vanish; with several, the storage below.
+  struct SceneArrays {
+    Wrench* wrenches;
+    double* axis_forces;
+    double* axis_friction;
+    AxisDrive* drives;
+    std::int32_t* drive_count;
+    std::int32_t drive_capacity;
+    const double* drive_applied;
+    const Wrench* reactions;
+    Wrench* contact_wrenches;  // set when contact is used (use_contact_wrenches)
+    const Pose* poses;         // the current bodies (current_bodies)
+    const Twist* twists;
+  };
+  SceneArrays scene_{};
+  // The scene-wide arrays' storage when several parts share them.
   std::vector<Wrench> wrenches_, contact_wrenches_, reactions_;
   std::vector<double> axis_forces_, axis_friction_, drive_applied_;
   std::vector<AxisDrive> drives_;

@@ -95,6 +95,12 @@ void WorkerPool::run(Job& job, int count) {
   job_ = &job;
   for (int i = 0; i < count; ++i)
     errors_[static_cast<std::size_t>(i)] = nullptr;
+  if (threads_.empty()) {  // the serial mode: the same tasks, called here in order
+    for (int i = 0; i < count; ++i)
+      run_task(i, 0);
+    rethrow_first(count);
+    return;
+  }
   done_.store(0, std::memory_order_relaxed);
   caller_cpu_.store(sched_getcpu(), std::memory_order_relaxed);
   const std::uint64_t generation = generation_of(ticket_.load()) + 1;
@@ -117,6 +123,10 @@ void WorkerPool::run(Job& job, int count) {
       if (spin % kClockEvery == 0) yield = std::chrono::steady_clock::now() - start > kSpinFor;
     }
   }
+  rethrow_first(count);
+}
+
+void WorkerPool::rethrow_first(int count) {
   for (int i = 0; i < count; ++i)
     if (errors_[static_cast<std::size_t>(i)])
       std::rethrow_exception(errors_[static_cast<std::size_t>(i)]);

@@ -35,7 +35,8 @@ class WorkerPool {
   };
 
   /// `threads` ≥ 1: threads − 1 workers beside the caller; runs of up to `max_tasks` tasks
-  /// (at most 65535).
+  /// (at most 65535). With one thread a run calls its tasks in order on the caller's thread:
+  /// the serial mode is the same code.
   WorkerPool(int threads, int max_tasks);
   ~WorkerPool();
   WorkerPool(const WorkerPool&) = delete;
@@ -66,6 +67,8 @@ class WorkerPool {
   /// worker, in a later one).
   bool claim(int index, std::uint64_t generation) noexcept;
   void run_task(int index, int thread) noexcept;
+  /// After a run of `count` tasks: the exception of the lowest task that threw, if any.
+  void rethrow_first(int count);
 
   std::vector<std::thread> threads_;
   std::vector<std::exception_ptr> errors_;  // per task, preallocated

@@ -36,9 +36,8 @@ const char* stage_name(PipelineStage stage) {
 
 namespace {
 
-/// Contact at the substep's poses, written as the bodies' contact wrenches.
-template <class Model>
-void collide(Model& mb, model::SubstepForces* contact, StageProfile* profile) {
+/// Contact at the substep's poses, computed whole, written as the bodies' contact wrenches.
+void collide(model::MultibodyIslands& mb, model::SubstepForces* contact, StageProfile* profile) {
   if (!contact) return;
   StageTimer timer(profile, PipelineStage::collide);
   const Pose* poses = nullptr;
@@ -47,9 +46,9 @@ void collide(Model& mb, model::SubstepForces* contact, StageProfile* profile) {
   contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
 }
 
-/// The multibody's stages of one substep of the leapfrog (docs/models/multibody.md), and its
-/// end of tick after the last.
-void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) {
+}  // namespace
+
+void multibody_substep(model::Multibody& mb, int substep, StageProfile* profile) {
   {
     StageTimer timer(profile, PipelineStage::prepare_axes);
     mb.prepare_axes();
@@ -80,6 +79,8 @@ void multibody_stages(model::Multibody& mb, int substep, StageProfile* profile) 
   }
 }
 
+namespace {
+
 /// One part's substep (MultibodyIslands::run_substep, run_ticks): its contact when the substep
 /// is split, its stages, and the placing of its shapes for the next substep's contact. Only
 /// the parts the calling thread takes are profiled (StageProfile is not shared between
@@ -101,7 +102,7 @@ class PartStages final : public model::MultibodyIslands::PartStages {
       mb.current_bodies(poses, twists);
       contact_->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches());
     }
-    multibody_stages(mb, substep, profile);
+    multibody_substep(mb, substep, profile);
     if (contact_) {  // placed here, on the part's thread, for the next substep's contact
       StageTimer timer(profile, PipelineStage::collide);
       mb.current_bodies(poses, twists);
@@ -135,8 +136,7 @@ bool begin_contact_in_parts(model::MultibodyIslands& mb, model::SubstepForces& c
 }
 
 /// Simbody refused a state that went non-finite inside the tick (a blow-up): say where.
-template <class Model>
-[[noreturn]] void throw_diverged(const Model& mb, const std::exception& e) {
+[[noreturn]] void throw_diverged(const model::MultibodyIslands& mb, const std::exception& e) {
   const int body = mb.first_non_finite_body();
   throw Error(ErrorKind::runtime,
               "the simulation diverged at t = " + std::to_string(mb.time_s()) + " s" +
@@ -156,22 +156,8 @@ std::uint64_t fnv1a(std::string_view s) {
 
 }  // namespace
 
-void physics_tick(model::Multibody& mb, model::SubstepForces* contact, StageProfile* profile) {
-  try {
-    for (int k = 0; k < mb.substeps(); ++k) {
-      collide(mb, contact, profile);
-      multibody_stages(mb, k, profile);
-    }
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw_diverged(mb, e);
-  }
-}
-
 void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, StageProfile* profile,
                   model::MultibodyIslands::TickHooks* hooks) {
-  if (mb.parts() == 1) return physics_tick(mb.part(0), contact, profile);
   const bool split = contact && mb.split_forces() == contact;
   PartStages stages(profile, split ? contact : nullptr, false);
   try {
@@ -204,8 +190,8 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
 }
 
 bool fence_parts(model::MultibodyIslands& mb, model::SubstepForces* contact) {
-  return mb.parts() > 1 && contact && mb.split_forces() == contact &&
-         mb.untouched_since_substep() && contact->fence_parts();
+  return contact && mb.split_forces() == contact && mb.untouched_since_substep() &&
+         contact->fence_parts();
 }
 
 bool physics_ticks_ahead(model::MultibodyIslands& mb, model::SubstepForces& contact,

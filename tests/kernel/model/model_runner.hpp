@@ -8,6 +8,20 @@
 
 namespace s2sim::test {
 
+/// One tick of a bare Multibody (no parts, no pool): per substep its contact at the substep's
+/// poses, then its stages, as each part of the kernel's tick runs them.
+inline void physics_tick(model::Multibody& mb, model::SubstepForces* contact) {
+  for (int k = 0; k < mb.substeps(); ++k) {
+    if (contact) {
+      const Pose* poses = nullptr;
+      const Twist* twists = nullptr;
+      mb.current_bodies(poses, twists);
+      contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+    }
+    sim::multibody_substep(mb, k);
+  }
+}
+
 struct Runner {
   explicit Runner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
       : mb(s, dt, substeps),
@@ -30,7 +44,7 @@ struct Runner {
   void read() { mb.read(poses.data(), twists.data(), pos.data(), vel.data()); }
   void step(int n = 1) {
     for (int i = 0; i < n; ++i)
-      sim::physics_tick(mb, contact);
+      physics_tick(mb, contact);
     read();
   }
   model::Multibody mb;

@@ -324,7 +324,7 @@ TEST(LooseBodies, MatchSimbodysFreeMobilizer) {
     for (int n = 0; n < 1000; ++n) {
       for (Multibody* mb : {&loose.mb, &reference}) {
         mb->applied_wrenches()[1] = Wrench{{0.02, -0.01, 0.03}, {1.0, 0.5, 0}};
-        sim::physics_tick(*mb, nullptr);
+        test::physics_tick(*mb, nullptr);
       }
     }
     loose.read();

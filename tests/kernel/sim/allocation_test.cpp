@@ -3,6 +3,7 @@
 // more); what S2Sim controls -- scheduler, components, loads, reading back -- must add none.
 #include <s2sim/kernel/simulation.hpp>
 
+#include "kernel/model/model_runner.hpp"
 #include "model/multibody.hpp"
 #include "scene/element_params.hpp"
 #include "sim/step.hpp"
@@ -50,10 +51,10 @@ Counts count(const std::filesystem::path& scene, const SimulationOptions& o) {
           AxisDrive{static_cast<std::int32_t>(a), 0.0, viscous, -INFINITY, INFINITY};
   }
   for (int i = 0; i < 10; ++i)
-    sim::physics_tick(bare, nullptr);
+    test::physics_tick(bare, nullptr);
   before = allocations.load();
   for (int i = 0; i < 1000; ++i)
-    sim::physics_tick(bare, nullptr);
+    test::physics_tick(bare, nullptr);
   c.simbody = allocations.load() - before;
   return c;
 }
