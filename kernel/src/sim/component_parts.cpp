@@ -78,6 +78,12 @@ void Simulation::Impl::plan_component_parts() {
   sim::ComponentParts& plan = component_parts;
   plan.parts.clear();
   multibody->stage_drives_by_part(false);
+  plan.whole.part = sim::ComponentGroup::kWholeScene;
+  plan.whole.stage_order = stage_order;
+  plan.whole.bodies.resize(poses.size());
+  std::iota(plan.whole.bodies.begin(), plan.whole.bodies.end(), 0);
+  plan.whole.axes.resize(axis_views.size());
+  std::iota(plan.whole.axes.begin(), plan.whole.axes.end(), 0);
   const int parts = multibody->parts();
   if (parts < 2) {
     plan.serial_reason =
@@ -155,6 +161,7 @@ void Simulation::Impl::plan_component_parts() {
   plan.parts.resize(static_cast<std::size_t>(parts));
   for (int p = 0; p < parts; ++p) {
     auto& part = plan.parts[static_cast<std::size_t>(p)];
+    part.part = p;
     part.bodies = multibody->part_bodies(p);
     part.axes = multibody->part_axes(p);
   }
@@ -182,7 +189,7 @@ void Simulation::Impl::sync_local_views() {
     local.view.annotator = &local;
     local.view.annotate = &refuse_annotation;
   };
-  sync(serial_local, world.axis_drives, world.axis_drive_count);
+  sync(component_parts.whole.local, world.axis_drives, world.axis_drive_count);
   for (std::size_t p = 0; p < component_parts.parts.size(); ++p) {
     const int part = static_cast<int>(p);
     sync(component_parts.parts[p].local, multibody->part_drives(part),
@@ -219,35 +226,43 @@ void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::i
   refuse(local, "published an annotation (a log line, HUD text, trail, XY point or colour)");
 }
 
-void Simulation::Impl::start_part_tick(int p, bool calling_thread, int ahead) {
-  sim::ComponentParts::Part& part = component_parts.parts[static_cast<std::size_t>(p)];
+void Simulation::Impl::run_component_group(sim::ComponentGroup& group, bool calling_thread,
+                                           int ahead) {
+  const bool whole = group.part == sim::ComponentGroup::kWholeScene;
   sim::StageProfile* timing = calling_thread ? profile.get() : nullptr;
   Wrench* wrenches = multibody->applied_wrenches();
   double* axis_force = multibody->applied_axis_forces();
   double* axis_friction = multibody->applied_axis_friction();
-  for (const int b : part.bodies)
+  for (const int b : group.bodies)
     wrenches[b] = Wrench{};
-  for (const int a : part.axes)
+  for (const int a : group.axes)
     axis_force[a] = axis_friction[a] = 0.0;
-  // The last substep's contacts on the part's bodies (its own lane; the whole list after a
-  // substep computed whole): what its components may read, unmerged.
-  part.local.view.contacts = contacts->part_contacts(p, part.local.view.contact_count);
+  // The last substep's contacts: a part's on its bodies (its own lane, unmerged; the whole
+  // list after a substep computed whole), the whole scene's merged.
+  detail::WorldView& view = group.local.view;
+  if (whole) {
+    world.contacts = view.contacts = contacts->contacts();
+    world.contact_count = view.contact_count = contacts->contact_count();
+  } else {
+    view.contacts = contacts->part_contacts(group.part, view.contact_count);
+  }
   // The rest of the view changes only at load; the time as refresh() writes it.
-  part.local.view.tick = tick + ahead;
-  part.local.view.time_s = static_cast<double>(part.local.view.tick) * tick_s;
-  const AxisDrive* drives = multibody->part_drives(p);
-  std::int32_t& drive_count = *multibody->part_drive_count(p);
+  view.tick = tick + ahead;
+  view.time_s = static_cast<double>(view.tick) * tick_s;
+  const AxisDrive* drives = view.axis_drives;
+  std::int32_t& drive_count = *view.axis_drive_count;
   drive_count = 0;
-  for (std::size_t stage = 0; stage < part.stage_order.size(); ++stage) {
+  for (std::size_t stage = 0; stage < group.stage_order.size(); ++stage) {
     sim::StageTimer timer(timing, static_cast<sim::PipelineStage>(stage));
-    for (const int c : part.stage_order[stage]) {
+    for (const int c : group.stage_order[stage]) {
       const std::int32_t before = drive_count;
-      if (!update_if_due(c, &part.local)) continue;
       const sim::ComponentSlot& slot = components[static_cast<std::size_t>(c)];
+      if (!update_if_due(c, slot.local ? &group.local : nullptr)) continue;
+      if (whole) continue;
       for (std::int32_t d = before; d < drive_count; ++d) {
         const std::int32_t a = drives[d].axis;
         if (a >= 0 && static_cast<std::size_t>(a) < axis_views.size() &&
-            multibody->part_of_axis(a) == p)
+            multibody->part_of_axis(a) == group.part)
           continue;
         throw Error(ErrorKind::runtime, slot.where,
                     slot.label() +
@@ -256,18 +271,20 @@ void Simulation::Impl::start_part_tick(int p, bool calling_thread, int ahead) {
                         std::to_string(a) + ", which it did not look up");
       }
     }
+    // Only the whole scene's components may ask (a local one is refused).
+    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
+      apply_pending_places();
   }
-  for (const int a : part.axes)
+  for (const int a : group.axes)
     axis_force[a] +=
         inputs[static_cast<std::size_t>(ref_torque_input[static_cast<std::size_t>(a)])];
-  check_loads_finite(&part.bodies, &part.axes, drives, drive_count);
+  check_loads_finite(&group.bodies, &group.axes, drives, drive_count);
 }
 
-void Simulation::Impl::end_part_tick(int p) {
-  const sim::ComponentParts::Part& part = component_parts.parts[static_cast<std::size_t>(p)];
+void Simulation::Impl::record_group_axis_loads(const sim::ComponentGroup& group) {
   const double* axis_force = multibody->applied_axis_forces();
   const double* drive = multibody->drive_force_applied();
-  for (const int a : part.axes)
+  for (const int a : group.axes)
     axis_force_applied[static_cast<std::size_t>(a)] = axis_force[a] + drive[a];
 }
 

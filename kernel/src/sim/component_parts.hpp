@@ -37,15 +37,27 @@ struct LocalView {
   std::int32_t component = -1;  ///< the one whose update() runs (for the refusal)
 };
 
-/// The plan of the components by part, made at load (Simulation::Impl::plan_component_parts).
+/// A group of components stepped together at the tick's start: their stages in the serial
+/// order, then the reference torques on their axes and the check of their loads
+/// (Simulation::Impl::run_component_group, one function for every group).
+struct alignas(64) ComponentGroup {  // a cache line apart: each is written by its own thread
+  /// The physics part whose thread runs the group before its substeps (MultibodyIslands'
+  /// TickHooks); kWholeScene: every component, on the calling thread before the physics.
+  int part = kWholeScene;
+  static constexpr int kWholeScene = -1;
+  /// The view of its local components (a part's: its own drive slots).
+  LocalView local;
+  std::array<std::vector<int>, 4> stage_order;  ///< its components, in the serial order
+  std::vector<int> bodies, axes;  ///< the loads it clears (the whole scene: the world's too)
+};
+
+/// The plan of the components, made at load (Simulation::Impl::plan_component_parts): one
+/// group per physics part when every component is local and each group of components that
+/// touch one another touches one part, else the whole scene's group.
 struct ComponentParts {
-  struct alignas(64) Part {  // a cache line apart: each is written by its own thread
-    LocalView local;         ///< its axis_drives: the part's own slots
-    std::array<std::vector<int>, 4> stage_order;  ///< its components, in the serial order
-    std::vector<int> bodies, axes;                ///< what it steps (kernel bodies, scene axes)
-  };
-  /// Empty: the components run on the calling thread, stage by stage (serial_reason says why).
-  std::vector<Part> parts;
+  ComponentGroup whole;
+  /// Empty: the components run as `whole` (serial_reason says why).
+  std::vector<ComponentGroup> parts;
   std::string serial_reason;
 };
 

@@ -145,19 +145,20 @@ struct Simulation::Impl {
   std::array<std::vector<int>, 4> stage_order;
   std::vector<std::int32_t> publisher;  // per published slot, the component that declared it
 
-  // --- components in parts (component_parts.cpp) ----------------------------------------------
-  /// The local components' view on the calling thread (the serial run).
-  sim::LocalView serial_local;
+  // --- components by group (component_parts.cpp) ---------------------------------------------
   sim::ComponentParts component_parts;
   /// At load, once the multibody and contact are built: component_parts, or why not.
   void plan_component_parts();
   /// The local views' copies of `world` (its time, tick and contacts change every tick).
   void sync_local_views();
-  /// Part `part`'s components at the tick's start, on its thread (part_hooks),
-  /// then its reference torques and the check of its loads; `end_part_tick` after its physics.
+  /// A group's components at the tick's start (the whole scene's on the calling thread before
+  /// the physics, a part's on its thread through part_hooks): its loads cleared, its due
+  /// components in stage order, then its reference torques and the check of its loads.
   /// `ahead`: the tick's distance from `tick` (running ahead; 0 otherwise).
-  void start_part_tick(int part, bool calling_thread, int ahead);
-  void end_part_tick(int part);
+  void run_component_group(sim::ComponentGroup& group, bool calling_thread, int ahead);
+  /// After the group's physics: what its axes carried over the tick (the plain forces and the
+  /// drives' implicit values).
+  void record_group_axis_loads(const sim::ComponentGroup& group);
   // What a local component is refused (LocalView): each throws naming it.
   static RayHit refuse_ray(const void* local, const Vec3&, const Vec3&, double, std::int32_t);
   static void refuse_place(const void* local, std::int32_t, const Pose&);
@@ -246,9 +247,12 @@ struct Simulation::Impl {
   struct PartHooks final : model::MultibodyIslands::TickHooks {
     explicit PartHooks(Impl& owner) : impl(owner) {}
     void start(int part, bool calling_thread, int ahead) override {
-      impl.start_part_tick(part, calling_thread, ahead);
+      impl.run_component_group(impl.component_parts.parts[static_cast<std::size_t>(part)],
+                               calling_thread, ahead);
     }
-    void end(int part) override { impl.end_part_tick(part); }
+    void end(int part) override {
+      impl.record_group_axis_loads(impl.component_parts.parts[static_cast<std::size_t>(part)]);
+    }
     Impl& impl;
   };
   PartHooks part_hooks{*this};
@@ -267,10 +271,8 @@ struct Simulation::Impl {
   int ahead_misses = 0;
   int ahead_growth = 0;
   Simulation::RunAheadCounts ahead_counts;
-  /// The scheduled stages on the calling thread, with the loads' reset before and check after.
-  void run_components();
   /// Component `c`'s update when its schedule has it due this tick (true), through `local`'s
-  /// view when it is local (serial_local on this thread, a part's in the parts), else the
+  /// view when it is local (its group's), else the
   /// world's; an exception becomes the kernel's Error naming it. Its schedule's clock: the
   /// view's tick.
   bool update_if_due(int c, sim::LocalView* local);

@@ -118,21 +118,17 @@ class PartStages final : public model::MultibodyIslands::PartStages {
   bool contact_in_parts_ = false;
 };
 
-/// The substep's contact when it is split part by part: the calling thread's share (the pairs;
-/// the whole contact when two parts' bodies meet). Returns whether the parts compute the rest.
-template <class BeforeWhole>
+/// The calling thread's share of a substep's contact split part by part (the pairs, unless
+/// each part finds its own): whether the parts compute the rest (false when two parts'
+/// bodies touch or may within the step: the contact is then computed whole).
 bool begin_contact_in_parts(model::MultibodyIslands& mb, model::SubstepForces& contact,
-                            StageProfile* profile, BeforeWhole&& before_whole) {
+                            StageProfile* profile) {
   StageTimer timer(profile, PipelineStage::collide);
   const Pose* poses = nullptr;
   const Twist* twists = nullptr;
   const bool placed = mb.untouched_since_substep();  // the parts placed their shapes
   if (!placed) mb.current_bodies(poses, twists);
-  if (contact.begin_parts(placed, poses, twists, mb.substep_s())) return true;
-  before_whole();
-  mb.current_bodies(poses, twists);
-  contact.compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
-  return false;
+  return contact.begin_parts(placed, poses, twists, mb.substep_s());
 }
 
 /// Simbody refused a state that went non-finite inside the tick (a blow-up): say where.
@@ -162,19 +158,12 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
   PartStages stages(profile, split ? contact : nullptr, false);
   try {
     for (int k = 0; k < mb.substeps(); ++k) {
-      bool start_ran = false;
-      auto starts_first = [&] {  // the components before a contact computed whole
-        if (!hooks || k != 0) return;
-        mb.run_tick_starts(*hooks);
-        start_ran = true;
-      };
-      bool contact_in_parts = false;
-      if (split) {
-        contact_in_parts = begin_contact_in_parts(mb, *contact, profile, starts_first);
-      } else {
-        starts_first();
-        collide(mb, contact, profile);
-      }
+      // Contact part by part in the parts where it can, else whole, here, after the parts'
+      // components (a whole contact rewrites the contact list they read).
+      const bool contact_in_parts = split && begin_contact_in_parts(mb, *contact, profile);
+      const bool start_ran = !contact_in_parts && hooks && k == 0;
+      if (start_ran) mb.run_tick_starts(*hooks);
+      if (!contact_in_parts) collide(mb, contact, profile);
       stages.set_contact_in_parts(contact_in_parts);
       mb.run_substep(k, stages, contact_in_parts, hooks, start_ran);
       if (contact_in_parts) {
@@ -207,13 +196,12 @@ bool physics_ticks_ahead(model::MultibodyIslands& mb, model::SubstepForces& cont
 }  // namespace sim
 
 void Simulation::Impl::step_once() {
-  Wrench* wrenches = multibody->applied_wrenches();
-  double* axis_force = multibody->applied_axis_forces();
+  // The components: in the parts (each part's hooks' start), else the whole scene's here.
   const bool in_parts = !component_parts.parts.empty();
   if (in_parts) {
-    wrenches[0] = Wrench{};  // the world's entry, which no part clears (each clears its own)
+    multibody->applied_wrenches()[0] = Wrench{};  // the world's entry, which no part clears
   } else {
-    run_components();
+    run_component_group(component_parts.whole, true, 0);
   }
   try {
     sim::physics_tick(*multibody, contacts.get(), profile.get(), in_parts ? &part_hooks : nullptr);
@@ -246,43 +234,11 @@ void Simulation::Impl::step_once() {
                     multibody->body_name(body[static_cast<std::size_t>(too_many.shape_b)]) +
                     ": bodies are placed into one another");
   }
-  // What the axes carried over the tick: the plain forces and the drives' implicit values (in
-  // the parts, each part's end_part_tick).
-  if (!in_parts) {
-    const double* drive = multibody->drive_force_applied();
-    for (std::size_t a = 0; a < axis_views.size(); ++a)
-      axis_force_applied[a] = axis_force[a] + drive[a];
-  }
+  // What the axes carried over the tick (in the parts, each part's hooks' end).
+  if (!in_parts) record_group_axis_loads(component_parts.whole);
   ++tick;
   sim::StageTimer timer(profile.get(), sim::PipelineStage::read_out);
   refresh();
-}
-
-void Simulation::Impl::run_components() {
-  // The last step's contacts, merged from the parts' lists if they computed them (the buffer
-  // may have grown since the last tick).
-  world.contacts = serial_local.view.contacts = contacts->contacts();
-  world.contact_count = serial_local.view.contact_count = contacts->contact_count();
-  serial_local.view.time_s = world.time_s;
-  serial_local.view.tick = world.tick;
-  Wrench* wrenches = multibody->applied_wrenches();
-  double* axis_force = multibody->applied_axis_forces();
-  double* axis_friction = multibody->applied_axis_friction();
-  std::fill(wrenches, wrenches + poses.size(), Wrench{});
-  std::fill(axis_force, axis_force + axis_views.size(), 0.0);
-  std::fill(axis_friction, axis_friction + axis_views.size(), 0.0);
-  *multibody->axis_drive_count() = 0;
-  // The scheduled stages, in Stage order: sense, control, motor control, actuate.
-  for (std::size_t stage = 0; stage < stage_order.size(); ++stage) {
-    sim::StageTimer timer(profile.get(), static_cast<sim::PipelineStage>(stage));
-    for (int c : stage_order[stage])
-      update_if_due(c, components[static_cast<std::size_t>(c)].local ? &serial_local : nullptr);
-    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
-      apply_pending_places();
-  }
-  for (std::size_t a = 0; a < axis_views.size(); ++a)
-    axis_force[a] += inputs[ref_torque_input[a]];
-  check_loads_finite(nullptr, nullptr, multibody->axis_drives(), *multibody->axis_drive_count());
 }
 
 bool Simulation::Impl::update_if_due(int c, sim::LocalView* local) {
