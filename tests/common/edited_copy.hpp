@@ -12,6 +12,7 @@
 #include <string>
 
 #include <unistd.h>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::test {
 
@@ -24,7 +25,7 @@ inline std::filesystem::path edited_copy(const std::filesystem::path& source,
                                          const std::string& to) {
   namespace fs = std::filesystem;
   const fs::path dir =
-      fs::path(testing::TempDir()) /
+      s2sim::test::process_temp_dir() /
       ("s2sim_" + std::to_string(std::hash<std::string>{}(source.string() + file + from + to)) +
        "_" + std::to_string(::getpid()));
   fs::remove_all(dir);

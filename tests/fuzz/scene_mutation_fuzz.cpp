@@ -51,7 +51,7 @@ struct Options {
   int jobs = 2;
   double timeout_s = 10;
   double sim_time_s = 0.05;
-  fs::path work = fs::temp_directory_path() / "s2sim-fuzz";
+  fs::path work = fs::temp_directory_path() / ("s2sim-fuzz-" + std::to_string(::getpid()));
   fs::path findings = "fuzz-findings";
   std::vector<fs::path> plugin_path;
   int threads = 1;  // ≥ 2: each case also on that many threads, compared with one

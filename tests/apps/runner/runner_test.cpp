@@ -27,6 +27,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace {
 
@@ -129,7 +130,7 @@ class Runner : public ::testing::Test {
     std::string name = std::string(info->test_suite_name()) + "_" + info->name();
     for (char& c : name)
       if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::path(::testing::TempDir()) /
+    dir_ = s2sim::test::process_temp_dir() /
            ("s2sim_runner_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir_);
     fs::create_directories(dir_);

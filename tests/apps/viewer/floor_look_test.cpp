@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::viewer {
 namespace {
@@ -17,7 +18,7 @@ namespace fs = std::filesystem;
 class FloorLookTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
+    dir_ = s2sim::test::process_temp_dir() /
            ("s2sim_floor_look_" + std::to_string(::getpid()) + "_" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::viewer {
 namespace {
@@ -28,7 +29,7 @@ namespace fs = std::filesystem;
 const fs::path kDefaultScene = fs::path(S2SIM_SOURCE_DIR) / "scenes/default";
 
 fs::path temp_file(const std::string& name) {
-  return fs::path(::testing::TempDir()) / ("s2sim_viewer_core_" + name);
+  return s2sim::test::process_temp_dir() / ("s2sim_viewer_core_" + name);
 }
 
 /// Area of a mesh's triangles projected on XY.
@@ -167,8 +168,8 @@ TEST(Camera, FrameBoxPutsEveryCornerInsideTheView) {
 // A SimTwo project opens with its author's camera: the eye from config_Viewer.ini,
 // the point looked at from config_Params.ini (SimTwo.ini when those are missing).
 TEST(SimTwoCamera, ReadsTheProjectsSavedEyeAndTarget) {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) /
-                                    ("s2sim_simtwo_camera_" + std::to_string(::getpid()));
+  const std::filesystem::path dir =
+      s2sim::test::process_temp_dir() / ("s2sim_simtwo_camera_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   EXPECT_FALSE(read_simtwo_camera(dir)) << "no settings, no camera";
   std::ofstream(dir / "SimTwo.ini")

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::viewer_test {
 
@@ -41,7 +42,7 @@ class ViewerRun : public ::testing::Test {
     std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
     for (char& c : name)
       if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::path(::testing::TempDir()) /
+    dir_ = s2sim::test::process_temp_dir() /
            ("s2sim_viewer_render_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace viewer_test {
 
@@ -92,7 +93,7 @@ class Viewer : public ::testing::Test {
     std::string name = info->name();
     for (char& c : name)
       if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-    dir_ = fs::path(::testing::TempDir()) /
+    dir_ = s2sim::test::process_temp_dir() /
            ("s2sim_viewer_" + std::to_string(::getpid()) + "_" + name);
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim {
 namespace {
@@ -18,7 +19,7 @@ namespace fs = std::filesystem;
 
 /// A scene of NXT robots (scenes/nxt) side by side, 3 m apart along x.
 fs::path nxt_scene(const std::string& name, int robots) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("axis_trees_" + name);
+  const fs::path dir = s2sim::test::process_temp_dir() / ("axis_trees_" + name);
   fs::create_directories(dir);
   fs::copy_file(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt/nxt.xml", dir / "nxt.xml",
                 fs::copy_options::overwrite_existing);

@@ -10,6 +10,7 @@
 
 #include <fstream>
 #include <map>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::scene {
 namespace {
@@ -249,7 +250,7 @@ TEST(SceneErrors, MissingScene) {
 // Smaller cases written to a temporary folder: scene.xml plus a robot file `bot.xml`.
 std::filesystem::path temp_scene(const std::string& name, const std::string& robot_body,
                                  const std::string& scene_extra = "") {
-  const auto dir = std::filesystem::path(::testing::TempDir()) / ("s2sim_scene_" + name);
+  const auto dir = s2sim::test::process_temp_dir() / ("s2sim_scene_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "scene.xml")

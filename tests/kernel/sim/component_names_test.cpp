@@ -11,6 +11,7 @@
 #include <iterator>
 #include <string>
 #include <utility>
+#include "common/temp_dir.hpp"
 
 namespace s2sim {
 namespace {
@@ -52,7 +53,7 @@ fs::path variant(const std::string& from, const std::string& to) {
   text.replace(text.find(robot), robot.size(),
                (fs::path(S2SIM_SOURCE_DIR) / "scenes/motor_bench/nxt_motor.xml").string());
   text.replace(text.find(from), from.size(), to);
-  const fs::path dir = fs::path(testing::TempDir()) / ("s2sim_names_" + to.substr(0, 4));
+  const fs::path dir = s2sim::test::process_temp_dir() / ("s2sim_names_" + to.substr(0, 4));
   fs::create_directories(dir);
   std::ofstream(dir / "scene.xml") << text;
   return dir;

@@ -15,6 +15,7 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim {
 namespace {
@@ -28,7 +29,7 @@ bool two_threads_available() {
 /// Four peer-benchmark robots in a row (r0, r1 are dealt to part 0, r2, r3 to part 1), with
 /// `plugins` (scene-level `<plugin>` elements) after them.
 fs::path write_scene(const std::string& name, const std::string& plugins) {
-  const fs::path dir = fs::path(testing::TempDir()) / ("component_parts_" + name);
+  const fs::path dir = s2sim::test::process_temp_dir() / ("component_parts_" + name);
   fs::create_directories(dir);
   const fs::path robot = fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/diffbot.xml";
   std::ofstream f(dir / "scene.xml");
@@ -106,7 +107,7 @@ TEST(ComponentParts, RobotsWithLocalSensorsRunThemInTheirPartsWithTheSerialResul
   if (!two_threads_available()) GTEST_SKIP() << "one hardware thread";
   // The peers' robot with an IMU, a pose sensor, a bumper on its caster and a force sensor in
   // its right wheel's joint: the sensors plugin's local kinds.
-  const fs::path dir = fs::path(testing::TempDir()) / "component_parts_sensors";
+  const fs::path dir = s2sim::test::process_temp_dir() / "component_parts_sensors";
   fs::create_directories(dir);
   std::string robot;
   {

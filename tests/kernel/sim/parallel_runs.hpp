@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::parallel_runs {
 
@@ -69,7 +70,7 @@ inline std::filesystem::path row_scene(const std::string& folder,
                                        const std::filesystem::path& robot_file,
                                        const std::string& prefix, double spacing_m,
                                        const std::string& extra = "") {
-  const auto row = std::filesystem::path(testing::TempDir()) / folder;
+  const auto row = s2sim::test::process_temp_dir() / folder;
   std::filesystem::create_directories(row);
   std::ofstream f(row / "scene.xml");
   f << "<scene>\n";

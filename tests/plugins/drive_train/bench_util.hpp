@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::test {
 
@@ -42,7 +43,7 @@ inline fs::path bench_with(const std::vector<std::pair<std::string, std::string>
   std::string tag;
   for (const auto& [from, to] : edits)
     tag += from + "->" + to + ";";
-  const fs::path dir = fs::path(testing::TempDir()) /
+  const fs::path dir = s2sim::test::process_temp_dir() /
                        ("s2sim_bench_" + std::to_string(std::hash<std::string>{}(tag)));
   fs::remove_all(dir);
   fs::copy(kBench, dir, fs::copy_options::recursive);

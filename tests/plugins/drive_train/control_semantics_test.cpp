@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::test {
 namespace {
@@ -83,7 +84,7 @@ TEST(ControlSemantics, SimTwosArmHoldsUnderSimTwosSemanticsAndIsUnstableUnderThe
   // The control law alone: every plugin of the build but `fluids`, so that the arm's SimTwo
   // <drag stokes='1e-2' roll='1e-1'> is left out; that damping steadies even the
   // textbook law (J2 within 0.06 rad), which would hide the difference this test is about.
-  const fs::path no_fluids = fs::path(testing::TempDir()) / "s2sim_plugins_but_fluids";
+  const fs::path no_fluids = s2sim::test::process_temp_dir() / "s2sim_plugins_but_fluids";
   fs::remove_all(no_fluids);
   fs::create_directories(no_fluids);
   for (const auto& entry : fs::directory_iterator(S2SIM_PLUGIN_DIR))

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include "common/temp_dir.hpp"
 
 namespace s2sim::test {
 namespace {
@@ -391,7 +392,7 @@ TEST(DriveTrain, MotorModelV3AGMRunsUnderItsPidSpeedController) {
 }
 
 TEST(DriveTrain, MissingPluginIsAPluginErrorNamingTheAxisAndTheKind) {
-  const fs::path empty = fs::path(testing::TempDir()) / "s2sim_no_plugins";
+  const fs::path empty = s2sim::test::process_temp_dir() / "s2sim_no_plugins";
   fs::create_directories(empty);
   SimulationOptions o;
   o.plugin_path = {empty};

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 #include <vector>
+#include "common/temp_dir.hpp"
 
 namespace s2sim {
 namespace {
@@ -50,7 +51,7 @@ TEST(JointForce, WhenBody1IsTheParentItReadsTheBobPullingItDown) {
   // The bob's hinge written <connect B1='block' B2='bob'/> (the block is welded to the world;
   // with the world the loader makes the solid body1, as SimTwo): body1 is now the mobilizer's
   // parent, and the sensor reports body2's (the bob's) load on it, in the block's frame.
-  const fs::path dir = fs::path(testing::TempDir()) / "s2sim_jointforce_parent";
+  const fs::path dir = s2sim::test::process_temp_dir() / "s2sim_jointforce_parent";
   fs::remove_all(dir);
   fs::copy(kFixture, dir, fs::copy_options::recursive);
   std::ifstream in(dir / "rig.xml");
@@ -73,7 +74,7 @@ TEST(JointForce, WhenBody1IsTheParentItReadsTheBobPullingItDown) {
 TEST(JointForce, ALoopClosingJointReadsZeroWithALoadTimeWarning) {
   // A second hinge from the bob to the block, on the bob's own axis: the tree reaches the
   // block through it, so the block's weld to the world closes a loop (a Weld constraint).
-  const fs::path dir = fs::path(testing::TempDir()) / "s2sim_jointforce_loop";
+  const fs::path dir = s2sim::test::process_temp_dir() / "s2sim_jointforce_loop";
   fs::remove_all(dir);
   fs::copy(kFixture, dir, fs::copy_options::recursive);
   std::ifstream in(dir / "rig.xml");
@@ -166,7 +167,7 @@ TEST(JointForce, NoiseHasTheStdevOfItsNoiseElement) {
 }
 
 TEST(JointForce, AnUnknownJointIsAnErrorNamingFileElementAndValue) {
-  const fs::path dir = fs::path(testing::TempDir()) / "s2sim_jointforce_unknown";
+  const fs::path dir = s2sim::test::process_temp_dir() / "s2sim_jointforce_unknown";
   fs::remove_all(dir);
   fs::copy(kFixture, dir, fs::copy_options::recursive);
   std::ifstream in(dir / "rig.xml");

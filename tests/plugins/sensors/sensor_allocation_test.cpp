@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <new>
 #include <string>
+#include "common/temp_dir.hpp"
 
 using s2sim::test::allocations;
 
@@ -35,7 +36,7 @@ TEST(SensorAllocation, SensorsAddNoAllocationToTheStep) {
   // temporaries, other plugins), sensors add nothing.
   SimulationOptions with, without;
   with.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
-  const fs::path others = fs::path(testing::TempDir()) / "s2sim_plugins_but_sensors";
+  const fs::path others = s2sim::test::process_temp_dir() / "s2sim_plugins_but_sensors";
   fs::remove_all(others);
   fs::create_directories(others);
   for (const auto& entry : fs::directory_iterator(S2SIM_PLUGIN_DIR))
