@@ -1,11 +1,12 @@
 #pragma once
 /// \file
-/// The scene's multibody as P parts stepped in parallel each part is its own
-/// Simbody system holding whole islands of the joint graph (island_plan.hpp), and a persistent
-/// worker pool runs the parts' stages of a substep at once. The kernel still sees one body
-/// numbering and one axis table: the parts read their slices of the scene-wide load arrays and
-/// write their slices of the scene-wide poses, twists and axis values. P = 1 is one Multibody
-/// over the whole plan, exactly the serial model. An island's numbers do not depend on the
+/// The scene's multibody as P parts stepped in parallel: each part is its own Simbody system
+/// holding whole islands of the joint graph (island_plan.hpp), and a persistent worker pool
+/// runs the parts' stages of a substep at once. The kernel still sees one body numbering and
+/// one axis table: the parts read their slices of the scene-wide load arrays and write their
+/// slices of the scene-wide poses, twists and axis values. P = 1 is the serial step and the
+/// same code: one Multibody over the whole plan, whose arrays are the scene-wide ones, run by
+/// a pool of one thread that calls it in place. An island's numbers do not depend on the
 /// others in its system (AxisTrees.ARobotMovesBitForBitAsAloneBesideOthersThatDoNotTouchIt), so
 /// the results do not depend on P (tests/kernel/sim/parallel_islands_test.cpp).
 
