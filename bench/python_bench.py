@@ -10,6 +10,9 @@
    the pure-Python client in the main thread, one INPUTS request and its SIGNALS reply per
    20 ms control period, against stepping the same periods with no link. Loopback UDP.
    OBSERVE requests time the protocol's round trip alone (answered without stepping).
+3. Threads: two Simulations of scenes/nxt stepped `ticks` ticks each, one after the other
+   against on two Python threads at once (stepping releases the GIL): the speed-up, at most
+   2 on two free cores.
 Best of 9 repeats each (the least disturbed by the rest of the machine); prints JSON.
 """
 
@@ -127,13 +130,44 @@ def remote_round_trip(periods):
             "us_per_period_bindings_no_link": 1e6 * without}
 
 
+NXT = os.path.join(ROOT, "scenes", "nxt")
+
+
+def separate_threads(ticks):
+    sims = [s2sim.Simulation(NXT) for _ in range(2)]
+
+    def one_after_the_other():
+        for sim in sims:
+            sim.reset()
+        t = time.perf_counter()
+        for sim in sims:
+            sim.step(ticks)
+        return time.perf_counter() - t
+
+    def at_once():
+        for sim in sims:
+            sim.reset()
+        threads = [threading.Thread(target=sim.step, args=(ticks,)) for sim in sims]
+        t = time.perf_counter()
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+        return time.perf_counter() - t
+
+    serial, parallel = best(one_after_the_other, 5), best(at_once, 5)
+    return {"ticks_each": ticks, "s_one_after_the_other": serial, "s_on_two_threads": parallel,
+            "speed_up": serial / parallel}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--ticks", type=int, default=20000)
     parser.add_argument("--periods", type=int, default=2000)
     args = parser.parse_args()
     print(json.dumps({"bindings": bindings(args.ticks),
-                      "remote_lockstep": remote_round_trip(args.periods)}, indent=2))
+                      "remote_lockstep": remote_round_trip(args.periods),
+                      "separate_threads": separate_threads(5 * args.ticks)}, indent=2))
 
 
 if __name__ == "__main__":

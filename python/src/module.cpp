@@ -97,26 +97,59 @@ class PySimulation {
         body_by_name_.emplace("robots/" + sc.robots[r].id, sc.robots[r].main_body + 1);
   }
 
-  Simulation& sim() { return *sim_; }
-  const Simulation& sim() const { return *sim_; }
+  /// The simulation, for a call that holds the GIL throughout: refused while another thread
+  /// runs one that released it (Exclusive).
+  Simulation& sim() {
+    refuse_if_busy();
+    return *sim_;
+  }
+  const Simulation& sim() const {
+    refuse_if_busy();
+    return *sim_;
+  }
+
+  /// A call that releases the GIL (load, step, run_until, reset) owns the simulation until it
+  /// returns: constructed before the release and destroyed after the GIL is taken back, so that
+  /// any other thread's call in between sees the simulation busy and gets a clear error instead
+  /// of a torn state or a crash. Several Simulations on several threads run at once.
+  class Exclusive {
+   public:
+    Exclusive(PySimulation& s, const char* what) : s_(s) {
+      s_.refuse_if_busy();
+      s_.busy_with_ = what;
+    }
+    ~Exclusive() { s_.busy_with_ = nullptr; }
+    Exclusive(const Exclusive&) = delete;
+    Exclusive& operator=(const Exclusive&) = delete;
+
+   private:
+    PySimulation& s_;
+  };
 
   void step(std::int64_t ticks) {
     if (ticks < 0)
       throw Error(ErrorKind::usage, "step(n): n must be >= 0, got " + std::to_string(ticks));
+    Exclusive own(*this, "step()");
     py::gil_scoped_release release;
     sim_->step(ticks);
   }
   void run_until(double t_s) {
     if (!std::isfinite(t_s))
       throw Error(ErrorKind::usage, "run_until(t): t must be finite, got " + std::to_string(t_s));
+    Exclusive own(*this, "run_until()");
     py::gil_scoped_release release;
     sim_->run_until(t_s);
+  }
+  void reset() {
+    Exclusive own(*this, "reset()");
+    py::gil_scoped_release release;
+    sim_->reset();
   }
 
   const std::vector<std::size_t>& match(const std::string& pattern) {
     auto it = matches_.find(pattern);
     if (it != matches_.end()) return it->second;
-    std::vector<std::size_t> found = sim_->match_signals(pattern);
+    std::vector<std::size_t> found = sim().match_signals(pattern);
     if (found.empty()) {
       // An exact name that is not there deserves the façade's "did you mean".
       if (pattern.find_first_of("*?") == std::string::npos) (void)sim_->signal_index(pattern);
@@ -146,13 +179,13 @@ class PySimulation {
     py::array_t<double> out(static_cast<py::ssize_t>(indices.size()));
     auto view = out.mutable_unchecked<1>();
     for (std::size_t i = 0; i < indices.size(); ++i)
-      view(static_cast<py::ssize_t>(i)) = sim_->signal(indices[i]);
+      view(static_cast<py::ssize_t>(i)) = sim().signal(indices[i]);
     return out;
   }
 
   std::vector<std::string> signal_names(const std::string& pattern) {
     std::vector<std::string> names;
-    for (std::size_t i : sim_->match_signals(pattern))
+    for (std::size_t i : sim().match_signals(pattern))
       names.push_back(sim_->signal_info(i).name);
     return names;
   }
@@ -160,7 +193,7 @@ class PySimulation {
   int body_index(const py::object& body) const {
     if (py::isinstance<py::int_>(body)) {
       const int index = body.cast<int>();
-      if (index < 0 || index >= sim_->body_count())
+      if (index < 0 || index >= sim().body_count())
         throw Error(ErrorKind::usage, "body index " + std::to_string(index) +
                                           " is out of range (0 to " +
                                           std::to_string(sim_->body_count() - 1) + ")");
@@ -178,7 +211,17 @@ class PySimulation {
   const std::vector<std::string>& body_names() const { return body_names_; }
 
  private:
+  void refuse_if_busy() const {
+    // Read and written only with the GIL held: no other synchronisation is needed.
+    if (busy_with_)
+      throw Error(ErrorKind::usage,
+                  std::string("this Simulation is in use by another thread (") + busy_with_ +
+                      " has not returned): one Simulation takes one call at a time; give each "
+                      "thread its own Simulation");
+  }
+
   std::unique_ptr<Simulation> sim_;
+  const char* busy_with_ = nullptr;  // the GIL-releasing call that owns the simulation
   std::unordered_map<std::string, std::vector<std::size_t>> matches_;
   std::vector<std::string> body_names_;
   std::unordered_map<std::string, int> body_by_name_;
@@ -341,11 +384,7 @@ PYBIND11_MODULE(_s2sim, m) {
           [](PySimulation& s, const PySnapshot& snap) { s.sim().restore(snap.snapshot); },
           py::arg("snapshot"), "Continues exactly from a snapshot of this simulation.")
       .def(
-          "reset",
-          [](PySimulation& s) {
-            py::gil_scoped_release release;
-            s.sim().reset();
-          },
+          "reset", [](PySimulation& s) { s.reset(); },
           "Back to t = 0; a reset run repeats the first bit for bit.")
       .def("body_names", &PySimulation::body_names,
            "Bodies by index: 0 'world', then robots/<robot>/solids/<id> and things/<id>.")

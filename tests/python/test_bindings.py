@@ -169,6 +169,57 @@ def test_the_gil_is_released_while_stepping():
     assert len(inside) >= 5, (len(inside), end - start)
 
 
+def test_a_simulation_used_from_two_threads_at_once_refuses_the_second_call():
+    sim = s2sim.Simulation(NXT)
+    drive(sim)
+    refused = []
+    stepping = threading.Event()
+    done = threading.Event()
+
+    def long_step():
+        stepping.set()
+        sim.step(60000)
+        done.set()
+
+    thread = threading.Thread(target=long_step)
+    thread.start()
+    stepping.wait()
+    while not done.is_set() and len(refused) < 3:
+        # Each call either runs between the other thread's calls or is refused while it steps:
+        # never a torn state or a crash.
+        for call in (lambda: sim.step(1), lambda: sim.signal("time"), lambda: sim.body_pose(1)):
+            try:
+                call()
+            except s2sim.UsageError as e:
+                refused.append(str(e))
+        time.sleep(0.001)
+    thread.join()
+    assert refused, "the long step ended before a second call could be tried"
+    assert all("in use by another thread" in m and "step()" in m for m in refused), refused
+    assert sim.tick >= 60000  # the long step ran whole, beside the single steps let through
+    sim.step(1)  # free again once the long step returned
+
+
+def test_separate_simulations_step_on_separate_threads_as_they_do_alone():
+    def run(out, index):
+        sim = s2sim.Simulation(NXT, seed=7)
+        drive(sim, 4.0 + index)
+        sim.step(3000)
+        out[index] = sim.signals("*")
+
+    alone = [None, None]
+    for i in range(2):
+        run(alone, i)
+    together = [None, None]
+    threads = [threading.Thread(target=run, args=(together, i)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for i in range(2):
+        assert np.array_equal(alone[i], together[i])
+
+
 ROBOTS_4 = os.path.join(SOURCE, "bench", "peers", "scenes", "robots_4")
 
 
