@@ -1,6 +1,8 @@
 /// \file
-/// The fatal-signal handler (see the header). Only async-signal-safe calls: write(2) and
-/// _exit(2), on strings that exist before the signal.
+/// The fatal-signal handler (see the header). It runs on the thread's alternate stack, so a
+/// stack overflow is reported too, and uses only what is safe there in practice: write(2),
+/// _exit(2), dladdr and backtrace (warmed up at install, so that it does not load or
+/// allocate in the handler), on strings that exist before the signal.
 
 #include "crash_report.hpp"
 
@@ -8,9 +10,13 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <dlfcn.h>
+#include <execinfo.h>
+#include <ucontext.h>
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdint>
 #include <cstring>
 
 namespace s2sim::runner {
@@ -43,13 +49,69 @@ const char* signal_name(int sig) {
   }
 }
 
-void on_fatal_signal(int sig) {
+/// Where the faulting thread was: its instruction and stack pointers, when the platform says.
+struct Faulting {
+  const void* instruction = nullptr;
+  std::uintptr_t stack = 0;
+};
+Faulting faulting(void* context) {
+  Faulting at;
+  const auto* uc = static_cast<const ucontext_t*>(context);
+  if (!uc) return at;
+#if defined(__x86_64__)
+  at.instruction = reinterpret_cast<const void*>(uc->uc_mcontext.gregs[REG_RIP]);
+  at.stack = static_cast<std::uintptr_t>(uc->uc_mcontext.gregs[REG_RSP]);
+#elif defined(__aarch64__)
+  at.instruction = reinterpret_cast<const void*>(uc->uc_mcontext.pc);
+  at.stack = static_cast<std::uintptr_t>(uc->uc_mcontext.sp);
+#endif
+  return at;
+}
+
+/// The shared library (not s2sim-run itself, not the C and C++ runtimes) that holds `address`,
+/// or null: a plugin's or a compiled script's code, even on a thread of its own.
+const char* foreign_library(const void* address) {
+  Dl_info info{};
+  if (!address || ::dladdr(address, &info) == 0 || !info.dli_fname || !info.dli_fname[0])
+    return nullptr;
+  Dl_info self{};
+  if (::dladdr(reinterpret_cast<const void*>(&foreign_library), &self) != 0 &&
+      info.dli_fbase == self.dli_fbase)
+    return nullptr;
+  const char* base = std::strrchr(info.dli_fname, '/');
+  base = base ? base + 1 : info.dli_fname;
+  for (const char* runtime : {"libc.so", "libstdc++.so", "libgcc_s.so", "libm.so", "ld-linux"})
+    if (std::strncmp(base, runtime, std::strlen(runtime)) == 0) return nullptr;
+  return info.dli_fname;
+}
+
+/// The first foreign library on the faulting thread's stack, from the faulting instruction up.
+const char* library_at_fault(const Faulting& at) {
+  if (const char* lib = foreign_library(at.instruction)) return lib;
+  void* frames[64];
+  const int n = ::backtrace(frames, 64);
+  for (int i = 0; i < n; ++i)
+    if (const char* lib = foreign_library(frames[i])) return lib;
+  return nullptr;
+}
+
+void on_fatal_signal(int sig, siginfo_t* info, void* context) {
+  const Faulting at = faulting(context);
   say("s2sim-run: fatal signal ");
   say(signal_name(sig));
+  // A fault just below the stack pointer: the stack ran out (an endless recursion).
+  const auto address = reinterpret_cast<std::uintptr_t>(info ? info->si_addr : nullptr);
+  const bool overflow = sig == SIGSEGV && at.stack != 0 && address != 0 &&
+                        address <= at.stack + 4096 && at.stack - address < (1u << 20);
+  if (overflow) say(", a stack overflow (endless recursion?),");
   if (const char* component = running_component()) {
     say(" in ");
     say(component);
     say("\n");
+  } else if (const char* library = library_at_fault(at)) {
+    say(" in the code of ");
+    say(library);
+    say(", outside any call of the kernel into a component (on a thread of its own?)\n");
   } else {
     say(" in S2Sim itself (no component was running): please report it\n");
   }
@@ -60,10 +122,14 @@ void on_fatal_signal(int sig) {
 }  // namespace
 
 void install_crash_report() {
+  use_alternate_signal_stack();
+  void* warm[1];
+  (void)::backtrace(warm, 1);  // loads libgcc's unwinder now, not in the handler
   struct sigaction action {};
-  action.sa_handler = on_fatal_signal;
+  action.sa_sigaction = on_fatal_signal;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESETHAND | SA_NODEFER;  // a fault in the handler ends the process
+  // SA_ONSTACK: on the alternate stack; a fault in the handler itself ends the process.
+  action.sa_flags = SA_SIGINFO | SA_ONSTACK | SA_RESETHAND | SA_NODEFER;
   for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT})
     ::sigaction(sig, &action, nullptr);
 }

@@ -1,8 +1,10 @@
 #pragma once
 /// \file
 /// What s2sim-run does on a fatal signal (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT): it says
-/// which component's code was running (s2sim::running_component(): the plugin and kind) or
-/// that the kernel's was, and exits with kExitComponentCrashed (7). The CSV log already holds
+/// which component's code was running (s2sim::running_component(): the plugin and kind), else
+/// which plugin's or script's library the faulting thread was in (a thread of a plugin's own),
+/// else that the kernel's code was; a stack overflow is named as one (the handler runs on an
+/// alternate stack). It exits with kExitComponentCrashed (7). The CSV log already holds
 /// every complete row (CsvLog writes each row through), so nothing else needs flushing.
 
 namespace s2sim::runner {

@@ -1,6 +1,8 @@
 // The worker pool of the island-parallel step (worker_pool.hpp). No Simbody here.
 #include "model/worker_pool.hpp"
 
+#include "common/signal_stack.hpp"
+
 #include <sched.h>
 
 #include <algorithm>
@@ -133,6 +135,7 @@ void WorkerPool::rethrow_first(int count) {
 }
 
 void WorkerPool::work(int thread) {
+  common::use_alternate_signal_stack();  // a crash report even when a part's stack overflows
   std::uint64_t seen = 0;
   for (;;) {
     // Wait for the next run: spin, then sleep.

@@ -1,3 +1,4 @@
+#include "common/signal_stack.hpp"
 #include "sim/running_component.hpp"
 #include "sim/simulation_impl.hpp"
 
@@ -19,6 +20,10 @@ int exit_code(ErrorKind kind) {
 
 const char* running_component() noexcept {
   return sim::g_running_component.load(std::memory_order_relaxed);
+}
+
+void use_alternate_signal_stack() noexcept {
+  common::use_alternate_signal_stack();
 }
 
 Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}

@@ -481,6 +481,36 @@ TEST_F(Runner, AComponentThatCrashesIsNamedExits7AndTheLogKeepsItsCompleteRows) 
   EXPECT_EQ(csv.rows.back().front(), "0.040000");
 }
 
+// An endless recursion in a component's update exhausts its thread's stack: the handler runs
+// on its alternate stack, names the component and says it was a stack overflow (it died with
+// SIGSEGV, exit 139 and no word before).
+TEST_F(Runner, AComponentsStackOverflowIsNamedAsOne) {
+  const fs::path scene =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "update_recurse");
+  for (const char* threads : {"1", "2"}) {
+    const Result r = run({scene.string(), "--quiet", "--duration", "1", "--threads", threads,
+                          "--plugin-path", std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+    EXPECT_EQ(r.status, 7) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("fatal signal SIGSEGV (invalid memory access), a stack overflow"));
+    EXPECT_THAT(r.err, HasSubstr("in component 'controllers/villain' (kind 'test_hostile')"));
+  }
+}
+
+// A crash on a thread the plugin started itself, outside any call of the kernel into it, is
+// found by the faulting code's library (it was reported as S2Sim's own).
+TEST_F(Runner, ACrashOnAPluginsOwnThreadNamesItsLibrary) {
+  const fs::path scene =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "thread_trap");
+  const Result r = run({scene.string(), "--quiet", "--duration", "5", "--plugin-path",
+                        std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+  EXPECT_EQ(r.status, 7) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("fatal signal SIGILL"));
+  EXPECT_THAT(r.err, HasSubstr("libs2sim_test_hostile_plugin.so, outside any call of the kernel"));
+  EXPECT_THAT(r.err, Not(HasSubstr("in S2Sim itself")));
+}
+
 // A crash in a component's constructor (the plugin's factory) or its destructor is
 // named like one in its update: the kernel marks those calls too.
 TEST_F(Runner, ACrashInAComponentsConstructorOrDestructorIsNamed) {

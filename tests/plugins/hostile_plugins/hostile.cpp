@@ -1,6 +1,7 @@
 // A plugin that misbehaves on purpose (../shared/repro R07, R08): it throws from
 // configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
-// a std::exception or something that is not an exception at all, or crashes (SIGSEGV). Built like a
+// a std::exception or something that is not an exception at all, or crashes (SIGSEGV; an
+// endless recursion; a trap on a thread of its own). Built like a
 // third party's. Its constructor crashes when the environment variable
 // S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR is set (a factory has no parameters), its destructor
 // in mode 'destroy_segv'.
@@ -11,10 +12,19 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 namespace {
 
 using namespace s2sim;
+
+/// Recurses until the stack runs out (the depth is never reached; `pad` keeps every frame).
+__attribute__((noinline)) int recurse(int depth, int never) {
+  volatile char pad[512];
+  pad[0] = static_cast<char>(depth);
+  if (depth == never) return pad[0];
+  return recurse(depth + 1, never) + pad[0];
+}
 
 class Hostile : public Component {
  public:
@@ -23,6 +33,7 @@ class Hostile : public Component {
   }
   ~Hostile() override {
     if (mode_ == "destroy_segv") std::raise(SIGSEGV);
+    if (thread_.joinable()) thread_.join();
   }
   void configure(ConfigureContext& ctx) override {
     mode_ = ctx.params().text("mode");
@@ -45,11 +56,16 @@ class Hostile : public Component {
     if (mode_ == "unset_state") ctx.state(StateHandle{})[0] = 1.0;
     if (mode_ == "far_body") ctx.body_pose(BodyHandle{1 << 30});
     if (mode_ == "update_segv") std::raise(SIGSEGV);  // a crash, without undefined behaviour
+    if (mode_ == "update_recurse") recurse(0, -1);
+    // A crash on a thread of the plugin's own, outside any call of the kernel into it.
+    if (mode_ == "thread_trap" && !thread_.joinable())
+      thread_ = std::thread([] { __builtin_trap(); });
   }
 
  private:
   std::string mode_;
   BodyHandle body_;
+  std::thread thread_;
 };
 
 }  // namespace

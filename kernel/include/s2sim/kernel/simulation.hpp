@@ -257,4 +257,9 @@ int exit_code(ErrorKind kind);
 /// plugin crashed (s2sim-run does, docs/reliability.md).
 const char* running_component() noexcept;
 
+/// Gives the calling thread an alternate stack for signal handlers installed with SA_ONSTACK,
+/// so that a fatal-signal handler runs even when the thread's stack overflowed (the kernel's
+/// own worker threads have one). Once per thread; freed when the thread ends.
+void use_alternate_signal_stack() noexcept;
+
 }  // namespace s2sim
