@@ -214,9 +214,9 @@ int main(int argc, char** argv) {
                     "-I", os.path.join(SOURCE, "plugins", "remote", "include"), str(source),
                     "-o", str(exe)], check=True)
     sim = lockstep_sim()
+    port = int(sim.signal(LINK + "port"))  # before the step: a stepping Simulation takes no call
     runner = in_thread(sim.step, 4 * 20)
-    out = subprocess.run([str(exe), str(int(sim.signal(LINK + "port")))], capture_output=True,
-                         text=True, timeout=30)
+    out = subprocess.run([str(exe), str(port)], capture_output=True, text=True, timeout=30)
     runner.join(10)
     assert out.returncode == 0, out.stdout + out.stderr
     n, t, x = out.stdout.split()
@@ -255,10 +255,11 @@ def test_the_python_client_is_one_standalone_file(tmp_path):
 
     shutil.copy(remote.__file__, tmp_path / "remote.py")
     sim = lockstep_sim()
+    port = int(sim.signal(LINK + "port"))  # before the step: a stepping Simulation takes no call
     runner = in_thread(sim.step, 2 * 20)
     code = ("import sys, remote; c = remote.Client(port=int(sys.argv[1])); d = c.hello(); "
             "t, y = c.step([2.0]); c.send([0.0]); print(d.mode, t, len(y))")
-    out = subprocess.run([sys.executable, "-E", "-s", "-c", code, str(int(sim.signal(LINK + "port")))],
+    out = subprocess.run([sys.executable, "-E", "-s", "-c", code, str(port)],
                          cwd=str(tmp_path), capture_output=True, text=True, timeout=30)
     runner.join(10)
     assert out.returncode == 0, out.stderr
