@@ -53,12 +53,19 @@ class Remote final : public Component {
     received_ = ctx.declare_signal("received", "1");
     dropped_ = ctx.declare_signal("dropped", "1");
     stale_ = ctx.declare_signal("stale", "1");
+    foreign_ = ctx.declare_signal("foreign", "1");
     link_ = ctx.declare_signal("link", "1");
     timeouts_ = ctx.declare_signal("timeouts", "1");
 
     // Everything sent is laid out now: update() only fills numbers in. The description's
     // period is known once the schedule is (initialize()).
     rx_.assign(S2SIM_REMOTE_MAX_DATAGRAM + 1, 0);
+    const std::string busy =
+        "busy: this link serves another client; try again after it is "
+        "silent for " +
+        std::to_string(lockstep_ ? wait_s_ : timeout_s_) + " s";
+    busy_.assign(S2SIM_REMOTE_HEADER_SIZE + busy.size(), 0);
+    std::copy(busy.begin(), busy.end(), busy_.begin() + S2SIM_REMOTE_HEADER_SIZE);
     signals_packet_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 * (1 + served_.signals.size()), 0);
     build_description(-0.12345678901234567);  // the size check, with a period as long as any
     const std::size_t largest = std::max({describe_.size(), signals_packet_.size(),
@@ -152,11 +159,36 @@ class Remote final : public Component {
     }
   }
 
+  /// Whether `from` may speak at `now`: the session's own client, or anyone while no session is
+  /// open (none yet, or its client silent for longer than the link waits for it: timeout_s in
+  /// real time, wait_s in lock-step).
+  bool may_speak(const sockaddr_in& from, Clock::time_point now) const {
+    const bool open = has_client_ && !detached_ &&
+                      seconds_between(last_heard_, now) <= (lockstep_ ? wait_s_ : timeout_s_);
+    return !open || same_sender(from, client_);
+  }
+  static bool same_sender(const sockaddr_in& a, const sockaddr_in& b) {
+    return a.sin_addr.s_addr == b.sin_addr.s_addr && a.sin_port == b.sin_port;
+  }
+
   Got handle(StepContext& ctx, long size, const sockaddr_in& from, Clock::time_point now) {
     s2sim_remote_header h{};
     if (static_cast<std::size_t>(size) >= rx_.size() ||  // oversized (cut by the receive)
         s2sim_remote_read_header(rx_.data(), static_cast<std::size_t>(size), &h) != 0)
       return drop(ctx);
+    const bool request = h.type == S2SIM_REMOTE_HELLO || h.type == S2SIM_REMOTE_INPUTS ||
+                         h.type == S2SIM_REMOTE_OBSERVE;
+    if (request && !may_speak(from, now)) {
+      // Another sender while a client holds the session: told so, counted, never applied.
+      s2sim_remote_write_header(busy_.data(), S2SIM_REMOTE_BUSY, h.sequence,
+                                static_cast<std::uint32_t>(busy_.size() - 16));
+      socket_.send(busy_.data(), busy_.size(), from);
+      count(ctx, foreign_);
+      return drop(ctx);
+    }
+    if (request && has_client_ && !same_sender(from, client_))
+      has_client_ = false;  // a new session: its sequence numbers start afresh
+    if (request) last_heard_ = now;
     switch (h.type) {
       case S2SIM_REMOTE_HELLO:
         if (h.length != 0) return drop(ctx);
@@ -234,7 +266,7 @@ class Remote final : public Component {
   UdpSocket socket_;
   bool lockstep_ = false;
   double timeout_s_ = 0.5, wait_s_ = 10.0;
-  SignalHandle port_, received_, dropped_, stale_, link_, timeouts_;
+  SignalHandle port_, received_, dropped_, stale_, foreign_, link_, timeouts_;
   std::vector<unsigned char> rx_, signals_packet_, describe_;
 
   // The connection (see the file comment).
@@ -244,6 +276,8 @@ class Remote final : public Component {
   bool inputs_seen_ = false;
   std::uint32_t last_sequence_ = 0, reply_sequence_ = 0, sent_sequence_ = 0;
   Clock::time_point last_inputs_{};
+  Clock::time_point last_heard_{};   // the client's last valid-looking request
+  std::vector<unsigned char> busy_;  // the BUSY reply to another sender
 };
 
 }  // namespace

@@ -27,7 +27,7 @@ HEADER_SIZE = HEADER.size  # 16
 DEFAULT_PORT = 9808
 MAX_DATAGRAM = 65507
 
-HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS = 1, 2, 3, 4, 5
+HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY = 1, 2, 3, 4, 5, 6
 
 
 class RemoteError(RuntimeError):
@@ -114,6 +114,9 @@ class Client:
             if message is None:
                 continue
             msg_type, seq, payload = message
+            if msg_type == BUSY and (sequence is None or seq == sequence):
+                raise RemoteError("%s:%d is busy: %s" % (self.address + (
+                    payload.decode(errors="replace"),)))
             if msg_type == want_type and (sequence is None or seq == sequence):
                 return seq, payload
 
