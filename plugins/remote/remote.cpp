@@ -86,6 +86,7 @@ class Remote final : public Component {
   // At load and at reset, outside the step loop: the one place the description is rebuilt.
   void initialize(StepContext& ctx) override {
     ctx.publish(port_, socket_.port());
+    has_client_ = false;  // a reset run starts without a session: the next sender opens one
     build_description(ctx.period_s());
   }
 
@@ -110,7 +111,7 @@ class Remote final : public Component {
     std::copy(text.begin(), text.end(), describe_.begin() + S2SIM_REMOTE_HEADER_SIZE);
   }
 
-  enum class Got { nothing, dropped, hello, observe, inputs, repeat };
+  enum class Got { nothing, dropped, hello, observe, inputs, repeat, bye };
   // A flood must not hold the simulation: at most this many datagrams are read per period
   // (the rest waits in the socket, or is dropped by the system when it fills).
   static constexpr int kMaxDatagramsPerPeriod = 20000;
@@ -177,7 +178,7 @@ class Remote final : public Component {
         s2sim_remote_read_header(rx_.data(), static_cast<std::size_t>(size), &h) != 0)
       return drop(ctx);
     const bool request = h.type == S2SIM_REMOTE_HELLO || h.type == S2SIM_REMOTE_INPUTS ||
-                         h.type == S2SIM_REMOTE_OBSERVE;
+                         h.type == S2SIM_REMOTE_OBSERVE || h.type == S2SIM_REMOTE_BYE;
     if (request && !may_speak(from, now)) {
       // Another sender while a client holds the session: told so, counted, never applied.
       s2sim_remote_write_header(busy_.data(), S2SIM_REMOTE_BUSY, h.sequence,
@@ -200,6 +201,11 @@ class Remote final : public Component {
         socket_.send(describe_.data(), describe_.size(), from);
         count(ctx, received_);
         return Got::hello;
+      case S2SIM_REMOTE_BYE:  // the client leaves: the session is free (the inputs stay)
+        if (h.length != 0) return drop(ctx);
+        has_client_ = false;
+        count(ctx, received_);
+        return Got::bye;
       case S2SIM_REMOTE_OBSERVE:
         if (h.length != 0) return drop(ctx);
         fill_signals(ctx, h.sequence);

@@ -27,7 +27,7 @@ HEADER_SIZE = HEADER.size  # 16
 DEFAULT_PORT = 9808
 MAX_DATAGRAM = 65507
 
-HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY = 1, 2, 3, 4, 5, 6
+HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY, BYE = 1, 2, 3, 4, 5, 6, 7
 
 
 class RemoteError(RuntimeError):
@@ -89,6 +89,11 @@ class Client:
         self.socket = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
 
     def close(self):
+        """Ends the session (BYE: the link serves the next client at once) and the socket."""
+        try:
+            self._request(BYE)
+        except OSError:
+            pass
         self.socket.close()
 
     def __enter__(self):

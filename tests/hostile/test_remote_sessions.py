@@ -102,3 +102,22 @@ def test_a_silent_client_frees_the_session_and_the_next_starts_its_own_sequence(
             sim.step(20)
             assert sim.input(FORCE) == 4.0
     assert sim.signal(LINK + "stale") == 0 and sim.signal(LINK + "foreign") == 1
+
+
+def test_a_client_that_closes_hands_the_session_on_at_once():
+    sim = s2sim.Simulation(CARTPOLE, defines={"remote_port": 0, "remote_wait_s": 5.0})
+    port = int(sim.signal(LINK + "port"))
+    period_ticks = int(round(sim.control_period / sim.tick_s))
+    runner = threading.Thread(target=sim.step, args=(3 * period_ticks,))
+    runner.start()
+    with remote.Client(port=port) as first:
+        first.hello()
+        first.step([0.5])
+    # first said BYE when closed: the next client is served, not told busy for 5 s
+    with remote.Client(port=port, timeout=2.0) as second:
+        second.hello()
+        second.step([0.5])
+        second.send([0.0])
+    runner.join(10)
+    assert not runner.is_alive()
+    assert sim.signal(LINK + "foreign") == 0

@@ -40,6 +40,10 @@ bool ConstantTable::define_if_absent(std::string_view name, double value) {
   return true;
 }
 
+void ConstantTable::declare(std::string_view name, bool arg) {
+  declared_->push_back({std::string(name), arg});
+}
+
 std::optional<double> ConstantTable::find(std::string_view name) const {
   const std::string key = upper(name);
   for (const auto& [k, v] : entries_)

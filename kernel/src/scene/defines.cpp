@@ -13,6 +13,7 @@ void apply_defines(const Element& defines, const Reader& r, ConstantTable& table
     if (name.empty()) r.fail(c, "name", "missing constant name");
     // A failing value is an error here (SimTwo silently reuses the previous value).
     const double value = r.required_number(c, "value");
+    table.declare(name, c.name == "arg");
     if (c.name == "const") {
       table.set(name, value);
     } else {

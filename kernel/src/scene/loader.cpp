@@ -3,9 +3,13 @@
 /// scopes of §2.2: robot, things and track files get a copy of G; scene-level robot/things
 /// defines and obstacle files write into G.
 
+#include "common/closest_names.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
+
+#include <algorithm>
+#include <cctype>
 
 namespace s2sim::scene {
 namespace detail {
@@ -127,6 +131,36 @@ void load_scene_obstacles(LoadContext& ctx, const Reader& r, const Element& el, 
                       Pose{pos, rotation_from_rot_deg(rot_deg)});
 }
 
+/// Every outside constant (`--define NAME=VALUE`, Python's `defines=`) must name an `<arg>` of
+/// the scene or of one of its files: a misspelt name would change nothing, silently.
+void check_outside_constants(const LoadOptions& options, const ConstantTable& g,
+                             const std::string& display) {
+  auto same = [](std::string_view a, std::string_view b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](char x, char y) {
+             return std::toupper(static_cast<unsigned char>(x)) ==
+                    std::toupper(static_cast<unsigned char>(y));
+           });
+  };
+  for (const auto& [name, value] : options.constants) {
+    bool arg = false, constant = false;
+    for (const auto& d : g.declared())
+      if (same(d.name, name)) (d.arg ? arg : constant) = true;
+    if (arg) continue;
+    if (constant)
+      throw Error(ErrorKind::usage, Location{display, "", ""},
+                  "the constant '" + name +
+                      "' given from outside (--define, defines=) is a <const> of the scene, "
+                      "which overwrites any outside value: declare it as <arg> to let it be set");
+    std::vector<std::string> names;
+    for (const auto& d : g.declared())
+      if (d.arg) names.push_back(d.name);
+    throw Error(ErrorKind::usage, Location{display, "", ""},
+                common::unknown_name_message("constant (--define, defines=)", name, names) +
+                    " (no <arg> of the scene or of its files has that name, so it would "
+                    "change nothing)");
+  }
+}
+
 }  // namespace
 }  // namespace detail
 
@@ -195,6 +229,7 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
     }
   }
   load_script_and_sheet(ctx, r, s2sim_script);
+  check_outside_constants(options, g, display);
   return scene;
 }
 

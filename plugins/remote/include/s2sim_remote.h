@@ -33,7 +33,8 @@ enum s2sim_remote_type {
   S2SIM_REMOTE_INPUTS = 3,   /* client -> sim, one double per served input, in order */
   S2SIM_REMOTE_OBSERVE = 4,  /* client -> sim, no payload: answered by SIGNALS now */
   S2SIM_REMOTE_SIGNALS = 5,  /* sim -> client, doubles: time [s], then one per served signal */
-  S2SIM_REMOTE_BUSY = 6      /* sim -> another sender, text: the link serves another client */
+  S2SIM_REMOTE_BUSY = 6,     /* sim -> another sender, text: the link serves another client */
+  S2SIM_REMOTE_BYE = 7       /* client -> sim, no payload: ends the client's session */
 };
 
 typedef struct s2sim_remote_header {
@@ -134,7 +135,13 @@ static inline int s2sim_remote_open(s2sim_remote_client* c, const char* ipv4_add
 }
 
 static inline void s2sim_remote_close(s2sim_remote_client* c) {
-  if (c->fd >= 0) close(c->fd);
+  if (c->fd >= 0) { /* the session ends now, not when the link stops waiting for us */
+    unsigned char bye[S2SIM_REMOTE_HEADER_SIZE];
+    c->sequence += 1;
+    s2sim_remote_write_header(bye, S2SIM_REMOTE_BYE, c->sequence, 0);
+    (void)sendto(c->fd, bye, sizeof bye, 0, (const struct sockaddr*)&c->server, sizeof c->server);
+    close(c->fd);
+  }
   c->fd = -1;
 }
 

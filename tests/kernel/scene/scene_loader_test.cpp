@@ -87,11 +87,35 @@ TEST(SceneLoader, ThingsFileWithDefinesBesideThings) {
 
 TEST(SceneLoader, LoadOptionsConstantsLeadTheSceneDefines) {
   LoadOptions options;
-  options.constants = {{"width", 0.3}, {"base_mass", 5}};
+  options.constants = {{"width", 0.3}};
   const Scene s = load_scene(fixture("scopes") / "scene.xml", options);
   const Body& a = body(s, 0, "A");
   EXPECT_DOUBLE_EQ(a.geoms[0].shape.size_m.y, 0.3);  // pre-set beats the robot's <arg>
-  EXPECT_DOUBLE_EQ(a.mass_kg, 2);                    // the scene's <const> overwrites
+}
+
+// An outside constant that would change nothing is refused: one that no <arg> declares (a
+// misspelt name was silently ignored), and one that a <const> overwrites.
+TEST(SceneLoader, AnOutsideConstantThatNoArgTakesIsAUsageErrorWithDidYouMean) {
+  LoadOptions misspelt;
+  misspelt.constants = {{"widht", 0.3}};
+  try {
+    (void)load_scene(fixture("scopes") / "scene.xml", misspelt);
+    ADD_FAILURE() << "a misspelt constant loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::usage);
+    EXPECT_THAT(e.what(), HasSubstr("unknown constant (--define, defines=) 'widht'"));
+    EXPECT_THAT(e.what(), HasSubstr("did you mean 'width'"));
+  }
+  LoadOptions overwritten;
+  overwritten.constants = {{"base_mass", 5}};  // the scene's <const> overwrites it
+  try {
+    (void)load_scene(fixture("scopes") / "scene.xml", overwritten);
+    ADD_FAILURE() << "a constant that a <const> overwrites loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.kind(), ErrorKind::usage);
+    EXPECT_THAT(e.what(), HasSubstr("'base_mass' given from outside (--define, defines=) is a "
+                                    "<const>"));
+  }
 }
 
 // ---------------------------------------------------------------------------------------

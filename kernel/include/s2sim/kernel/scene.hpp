@@ -55,8 +55,21 @@ class ConstantTable {
   std::size_t size() const { return entries_.size(); }
   const std::vector<std::pair<std::string, double>>& entries() const { return entries_; }
 
+  /// The names `<defines>` declared in this table and in every table copied from it or into
+  /// which it was copied (a scene's scopes share one list): what an outside value (`--define`)
+  /// may name. Each as written, with whether it was an `<arg>` (which takes an outside value)
+  /// or a `<const>` (which overwrites it).
+  struct Declared {
+    std::string name;
+    bool arg = true;
+  };
+  /// Records a `<const>` or `<arg>` of `<defines>` (defines.cpp).
+  void declare(std::string_view name, bool arg);
+  const std::vector<Declared>& declared() const { return *declared_; }
+
  private:
   std::vector<std::pair<std::string, double>> entries_;  ///< upper-case name, value
+  std::shared_ptr<std::vector<Declared>> declared_ = std::make_shared<std::vector<Declared>>();
 };
 
 /// An element and the constants in scope where it stands: what a component's Params read.
