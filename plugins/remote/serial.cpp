@@ -29,6 +29,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -42,7 +43,7 @@ constexpr std::size_t kMaxLine = 4096;
 class Serial final : public Component {
  public:
   ~Serial() override {
-    if (!link_path_.empty()) ::unlink(link_path_.c_str());
+    if (!link_path_.empty() && points_to(link_path_, path_, false)) ::unlink(link_path_.c_str());
     if (device_ >= 0) ::close(device_);
     if (master_ >= 0) ::close(master_);
   }
@@ -71,8 +72,19 @@ class Serial final : public Component {
     ::cfmakeraw(&raw);
     ::tcsetattr(device_, TCSANOW, &raw);
     if (p.has("link")) {  // a fixed name for the device, as socat's link=
-      link_path_ = p.text("link");
-      ::unlink(link_path_.c_str());
+      const std::string link = p.text("link");
+      // Only a link to a pseudo-terminal (one a previous run left) is replaced: nothing else
+      // that is there is ours to delete.
+      struct stat there {};
+      if (::lstat(link.c_str(), &there) == 0) {
+        if (!S_ISLNK(there.st_mode) || !points_to(link, "/dev/pts/", true))
+          throw Error(ErrorKind::scene, p.where("link"),
+                      "'" + link +
+                          "' exists and is not a link to a pseudo-terminal: it is left as it is; "
+                          "choose another path or remove it");
+        ::unlink(link.c_str());
+      }
+      link_path_ = link;
       if (::symlink(path_.c_str(), link_path_.c_str()) != 0) {
         const std::string why = std::strerror(errno);
         link_path_.clear();
@@ -137,12 +149,26 @@ class Serial final : public Component {
     after_cr_ = c == '\r';
     if (c == '\n' && after_cr) return;
     if (c != '\n' && c != '\r') {
+      // A NUL or another control byte (a tab is a blank) makes the line garbage: "I 0.3<NUL>x"
+      // must not be read as "I 0.3".
+      const auto byte = static_cast<unsigned char>(c);
+      if ((byte < 0x20 && c != '\t') || byte == 0x7f) control_ = true;
       if (length_ < kMaxLine) line_[length_] = c;
       ++length_;  // past kMaxLine: the line is too long, dropped at its end
       return;
     }
-    if (length_ > kMaxLine || !parse(ctx, now)) count(ctx, dropped_);
+    if (length_ > kMaxLine || control_ || !parse(ctx, now)) count(ctx, dropped_);
     length_ = 0;
+    control_ = false;
+  }
+
+  /// Whether `link` is a symbolic link to `target` (or, `prefix`, to a path starting with it).
+  static bool points_to(const std::string& link, const std::string& target, bool prefix) {
+    char buffer[4096];
+    const ssize_t n = ::readlink(link.c_str(), buffer, sizeof buffer - 1);
+    if (n < 0) return false;
+    buffer[n] = '\0';
+    return prefix ? std::strncmp(buffer, target.c_str(), target.size()) == 0 : buffer == target;
   }
 
   bool parse(StepContext& ctx, Clock::time_point now) {
@@ -190,6 +216,7 @@ class Serial final : public Component {
   std::vector<double> values_;
   std::size_t length_ = 0;
   bool inputs_seen_ = false, after_cr_ = false;
+  bool control_ = false;  // the line being read holds a control byte
   Clock::time_point last_inputs_{};
 };
 
