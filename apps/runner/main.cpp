@@ -4,6 +4,7 @@
 #include "options.hpp"
 #include "outputs.hpp"
 #include "simulation_options.hpp"
+#include "watchdog.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 #include <s2sim/version.hpp>
@@ -40,6 +41,9 @@ int run(const s2sim::runner::Options& o) {
   if (!o.sheet_values.empty() && options.script_mode == ScriptMode::off)
     throw Error(ErrorKind::usage,
                 "--sheet sets cells of the SimTwo script's sheet: not with --no-script");
+  // Watching from the load on: a component's configure may hang too.
+  std::optional<runner::Watchdog> watchdog;
+  if (o.watchdog_s > 0) watchdog.emplace(o.watchdog_s);
   auto sim = Simulation::load(o.scene, options);
   if (!o.quiet)
     for (const auto& w : sim->warnings())
@@ -127,6 +131,7 @@ int run(const s2sim::runner::Options& o) {
     if (next_press < presses.size())
       n = std::max<std::int64_t>(1, std::min(n, presses[next_press].first - sim->tick()));
     sim->step(n);
+    if (watchdog) watchdog->progressed(sim->time_s());
     done += n;
     if (log && done % log_every == 0) log->write_row(*sim);
     if (o.realtime) {

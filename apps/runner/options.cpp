@@ -68,6 +68,8 @@ Options:
   --set INPUT=VALUE... hold an input for the whole run, e.g.
                        --set robots/arm/axes/J1/ref_torque=0.5
   --define NAME=VALUE  a constant defined before scene.xml is read
+  --watchdog S         stop the run (exit 8) when one call into a component lasts longer
+                       than S seconds of wall time, naming it (default 120; 0: never)
   --physics-step S     override the physics step (seconds)
   --substeps N         override the physics substeps per step
   --threads N          step the scene's islands (robots not jointed to each other) on N
@@ -151,6 +153,10 @@ Options parse_options(int argc, char** argv) {
         o.inputs.push_back(parse_assignment(a, s));
     } else if (a == "--define") {
       o.constants.push_back(parse_assignment(a, value()));
+    } else if (a == "--watchdog") {
+      o.watchdog_s = parse_number(a, value());
+      if (!(o.watchdog_s >= 0) || !std::isfinite(o.watchdog_s))
+        throw usage_error("--watchdog must be a finite number of seconds >= 0 (0: never)");
     } else if (a == "--physics-step") {
       o.physics_step_s = parse_number(a, value());
       if (!(*o.physics_step_s > 0)) throw usage_error("--physics-step must be positive");

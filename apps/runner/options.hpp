@@ -26,9 +26,11 @@ struct Options {
   std::vector<std::pair<std::string, double>> constants;  ///< --define
   std::optional<double> physics_step_s;
   std::optional<int> substeps;
-  bool simbody_dynamics_only = false;    ///< --simbody-dynamics: no small-tree dynamics
-  bool check_dynamics = false;           ///< --check-dynamics: Simbody's compared every substep
-  int threads = 1;                       ///< --threads: parts of the multibody stepped at once
+  bool simbody_dynamics_only = false;  ///< --simbody-dynamics: no small-tree dynamics
+  bool check_dynamics = false;         ///< --check-dynamics: Simbody's compared every substep
+  int threads = 1;                     ///< --threads: parts of the multibody stepped at once
+  /// --watchdog: the longest one call into a component may last (wall seconds; 0: unwatched).
+  double watchdog_s = 120.0;
   std::vector<std::string> plugin_path;  ///< searched before the default folders
   bool default_plugin_path = true;       ///< false: --no-default-plugin-path
   /// The project's SimTwo script: as its control block says (default), --run-script, --no-script.

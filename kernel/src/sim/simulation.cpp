@@ -2,6 +2,8 @@
 #include "sim/running_component.hpp"
 #include "sim/simulation_impl.hpp"
 
+#include <algorithm>
+
 namespace s2sim {
 
 int exit_code(ErrorKind kind) {
@@ -20,6 +22,19 @@ int exit_code(ErrorKind kind) {
 
 const char* running_component() noexcept {
   return sim::g_running_component.load(std::memory_order_relaxed);
+}
+
+std::size_t running_calls(RunningCall* out, std::size_t capacity) noexcept {
+  const std::size_t used =
+      std::min(sim::g_call_slots_used.load(std::memory_order_relaxed), sim::kMaxCallSlots);
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < used && n < capacity; ++i) {
+    const sim::CallSlot& slot = sim::g_call_slots[i];
+    const char* label = slot.label.load(std::memory_order_acquire);
+    if (!label) continue;
+    out[n++] = {label, slot.calls.load(std::memory_order_relaxed)};
+  }
+  return n;
 }
 
 void use_alternate_signal_stack() noexcept {

@@ -497,6 +497,38 @@ TEST_F(Runner, AComponentsStackOverflowIsNamedAsOne) {
   }
 }
 
+// A component whose update never returns (a `while true do;`) hung the runner with no word
+// until killed: the watchdog stops the run, names it and exits 8; the log keeps its rows.
+TEST_F(Runner, AComponentThatNeverReturnsIsStoppedByTheWatchdogNamingIt) {
+  const fs::path scene =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "update_hang");
+  const Result r =
+      run({scene.string(), "--quiet", "--duration", "1", "--watchdog", "0.5", "--log", "hang.csv",
+           "--plugin-path", std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+  EXPECT_EQ(r.status, 8) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("watchdog: component 'controllers/villain' (kind 'test_hostile')"));
+  EXPECT_THAT(r.err, HasSubstr("has not returned from one call for"));
+  EXPECT_EQ(read_csv(dir_ / "hang.csv").rows.size(), 41u);  // t = 0 … 40 ms, as for a crash
+  const Result bad = run({scene.string(), "--watchdog", "-1"});
+  EXPECT_EQ(bad.status, 4);
+  EXPECT_THAT(bad.err, HasSubstr("--watchdog must be"));
+}
+
+// A component that holds the run back (a script taking 0.1 s per call) is named once.
+TEST_F(Runner, AComponentThatHoldsTheRunBackGetsOneWarning) {
+  const fs::path scene =
+      s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                               "scene.xml", "MODE", "update_slow");
+  const Result r = run({scene.string(), "--quiet", "--duration", "1", "--plugin-path",
+                        std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+  EXPECT_EQ(r.status, 0) << r.err;
+  const std::string warning = "warning: component 'controllers/villain' (kind 'test_hostile')";
+  EXPECT_THAT(r.err, HasSubstr(warning));
+  EXPECT_THAT(r.err, HasSubstr("of the wall time"));
+  EXPECT_EQ(r.err.find(warning), r.err.rfind(warning)) << "warned more than once";
+}
+
 // A crash on a thread the plugin started itself, outside any call of the kernel into it, is
 // found by the faulting code's library (it was reported as S2Sim's own).
 TEST_F(Runner, ACrashOnAPluginsOwnThreadNamesItsLibrary) {

@@ -1,12 +1,13 @@
 // A plugin that misbehaves on purpose (../shared/repro R07, R08): it throws from
 // configure() or update(), an s2sim::Error (whose type info and vtable live in this library),
 // a std::exception or something that is not an exception at all, or crashes (SIGSEGV; an
-// endless recursion; a trap on a thread of its own). Built like a
-// third party's. Its constructor crashes when the environment variable
+// endless recursion; a trap on a thread of its own), or hangs in its update, or is slow. Built like
+// a third party's. Its constructor crashes when the environment variable
 // S2SIM_TEST_HOSTILE_CRASH_IN_CONSTRUCTOR is set (a factory has no parameters), its destructor
 // in mode 'destroy_segv'.
 #include <s2sim/sdk.hpp>
 
+#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -57,6 +58,10 @@ class Hostile : public Component {
     if (mode_ == "far_body") ctx.body_pose(BodyHandle{1 << 30});
     if (mode_ == "update_segv") std::raise(SIGSEGV);  // a crash, without undefined behaviour
     if (mode_ == "update_recurse") recurse(0, -1);
+    if (mode_ == "update_hang")  // never returns (a `while true do;` in a script)
+      for (;;)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (mode_ == "update_slow") std::this_thread::sleep_for(std::chrono::milliseconds(100));
     // A crash on a thread of the plugin's own, outside any call of the kernel into it.
     if (mode_ == "thread_trap" && !thread_.joinable())
       thread_ = std::thread([] { __builtin_trap(); });

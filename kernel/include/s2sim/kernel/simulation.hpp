@@ -257,6 +257,17 @@ int exit_code(ErrorKind kind);
 /// plugin crashed (s2sim-run does, docs/reliability.md).
 const char* running_component() noexcept;
 
+/// One thread's call into a component, as running_calls() sees it: the component (its
+/// running_component() text) and the number of calls into components that thread has begun.
+struct RunningCall {
+  const char* component = nullptr;
+  std::uint64_t call = 0;
+};
+/// What every thread that ever called a component runs now, into `out` (at most `capacity`):
+/// how many were written. For a watchdog on another thread: the same `call` seen again long
+/// after is one call that has not returned. Lock-free; any thread may call it at any time.
+std::size_t running_calls(RunningCall* out, std::size_t capacity) noexcept;
+
 /// Gives the calling thread an alternate stack for signal handlers installed with SA_ONSTACK,
 /// so that a fatal-signal handler runs even when the thread's stack overflowed (the kernel's
 /// own worker threads have one). Once per thread; freed when the thread ends.
