@@ -17,6 +17,7 @@
 
 #include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 
 namespace s2sim::runner {
@@ -119,9 +120,23 @@ void on_fatal_signal(int sig, siginfo_t* info, void* context) {
   ::_exit(kExitComponentCrashed);
 }
 
+/// exit() from inside a call into a component (a plugin's `exit(0)`): the run did not end, it
+/// was ended. Named and given its own code instead of passing for a completed run (0) or a
+/// plugin error (3).
+void on_exit_call() {
+  const char* component = running_component();
+  if (!component) return;  // the runner's own return from main
+  say("s2sim-run: ");
+  say(component);
+  say(" called exit() during its call: the run is stopped there; the --log file keeps every "
+      "complete row\n");
+  ::_exit(kExitComponentExited);
+}
+
 }  // namespace
 
 void install_crash_report() {
+  std::atexit(on_exit_call);
   use_alternate_signal_stack();
   void* warm[1];
   (void)::backtrace(warm, 1);  // loads libgcc's unwinder now, not in the handler

@@ -4,8 +4,10 @@
 /// which component's code was running (s2sim::running_component(): the plugin and kind), else
 /// which plugin's or script's library the faulting thread was in (a thread of a plugin's own),
 /// else that the kernel's code was; a stack overflow is named as one (the handler runs on an
-/// alternate stack). It exits with kExitComponentCrashed (7). The CSV log already holds
-/// every complete row (CsvLog writes each row through), so nothing else needs flushing.
+/// alternate stack). It exits with kExitComponentCrashed (7). A component that calls exit() is
+/// named too, and the runner exits with kExitComponentExited (9) instead of the code it asked. The
+/// CSV log already holds every complete row (CsvLog writes each row through), so nothing else needs
+/// flushing.
 
 namespace s2sim::runner {
 

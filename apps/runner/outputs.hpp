@@ -15,6 +15,7 @@ namespace s2sim::runner {
 inline constexpr int kExitOutputFailed = 6;      ///< --log or --summary could not be written
 inline constexpr int kExitComponentCrashed = 7;  ///< a fatal signal (crash_report.hpp)
 inline constexpr int kExitWatchdog = 8;          ///< one call into a component outlasted --watchdog
+inline constexpr int kExitComponentExited = 9;   ///< a component called exit() (crash_report.hpp)
 
 /// An output file could not be written (a full disk, a lost mount): not the simulation's
 /// failure, so not exit 5.

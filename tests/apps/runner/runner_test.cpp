@@ -515,6 +515,22 @@ TEST_F(Runner, AComponentThatNeverReturnsIsStoppedByTheWatchdogNamingIt) {
   EXPECT_THAT(bad.err, HasSubstr("--watchdog must be"));
 }
 
+// A plugin's exit(0) ended the run with exit 0, no word and the CSV cut short; exit(3) passed
+// for a plugin error. Both are named now, with their own code.
+TEST_F(Runner, AComponentThatCallsExitIsNamedWithItsOwnCode) {
+  for (const char* mode : {"update_exit0", "update_exit3"}) {
+    const fs::path scene =
+        s2sim::test::edited_copy(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/hostile",
+                                 "scene.xml", "MODE", mode);
+    const Result r = run({scene.string(), "--quiet", "--duration", "1", "--log", "exit.csv",
+                          "--plugin-path", std::string(S2SIM_TEST_PLUGIN_DIR) + "/hostile"});
+    EXPECT_EQ(r.status, 9) << mode << ": " << r.err;
+    EXPECT_THAT(r.err, HasSubstr("component 'controllers/villain' (kind 'test_hostile')"));
+    EXPECT_THAT(r.err, HasSubstr("called exit() during its call"));
+    EXPECT_EQ(read_csv(dir_ / "exit.csv").rows.size(), 41u) << mode;
+  }
+}
+
 // A component that holds the run back (a script taking 0.1 s per call) is named once.
 TEST_F(Runner, AComponentThatHoldsTheRunBackGetsOneWarning) {
   const fs::path scene =

@@ -62,6 +62,8 @@ class Hostile : public Component {
       for (;;)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     if (mode_ == "update_slow") std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (mode_ == "update_exit0") std::exit(0);  // as a careless plugin ends "its" program
+    if (mode_ == "update_exit3") std::exit(3);
     // A crash on a thread of the plugin's own, outside any call of the kernel into it.
     if (mode_ == "thread_trap" && !thread_.joinable())
       thread_ = std::thread([] { __builtin_trap(); });
