@@ -52,6 +52,17 @@ T* find_or_add(std::vector<T>& list, const std::string& source, int id, bool add
   return &list.back();
 }
 
+/// `text` as kept: at most Annotations::kMaxTextBytes, cut at a character boundary (UTF-8), with
+/// how much was cut.
+std::string kept_text(std::string_view text) {
+  if (text.size() <= Annotations::kMaxTextBytes) return std::string(text);
+  std::size_t keep = Annotations::kMaxTextBytes;
+  while (keep > 0 && (static_cast<unsigned char>(text[keep]) & 0xC0) == 0x80)
+    --keep;  // not inside a multi-byte character
+  return std::string(text.substr(0, keep)) + " [" + std::to_string(text.size() - keep) +
+         " bytes cut]";
+}
+
 }  // namespace
 
 void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::int32_t what,
@@ -64,7 +75,7 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
   const std::string_view body(text, text_size);
   switch (static_cast<detail::Annotation>(what)) {
     case detail::Annotation::log_line:
-      a.lines.push_back({a.next_sequence++, m.tick * m.tick_s, source, std::string(body)});
+      a.lines.push_back({a.next_sequence++, m.tick * m.tick_s, source, kept_text(body)});
       if (a.lines.size() > Annotations::kMaxLines) a.lines.pop_front();
       break;
     case detail::Annotation::hud_text: {
@@ -72,10 +83,10 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
                              [&](const Annotations::Hud& h) { return h.source == source; });
       if (it == a.huds.end()) {
         if (body.empty()) return;
-        a.huds.push_back({source, std::string(body)});
+        a.huds.push_back({source, kept_text(body)});
       } else {
         if (it->text == body) return;
-        it->text.assign(body);
+        it->text = kept_text(body);
       }
       break;
     }

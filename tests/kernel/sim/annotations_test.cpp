@@ -56,6 +56,24 @@ TEST(Annotations, ClearTrailEmptiesItAndEveryListIsBounded) {
   EXPECT_EQ(a.series.at(0).points.size(), Annotations::kMaxPoints);
 }
 
+// 1 000 lines of 1 MB each were all kept (1.1 GB): a line keeps at most kMaxTextBytes now,
+// and says how much was cut.
+TEST(Annotations, AVeryLongLineOrHudTextIsCutAndSaysSo) {
+  auto sim = load_with_annotator("period_ms='1' line_bytes='1000000'");
+  sim->run_until(1.2);  // 1 200 lines of a megabyte
+  const Annotations& a = sim->annotations();
+  ASSERT_EQ(a.lines.size(), Annotations::kMaxLines);
+  std::size_t kept = 0;
+  for (const auto& line : a.lines) {
+    EXPECT_LE(line.text.size(), Annotations::kMaxTextBytes + 32);
+    kept += line.text.size();
+  }
+  EXPECT_LT(kept, 5'000'000u);
+  EXPECT_EQ(a.lines.back().text.rfind("update 1200xxx", 0), 0u);
+  EXPECT_NE(a.lines.back().text.find(" bytes cut]"), std::string::npos);
+  EXPECT_LE(a.hud_text().size(), Annotations::kMaxTextBytes + 32);
+}
+
 TEST(Annotations, ResetForgetsThemAndSnapshotsDoNotHoldThem) {
   auto sim = load_with_annotator("period_ms='10'");
   const Simulation::Snapshot start = sim->save();

@@ -176,13 +176,14 @@ class Annotator : public Component {
  public:
   void configure(ConfigureContext& ctx) override {
     clear_every_ = static_cast<int>(ctx.params().number("clear_every", 0.0));
+    padding_ = static_cast<std::size_t>(ctx.params().number("line_bytes", 0.0));
     ctx.set_schedule(Stage::control, ctx.params().number("period_ms", 10.0) / 1000.0, 0.0);
   }
   void initialize(StepContext&) override { updates_ = 0; }
   void update(StepContext& ctx) override {
     ++updates_;
-    ctx.log_line("update " + std::to_string(updates_));
-    ctx.set_hud_text("updates " + std::to_string(updates_));
+    ctx.log_line("update " + std::to_string(updates_) + std::string(padding_, 'x'));
+    ctx.set_hud_text("updates " + std::to_string(updates_) + std::string(padding_, 'x'));
     if (clear_every_ > 0 && updates_ % clear_every_ == 0) ctx.clear_trail(0);
     ctx.add_trail_point(0, Vec3{ctx.time_s(), 0, 0});
     ctx.add_xy_point(1, ctx.time_s(), 2 * ctx.time_s());
@@ -191,6 +192,7 @@ class Annotator : public Component {
  private:
   int clear_every_ = 0;
   int updates_ = 0;
+  std::size_t padding_ = 0;  // bytes added to each line and HUD text (line_bytes)
 };
 
 // SDK 0.11: a local component (ConfigureContext::declare_local). A speed controller on the

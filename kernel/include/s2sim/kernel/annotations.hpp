@@ -18,7 +18,10 @@
 namespace s2sim {
 
 struct Annotations {
-  static constexpr std::size_t kMaxLines = 1000;          ///< log lines kept
+  static constexpr std::size_t kMaxLines = 1000;  ///< log lines kept
+  /// Bytes kept of one log line or HUD text: longer ones are cut, the cut said at their end,
+  /// so that the kept lines stay under about 4 MB however long each one is.
+  static constexpr std::size_t kMaxTextBytes = 4096;
   static constexpr std::size_t kMaxPoints = 10000;        ///< points kept per trail or series
   static constexpr std::size_t kMaxTrailsOrSeries = 256;  ///< per simulation; more are ignored
 
