@@ -81,7 +81,34 @@
   X(ReadUDPData) \
   X(WriteComPort) \
   X(ReadComPort) \
-  X(HUDText)
+  X(HUDText) \
+  X(GetSolidAngularVel) \
+  X(GetSolidMass) \
+  X(SetSolidForce) \
+  X(SetThingColor) \
+  X(GetThingRotMat) \
+  X(SetThingRotationMat) \
+  X(GetThingAngularVel) \
+  X(GetThingSpeed) \
+  X(SetThingSpeed) \
+  X(SetThingLinearVel) \
+  X(SetThingAngularVel) \
+  X(SetThingForce) \
+  X(SetThingForceAtRelPos) \
+  X(SetThingRelForce) \
+  X(SetThingRelForceAtRelPos) \
+  X(GetObstacleIndex) \
+  X(SetGlobalSensorVin) \
+  X(GetAxisUIPower) \
+  X(SetTrailColor) \
+  X(DelTrailNode) \
+  X(ChartSetAxisMinMax) \
+  X(ChartSeriesGetCount) \
+  X(ChartSeriesCreate) \
+  X(ChartSeriesDeleteAll) \
+  X(SetRCBackColor) \
+  X(ReadUDPPacket) \
+  X(GetUDPPacketCount)
 // clang-format on
 
 namespace s2sim::pascal {

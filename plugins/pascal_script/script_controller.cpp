@@ -30,7 +30,8 @@ void ScriptController::configure(ConfigureContext& ctx) {
     robot.yaw = p.number(k + "yaw");
     for (std::int64_t i = 0, n = p.integer(k + "solids"); i < n; ++i) {
       const std::string sk = k + "solid_" + std::to_string(i) + "_";
-      robot.solids.push_back({p.text(sk + "id"), ctx.body(p.text(sk + "body"))});
+      const BodyHandle body = ctx.body(p.text(sk + "body"));
+      robot.solids.push_back({p.text(sk + "id"), body, ctx.body_mass_kg(body)});
     }
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;
@@ -50,6 +51,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
           a.encoder = ctx.published_signal(a.path + "/encoder");
           a.current = ctx.published_signal(a.path + "/current");
           a.voltage = ctx.published_signal(a.path + "/voltage");
+          a.power = ctx.published_signal(a.path + "/power");
           const char* motor_inputs[kMotorParCount] = {"motor_ri",     "motor_li",    "motor_ki",
                                                       "motor_vmax",   "motor_imax",  "gear_ratio",
                                                       "motor_simple", "motor_active"};
@@ -210,6 +212,8 @@ void ScriptController::initialize(StepContext& ctx) {
     ctx.set_input(sheet_inputs_[i], sheet_initial_values_[i]);
   output_.clear();
   hud_.clear();
+  trails_.assign(kMaxTrails + 1, {});
+  chart_series_count_.assign(kMaxCharts, 0);
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
   if (available_) {

@@ -41,7 +41,9 @@ enum MotorPar : int {
 };
 inline constexpr const char* kMotorParNames[kMotorParCount] = {
     "Ri", "Li", "Ki", "Vmax", "Imax", "GearRatio", "simple", "active"};
-inline constexpr int kMaxChartSeries = 100;  // a host function's numeric result (ranger rays...)
+inline constexpr int kMaxChartSeries = 100;
+/// The nodes a trail keeps (the viewer's too).
+inline constexpr std::size_t kMaxTrailNodes = 10000;
 
 /// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
 inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
@@ -57,7 +59,7 @@ struct AxisRef {
   AxisHandle axis;
   bool linear = false;
   InputHandle ref_voltage, ref_speed, ref_pos, ref_torque, controller_active;
-  SignalHandle encoder{-1}, current{-1}, voltage{-1};
+  SignalHandle encoder{-1}, current{-1}, voltage{-1}, power{-1};  // power: V·I (GetAxisUIPower)
   SignalReader torque;  // the kernel's axis torque (GetAxisTorque)
   /// The DC motor's run-time parameters (TMotorPars order: Ri, Li, Ki, Vmax, Imax,
   /// GearRatio, simple, active); index -1 without a motor.
@@ -75,6 +77,7 @@ struct SensorRef {
 struct SolidRef {
   std::string id;
   BodyHandle body;
+  double mass_kg = 0;  // as loaded (GetSolidMass)
 };
 
 struct RobotRef {
@@ -117,6 +120,8 @@ class ScriptController final : public Component {
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
   /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
+  /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).
+  double call_annotations(HostFn fn, const double* a, int n);
   /// A script error naming `fn` when it got fewer than `want` arguments.
   void require_arguments(HostFn fn, int have, int want);
   [[noreturn]] void fail(const std::string& message);
@@ -178,6 +183,10 @@ class ScriptController final : public Component {
   Pose& move_of(BodyHandle b);
   Twist& velocity_of(BodyHandle b);
   std::deque<std::string> output_;  // WriteLn, the last 100 lines
+  // The script's trails as it built them (DelTrailNode redraws a trail less its oldest node)
+  // and its charts' series counts (ChartSeriesCreate, ChartSeriesGetCount).
+  std::vector<std::deque<Vec3>> trails_;
+  std::vector<int> chart_series_count_;
   std::string hud_;
   UdpPort udp_;
   SerialPort serial_;

@@ -10,7 +10,7 @@ unit s2simtwo;
 
 interface
 
-uses SysUtils, Classes, Math;
+uses SysUtils, Classes, Math, Types, s2simtwo_matrix, s2simtwo_helpers;
 
 {S2SIM_HOST_IDS}
 
@@ -62,14 +62,33 @@ type
   TRGBAColor = record Red, Green, Blue, alpha: integer; end;
   TExtents = record Min, Max: TPoint3D; end;
 
-  Matrix = record
-    data: array of double;
-    rows, cols: Longword;
+  { Rendering's types (canvas, camera, spray paint): declared so that scripts compile; every
+    routine that would draw or read pixels raises "... belongs to rendering". }
+  TPaintVisuals = integer;
+  THistogram = array of double;
+  TTriangle = record v1, v2, v3: TPoint3D; end;
+  TTriangles = array of TTriangle;
+  TCanvasTool = class
+  public
+    Color: TColor;
+    Width: integer;
+    Size: integer;
+    Name: string;
   end;
-
-  TUDPBuffer = record
-    data: array[0..1499] of byte;
-    MessSize, ReadDisp: integer;
+  TCanvas = class
+  public
+    Brush, Pen, Font: TCanvasTool;
+    procedure TextOut(X, Y: integer; const Text: string);
+    procedure FillRect(const R: TRect);
+    procedure Rectangle(X1, Y1, X2, Y2: integer);
+    procedure Ellipse(X1, Y1, X2, Y2: integer);
+    procedure MoveTo(X, Y: integer);
+    procedure LineTo(X, Y: integer);
+  end;
+  TBitmap = class
+  public
+    Canvas: TCanvas;
+    Width, Height: integer;
   end;
 
   { SimTwo (Windows) joins lines with CR LF; FPC on Linux with LF. Setting Text splits on
@@ -99,62 +118,9 @@ type
 var
   Time: double;
   HUDStrings: TStringList;
+  UDPDataRead: TMemoryStream;  { declared; S2Sim does not fill it (docs/scripting.md) }
+  CamBitmap: TBitmap;          { rendering: its canvas raises }
   Host: THostTable;
-
-{ --- pure helpers, SimTwo's definitions --- }
-function Format(const sFormat: string; const Args: array of const): string;
-function Rad(angle: double): double;
-function Deg(angle: double): double;
-function Sqr(X: double): double;
-function Sign(a: double): double;
-function Sat(a, limit: double): double;
-function ATan2(y, x: double): double;
-function DiffAngle(a1, a2: double): double;
-function NormalizeAngle(ang: double): double;
-function Dist(x, y: double): double;
-function ACos2(y, x: double): double;
-function ASin2(y, x: double): double;
-function random01: double;
-function Pi: double;
-
-{ --- Matrix (SimTwo's dynmatrix API) --- }
-function Mzeros(r, c: Longword): Matrix;
-function Meye(n: Longword): Matrix;
-function Minc(r, c: Longword): Matrix;
-procedure MSetSize(var M: Matrix; r, c: Longword);
-procedure Msetv(var M: Matrix; r, c: Longword; v: double);
-function Mgetv(const M: Matrix; r, c: Longword): double;
-procedure MUsetv(var M: Matrix; r, c: Longword; v: double);
-function MUgetv(const M: Matrix; r, c: Longword): double;
-function MNumRows(const M: Matrix): Longword;
-function MNumCols(const M: Matrix): Longword;
-function Madd(const A, B: Matrix): Matrix;
-function Msub(const A, B: Matrix): Matrix;
-function Mmult(const A, B: Matrix): Matrix;
-function MmultReal(const A: Matrix; k: double): Matrix;
-function MaddReal(const A: Matrix; k: double): Matrix;
-function MsubReal(const A: Matrix; k: double): Matrix;
-function Mneg(const A: Matrix): Matrix;
-function Mtran(const A: Matrix): Matrix;
-function Minv(const A: Matrix): Matrix;
-function MOneCol(const A: Matrix; c: Longword): Matrix;
-function MOneRow(const A: Matrix; r: Longword): Matrix;
-function Mmin(const A: Matrix): double;
-function Mmax(const A: Matrix): double;
-function MmaxAbs(const A: Matrix): double;
-
-{ --- net buffer (SimTwo's rlan helpers) --- }
-procedure ClearUDPBuffer(var Buf: TUDPBuffer);
-procedure NetPutByte(var Buf: TUDPBuffer; value: byte);
-procedure NetPutWord(var Buf: TUDPBuffer; value: word);
-procedure NetPutShort(var Buf: TUDPBuffer; value: smallint);
-procedure NetPutInt(var Buf: TUDPBuffer; value: integer);
-procedure NetPutFloat(var Buf: TUDPBuffer; value: single);
-function NetGetByte(var Buf: TUDPBuffer): byte;
-function NetGetWord(var Buf: TUDPBuffer): word;
-function NetGetInt(var Buf: TUDPBuffer): integer;
-function NetGetFloat(var Buf: TUDPBuffer): single;
-function NetStringBuffer(const Buf: TUDPBuffer): string;
 
 { --- host functions (S2Sim's implementation: plugins/pascal_script/host_api.cpp) --- }
 procedure WriteLn(S: string);
@@ -251,6 +217,133 @@ procedure WriteUDPData(ToIP: string; ToPort: integer; s: string);
 function ReadUDPData: string;
 procedure WriteComPort(s: string);
 function ReadComPort: string;
+
+{ --- routines added for SimTwo's whole list (docs/scripting.md, coverage) --- }
+function RGBToColor(R, G, B: Byte): TColor;
+procedure SetRCBackColor(r, c: integer; newColor: TColor);
+procedure CloseSimTwo;
+function GetRobotVel2D(R: integer): TState2D;
+function GetRobotCenterOfMass(R: integer): TPoint3D;
+procedure SetSolidPosMat(R, i: integer; P: Matrix);
+function GetSolidLinearVelMat(R, i: integer): Matrix;
+function GetSolidAgularVelMat(R, i: integer): Matrix;
+function GetSolidVx(R, i: integer): double;
+function GetSolidVy(R, i: integer): double;
+function GetSolidVz(R, i: integer): double;
+procedure SetSolidMass(R, i: integer; nmass: double);
+function GetSolidMass(R, i: integer): double;
+function GetSolidCenterOfMass(R, i: integer): TPoint3D;
+function GetSolidTag(R, i: integer): string;
+procedure SetSolidTag(R, i: integer; newTag: string);
+function GetSolidColor(R, i: integer): TRGBAColor;
+procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double);
+procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double);
+function GetSolidSize(R, i: integer): TPoint3D;
+procedure SetSolidSize(R, i: integer; x, y, z: double);
+function GetSolidCanvas(R, i: integer): TCanvas;
+function GetObstacleCanvas(i: integer): TCanvas;
+procedure SolidCanvasClear(R, i: integer);
+function GetPaintGunMinDist(i: integer): double;
+function GetPaintTargetExtents(i: integer): TExtents;
+procedure ResetPaintTargetPaint(i: integer);
+procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals);
+procedure SetSprayGunOn(i: integer);
+procedure SetSprayGunOff(i: integer);
+function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
+function CalculateAvgSprayThickness(i: integer): double;
+function CalculateSDSprayThickness(i: integer): double;
+function CalculatePosAvgSprayThickness(i: integer): double;
+function CalculatePosSDSprayThickness(i: integer): double;
+function CalculatePosMinSprayThickness(i: integer): double;
+function CalculateMinSprayThickness(i: integer): double;
+function CalculateMaxSprayThickness(i: integer): double;
+function CalculateSprayCoverage(i: integer): double;
+function GetPaintTargetTriangles(i: integer): TTriangles;
+procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D);
+function GetCameraPixel(X, Y: integer): TRGBAColor;
+procedure SetFireScale(x, y, z: double);
+procedure SetFirePosition(x, y, z: double);
+procedure StartFire;
+procedure StopFire;
+procedure StopSolidFire(R, I: integer);
+procedure StartSolidFire(R, I: integer);
+procedure SetGlobalSensorVin(i: integer; Vin: byte);
+procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte);
+procedure SetThingColor(T, c: integer; Red, Green, Blue: byte);
+function GetThingRotMat(T: integer): Matrix;
+procedure SetThingRotationMat(T: integer; Rot: Matrix);
+function GetThingAgularVelMat(T: integer): Matrix;
+function GetThingSize(T: integer): TPoint3D;
+procedure SetThingSize(T: integer; x, y, z: double);
+function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
+function AddThingSphere(ID: string; mass, posX, posY, posZ, radius: double; rgb24: integer): integer;
+function AddThingCylinder(ID: string; mass, posx, posY, posZ, radius, len: double; rgb24: integer): integer;
+function DeleteThing(ID: string): integer;
+procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
+procedure ClearThings;
+procedure SetThingForce(T: integer; Fx, Fy, Fz: double);
+procedure SetThingForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+procedure SetThingRelForce(T: integer; Fx, Fy, Fz: double);
+procedure SetThingRelForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+procedure SetThingSurfaceMu(T: integer; mu, mu2: double);
+function GetThingSpeed(T: integer): TPoint3D;
+procedure SetThingSpeed(T: integer; vx, vy, vz: double);
+procedure SetThingLinearVel(T: integer; x, y, z: double);
+procedure SetThingAngularVel(T: integer; x, y, z: double);
+function GetThingAngularVel(T: integer): TPoint3D;
+function GetShellPos(R, i: integer): TPoint3D;
+procedure SetShellColor(R, i: integer; Red, Green, Blue: byte);
+function GetShellColor(R, i: integer): TRGBAColor;
+function GetObstacleIndex(ID: string): integer;
+procedure SetObstacleColor(I: integer; Red, Green, Blue: byte);
+function GetObstacleColor(I: integer): TRGBAColor;
+procedure SetObstaclePos(T: integer; x, y, z: double);
+function GetObstacleRotMat(T: integer): Matrix;
+procedure SetObstacleRotationMat(T: integer; Rot: Matrix);
+function DeleteObstacle(ID: string): integer;
+function GetAxisUIPower(R, i: integer): double;
+function GetAxisTWPower(R, i: integer): double;
+function GetAxisStateRef(R, i: integer): TAxisState;
+procedure SetAxisStateRef(R, i: integer; aState: TAxisState);
+function GetAxisPosRefDeg(R, i: integer): double;
+function GetAxisSpeedRefDeg(R, i: integer): double;
+function GetAxisMotorSpeed(R, i: integer): double;
+function GetAxisMotorPos(R, i: integer): double;
+function GetAxisMotorPosDeg(R, i: integer): double;
+function GetAxisEnergy(R, i: integer): double;
+procedure ResetAxisEnergy(R, i: integer);
+procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double);
+function GetMotorControllerPars(R, i: integer): TMotorControllerPars;
+procedure SetMotorControllerMode(R, i: integer; newMode: string);
+function GetMotorControllerMode(R, i: integer): string;
+procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double);
+function GetFrictionDef(R, i: integer): TFrictionDef;
+procedure SetBeltSpeed(R, i: integer; nSpeed: double);
+function GetBeltSpeed(R, i: integer): double;
+procedure SetAxisSpring(R, i: integer; k, ZeroPos: double);
+procedure LoadJointWayPoints(r: integer; JointPointsFileName: string);
+procedure SaveJointWayPoints(r: integer; JointPointsFileName: string);
+function CountJointWayPoints(R, i: integer): integer;
+function GetJointWayPoint(R, i, idx: integer): TAxisPoint;
+procedure SetJointWayPoint(R, i, idx: integer; apos, aspeed, atime: double);
+function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
+procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
+procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
+procedure DelAxisTrajPoint(R, i, idx: integer);
+function CountAxisTrajPoints(R, i: integer): integer;
+procedure ClearAxisTrajPoints(R, i: integer);
+procedure SetTrailColor(T: integer; Red, Green, Blue: byte);
+procedure DelTrailNode(T: integer);
+procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
+function ChartSeriesGetCount(ChartIndex: integer): integer;
+function ChartSeriesCreate(ChartIndex: integer): integer;
+procedure ChartSeriesDeleteAll(ChartIndex: integer);
+function ReadUDPPacket: string;
+function GetUDPPacketCount: integer;
+function getModbusCoil(bit_addr: integer): boolean;
+function getModbusInput(bit_addr: integer): boolean;
+procedure setModbusCoil(bit_addr: integer; new_state: boolean);
+procedure setModbusInput(bit_addr: integer; new_state: boolean);
 
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
@@ -359,336 +452,6 @@ begin
   for i := 0 to High(M.data) do buf[Length(a) + 2 + i] := M.data[i];
   result := Host.call(Host.host, fn, @buf[0], Length(buf), nil, 0, nil, 0);
   HostCheck;
-end;
-
-{ --- Format: SimTwo's Win64 Format prints a bare %g / %e with 15 digits, FPC's with 17 --- }
-
-function Format(const sFormat: string; const Args: array of const): string;
-var s: string; i, j: integer; hasPrec: boolean;
-begin
-  s := '';
-  i := 1;
-  while i <= Length(sFormat) do begin
-    if sFormat[i] <> '%' then begin s := s + sFormat[i]; Inc(i); continue; end;
-    if (i < Length(sFormat)) and (sFormat[i + 1] = '%') then begin s := s + '%%'; Inc(i, 2); continue; end;
-    j := i + 1;
-    hasPrec := false;
-    while (j <= Length(sFormat)) and (sFormat[j] in ['0'..'9', '-', ':', '.', '*']) do begin
-      if sFormat[j] = '.' then hasPrec := true;
-      Inc(j);
-    end;
-    if (j <= Length(sFormat)) and (UpCase(sFormat[j]) in ['G', 'E']) and not hasPrec then
-      s := s + Copy(sFormat, i, j - i) + '.15' + sFormat[j]
-    else
-      s := s + Copy(sFormat, i, j - i + 1);
-    i := j + 1;
-  end;
-  result := SysUtils.Format(s, Args);
-end;
-
-function Rad(angle: double): double; begin result := angle * System.Pi / 180; end;
-function Deg(angle: double): double; begin result := angle * 180 / System.Pi; end;
-function Sqr(X: double): double; begin result := X * X; end;
-function Sign(a: double): double; begin if a < 0 then result := -1 else result := 1; end;
-function Pi: double; begin result := System.Pi; end;
-
-function Sat(a, limit: double): double;
-begin
-  if a > limit then result := limit
-  else if a < -limit then result := -limit
-  else result := a;
-end;
-
-function ATan2(y, x: double): double;
-begin
-  if (abs(x) < 1e-10) and (abs(y) < 1e-10) then result := 0
-  else result := Math.ArcTan2(y, x);
-end;
-
-function DiffAngle(a1, a2: double): double;
-begin
-  result := a1 - a2;
-  result := result - 2 * System.Pi * Int(result / (2 * System.Pi));
-  if result > System.Pi then result := result - 2 * System.Pi
-  else if result < -System.Pi then result := result + 2 * System.Pi;
-end;
-
-function NormalizeAngle(ang: double): double;
-begin
-  result := ang - 2 * System.Pi * Floor((ang + System.Pi) / (2 * System.Pi));
-end;
-
-function Dist(x, y: double): double; begin result := sqrt(x * x + y * y); end;
-
-function ACos2(y, x: double): double;
-begin
-  result := Math.ArcCos(Math.EnsureRange(x, -1, 1));
-  if y < 0 then result := -result;
-end;
-
-function ASin2(y, x: double): double;
-var s: double;
-begin
-  s := Math.ArcSin(Math.EnsureRange(y, -1, 1));
-  if x >= 0 then result := s
-  else if y > 0 then result := System.Pi + s
-  else result := -System.Pi + s;
-end;
-
-function random01: double; begin result := System.Random; end;
-
-{ --- Matrix: row-major, element (r, c) at data[c + r * cols] --- }
-
-procedure MatrixError(const msg: string);
-begin
-  raise Exception.Create(msg);
-end;
-
-procedure MSetSize(var M: Matrix; r, c: Longword);
-begin
-  M.rows := r; M.cols := c;
-  SetLength(M.data, r * c);
-end;
-
-function Mzeros(r, c: Longword): Matrix;
-var i: integer;
-begin
-  MSetSize(result, r, c);
-  for i := 0 to High(result.data) do result.data[i] := 0;
-end;
-
-function Meye(n: Longword): Matrix;
-var i: Longword;
-begin
-  result := Mzeros(n, n);
-  if n > 0 then for i := 0 to n - 1 do result.data[i + i * n] := 1;
-end;
-
-function Minc(r, c: Longword): Matrix;
-var i: integer;
-begin
-  MSetSize(result, r, c);
-  for i := 0 to High(result.data) do result.data[i] := i;
-end;
-
-function BadElement(const M: Matrix; r, c: Longword): string;
-begin
-  result := SysUtils.Format('Invalid (row,col) value. Matrix is (%d,%d), element required is (%d,%d)',
-    [M.rows, M.cols, r, c]);
-end;
-
-procedure Msetv(var M: Matrix; r, c: Longword; v: double);
-begin
-  if (r >= M.rows) or (c >= M.cols) then MatrixError(BadElement(M, r, c));
-  SetLength(M.data, Length(M.data));  { unshare before writing: value semantics }
-  M.data[c + r * M.cols] := v;
-end;
-
-function Mgetv(const M: Matrix; r, c: Longword): double;
-begin
-  if (r >= M.rows) or (c >= M.cols) then MatrixError(BadElement(M, r, c));
-  result := M.data[c + r * M.cols];
-end;
-
-procedure MUsetv(var M: Matrix; r, c: Longword; v: double);
-begin
-  if (r >= M.rows) or (c >= M.cols) then exit;
-  SetLength(M.data, Length(M.data));
-  M.data[c + r * M.cols] := v;
-end;
-
-function MUgetv(const M: Matrix; r, c: Longword): double;
-begin
-  if (r >= M.rows) or (c >= M.cols) then result := 0
-  else result := M.data[c + r * M.cols];
-end;
-
-function MNumRows(const M: Matrix): Longword; begin result := M.rows; end;
-function MNumCols(const M: Matrix): Longword; begin result := M.cols; end;
-
-function Madd(const A, B: Matrix): Matrix;
-var i: integer;
-begin
-  if (A.rows <> B.rows) or (A.cols <> B.cols) then
-    MatrixError(SysUtils.Format('Cannot add matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] + B.data[i];
-end;
-
-function Msub(const A, B: Matrix): Matrix;
-var i: integer;
-begin
-  if (A.rows <> B.rows) or (A.cols <> B.cols) then
-    MatrixError(SysUtils.Format('Cannot subtract matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] - B.data[i];
-end;
-
-function Mmult(const A, B: Matrix): Matrix;
-var r, c, k: Longword; s: double;
-begin
-  if A.cols <> B.rows then
-    MatrixError(SysUtils.Format('Cannot multiply matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, B.cols);
-  if (A.rows = 0) or (B.cols = 0) then exit;
-  for r := 0 to A.rows - 1 do
-    for c := 0 to B.cols - 1 do begin
-      s := 0;
-      if A.cols > 0 then
-        for k := 0 to A.cols - 1 do s := s + A.data[k + r * A.cols] * B.data[c + k * B.cols];
-      result.data[c + r * B.cols] := s;
-    end;
-end;
-
-function MmultReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] * k;
-end;
-
-function MaddReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] + k;
-end;
-
-function MsubReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] - k;
-end;
-
-function Mneg(const A: Matrix): Matrix; begin result := MmultReal(A, -1); end;
-
-function Mtran(const A: Matrix): Matrix;
-var r, c: Longword;
-begin
-  MSetSize(result, A.cols, A.rows);
-  if (A.rows = 0) or (A.cols = 0) then exit;
-  for r := 0 to A.rows - 1 do
-    for c := 0 to A.cols - 1 do result.data[r + c * A.rows] := A.data[c + r * A.cols];
-end;
-
-{ Gauss-Jordan with full pivoting. }
-function Minv(const A: Matrix): Matrix;
-var n, i, j, k, pr, pc: integer; big, t: double;
-    a2: array of double; rowp, colp: array of integer; piv: array of boolean;
-begin
-  if A.rows <> A.cols then MatrixError('Cannot invert non-square matrix');
-  n := A.rows;
-  SetLength(a2, n * n);
-  for i := 0 to n * n - 1 do a2[i] := A.data[i];
-  SetLength(rowp, n); SetLength(colp, n); SetLength(piv, n);
-  for i := 0 to n - 1 do piv[i] := false;
-  for i := 0 to n - 1 do begin
-    big := 0; pr := 0; pc := 0;
-    for j := 0 to n - 1 do
-      if not piv[j] then
-        for k := 0 to n - 1 do
-          if (not piv[k]) and (abs(a2[k + j * n]) >= big) then begin
-            big := abs(a2[k + j * n]); pr := j; pc := k;
-          end;
-    piv[pc] := true;
-    if pr <> pc then
-      for k := 0 to n - 1 do begin
-        t := a2[k + pr * n]; a2[k + pr * n] := a2[k + pc * n]; a2[k + pc * n] := t;
-      end;
-    rowp[i] := pr; colp[i] := pc;
-    if a2[pc + pc * n] = 0 then MatrixError('Singular matrix: Pivot is 0');
-    t := 1 / a2[pc + pc * n];
-    a2[pc + pc * n] := 1;
-    for k := 0 to n - 1 do a2[k + pc * n] := a2[k + pc * n] * t;
-    for j := 0 to n - 1 do
-      if j <> pc then begin
-        t := a2[pc + j * n];
-        a2[pc + j * n] := 0;
-        for k := 0 to n - 1 do a2[k + j * n] := a2[k + j * n] - a2[k + pc * n] * t;
-      end;
-  end;
-  for i := n - 1 downto 0 do
-    if rowp[i] <> colp[i] then
-      for j := 0 to n - 1 do begin
-        t := a2[rowp[i] + j * n]; a2[rowp[i] + j * n] := a2[colp[i] + j * n]; a2[colp[i] + j * n] := t;
-      end;
-  MSetSize(result, n, n);
-  for i := 0 to n * n - 1 do result.data[i] := a2[i];
-end;
-
-function MOneCol(const A: Matrix; c: Longword): Matrix;
-var r: Longword;
-begin
-  if c >= A.cols then MatrixError(BadElement(A, 0, c));
-  MSetSize(result, A.rows, 1);
-  if A.rows > 0 then for r := 0 to A.rows - 1 do result.data[r] := A.data[c + r * A.cols];
-end;
-
-function MOneRow(const A: Matrix; r: Longword): Matrix;
-var c: Longword;
-begin
-  if r >= A.rows then MatrixError(BadElement(A, r, 0));
-  MSetSize(result, 1, A.cols);
-  if A.cols > 0 then for c := 0 to A.cols - 1 do result.data[c] := A.data[c + r * A.cols];
-end;
-
-function Mmin(const A: Matrix): double;
-var i: integer;
-begin
-  result := A.data[0];
-  for i := 1 to High(A.data) do if A.data[i] < result then result := A.data[i];
-end;
-
-function Mmax(const A: Matrix): double;
-var i: integer;
-begin
-  result := A.data[0];
-  for i := 1 to High(A.data) do if A.data[i] > result then result := A.data[i];
-end;
-
-function MmaxAbs(const A: Matrix): double;
-var i: integer;
-begin
-  result := abs(A.data[0]);
-  for i := 1 to High(A.data) do if abs(A.data[i]) > result then result := abs(A.data[i]);
-end;
-
-{ --- net buffer: little-endian, at most 1499 bytes (SimTwo's limit) --- }
-
-procedure ClearUDPBuffer(var Buf: TUDPBuffer);
-begin
-  FillChar(Buf.data, SizeOf(Buf.data), 0);
-  Buf.MessSize := 0;  { ReadDisp is kept, as SimTwo does }
-end;
-
-procedure NetPut(var Buf: TUDPBuffer; const src; size: integer);
-begin
-  if Buf.MessSize + size >= 1500 then raise Exception.Create('Write: UDP Message size too big');
-  Move(src, Buf.data[Buf.MessSize], size);
-  Inc(Buf.MessSize, size);
-end;
-
-procedure NetGet(var Buf: TUDPBuffer; var dst; size: integer);
-begin
-  if Buf.ReadDisp + size > Buf.MessSize then raise Exception.Create('Read: UDP Message size too big');
-  Move(Buf.data[Buf.ReadDisp], dst, size);
-  Inc(Buf.ReadDisp, size);
-end;
-
-procedure NetPutByte(var Buf: TUDPBuffer; value: byte); begin NetPut(Buf, value, 1); end;
-procedure NetPutWord(var Buf: TUDPBuffer; value: word); begin NetPut(Buf, value, 2); end;
-procedure NetPutShort(var Buf: TUDPBuffer; value: smallint); begin NetPut(Buf, value, 2); end;
-procedure NetPutInt(var Buf: TUDPBuffer; value: integer); begin NetPut(Buf, value, 4); end;
-procedure NetPutFloat(var Buf: TUDPBuffer; value: single); begin NetPut(Buf, value, 4); end;
-function NetGetByte(var Buf: TUDPBuffer): byte; begin NetGet(Buf, result, 1); end;
-function NetGetWord(var Buf: TUDPBuffer): word; begin NetGet(Buf, result, 2); end;
-function NetGetInt(var Buf: TUDPBuffer): integer; begin NetGet(Buf, result, 4); end;
-function NetGetFloat(var Buf: TUDPBuffer): single; begin NetGet(Buf, result, 4); end;
-
-function NetStringBuffer(const Buf: TUDPBuffer): string;
-begin
-  SetString(result, PChar(@Buf.data[0]), Buf.MessSize);
 end;
 
 { --- host functions --- }
@@ -840,6 +603,226 @@ function ReadUDPData: string; begin HostCall(hReadUDPData, []); result := HostTe
 procedure WriteComPort(s: string); begin HostCallS(hWriteComPort, [], s); end;
 function ReadComPort: string; begin HostCall(hReadComPort, []); result := HostText; end;
 
+{ --- what S2Sim does not have (yet): a named error, never a silent no-op --- }
+
+procedure NotYetAvailable(const routine: string);
+begin
+  raise EScriptHostError.Create(routine + ' is not yet available in S2Sim (docs/scripting.md)');
+end;
+
+procedure BelongsToRendering(const routine: string);
+begin
+  raise EScriptHostError.Create(routine + ' belongs to rendering, which S2Sim does not have yet');
+end;
+
+procedure TCanvas.TextOut(X, Y: integer; const Text: string); begin BelongsToRendering('TCanvas.TextOut'); end;
+procedure TCanvas.FillRect(const R: TRect); begin BelongsToRendering('TCanvas.FillRect'); end;
+procedure TCanvas.Rectangle(X1, Y1, X2, Y2: integer); begin BelongsToRendering('TCanvas.Rectangle'); end;
+procedure TCanvas.Ellipse(X1, Y1, X2, Y2: integer); begin BelongsToRendering('TCanvas.Ellipse'); end;
+procedure TCanvas.MoveTo(X, Y: integer); begin BelongsToRendering('TCanvas.MoveTo'); end;
+procedure TCanvas.LineTo(X, Y: integer); begin BelongsToRendering('TCanvas.LineTo'); end;
+
+function RGBToColor(R, G, B: Byte): TColor; begin result := R or (G shl 8) or (B shl 16); end;
+procedure SetRCBackColor(r, c: integer; newColor: TColor); begin HostCall(hSetRCBackColor, [r, c, newColor]); end;
+procedure CloseSimTwo; begin NotYetAvailable('CloseSimTwo'); end;
+
+function GetRobotVel2D(R: integer): TState2D;
+begin result.x := GetRobotVx(R); result.y := GetRobotVy(R); result.angle := GetRobotW(R); end;
+function GetRobotCenterOfMass(R: integer): TPoint3D; begin NotYetAvailable('GetRobotCenterOfMass'); end;
+procedure SetSolidPosMat(R, i: integer; P: Matrix);
+begin SetSolidPos(R, i, Mgetv(P, 0, 0), Mgetv(P, 1, 0), Mgetv(P, 2, 0)); end;
+function PointColumn(const p: TPoint3D): Matrix;
+begin
+  result := Mzeros(3, 1);
+  result.data[0] := p.x; result.data[1] := p.y; result.data[2] := p.z;
+end;
+function GetSolidLinearVelMat(R, i: integer): Matrix; begin result := PointColumn(GetSolidLinearVel(R, i)); end;
+function GetSolidAgularVelMat(R, i: integer): Matrix; begin result := PointColumn(HostPoint(hGetSolidAngularVel, [R, i])); end;
+function GetSolidVx(R, i: integer): double; begin result := GetSolidLinearVel(R, i).x; end;
+function GetSolidVy(R, i: integer): double; begin result := GetSolidLinearVel(R, i).y; end;
+function GetSolidVz(R, i: integer): double; begin result := GetSolidLinearVel(R, i).z; end;
+procedure SetSolidMass(R, i: integer; nmass: double); begin NotYetAvailable('SetSolidMass'); end;
+function GetSolidMass(R, i: integer): double; begin result := HostCall(hGetSolidMass, [R, i]); end;
+function GetSolidCenterOfMass(R, i: integer): TPoint3D; begin NotYetAvailable('GetSolidCenterOfMass'); end;
+function GetSolidTag(R, i: integer): string; begin NotYetAvailable('GetSolidTag'); end;
+procedure SetSolidTag(R, i: integer; newTag: string); begin NotYetAvailable('SetSolidTag'); end;
+function GetSolidColor(R, i: integer): TRGBAColor; begin NotYetAvailable('GetSolidColor'); end;
+procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double); begin NotYetAvailable('SetSolidSurfaceFriction'); end;
+procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double); begin HostCall(hSetSolidForce, [R, i, Fx, Fy, Fz]); end;
+function GetSolidSize(R, i: integer): TPoint3D; begin NotYetAvailable('GetSolidSize'); end;
+procedure SetSolidSize(R, i: integer; x, y, z: double); begin NotYetAvailable('SetSolidSize'); end;
+
+function GetSolidCanvas(R, i: integer): TCanvas; begin BelongsToRendering('GetSolidCanvas'); result := nil; end;
+function GetObstacleCanvas(i: integer): TCanvas; begin BelongsToRendering('GetObstacleCanvas'); result := nil; end;
+procedure SolidCanvasClear(R, i: integer); begin BelongsToRendering('SolidCanvasClear'); end;
+function GetPaintGunMinDist(i: integer): double; begin BelongsToRendering('GetPaintGunMinDist'); end;
+function GetPaintTargetExtents(i: integer): TExtents; begin BelongsToRendering('GetPaintTargetExtents'); end;
+procedure ResetPaintTargetPaint(i: integer); begin BelongsToRendering('ResetPaintTargetPaint'); end;
+procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals); begin BelongsToRendering('SetPaintTargetPaintMode'); end;
+procedure SetSprayGunOn(i: integer); begin BelongsToRendering('SetSprayGunOn'); end;
+procedure SetSprayGunOff(i: integer); begin BelongsToRendering('SetSprayGunOff'); end;
+function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
+begin BelongsToRendering('CalculateSprayThicknessHistogram'); end;
+function CalculateAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculateAvgSprayThickness'); end;
+function CalculateSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculateSDSprayThickness'); end;
+function CalculatePosAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosAvgSprayThickness'); end;
+function CalculatePosSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosSDSprayThickness'); end;
+function CalculatePosMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosMinSprayThickness'); end;
+function CalculateMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMinSprayThickness'); end;
+function CalculateMaxSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMaxSprayThickness'); end;
+function CalculateSprayCoverage(i: integer): double; begin BelongsToRendering('CalculateSprayCoverage'); end;
+function GetPaintTargetTriangles(i: integer): TTriangles; begin BelongsToRendering('GetPaintTargetTriangles'); end;
+procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D); begin BelongsToRendering('SetResultTrianglesColor'); end;
+function GetCameraPixel(X, Y: integer): TRGBAColor; begin BelongsToRendering('GetCameraPixel'); end;
+
+procedure SetFireScale(x, y, z: double); begin NotYetAvailable('SetFireScale'); end;
+procedure SetFirePosition(x, y, z: double); begin NotYetAvailable('SetFirePosition'); end;
+procedure StartFire; begin NotYetAvailable('StartFire'); end;
+procedure StopFire; begin NotYetAvailable('StopFire'); end;
+procedure StopSolidFire(R, I: integer); begin NotYetAvailable('StopSolidFire'); end;
+procedure StartSolidFire(R, I: integer); begin NotYetAvailable('StartSolidFire'); end;
+
+procedure SetGlobalSensorVin(i: integer; Vin: byte); begin HostCall(hSetGlobalSensorVin, [i, Vin]); end;
+procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetSensorColor'); end;
+
+procedure SetThingColor(T, c: integer; Red, Green, Blue: byte); begin HostCall(hSetThingColor, [T, c, Red, Green, Blue]); end;
+function GetThingRotMat(T: integer): Matrix; begin result := HostMatrix(hGetThingRotMat, [T]); end;
+procedure SetThingRotationMat(T: integer; Rot: Matrix); begin CallMatrix(hSetThingRotationMat, [T], Rot); end;
+function GetThingAgularVelMat(T: integer): Matrix; begin result := PointColumn(GetThingAngularVel(T)); end;
+function GetThingSize(T: integer): TPoint3D; begin NotYetAvailable('GetThingSize'); end;
+procedure SetThingSize(T: integer; x, y, z: double); begin NotYetAvailable('SetThingSize'); end;
+function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingBox'); result := -1; end;
+function AddThingSphere(ID: string; mass, posX, posY, posZ, radius: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingSphere'); result := -1; end;
+function AddThingCylinder(ID: string; mass, posx, posY, posZ, radius, len: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingCylinder'); result := -1; end;
+function DeleteThing(ID: string): integer; begin NotYetAvailable('DeleteThing'); result := -1; end;
+procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
+begin NotYetAvailable('MeshThing'); end;
+procedure ClearThings; begin NotYetAvailable('ClearThings'); end;
+procedure SetThingForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingForce, [T, Fx, Fy, Fz]); end;
+procedure SetThingForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+begin HostCall(hSetThingForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
+procedure SetThingRelForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingRelForce, [T, Fx, Fy, Fz]); end;
+procedure SetThingRelForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+begin HostCall(hSetThingRelForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
+procedure SetThingSurfaceMu(T: integer; mu, mu2: double); begin NotYetAvailable('SetThingSurfaceMu'); end;
+function GetThingSpeed(T: integer): TPoint3D; begin result := HostPoint(hGetThingSpeed, [T]); end;
+procedure SetThingSpeed(T: integer; vx, vy, vz: double); begin HostCall(hSetThingSpeed, [T, vx, vy, vz]); end;
+procedure SetThingLinearVel(T: integer; x, y, z: double); begin HostCall(hSetThingLinearVel, [T, x, y, z]); end;
+procedure SetThingAngularVel(T: integer; x, y, z: double); begin HostCall(hSetThingAngularVel, [T, x, y, z]); end;
+function GetThingAngularVel(T: integer): TPoint3D; begin result := HostPoint(hGetThingAngularVel, [T]); end;
+
+function GetShellPos(R, i: integer): TPoint3D; begin NotYetAvailable('GetShellPos'); end;
+procedure SetShellColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetShellColor'); end;
+function GetShellColor(R, i: integer): TRGBAColor; begin NotYetAvailable('GetShellColor'); end;
+
+function GetObstacleIndex(ID: string): integer; begin result := Round(HostCallS(hGetObstacleIndex, [], ID)); end;
+procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetObstacleColor'); end;
+function GetObstacleColor(I: integer): TRGBAColor; begin NotYetAvailable('GetObstacleColor'); end;
+procedure SetObstaclePos(T: integer; x, y, z: double); begin NotYetAvailable('SetObstaclePos'); end;
+function GetObstacleRotMat(T: integer): Matrix; begin NotYetAvailable('GetObstacleRotMat'); end;
+procedure SetObstacleRotationMat(T: integer; Rot: Matrix); begin NotYetAvailable('SetObstacleRotationMat'); end;
+function DeleteObstacle(ID: string): integer; begin NotYetAvailable('DeleteObstacle'); result := -1; end;
+
+function GetAxisUIPower(R, i: integer): double; begin result := HostCall(hGetAxisUIPower, [R, i]); end;
+function GetAxisTWPower(R, i: integer): double; begin result := GetAxisTorque(R, i) * GetAxisSpeed(R, i); end;
+function GetAxisStateRef(R, i: integer): TAxisState;
+begin
+  result.pos := GetAxisPosRef(R, i); result.vel := GetAxisSpeedRef(R, i);
+  result.Torque := 0; result.Vm := 0; result.Im := 0;
+end;
+procedure SetAxisStateRef(R, i: integer; aState: TAxisState);
+begin SetAxisPosRef(R, i, aState.pos); SetAxisSpeedRef(R, i, aState.vel); end;
+function GetAxisPosRefDeg(R, i: integer): double; begin result := Deg(GetAxisPosRef(R, i)); end;
+function GetAxisSpeedRefDeg(R, i: integer): double; begin result := Deg(GetAxisSpeedRef(R, i)); end;
+function GetAxisMotorSpeed(R, i: integer): double; begin NotYetAvailable('GetAxisMotorSpeed'); end;
+function GetAxisMotorPos(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPos'); end;
+function GetAxisMotorPosDeg(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPosDeg'); end;
+function GetAxisEnergy(R, i: integer): double; begin NotYetAvailable('GetAxisEnergy'); end;
+procedure ResetAxisEnergy(R, i: integer); begin NotYetAvailable('ResetAxisEnergy'); end;
+procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double); begin NotYetAvailable('SetMotorControllerPars'); end;
+function GetMotorControllerPars(R, i: integer): TMotorControllerPars; begin NotYetAvailable('GetMotorControllerPars'); end;
+procedure SetMotorControllerMode(R, i: integer; newMode: string); begin NotYetAvailable('SetMotorControllerMode'); end;
+function GetMotorControllerMode(R, i: integer): string; begin NotYetAvailable('GetMotorControllerMode'); end;
+procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double); begin NotYetAvailable('SetFrictionDef'); end;
+function GetFrictionDef(R, i: integer): TFrictionDef; begin NotYetAvailable('GetFrictionDef'); end;
+procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin NotYetAvailable('SetBeltSpeed'); end;
+function GetBeltSpeed(R, i: integer): double; begin NotYetAvailable('GetBeltSpeed'); end;
+procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin NotYetAvailable('SetAxisSpring'); end;
+
+procedure LoadJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('LoadJointWayPoints'); end;
+procedure SaveJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('SaveJointWayPoints'); end;
+function CountJointWayPoints(R, i: integer): integer; begin NotYetAvailable('CountJointWayPoints'); end;
+function GetJointWayPoint(R, i, idx: integer): TAxisPoint; begin NotYetAvailable('GetJointWayPoint'); end;
+procedure SetJointWayPoint(R, i, idx: integer; apos, aspeed, atime: double); begin NotYetAvailable('SetJointWayPoint'); end;
+
+{ An axis's trajectory points: lists the script keeps and reads back, one per axis. }
+type
+  TAxisTraj = record
+    R, i: integer;
+    points: array of TAxisPoint;
+  end;
+var
+  AxisTrajs: array of TAxisTraj;
+
+function AxisTraj(R, i: integer): integer;
+var k: integer;
+begin
+  for k := 0 to High(AxisTrajs) do
+    if (AxisTrajs[k].R = R) and (AxisTrajs[k].i = i) then begin result := k; exit; end;
+  GetAxisPos(R, i);  { raises SimTwo's index error for an axis that does not exist }
+  result := Length(AxisTrajs);
+  SetLength(AxisTrajs, result + 1);
+  AxisTrajs[result].R := R;
+  AxisTrajs[result].i := i;
+end;
+
+function TrajPoint(R, i, idx: integer): integer;
+begin
+  result := AxisTraj(R, i);
+  if (idx < 0) or (idx > High(AxisTrajs[result].points)) then
+    raise EScriptHostError.Create(SysUtils.Format('List index (%d) out of bounds', [idx]));
+end;
+
+function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
+begin result := AxisTrajs[TrajPoint(R, i, idx)].points[idx]; end;
+procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
+begin AxisTrajs[TrajPoint(R, i, idx)].points[idx] := LP; end;
+procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
+var k, n: integer;
+begin
+  k := AxisTraj(R, i);
+  n := Length(AxisTrajs[k].points);
+  SetLength(AxisTrajs[k].points, n + 1);
+  AxisTrajs[k].points[n] := LP;
+end;
+procedure DelAxisTrajPoint(R, i, idx: integer);
+var k, j: integer;
+begin
+  k := AxisTraj(R, i);
+  if (idx < 0) or (idx > High(AxisTrajs[k].points)) then exit;  { SimTwo ignores it too }
+  for j := idx to High(AxisTrajs[k].points) - 1 do AxisTrajs[k].points[j] := AxisTrajs[k].points[j + 1];
+  SetLength(AxisTrajs[k].points, Length(AxisTrajs[k].points) - 1);
+end;
+function CountAxisTrajPoints(R, i: integer): integer; begin result := Length(AxisTrajs[AxisTraj(R, i)].points); end;
+procedure ClearAxisTrajPoints(R, i: integer); begin SetLength(AxisTrajs[AxisTraj(R, i)].points, 0); end;
+
+procedure SetTrailColor(T: integer; Red, Green, Blue: byte); begin HostCall(hSetTrailColor, [T, Red, Green, Blue]); end;
+procedure DelTrailNode(T: integer); begin HostCall(hDelTrailNode, [T]); end;
+procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
+begin HostCall(hChartSetAxisMinMax, [ChartIndex, Xmin, Xmax, Ymin, Ymax]); end;
+function ChartSeriesGetCount(ChartIndex: integer): integer; begin result := Round(HostCall(hChartSeriesGetCount, [ChartIndex])); end;
+function ChartSeriesCreate(ChartIndex: integer): integer; begin result := Round(HostCall(hChartSeriesCreate, [ChartIndex])); end;
+procedure ChartSeriesDeleteAll(ChartIndex: integer); begin HostCall(hChartSeriesDeleteAll, [ChartIndex]); end;
+function ReadUDPPacket: string; begin HostCall(hReadUDPPacket, []); result := HostText; end;
+function GetUDPPacketCount: integer; begin result := Round(HostCall(hGetUDPPacketCount, [])); end;
+function getModbusCoil(bit_addr: integer): boolean; begin NotYetAvailable('getModbusCoil'); result := false; end;
+function getModbusInput(bit_addr: integer): boolean; begin NotYetAvailable('getModbusInput'); result := false; end;
+procedure setModbusCoil(bit_addr: integer; new_state: boolean); begin NotYetAvailable('setModbusCoil'); end;
+procedure setModbusInput(bit_addr: integer; new_state: boolean); begin NotYetAvailable('setModbusInput'); end;
+
 procedure S2SimPublishHUD;
 begin
   HostCallS(hHUDText, [], HUDStrings.Text);
@@ -848,6 +831,10 @@ end;
 initialization
   DefaultFormatSettings.DecimalSeparator := '.';
   HUDStrings := TStringList.Create;
+  UDPDataRead := TMemoryStream.Create;
+  CamBitmap := TBitmap.Create;
 finalization
+  CamBitmap.Free;
+  UDPDataRead.Free;
   HUDStrings.Free;
 end.
