@@ -165,6 +165,10 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     }
     case HostFn::ScriptPeriod:
       return period_s_;
+    case HostFn::CloseSimTwo:  // SimTwo closes once the call returns; the runner stops there
+      ctx.publish(sig_close_, 1);
+      ctx.log_line("CloseSimTwo: the script ends the run");
+      return 0;
     case HostFn::GetSceneConstant: {
       need(1);
       for (const auto& [name, value] : constants_) {
@@ -475,6 +479,16 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::ReadUDPPacket:
     case HostFn::GetUDPPacketCount:
       return call_annotations(fn, a, n);
+    case HostFn::SetAxisSpring:
+    case HostFn::SetFrictionDef:
+    case HostFn::GetFrictionDef:
+    case HostFn::SetMotorControllerPars:
+    case HostFn::GetMotorControllerPars:
+    case HostFn::SetMotorControllerMode:
+    case HostFn::GetMotorControllerMode:
+    case HostFn::GetAxisEnergy:
+    case HostFn::ResetAxisEnergy:
+      return call_axes(fn, a, n, s);
     case HostFn::WriteUDPData:
       need(1);
       udp_.send(s, static_cast<int>(a[0]), s2);

@@ -108,7 +108,17 @@
   X(ChartSeriesDeleteAll) \
   X(SetRCBackColor) \
   X(ReadUDPPacket) \
-  X(GetUDPPacketCount)
+  X(GetUDPPacketCount) \
+  X(SetAxisSpring) \
+  X(SetFrictionDef) \
+  X(GetFrictionDef) \
+  X(SetMotorControllerPars) \
+  X(GetMotorControllerPars) \
+  X(SetMotorControllerMode) \
+  X(GetMotorControllerMode) \
+  X(GetAxisEnergy) \
+  X(ResetAxisEnergy) \
+  X(CloseSimTwo)
 // clang-format on
 
 namespace s2sim::pascal {

@@ -62,6 +62,18 @@ void ScriptController::configure(ConfigureContext& ctx) {
           for (std::size_t m = 0; m < a.motor.size(); ++m)
             a.motor[m] = ctx.declare_input_at(a.path + "/" + motor_inputs[m], motor_units[m], 0.0);
           a.has_motor = true;
+          a.spring_k =
+              ctx.declare_input_at(a.path + "/spring_k", a.linear ? "N/m" : "N*m/rad", 0.0);
+          a.spring_zeropos = ctx.declare_input_at(a.path + "/spring_zeropos", u, 0.0);
+          a.friction_bv =
+              ctx.declare_input_at(a.path + "/friction_bv", a.linear ? "N*s/m" : "N*m*s/rad", 0.0);
+          a.friction_fc =
+              ctx.declare_input_at(a.path + "/friction_fc", a.linear ? "N" : "N*m", 0.0);
+          const char* gains[] = {"controller_kp", "controller_ki", "controller_kd", "controller_kf",
+                                 "controller_mode"};
+          for (std::size_t g = 0; g < a.controller.size(); ++g)
+            a.controller[g] = ctx.declare_input_at(a.path + "/" + gains[g], "1", 0.0);
+          a.energy_drawn = ctx.published_signal(a.path + "/energy_drawn");
         } catch (const Error&) {
           // an axis without a drive train (loop-closing): GetAxisOdo/I/U raise if asked
         }
@@ -141,12 +153,13 @@ void ScriptController::configure(ConfigureContext& ctx) {
   for (int code : kKeyCodes)
     keys_.push_back(ctx.declare_input_at("keyboard/" + std::to_string(code), "1", 0.0));
 
-  std::size_t axis_count = 0;
-  for (const auto& r : robots_)
-    axis_count += r.axes.size();
-  state_ = ctx.declare_state("script", static_cast<int>(3 + axis_count), 0.0);
+  for (auto& r : robots_)
+    for (auto& a : r.axes)
+      a.index = static_cast<int>(axis_count_++);
+  state_ = ctx.declare_state("script", static_cast<int>(3 + 2 * axis_count_), 0.0);
   sig_error_ = ctx.declare_signal("error", "1");
   sig_calls_ = ctx.declare_signal("calls", "1");
+  sig_close_ = ctx.declare_signal("close", "1");
   // SimTwo's Stop and Run (the viewer's Script window): 0 stops the calls; a new non-zero
   // value starts the script afresh (fresh globals, Initialize at the next script tick).
   run_input_ = ctx.declare_input("running", "1", 1.0);
@@ -213,6 +226,9 @@ void ScriptController::initialize(StepContext& ctx) {
   output_.clear();
   hud_.clear();
   trails_.assign(kMaxTrails + 1, {});
+  for (auto& r : robots_)
+    for (auto& a : r.axes)
+      a.coulomb_limit = 0;
   chart_series_count_.assign(kMaxCharts, 0);
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
@@ -225,6 +241,7 @@ void ScriptController::initialize(StepContext& ctx) {
   }
   ctx.publish(sig_error_, 0);
   ctx.publish(sig_calls_, 0);
+  ctx.publish(sig_close_, 0);
 }
 
 void ScriptController::update(StepContext& ctx) {

@@ -65,6 +65,13 @@ struct AxisRef {
   /// GearRatio, simple, active); index -1 without a motor.
   std::array<InputHandle, 8> motor{};
   bool has_motor = false;
+  /// The drive train's spring, friction and controller inputs (SetAxisSpring, SetFrictionDef,
+  /// SetMotorControllerPars/Mode) and its energy meter (GetAxisEnergy).
+  InputHandle spring_k, spring_zeropos, friction_bv, friction_fc;
+  std::array<InputHandle, 5> controller{};  // kp, ki, kd, kf, mode
+  SignalHandle energy_drawn{-1};
+  double coulomb_limit = 0;  // SetFrictionDef's third field, kept for GetFrictionDef
+  int index = 0;             // among every robot's axes (the script state's per-axis slots)
 };
 
 struct SensorRef {
@@ -120,6 +127,8 @@ class ScriptController final : public Component {
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
   /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
+  /// Springs, friction, controller gains and modes, the energy meter (host_axes.cpp).
+  double call_axes(HostFn fn, const double* a, int n, const std::string& s);
   /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).
   double call_annotations(HostFn fn, const double* a, int n);
   /// A script error naming `fn` when it got fewer than `want` arguments.
@@ -160,10 +169,14 @@ class ScriptController final : public Component {
   Sheet sheet_;
   Sheet sheet_initial_;
   std::vector<std::pair<std::string, InputHandle>> sheet_input_names_;
-  StateHandle state_;  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count
+  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count, then per axis
+  // the energy meter's zero (ResetAxisEnergy)
+  StateHandle state_;
+  std::size_t axis_count_ = 0;
   // No "compiled" signal: whether this load found the library in the cache is not part of
   // the run, and a signal of it made the logs of a cold and a warm run differ.
   SignalHandle sig_error_, sig_calls_;
+  SignalHandle sig_close_;  // 1 once the script called CloseSimTwo (s2sim-run stops there)
   InputHandle run_input_;
   double last_run_value_ = 1;  // the `running` input as last seen (Run restarts on a change)
   bool loaded_poses_ = false;

@@ -624,7 +624,7 @@ procedure TCanvas.LineTo(X, Y: integer); begin BelongsToRendering('TCanvas.LineT
 
 function RGBToColor(R, G, B: Byte): TColor; begin result := R or (G shl 8) or (B shl 16); end;
 procedure SetRCBackColor(r, c: integer; newColor: TColor); begin HostCall(hSetRCBackColor, [r, c, newColor]); end;
-procedure CloseSimTwo; begin NotYetAvailable('CloseSimTwo'); end;
+procedure CloseSimTwo; begin HostCall(hCloseSimTwo, []); end;
 
 function GetRobotVel2D(R: integer): TState2D;
 begin result.x := GetRobotVx(R); result.y := GetRobotVy(R); result.angle := GetRobotW(R); end;
@@ -740,17 +740,31 @@ function GetAxisSpeedRefDeg(R, i: integer): double; begin result := Deg(GetAxisS
 function GetAxisMotorSpeed(R, i: integer): double; begin NotYetAvailable('GetAxisMotorSpeed'); end;
 function GetAxisMotorPos(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPos'); end;
 function GetAxisMotorPosDeg(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPosDeg'); end;
-function GetAxisEnergy(R, i: integer): double; begin NotYetAvailable('GetAxisEnergy'); end;
-procedure ResetAxisEnergy(R, i: integer); begin NotYetAvailable('ResetAxisEnergy'); end;
-procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double); begin NotYetAvailable('SetMotorControllerPars'); end;
-function GetMotorControllerPars(R, i: integer): TMotorControllerPars; begin NotYetAvailable('GetMotorControllerPars'); end;
-procedure SetMotorControllerMode(R, i: integer; newMode: string); begin NotYetAvailable('SetMotorControllerMode'); end;
-function GetMotorControllerMode(R, i: integer): string; begin NotYetAvailable('GetMotorControllerMode'); end;
-procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double); begin NotYetAvailable('SetFrictionDef'); end;
-function GetFrictionDef(R, i: integer): TFrictionDef; begin NotYetAvailable('GetFrictionDef'); end;
+function GetAxisEnergy(R, i: integer): double; begin result := HostCall(hGetAxisEnergy, [R, i]); end;
+procedure ResetAxisEnergy(R, i: integer); begin HostCall(hResetAxisEnergy, [R, i]); end;
+procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double);
+begin HostCall(hSetMotorControllerPars, [R, i, nKi, nKd, nKp, nKf]); end;
+function GetMotorControllerPars(R, i: integer): TMotorControllerPars;
+var M: Matrix;
+begin
+  HostCall(hGetMotorControllerPars, [R, i]);
+  M := HostValues;
+  result.Ki := M.data[0]; result.Kd := M.data[1]; result.Kp := M.data[2]; result.Kf := M.data[3];
+end;
+procedure SetMotorControllerMode(R, i: integer; newMode: string); begin HostCallS(hSetMotorControllerMode, [R, i], newMode); end;
+function GetMotorControllerMode(R, i: integer): string; begin HostCall(hGetMotorControllerMode, [R, i]); result := HostText; end;
+procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double);
+begin HostCall(hSetFrictionDef, [R, i, nBv, nFc, nCoulombLimit]); end;
+function GetFrictionDef(R, i: integer): TFrictionDef;
+var M: Matrix;
+begin
+  HostCall(hGetFrictionDef, [R, i]);
+  M := HostValues;
+  result.Bv := M.data[0]; result.Fc := M.data[1]; result.CoulombLimit := M.data[2];
+end;
 procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin NotYetAvailable('SetBeltSpeed'); end;
 function GetBeltSpeed(R, i: integer): double; begin NotYetAvailable('GetBeltSpeed'); end;
-procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin NotYetAvailable('SetAxisSpring'); end;
+procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin HostCall(hSetAxisSpring, [R, i, k, ZeroPos]); end;
 
 procedure LoadJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('LoadJointWayPoints'); end;
 procedure SaveJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('SaveJointWayPoints'); end;

@@ -1,13 +1,15 @@
 #!/usr/bin/env python3
 """Every routine of SimTwo's list, called once by a script generated from it, in this folder's
 script_api scene: each does what plugins/pascal_script/routines.tsv says (ok, or the named
-error for rendering and what is not yet available). The run ends at its duration, exit 0.
+error for rendering and what is not yet available). CloseSimTwo, among them, ends the run at
+the step of the first script call (40 ms), exit 0, the summary written.
 
   script_api_test.py BIN_DIR PASCAL_CACHE        exit 77 (skip) without the list or fpc
 """
 import os
 import shutil
 import socket
+import json
 import subprocess
 import sys
 import tempfile
@@ -37,13 +39,21 @@ def main(bin_dir, cache):
                    S2SIM_UDP_PORT=str(free_udp_port()))
         env.pop("S2SIM_COM_PORT", None)
         stderr_path = os.path.join(work, "stderr.txt")
+        summary_path = os.path.join(work, "summary.json")
         with open(stderr_path, "w") as err:
             run = subprocess.run([os.path.join(bin_dir, "s2sim-run"), os.path.join(HERE, "script_api"),
-                                  "--script", script, "--duration", "0.2"],
+                                  "--script", script, "--duration", "0.2", "--summary",
+                                  summary_path, "--no-timing"],
                                  env=env, stdout=subprocess.DEVNULL, stderr=err, timeout=600)
         if run.returncode != 0:
             print(open(stderr_path).read(), file=sys.stderr)
             print(f"s2sim-run exited {run.returncode}", file=sys.stderr)
+            return 1
+        with open(summary_path) as f:
+            steps = json.load(f)["steps"]
+        if steps != 40:
+            print(f"CloseSimTwo: the run made {steps} steps, expected 40 (the first call's)",
+                  file=sys.stderr)
             return 1
         return subprocess.run([sys.executable, GENERATOR, "expect", stderr_path]).returncode
     finally:
