@@ -38,12 +38,11 @@ double ScriptController::call_axes(HostFn fn, const double* a, int n, const std:
              " must be >= 0");
       ctx.set_input(ax.friction_bv, a[2]);
       ctx.set_input(ax.friction_fc, a[3]);
-      ax.coulomb_limit = a[4];
-      return 0;
+      return 0;  // the Coulomb limit is ignored, as by SimTwo
     }
     case HostFn::GetFrictionDef: {
       AxisRef& ax = driven();
-      numbers_.assign({ctx.input(ax.friction_bv), ctx.input(ax.friction_fc), ax.coulomb_limit});
+      numbers_.assign({ctx.input(ax.friction_bv), ctx.input(ax.friction_fc), 0.0});  // as SimTwo
       return 0;
     }
     case HostFn::SetMotorControllerPars: {  // nKi, nKd, nKp, nKf: SimTwo's order

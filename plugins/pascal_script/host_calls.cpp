@@ -165,6 +165,20 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     }
     case HostFn::ScriptPeriod:
       return period_s_;
+    case HostFn::getModbusCoil:
+      need(1);
+      return modbus_.coil(static_cast<int>(a[0])) ? 1 : 0;
+    case HostFn::getModbusInput:
+      need(1);
+      return modbus_.input(static_cast<int>(a[0])) ? 1 : 0;
+    case HostFn::setModbusCoil:
+      need(2);
+      modbus_.set_coil(static_cast<int>(a[0]), a[1] != 0);
+      return 0;
+    case HostFn::setModbusInput:
+      need(2);
+      modbus_.set_input(static_cast<int>(a[0]), a[1] != 0);
+      return 0;
     case HostFn::CloseSimTwo:  // SimTwo closes once the call returns; the runner stops there
       ctx.publish(sig_close_, 1);
       ctx.log_line("CloseSimTwo: the script ends the run");

@@ -118,7 +118,11 @@
   X(GetMotorControllerMode) \
   X(GetAxisEnergy) \
   X(ResetAxisEnergy) \
-  X(CloseSimTwo)
+  X(CloseSimTwo) \
+  X(getModbusCoil) \
+  X(getModbusInput) \
+  X(setModbusCoil) \
+  X(setModbusInput)
 // clang-format on
 
 namespace s2sim::pascal {

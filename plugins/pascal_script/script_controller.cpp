@@ -203,6 +203,12 @@ void ScriptController::configure(ConfigureContext& ctx) {
     if (!serial_.open(com, why))
       ctx.warn("cannot open the serial port " + std::string(com) + ": " + why);
   }
+  if (const char* port = std::getenv("S2SIM_MODBUS_PORT"); port && *port) {
+    std::string why;
+    if (!modbus_.open(std::atoi(port), why))
+      ctx.warn("cannot listen on Modbus/TCP port " + std::string(port) + ": " + why +
+               "; the Modbus routines work on the script's own tables only");
+  }
   numbers_.reserve(kMaxNumbers);
 }
 
@@ -226,9 +232,6 @@ void ScriptController::initialize(StepContext& ctx) {
   output_.clear();
   hud_.clear();
   trails_.assign(kMaxTrails + 1, {});
-  for (auto& r : robots_)
-    for (auto& a : r.axes)
-      a.coulomb_limit = 0;
   chart_series_count_.assign(kMaxCharts, 0);
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
@@ -276,6 +279,7 @@ void ScriptController::update(StepContext& ctx) {
   }
   if (run == 0) return;   // stopped (SimTwo's Stop)
   if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
+  modbus_.serve();        // the clients' requests of the last period, before the script reads
   ctx_ = &ctx;
   std::string error;
   bool ok = true;

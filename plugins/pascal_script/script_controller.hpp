@@ -6,6 +6,7 @@
 #include "compiler.hpp"
 #include "host_ids.hpp"
 #include "io_ports.hpp"
+#include "modbus_server.hpp"
 #include "script_library.hpp"
 #include "sheet.hpp"
 
@@ -70,8 +71,7 @@ struct AxisRef {
   InputHandle spring_k, spring_zeropos, friction_bv, friction_fc;
   std::array<InputHandle, 5> controller{};  // kp, ki, kd, kf, mode
   SignalHandle energy_drawn{-1};
-  double coulomb_limit = 0;  // SetFrictionDef's third field, kept for GetFrictionDef
-  int index = 0;             // among every robot's axes (the script state's per-axis slots)
+  int index = 0;  // among every robot's axes (the script state's per-axis slots)
 };
 
 struct SensorRef {
@@ -203,6 +203,7 @@ class ScriptController final : public Component {
   std::string hud_;
   UdpPort udp_;
   SerialPort serial_;
+  ModbusServer modbus_;
   bool warned_unavailable_ = false;
 };
 

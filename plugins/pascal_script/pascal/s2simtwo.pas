@@ -832,10 +832,10 @@ function ChartSeriesCreate(ChartIndex: integer): integer; begin result := Round(
 procedure ChartSeriesDeleteAll(ChartIndex: integer); begin HostCall(hChartSeriesDeleteAll, [ChartIndex]); end;
 function ReadUDPPacket: string; begin HostCall(hReadUDPPacket, []); result := HostText; end;
 function GetUDPPacketCount: integer; begin result := Round(HostCall(hGetUDPPacketCount, [])); end;
-function getModbusCoil(bit_addr: integer): boolean; begin NotYetAvailable('getModbusCoil'); result := false; end;
-function getModbusInput(bit_addr: integer): boolean; begin NotYetAvailable('getModbusInput'); result := false; end;
-procedure setModbusCoil(bit_addr: integer; new_state: boolean); begin NotYetAvailable('setModbusCoil'); end;
-procedure setModbusInput(bit_addr: integer; new_state: boolean); begin NotYetAvailable('setModbusInput'); end;
+function getModbusCoil(bit_addr: integer): boolean; begin result := HostCall(hgetModbusCoil, [bit_addr]) <> 0; end;
+function getModbusInput(bit_addr: integer): boolean; begin result := HostCall(hgetModbusInput, [bit_addr]) <> 0; end;
+procedure setModbusCoil(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusCoil, [bit_addr, Ord(new_state)]); end;
+procedure setModbusInput(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusInput, [bit_addr, Ord(new_state)]); end;
 
 procedure S2SimPublishHUD;
 begin

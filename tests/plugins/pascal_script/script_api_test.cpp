@@ -8,6 +8,7 @@
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
+#include <netinet/tcp.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -140,6 +141,71 @@ TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
       EXPECT_EQ(trail.points_m.back().x, 3);
     }
   EXPECT_TRUE(found);
+}
+
+/// A free TCP port on loopback (bound and released).
+int free_tcp_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in me = loopback(0);
+  socklen_t len = sizeof me;
+  ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len);
+  ::close(fd);
+  return ntohs(me.sin_port);
+}
+
+std::string bytes(std::initializer_list<int> b) {
+  std::string s;
+  for (int v : b)
+    s += static_cast<char>(v);
+  return s;
+}
+
+TEST_F(ScriptApi, ModbusTcpHoldingRegistersCoilsAndInputsByteForByte) {
+  SKIP_WITHOUT_FPC;
+  const int port = free_tcp_port();
+  ::setenv("S2SIM_MODBUS_PORT", std::to_string(port).c_str(), 1);
+  SimulationOptions o = with("modbus_mirror.pas");
+  o.sheet_cells = {{1, 1, "0"}};
+  auto sim = Simulation::load(kScene, o);
+  ::unsetenv("S2SIM_MODBUS_PORT");
+  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
+  const sockaddr_in to = loopback(port);
+  ASSERT_EQ(::connect(client, reinterpret_cast<const sockaddr*>(&to), sizeof to), 0);
+  const int yes = 1;
+  ::setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+  // One request, one script period (the server answers at each script tick), the answer.
+  auto exchange = [&](const std::string& request) {
+    EXPECT_EQ(::send(client, request.data(), request.size(), 0),
+              static_cast<ssize_t>(request.size()));
+    sim->run_until(sim->time_s() + 0.04);
+    std::string reply;
+    char buf[512];
+    for (ssize_t n; (n = ::recv(client, buf, sizeof buf, MSG_DONTWAIT)) > 0;)
+      reply.append(buf, static_cast<std::size_t>(n));
+    return reply;
+  };
+  // Write 3 holding registers at 100 (function 16), transaction 0x0102, unit 7.
+  EXPECT_EQ(exchange(bytes({0x01, 0x02, 0, 0, 0, 13, 7, 16, 0, 100, 0, 3, 6, 0x12, 0x34, 0xAB, 0xCD,
+                            0x00, 0x01})),
+            bytes({0x01, 0x02, 0, 0, 0, 6, 7, 16, 0, 100, 0, 3}));
+  // Read them back (function 3).
+  EXPECT_EQ(exchange(bytes({0x00, 0x03, 0, 0, 0, 6, 7, 3, 0, 100, 0, 3})),
+            bytes({0x00, 0x03, 0, 0, 0, 9, 7, 3, 6, 0x12, 0x34, 0xAB, 0xCD, 0x00, 0x01}));
+  // Coil 3 on (function 5): the script mirrors it into input 5 at its next call.
+  EXPECT_EQ(exchange(bytes({0x00, 0x04, 0, 0, 0, 6, 7, 5, 0, 3, 0xFF, 0x00})),
+            bytes({0x00, 0x04, 0, 0, 0, 6, 7, 5, 0, 3, 0xFF, 0x00}));
+  EXPECT_EQ(sim->signal("sheet/A1"), 1);
+  // Discrete inputs 0..7 (function 2): bit 5.
+  EXPECT_EQ(exchange(bytes({0x00, 0x05, 0, 0, 0, 6, 7, 2, 0, 0, 0, 8})),
+            bytes({0x00, 0x05, 0, 0, 0, 4, 7, 2, 1, 0x20}));
+  // Coils 0..15 (function 1), and a function the server has not: exception 1.
+  EXPECT_EQ(exchange(bytes({0x00, 0x06, 0, 0, 0, 6, 7, 1, 0, 0, 0, 16})),
+            bytes({0x00, 0x06, 0, 0, 0, 5, 7, 1, 2, 0x08, 0x00}));
+  EXPECT_EQ(exchange(bytes({0x00, 0x07, 0, 0, 0, 2, 7, 0x2B})),
+            bytes({0x00, 0x07, 0, 0, 0, 3, 7, 0xAB, 1}));
+  ::close(client);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
 }
 
 }  // namespace
