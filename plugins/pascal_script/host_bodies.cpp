@@ -137,10 +137,66 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       ctx.request_move(b, pose);
       return 0;
     }
-    case HostFn::SetSolidColor:  // bytes 0..255, opaque
+    case HostFn::SetSolidColor: {  // bytes 0..255, opaque
       need(5);
-      ctx.set_body_color(solid(a[0], a[1]).body, a[2] / 255, a[3] / 255, a[4] / 255);
+      SolidRef& sd = solid(a[0], a[1]);
+      for (int k = 0; k < 3; ++k)
+        sd.look.rgba[k] = a[2 + k] / 255;
+      sd.look.rgba[3] = 1;
+      ctx.set_body_color(sd.body, a[2] / 255, a[3] / 255, a[4] / 255);
       return 0;
+    }
+    case HostFn::GetSolidColor: {
+      need(2);
+      numbers_.clear();
+      for (double v : solid(a[0], a[1]).look.rgba)
+        numbers_.push_back(std::round(v * 255));
+      return 0;
+    }
+    case HostFn::GetSolidSize:
+      need(2);
+      return point(solid(a[0], a[1]).look.size);
+    case HostFn::GetThingSize:
+      need(1);
+      return point(thing(a[0]).look.size);
+    case HostFn::GetSolidCenterOfMass:
+      need(2);
+      return point(solid(a[0], a[1]).look.com);
+    case HostFn::GetRobotCenterOfMass: {
+      // The solids' masses at their centres of mass, in the world.
+      need(1);
+      Vec3 sum{0, 0, 0};
+      double mass = 0;
+      for (const SolidRef& sd : robot(a[0]).solids) {
+        sum = sum + sd.mass_kg * (pose_of(sd.body) * sd.look.com);
+        mass += sd.mass_kg;
+      }
+      return point(mass > 0 ? (1 / mass) * sum : sum);
+    }
+    case HostFn::GetSolidTag:
+      need(2);
+      text_result_ = solid(a[0], a[1]).tag;
+      return 0;
+    case HostFn::SetSolidTag:
+      need(2);
+      solid(a[0], a[1]).tag = s;
+      return 0;
+    case HostFn::GetObstacleColor:
+    case HostFn::GetObstacleRotMat: {
+      need(1);
+      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
+      const ObstacleRef& ob = obstacles_[static_cast<std::size_t>(a[0])];
+      numbers_.clear();
+      if (fn == HostFn::GetObstacleColor) {
+        for (double v : ob.rgba)
+          numbers_.push_back(std::round(v * 255));
+        return 0;
+      }
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          numbers_.push_back(ob.rotation.m[r][c]);
+      return 3 * 65536 + 3;
+    }
     case HostFn::SetShellTag: {
       need(2);
       RobotRef& rb = robot(a[0]);
@@ -172,14 +228,14 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       need(1);
       const ThingRef& th = thing(a[0]);
       numbers_.clear();
-      for (double v : th.rgba)
+      for (double v : th.look.rgba)
         numbers_.push_back(std::round(v * 255));
       return 0;
     }
     case HostFn::GetObstaclePos:
       need(1);
       if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      return point(obstacles_[static_cast<std::size_t>(a[0])]);
+      return point(obstacles_[static_cast<std::size_t>(a[0])].position);
     case HostFn::GetSolidAngularVel:
       need(2);
       return point(ctx.body_twist(solid(a[0], a[1]).body).angular_rad_s);
@@ -198,8 +254,9 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       need(5);
       ThingRef& th = thing(a[0]);
       for (int k = 0; k < 3; ++k)
-        th.rgba[k] = a[2 + k] / 255;
-      ctx.set_body_color(th.body, th.rgba[0], th.rgba[1], th.rgba[2]);
+        th.look.rgba[k] = a[2 + k] / 255;
+      th.look.rgba[3] = 1;
+      ctx.set_body_color(th.body, th.look.rgba[0], th.look.rgba[1], th.look.rgba[2]);
       return 0;
     }
     case HostFn::GetThingRotMat: {
@@ -268,8 +325,8 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       return 0;
     }
     case HostFn::GetObstacleIndex:
-      for (std::size_t i = 0; i < obstacle_ids_.size(); ++i)
-        if (obstacle_ids_[i] == s) return static_cast<double>(i);
+      for (std::size_t i = 0; i < obstacles_.size(); ++i)
+        if (obstacles_[i].id == s) return static_cast<double>(i);
       return -1;
     case HostFn::AddOBstacleBox:
     case HostFn::ClearObstacles:

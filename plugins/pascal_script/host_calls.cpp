@@ -476,6 +476,15 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::SetThingRelForce:
     case HostFn::SetThingRelForceAtRelPos:
     case HostFn::GetObstacleIndex:
+    case HostFn::GetSolidColor:
+    case HostFn::GetSolidSize:
+    case HostFn::GetThingSize:
+    case HostFn::GetSolidCenterOfMass:
+    case HostFn::GetRobotCenterOfMass:
+    case HostFn::GetSolidTag:
+    case HostFn::SetSolidTag:
+    case HostFn::GetObstacleColor:
+    case HostFn::GetObstacleRotMat:
       return call_bodies(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
     case HostFn::ChartSeriesSetColor:

@@ -122,7 +122,16 @@
   X(getModbusCoil) \
   X(getModbusInput) \
   X(setModbusCoil) \
-  X(setModbusInput)
+  X(setModbusInput) \
+  X(GetSolidColor) \
+  X(GetSolidSize) \
+  X(GetThingSize) \
+  X(GetSolidCenterOfMass) \
+  X(GetRobotCenterOfMass) \
+  X(GetSolidTag) \
+  X(SetSolidTag) \
+  X(GetObstacleColor) \
+  X(GetObstacleRotMat)
 // clang-format on
 
 namespace s2sim::pascal {

@@ -7,6 +7,18 @@
 
 namespace s2sim::pascal {
 
+namespace {
+Look read_look(const Params& p, const std::string& k) {
+  Look look;
+  const char* rgba[] = {"r", "g", "b", "a"};
+  for (int c = 0; c < 4; ++c)
+    look.rgba_loaded[c] = look.rgba[c] = p.number(k + rgba[c]);
+  look.size = {p.number(k + "size_x"), p.number(k + "size_y"), p.number(k + "size_z")};
+  look.com = {p.number(k + "com_x"), p.number(k + "com_y"), p.number(k + "com_z")};
+  return look;
+}
+}  // namespace
+
 void ScriptController::configure(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   script_ = p.text("file");
@@ -31,7 +43,8 @@ void ScriptController::configure(ConfigureContext& ctx) {
     for (std::int64_t i = 0, n = p.integer(k + "solids"); i < n; ++i) {
       const std::string sk = k + "solid_" + std::to_string(i) + "_";
       const BodyHandle body = ctx.body(p.text(sk + "body"));
-      robot.solids.push_back({p.text(sk + "id"), body, ctx.body_mass_kg(body)});
+      robot.solids.push_back(
+          {p.text(sk + "id"), body, ctx.body_mass_kg(body), read_look(p, sk), {}});
     }
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;
@@ -121,16 +134,21 @@ void ScriptController::configure(ConfigureContext& ctx) {
     ThingRef th;
     th.id = p.text(tk + "id");
     th.body = ctx.body(p.text(tk + "body"));
-    th.rgba[0] = p.number(tk + "r");
-    th.rgba[1] = p.number(tk + "g");
-    th.rgba[2] = p.number(tk + "b");
-    th.rgba[3] = p.number(tk + "a");
+    th.look = read_look(p, tk);
     things_.push_back(th);
   }
   for (std::int64_t o = 0, n = p.integer("obstacles"); o < n; ++o) {
     const std::string ok = "obstacle_" + std::to_string(o) + "_";
-    obstacle_ids_.push_back(p.text(ok + "id", ""));
-    obstacles_.push_back({p.number(ok + "x"), p.number(ok + "y"), p.number(ok + "z")});
+    ObstacleRef ob;
+    ob.id = p.text(ok + "id", "");
+    ob.position = {p.number(ok + "x"), p.number(ok + "y"), p.number(ok + "z")};
+    const char* rgba[] = {"r", "g", "b", "a"};
+    for (int c = 0; c < 4; ++c)
+      ob.rgba[c] = p.number(ok + rgba[c]);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        ob.rotation.m[r][c] = p.number(ok + "rot_" + std::to_string(r) + std::to_string(c));
+    obstacles_.push_back(ob);
   }
   for (std::int64_t i = 0, n = p.integer("constants"); i < n; ++i)
     constants_.emplace_back(p.text("constant_" + std::to_string(i) + "_name"),
@@ -232,6 +250,15 @@ void ScriptController::initialize(StepContext& ctx) {
   output_.clear();
   hud_.clear();
   trails_.assign(kMaxTrails + 1, {});
+  // The kernel's reset restores the scene's colours and the script's tags start empty.
+  auto restore = [](Look& look) { std::copy(look.rgba_loaded, look.rgba_loaded + 4, look.rgba); };
+  for (auto& r : robots_)
+    for (auto& sd : r.solids) {
+      restore(sd.look);
+      sd.tag.clear();
+    }
+  for (auto& th : things_)
+    restore(th.look);
   chart_series_count_.assign(kMaxCharts, 0);
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.

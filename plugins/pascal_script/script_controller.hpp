@@ -81,10 +81,20 @@ struct SensorRef {
   InputHandle vin{-1};
 };
 
+/// A solid's or thing's look and mass as loaded (GetSolidColor, GetSolidSize, GetSolidMass...).
+struct Look {
+  double rgba_loaded[4] = {0, 0, 0, 0};
+  double rgba[4] = {0, 0, 0, 0};  // as the script last set it (a reset restores the loaded)
+  Vec3 size;                      // SimTwo's GetSize: box edges; cylinder r, r, l; sphere r, r, r
+  Vec3 com;                       // centre of mass in the body frame
+};
+
 struct SolidRef {
   std::string id;
   BodyHandle body;
   double mass_kg = 0;  // as loaded (GetSolidMass)
+  Look look;
+  std::string tag;  // SetSolidTag's
 };
 
 struct RobotRef {
@@ -102,6 +112,13 @@ struct RobotRef {
 struct ThingRef {
   std::string id;
   BodyHandle body;
+  Look look;
+};
+
+struct ObstacleRef {
+  std::string id;
+  Vec3 position;
+  Mat3 rotation;
   double rgba[4] = {0, 0, 0, 0};
 };
 
@@ -159,8 +176,7 @@ class ScriptController final : public Component {
   std::vector<RobotRef> robots_;
   std::vector<SensorRef> sensors_;  // SimTwo's global list
   std::vector<ThingRef> things_;
-  std::vector<Vec3> obstacles_;
-  std::vector<std::string> obstacle_ids_;
+  std::vector<ObstacleRef> obstacles_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;
   std::vector<double> sheet_initial_values_;  // the inputs' values at reset

@@ -628,7 +628,7 @@ procedure CloseSimTwo; begin HostCall(hCloseSimTwo, []); end;
 
 function GetRobotVel2D(R: integer): TState2D;
 begin result.x := GetRobotVx(R); result.y := GetRobotVy(R); result.angle := GetRobotW(R); end;
-function GetRobotCenterOfMass(R: integer): TPoint3D; begin NotYetAvailable('GetRobotCenterOfMass'); end;
+function GetRobotCenterOfMass(R: integer): TPoint3D; begin result := HostPoint(hGetRobotCenterOfMass, [R]); end;
 procedure SetSolidPosMat(R, i: integer; P: Matrix);
 begin SetSolidPos(R, i, Mgetv(P, 0, 0), Mgetv(P, 1, 0), Mgetv(P, 2, 0)); end;
 function PointColumn(const p: TPoint3D): Matrix;
@@ -643,13 +643,20 @@ function GetSolidVy(R, i: integer): double; begin result := GetSolidLinearVel(R,
 function GetSolidVz(R, i: integer): double; begin result := GetSolidLinearVel(R, i).z; end;
 procedure SetSolidMass(R, i: integer; nmass: double); begin NotYetAvailable('SetSolidMass'); end;
 function GetSolidMass(R, i: integer): double; begin result := HostCall(hGetSolidMass, [R, i]); end;
-function GetSolidCenterOfMass(R, i: integer): TPoint3D; begin NotYetAvailable('GetSolidCenterOfMass'); end;
-function GetSolidTag(R, i: integer): string; begin NotYetAvailable('GetSolidTag'); end;
-procedure SetSolidTag(R, i: integer; newTag: string); begin NotYetAvailable('SetSolidTag'); end;
-function GetSolidColor(R, i: integer): TRGBAColor; begin NotYetAvailable('GetSolidColor'); end;
+function GetSolidCenterOfMass(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidCenterOfMass, [R, i]); end;
+function GetSolidTag(R, i: integer): string; begin HostCall(hGetSolidTag, [R, i]); result := HostText; end;
+procedure SetSolidTag(R, i: integer; newTag: string); begin HostCallS(hSetSolidTag, [R, i], newTag); end;
+function GetSolidColor(R, i: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetSolidColor, [R, i]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
 procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double); begin NotYetAvailable('SetSolidSurfaceFriction'); end;
 procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double); begin HostCall(hSetSolidForce, [R, i, Fx, Fy, Fz]); end;
-function GetSolidSize(R, i: integer): TPoint3D; begin NotYetAvailable('GetSolidSize'); end;
+function GetSolidSize(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidSize, [R, i]); end;
 procedure SetSolidSize(R, i: integer; x, y, z: double); begin NotYetAvailable('SetSolidSize'); end;
 
 function GetSolidCanvas(R, i: integer): TCanvas; begin BelongsToRendering('GetSolidCanvas'); result := nil; end;
@@ -689,7 +696,7 @@ procedure SetThingColor(T, c: integer; Red, Green, Blue: byte); begin HostCall(h
 function GetThingRotMat(T: integer): Matrix; begin result := HostMatrix(hGetThingRotMat, [T]); end;
 procedure SetThingRotationMat(T: integer; Rot: Matrix); begin CallMatrix(hSetThingRotationMat, [T], Rot); end;
 function GetThingAgularVelMat(T: integer): Matrix; begin result := PointColumn(GetThingAngularVel(T)); end;
-function GetThingSize(T: integer): TPoint3D; begin NotYetAvailable('GetThingSize'); end;
+function GetThingSize(T: integer): TPoint3D; begin result := HostPoint(hGetThingSize, [T]); end;
 procedure SetThingSize(T: integer; x, y, z: double); begin NotYetAvailable('SetThingSize'); end;
 function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
 begin NotYetAvailable('AddThingBox'); result := -1; end;
@@ -720,9 +727,16 @@ function GetShellColor(R, i: integer): TRGBAColor; begin NotYetAvailable('GetShe
 
 function GetObstacleIndex(ID: string): integer; begin result := Round(HostCallS(hGetObstacleIndex, [], ID)); end;
 procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetObstacleColor'); end;
-function GetObstacleColor(I: integer): TRGBAColor; begin NotYetAvailable('GetObstacleColor'); end;
+function GetObstacleColor(I: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetObstacleColor, [I]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
 procedure SetObstaclePos(T: integer; x, y, z: double); begin NotYetAvailable('SetObstaclePos'); end;
-function GetObstacleRotMat(T: integer): Matrix; begin NotYetAvailable('GetObstacleRotMat'); end;
+function GetObstacleRotMat(T: integer): Matrix; begin result := HostMatrix(hGetObstacleRotMat, [T]); end;
 procedure SetObstacleRotationMat(T: integer; Rot: Matrix); begin NotYetAvailable('SetObstacleRotationMat'); end;
 function DeleteObstacle(ID: string): integer; begin NotYetAvailable('DeleteObstacle'); result := -1; end;
 
