@@ -120,7 +120,7 @@ PRELUDE = """\
 var
   vd, vd2: double; vI: integer; vS: string; vW: WideString; vM: Matrix; vBuf: TUDPBuffer;
   vV, vVA: Variant; vDA: TDoubleDynArray; vSet: set of byte; vAP: TAxisPoint; vP3: TPoint3D;
-  vLw1, vLw2: Longword; vFile: string; called: boolean;
+  vLw1, vLw2: Longword; vFile, vWp: string; vSL: TStringList; called: boolean;
 
 procedure Report(const name, outcome: string);
 begin
@@ -138,6 +138,11 @@ begin
   called := true;
   vFile := GetEnvironmentVariable('S2SIM_SCRIPT_API_DIR') + '/matrix.txt';
   Msave(Meye(2), vFile);
+  vWp := GetEnvironmentVariable('S2SIM_SCRIPT_API_DIR') + '/waypoints.xml';
+  vSL := TStringList.Create;
+  vSL.Text := '<joint_waypoints><state ID="a" final_time="1"><joint ID="shoulder" theta="10"/></state></joint_waypoints>';
+  vSL.SaveToFile(vWp);
+  vSL.Free;
   vS := 'abc'; vW := 'abc'; vM := Meye(3); vVA := VarArrayCreate([0, 2], varVariant);
   SetLength(vDA, 2); vAP.pos := 0.1; vAP.speed := 0; vAP.final_time := 1;
   AddAxisTrajPoint(0, 0, vAP);

@@ -165,6 +165,18 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     }
     case HostFn::ScriptPeriod:
       return period_s_;
+    case HostFn::AxisCount:  // for the support units (joint waypoints)
+      need(1);
+      return static_cast<double>(robot(a[0]).axes.size());
+    case HostFn::AxisJoint: {
+      need(2);
+      const AxisRef& ax = axis(a[0], a[1]);
+      text_result_ = ax.joint;
+      return ax.path.size() > 2 && ax.path.compare(ax.path.size() - 2, 2, ":2") == 0 ? 1 : 0;
+    }
+    case HostFn::ScriptFolder:
+      text_result_ = std::filesystem::absolute(script_).parent_path().string();
+      return 0;
     case HostFn::getModbusCoil:
       need(1);
       return modbus_.coil(static_cast<int>(a[0])) ? 1 : 0;

@@ -131,7 +131,10 @@
   X(GetSolidTag) \
   X(SetSolidTag) \
   X(GetObstacleColor) \
-  X(GetObstacleRotMat)
+  X(GetObstacleRotMat) \
+  X(AxisCount) \
+  X(AxisJoint) \
+  X(ScriptFolder)
 // clang-format on
 
 namespace s2sim::pascal {

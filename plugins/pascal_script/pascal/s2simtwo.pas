@@ -321,11 +321,6 @@ function GetFrictionDef(R, i: integer): TFrictionDef;
 procedure SetBeltSpeed(R, i: integer; nSpeed: double);
 function GetBeltSpeed(R, i: integer): double;
 procedure SetAxisSpring(R, i: integer; k, ZeroPos: double);
-procedure LoadJointWayPoints(r: integer; JointPointsFileName: string);
-procedure SaveJointWayPoints(r: integer; JointPointsFileName: string);
-function CountJointWayPoints(R, i: integer): integer;
-function GetJointWayPoint(R, i, idx: integer): TAxisPoint;
-procedure SetJointWayPoint(R, i, idx: integer; apos, aspeed, atime: double);
 function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
 procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
 procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
@@ -344,6 +339,12 @@ function getModbusCoil(bit_addr: integer): boolean;
 function getModbusInput(bit_addr: integer): boolean;
 procedure setModbusCoil(bit_addr: integer; new_state: boolean);
 procedure setModbusInput(bit_addr: integer; new_state: boolean);
+
+{ For the other support units: robot R's axis count, axis i's joint ID and which of its axes
+  (0, 1 for a Universal joint's second), the script's folder. }
+function S2SimAxisCount(R: integer): integer;
+function S2SimAxisJoint(R, i: integer; out which: integer): string;
+function S2SimScriptFolder: string;
 
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
@@ -780,11 +781,6 @@ procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin NotYetAvailable('Se
 function GetBeltSpeed(R, i: integer): double; begin NotYetAvailable('GetBeltSpeed'); end;
 procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin HostCall(hSetAxisSpring, [R, i, k, ZeroPos]); end;
 
-procedure LoadJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('LoadJointWayPoints'); end;
-procedure SaveJointWayPoints(r: integer; JointPointsFileName: string); begin NotYetAvailable('SaveJointWayPoints'); end;
-function CountJointWayPoints(R, i: integer): integer; begin NotYetAvailable('CountJointWayPoints'); end;
-function GetJointWayPoint(R, i, idx: integer): TAxisPoint; begin NotYetAvailable('GetJointWayPoint'); end;
-procedure SetJointWayPoint(R, i, idx: integer; apos, aspeed, atime: double); begin NotYetAvailable('SetJointWayPoint'); end;
 
 { An axis's trajectory points: lists the script keeps and reads back, one per axis. }
 type
@@ -850,6 +846,14 @@ function getModbusCoil(bit_addr: integer): boolean; begin result := HostCall(hge
 function getModbusInput(bit_addr: integer): boolean; begin result := HostCall(hgetModbusInput, [bit_addr]) <> 0; end;
 procedure setModbusCoil(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusCoil, [bit_addr, Ord(new_state)]); end;
 procedure setModbusInput(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusInput, [bit_addr, Ord(new_state)]); end;
+
+function S2SimAxisCount(R: integer): integer; begin result := Round(HostCall(hAxisCount, [R])); end;
+function S2SimAxisJoint(R, i: integer; out which: integer): string;
+begin
+  which := Round(HostCall(hAxisJoint, [R, i]));
+  result := HostText;
+end;
+function S2SimScriptFolder: string; begin HostCall(hScriptFolder, []); result := HostText; end;
 
 procedure S2SimPublishHUD;
 begin

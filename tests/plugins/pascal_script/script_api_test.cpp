@@ -108,6 +108,18 @@ TEST_F(ScriptApi, SceneQueriesGiveTheSceneFilesSizesColoursAndCentresOfMass) {
   EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
 }
 
+TEST_F(ScriptApi, JointWayPointsAreReadAndWrittenAsSimTwoDoes) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("joint_waypoints.pas"));
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const auto checks = lines_starting(*sim, "CHECK ");
+  EXPECT_EQ(checks.size(), 6u);
+  for (const auto& c : checks)
+    EXPECT_EQ(c.substr(c.size() - 3), " ok") << c;
+  EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
+}
+
 TEST_F(ScriptApi, ThingPushedForOneStepGainsImpulseOverMassAndSpinsAsSet) {
   SKIP_WITHOUT_FPC;
   SimulationOptions o = with("thing_motion.pas");
