@@ -1,96 +1,21 @@
-{ S2Sim's SimTwo script support unit (written for S2Sim; no SimTwo source). It gives a SimTwo
-  `control.pas`, compiled unchanged with Free Pascal -Mdelphi, what SimTwo's Pascal Script
-  engine gives it: SimTwo's types and constants, its pure helpers with SimTwo's definitions,
-  the Matrix API, and the host functions, each forwarding to the C++ host through one table
-  filled at load (plugins/pascal_script/host_api.cpp). It comes last in the wrapper's `uses`,
-  so its WriteLn, Sqr, Sign, Format, TStringList... shadow the RTL's (docs/scripting.md). }
+{ S2Sim's SimTwo script host unit (written for S2Sim; no SimTwo source). It gives a SimTwo
+  `control.pas`, compiled unchanged with Free Pascal -Mdelphi, the host functions, each
+  forwarding to the C++ host through one table filled at load (plugins/pascal_script/
+  host_calls.cpp), SimTwo's TStringList, Time and HUDStrings. It comes after the RTL in the
+  wrapper's `uses`, so its names shadow the RTL's (docs/scripting.md); the other support units
+  hold the types, Matrix, the pure helpers, A*, rendering and the axis points. }
 unit s2simtwo;
 
 {$mode delphi}{$H+}
 
 interface
 
-uses SysUtils, Classes, Math, Types, s2simtwo_matrix, s2simtwo_helpers;
+uses SysUtils, Classes, Math, Types, s2simtwo_types, s2simtwo_matrix, s2simtwo_helpers,
+  s2simtwo_rendering;
 
 {S2SIM_HOST_IDS}
 
-const
-  MaxDim = 8;
-  k = MaxDim - 1;
-
-  VK_LBUTTON = 1; VK_RBUTTON = 2; VK_CANCEL = 3; VK_MBUTTON = 4; VK_BACK = 8; VK_TAB = 9;
-  VK_CLEAR = 12; VK_RETURN = 13; VK_SHIFT = 16; VK_CONTROL = 17; VK_MENU = 18; VK_PAUSE = 19;
-  VK_CAPITAL = 20; VK_KANA = 21; VK_HANGUL = 21; VK_JUNJA = 23; VK_FINAL = 24; VK_HANJA = 25;
-  VK_KANJI = 25; VK_ESCAPE = 27; VK_CONVERT = 28; VK_NONCONVERT = 29; VK_ACCEPT = 30;
-  VK_MODECHANGE = 31; VK_SPACE = 32; VK_PRIOR = 33; VK_NEXT = 34; VK_END = 35; VK_HOME = 36;
-  VK_LEFT = 37; VK_UP = 38; VK_RIGHT = 39; VK_DOWN = 40; VK_SELECT = 41; VK_PRINT = 42;
-  VK_EXECUTE = 43; VK_SNAPSHOT = 44; VK_INSERT = 45; VK_DELETE = 46; VK_HELP = 47;
-  VK_LWIN = 91; VK_RWIN = 92; VK_APPS = 93;
-  VK_NUMPAD0 = 96; VK_NUMPAD1 = 97; VK_NUMPAD2 = 98; VK_NUMPAD3 = 99; VK_NUMPAD4 = 100;
-  VK_NUMPAD5 = 101; VK_NUMPAD6 = 102; VK_NUMPAD7 = 103; VK_NUMPAD8 = 104; VK_NUMPAD9 = 105;
-  VK_MULTIPLY = 106; VK_ADD = 107; VK_SEPARATOR = 108; VK_SUBTRACT = 109; VK_DECIMAL = 110;
-  VK_DIVIDE = 111; VK_F1 = 112; VK_F2 = 113; VK_F3 = 114; VK_F4 = 115; VK_F5 = 116;
-  VK_F6 = 117; VK_F7 = 118; VK_F8 = 119; VK_F9 = 120; VK_F10 = 121; VK_F11 = 122; VK_F12 = 123;
-  VK_F13 = 124; VK_F14 = 125; VK_F15 = 126; VK_F16 = 127; VK_F17 = 128; VK_F18 = 129;
-  VK_F19 = 130; VK_F20 = 131; VK_F21 = 132; VK_F22 = 133; VK_F23 = 134; VK_F24 = 135;
-  VK_NUMLOCK = 144; VK_SCROLL = 145; VK_LSHIFT = 160; VK_RSHIFT = 161; VK_LCONTROL = 162;
-  VK_RCONTROL = 163; VK_LMENU = 164; VK_RMENU = 165; VK_PROCESSKEY = 229; VK_ATTN = 246;
-  VK_CRSEL = 247; VK_EXSEL = 248; VK_EREOF = 249; VK_PLAY = 250; VK_ZOOM = 251;
-  VK_NONAME = 252; VK_PA1 = 253; VK_OEM_CLEAR = 254;
-
 type
-  TColor = longint;
-
-const
-  clBlack = TColor($000000); clMaroon = TColor($000080); clGreen = TColor($008000);
-  clOlive = TColor($008080); clNavy = TColor($800000); clPurple = TColor($800080);
-  clTeal = TColor($808000); clGray = TColor($808080); clSilver = TColor($C0C0C0);
-  clRed = TColor($0000FF); clLime = TColor($00FF00); clYellow = TColor($00FFFF);
-  clBlue = TColor($FF0000); clFuchsia = TColor($FF00FF); clAqua = TColor($FFFF00);
-  clLtGray = TColor($C0C0C0); clDkGray = TColor($808080); clWhite = TColor($FFFFFF);
-  clNone = TColor($1FFFFFFF); clDefault = TColor($20000000);
-
-type
-  TPoint3D = record x, y, z: double; end;
-  TState2D = record x, y, angle: double; end;
-  TAxisState = record pos, vel, Torque, Vm, Im: double; end;
-  TAxisPoint = record pos, speed, final_time: double; end;
-  TSpringDef = record K, ZeroPos: double; end;
-  TMotorPars = record Ri, Li, Ki, Vmax, Imax, GearRatio: double; simple, active: boolean; end;
-  TMotorControllerPars = record Ki, Kd, Kp, Kf: double; end;
-  TFrictionDef = record Bv, Fc, CoulombLimit: double; end;
-  TRGBAColor = record Red, Green, Blue, alpha: integer; end;
-  TExtents = record Min, Max: TPoint3D; end;
-
-  { Rendering's types (canvas, camera, spray paint): declared so that scripts compile; every
-    routine that would draw or read pixels raises "... belongs to rendering". }
-  TPaintVisuals = integer;
-  THistogram = array of double;
-  TTriangle = record v1, v2, v3: TPoint3D; end;
-  TTriangles = array of TTriangle;
-  TCanvasTool = class
-  public
-    Color: TColor;
-    Width: integer;
-    Size: integer;
-    Name: string;
-  end;
-  TCanvas = class
-  public
-    Brush, Pen, Font: TCanvasTool;
-    procedure TextOut(X, Y: integer; const Text: string);
-    procedure FillRect(const R: TRect);
-    procedure Rectangle(X1, Y1, X2, Y2: integer);
-    procedure Ellipse(X1, Y1, X2, Y2: integer);
-    procedure MoveTo(X, Y: integer);
-    procedure LineTo(X, Y: integer);
-  end;
-  TBitmap = class
-  public
-    Canvas: TCanvas;
-    Width, Height: integer;
-  end;
-
   { SimTwo (Windows) joins lines with CR LF; FPC on Linux with LF. Setting Text splits on
     LF, CR LF or CR alike, as SimTwo's does: FPC splits on LineBreak alone once it differs
     from the platform's, so an LF-only datagram would stay one line. }
@@ -113,13 +38,10 @@ type
     result: THostResult;
   end;
 
-  EScriptHostError = class(Exception);
-
 var
   Time: double;
   HUDStrings: TStringList;
   UDPDataRead: TMemoryStream;  { declared; S2Sim does not fill it (docs/scripting.md) }
-  CamBitmap: TBitmap;          { rendering: its canvas raises }
   Host: THostTable;
 
 { --- host functions (S2Sim's implementation: plugins/pascal_script/host_api.cpp) --- }
@@ -240,27 +162,6 @@ procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double);
 procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double);
 function GetSolidSize(R, i: integer): TPoint3D;
 procedure SetSolidSize(R, i: integer; x, y, z: double);
-function GetSolidCanvas(R, i: integer): TCanvas;
-function GetObstacleCanvas(i: integer): TCanvas;
-procedure SolidCanvasClear(R, i: integer);
-function GetPaintGunMinDist(i: integer): double;
-function GetPaintTargetExtents(i: integer): TExtents;
-procedure ResetPaintTargetPaint(i: integer);
-procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals);
-procedure SetSprayGunOn(i: integer);
-procedure SetSprayGunOff(i: integer);
-function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
-function CalculateAvgSprayThickness(i: integer): double;
-function CalculateSDSprayThickness(i: integer): double;
-function CalculatePosAvgSprayThickness(i: integer): double;
-function CalculatePosSDSprayThickness(i: integer): double;
-function CalculatePosMinSprayThickness(i: integer): double;
-function CalculateMinSprayThickness(i: integer): double;
-function CalculateMaxSprayThickness(i: integer): double;
-function CalculateSprayCoverage(i: integer): double;
-function GetPaintTargetTriangles(i: integer): TTriangles;
-procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D);
-function GetCameraPixel(X, Y: integer): TRGBAColor;
 procedure SetFireScale(x, y, z: double);
 procedure SetFirePosition(x, y, z: double);
 procedure StartFire;
@@ -321,12 +222,6 @@ function GetFrictionDef(R, i: integer): TFrictionDef;
 procedure SetBeltSpeed(R, i: integer; nSpeed: double);
 function GetBeltSpeed(R, i: integer): double;
 procedure SetAxisSpring(R, i: integer; k, ZeroPos: double);
-function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
-procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
-procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
-procedure DelAxisTrajPoint(R, i, idx: integer);
-function CountAxisTrajPoints(R, i: integer): integer;
-procedure ClearAxisTrajPoints(R, i: integer);
 procedure SetTrailColor(T: integer; Red, Green, Blue: byte);
 procedure DelTrailNode(T: integer);
 procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
@@ -606,23 +501,6 @@ function ReadComPort: string; begin HostCall(hReadComPort, []); result := HostTe
 
 { --- what S2Sim does not have (yet): a named error, never a silent no-op --- }
 
-procedure NotYetAvailable(const routine: string);
-begin
-  raise EScriptHostError.Create(routine + ' is not yet available in S2Sim (docs/scripting.md)');
-end;
-
-procedure BelongsToRendering(const routine: string);
-begin
-  raise EScriptHostError.Create(routine + ' belongs to rendering, which S2Sim does not have yet');
-end;
-
-procedure TCanvas.TextOut(X, Y: integer; const Text: string); begin BelongsToRendering('TCanvas.TextOut'); end;
-procedure TCanvas.FillRect(const R: TRect); begin BelongsToRendering('TCanvas.FillRect'); end;
-procedure TCanvas.Rectangle(X1, Y1, X2, Y2: integer); begin BelongsToRendering('TCanvas.Rectangle'); end;
-procedure TCanvas.Ellipse(X1, Y1, X2, Y2: integer); begin BelongsToRendering('TCanvas.Ellipse'); end;
-procedure TCanvas.MoveTo(X, Y: integer); begin BelongsToRendering('TCanvas.MoveTo'); end;
-procedure TCanvas.LineTo(X, Y: integer); begin BelongsToRendering('TCanvas.LineTo'); end;
-
 function RGBToColor(R, G, B: Byte): TColor; begin result := R or (G shl 8) or (B shl 16); end;
 procedure SetRCBackColor(r, c: integer; newColor: TColor); begin HostCall(hSetRCBackColor, [r, c, newColor]); end;
 procedure CloseSimTwo; begin HostCall(hCloseSimTwo, []); end;
@@ -660,28 +538,6 @@ procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double); begin HostCall(hSetS
 function GetSolidSize(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidSize, [R, i]); end;
 procedure SetSolidSize(R, i: integer; x, y, z: double); begin NotYetAvailable('SetSolidSize'); end;
 
-function GetSolidCanvas(R, i: integer): TCanvas; begin BelongsToRendering('GetSolidCanvas'); result := nil; end;
-function GetObstacleCanvas(i: integer): TCanvas; begin BelongsToRendering('GetObstacleCanvas'); result := nil; end;
-procedure SolidCanvasClear(R, i: integer); begin BelongsToRendering('SolidCanvasClear'); end;
-function GetPaintGunMinDist(i: integer): double; begin BelongsToRendering('GetPaintGunMinDist'); end;
-function GetPaintTargetExtents(i: integer): TExtents; begin BelongsToRendering('GetPaintTargetExtents'); end;
-procedure ResetPaintTargetPaint(i: integer); begin BelongsToRendering('ResetPaintTargetPaint'); end;
-procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals); begin BelongsToRendering('SetPaintTargetPaintMode'); end;
-procedure SetSprayGunOn(i: integer); begin BelongsToRendering('SetSprayGunOn'); end;
-procedure SetSprayGunOff(i: integer); begin BelongsToRendering('SetSprayGunOff'); end;
-function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
-begin BelongsToRendering('CalculateSprayThicknessHistogram'); end;
-function CalculateAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculateAvgSprayThickness'); end;
-function CalculateSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculateSDSprayThickness'); end;
-function CalculatePosAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosAvgSprayThickness'); end;
-function CalculatePosSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosSDSprayThickness'); end;
-function CalculatePosMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosMinSprayThickness'); end;
-function CalculateMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMinSprayThickness'); end;
-function CalculateMaxSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMaxSprayThickness'); end;
-function CalculateSprayCoverage(i: integer): double; begin BelongsToRendering('CalculateSprayCoverage'); end;
-function GetPaintTargetTriangles(i: integer): TTriangles; begin BelongsToRendering('GetPaintTargetTriangles'); end;
-procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D); begin BelongsToRendering('SetResultTrianglesColor'); end;
-function GetCameraPixel(X, Y: integer): TRGBAColor; begin BelongsToRendering('GetCameraPixel'); end;
 
 procedure SetFireScale(x, y, z: double); begin NotYetAvailable('SetFireScale'); end;
 procedure SetFirePosition(x, y, z: double); begin NotYetAvailable('SetFirePosition'); end;
@@ -782,57 +638,6 @@ function GetBeltSpeed(R, i: integer): double; begin NotYetAvailable('GetBeltSpee
 procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin HostCall(hSetAxisSpring, [R, i, k, ZeroPos]); end;
 
 
-{ An axis's trajectory points: lists the script keeps and reads back, one per axis. }
-type
-  TAxisTraj = record
-    R, i: integer;
-    points: array of TAxisPoint;
-  end;
-var
-  AxisTrajs: array of TAxisTraj;
-
-function AxisTraj(R, i: integer): integer;
-var k: integer;
-begin
-  for k := 0 to High(AxisTrajs) do
-    if (AxisTrajs[k].R = R) and (AxisTrajs[k].i = i) then begin result := k; exit; end;
-  GetAxisPos(R, i);  { raises SimTwo's index error for an axis that does not exist }
-  result := Length(AxisTrajs);
-  SetLength(AxisTrajs, result + 1);
-  AxisTrajs[result].R := R;
-  AxisTrajs[result].i := i;
-end;
-
-function TrajPoint(R, i, idx: integer): integer;
-begin
-  result := AxisTraj(R, i);
-  if (idx < 0) or (idx > High(AxisTrajs[result].points)) then
-    raise EScriptHostError.Create(SysUtils.Format('List index (%d) out of bounds', [idx]));
-end;
-
-function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
-begin result := AxisTrajs[TrajPoint(R, i, idx)].points[idx]; end;
-procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
-begin AxisTrajs[TrajPoint(R, i, idx)].points[idx] := LP; end;
-procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
-var k, n: integer;
-begin
-  k := AxisTraj(R, i);
-  n := Length(AxisTrajs[k].points);
-  SetLength(AxisTrajs[k].points, n + 1);
-  AxisTrajs[k].points[n] := LP;
-end;
-procedure DelAxisTrajPoint(R, i, idx: integer);
-var k, j: integer;
-begin
-  k := AxisTraj(R, i);
-  if (idx < 0) or (idx > High(AxisTrajs[k].points)) then exit;  { SimTwo ignores it too }
-  for j := idx to High(AxisTrajs[k].points) - 1 do AxisTrajs[k].points[j] := AxisTrajs[k].points[j + 1];
-  SetLength(AxisTrajs[k].points, Length(AxisTrajs[k].points) - 1);
-end;
-function CountAxisTrajPoints(R, i: integer): integer; begin result := Length(AxisTrajs[AxisTraj(R, i)].points); end;
-procedure ClearAxisTrajPoints(R, i: integer); begin SetLength(AxisTrajs[AxisTraj(R, i)].points, 0); end;
-
 procedure SetTrailColor(T: integer; Red, Green, Blue: byte); begin HostCall(hSetTrailColor, [T, Red, Green, Blue]); end;
 procedure DelTrailNode(T: integer); begin HostCall(hDelTrailNode, [T]); end;
 procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
@@ -864,9 +669,7 @@ initialization
   DefaultFormatSettings.DecimalSeparator := '.';
   HUDStrings := TStringList.Create;
   UDPDataRead := TMemoryStream.Create;
-  CamBitmap := TBitmap.Create;
 finalization
-  CamBitmap.Free;
   UDPDataRead.Free;
   HUDStrings.Free;
 end.

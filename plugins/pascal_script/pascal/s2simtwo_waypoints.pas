@@ -1,6 +1,7 @@
-{ SimTwo's joint waypoints for scripts (written for S2Sim after SimTwo's behaviour; no SimTwo
-  source): per robot a list of named states, per axis its points (pos, speed, final_time), read
-  from and written to SimTwo's <joint_waypoints> files. A relative file name is taken in the
+{ SimTwo's axis points for scripts (written for S2Sim after SimTwo's behaviour; no SimTwo
+  source): the trajectory points a script keeps per axis, and the joint waypoints: per robot a
+  list of named states, per axis its points (pos, speed, final_time), read from and written to
+  SimTwo's <joint_waypoints> files. A relative file name is taken in the
   script's folder, as SimTwo's working folder is the project's. }
 unit s2simtwo_waypoints;
 
@@ -8,13 +9,19 @@ unit s2simtwo_waypoints;
 
 interface
 
-uses SysUtils, Classes, Math, DOM, XMLRead, XMLWrite, s2simtwo;
+uses SysUtils, Classes, Math, DOM, XMLRead, XMLWrite, s2simtwo_types, s2simtwo;
 
 procedure LoadJointWayPoints(r: integer; JointPointsFileName: string);
 procedure SaveJointWayPoints(r: integer; JointPointsFileName: string);
 function CountJointWayPoints(R, i: integer): integer;
 function GetJointWayPoint(R, i, idx: integer): TAxisPoint;
 procedure SetJointWayPoint(R, i, idx: integer; apos, aspeed, atime: double);
+function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
+procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
+procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
+procedure DelAxisTrajPoint(R, i, idx: integer);
+function CountAxisTrajPoints(R, i: integer): integer;
+procedure ClearAxisTrajPoints(R, i: integer);
 
 implementation
 
@@ -201,5 +208,56 @@ begin
   Robots[k].axes[i][idx].speed := aspeed;
   Robots[k].axes[i][idx].final_time := atime;
 end;
+
+{ An axis's trajectory points: lists the script keeps and reads back, one per axis. }
+type
+  TAxisTraj = record
+    R, i: integer;
+    points: array of TAxisPoint;
+  end;
+var
+  AxisTrajs: array of TAxisTraj;
+
+function AxisTraj(R, i: integer): integer;
+var k: integer;
+begin
+  for k := 0 to High(AxisTrajs) do
+    if (AxisTrajs[k].R = R) and (AxisTrajs[k].i = i) then begin result := k; exit; end;
+  GetAxisPos(R, i);  { raises SimTwo's index error for an axis that does not exist }
+  result := Length(AxisTrajs);
+  SetLength(AxisTrajs, result + 1);
+  AxisTrajs[result].R := R;
+  AxisTrajs[result].i := i;
+end;
+
+function TrajPoint(R, i, idx: integer): integer;
+begin
+  result := AxisTraj(R, i);
+  if (idx < 0) or (idx > High(AxisTrajs[result].points)) then
+    raise EScriptHostError.Create(SysUtils.Format('List index (%d) out of bounds', [idx]));
+end;
+
+function GetAxisTrajPoint(R, i, idx: integer): TAxisPoint;
+begin result := AxisTrajs[TrajPoint(R, i, idx)].points[idx]; end;
+procedure SetAxisTrajPoint(R, i, idx: integer; LP: TAxisPoint);
+begin AxisTrajs[TrajPoint(R, i, idx)].points[idx] := LP; end;
+procedure AddAxisTrajPoint(R, i: integer; LP: TAxisPoint);
+var k, n: integer;
+begin
+  k := AxisTraj(R, i);
+  n := Length(AxisTrajs[k].points);
+  SetLength(AxisTrajs[k].points, n + 1);
+  AxisTrajs[k].points[n] := LP;
+end;
+procedure DelAxisTrajPoint(R, i, idx: integer);
+var k, j: integer;
+begin
+  k := AxisTraj(R, i);
+  if (idx < 0) or (idx > High(AxisTrajs[k].points)) then exit;  { SimTwo ignores it too }
+  for j := idx to High(AxisTrajs[k].points) - 1 do AxisTrajs[k].points[j] := AxisTrajs[k].points[j + 1];
+  SetLength(AxisTrajs[k].points, Length(AxisTrajs[k].points) - 1);
+end;
+function CountAxisTrajPoints(R, i: integer): integer; begin result := Length(AxisTrajs[AxisTraj(R, i)].points); end;
+procedure ClearAxisTrajPoints(R, i: integer); begin SetLength(AxisTrajs[AxisTraj(R, i)].points, 0); end;
 
 end.
