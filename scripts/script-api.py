@@ -136,12 +136,12 @@ procedure Control;
 begin
   if called then exit;
   called := true;
-  vFile := GetEnvironmentVariable('S2SIM_SCRIPT_API_DIR') + '/matrix.txt';
+  vFile := 'matrix.txt';  { relative: in the script's folder, as SimTwo's project folder }
   Msave(Meye(2), vFile);
-  vWp := GetEnvironmentVariable('S2SIM_SCRIPT_API_DIR') + '/waypoints.xml';
+  vWp := 'waypoints.xml';
   vSL := TStringList.Create;
   vSL.Text := '<joint_waypoints><state ID="a" final_time="1"><joint ID="shoulder" theta="10"/></state></joint_waypoints>';
-  vSL.SaveToFile(vWp);
+  vSL.SaveToFile(GetEnvironmentVariable('S2SIM_SCRIPT_API_DIR') + '/' + vWp);
   vSL.Free;
   vS := 'abc'; vW := 'abc'; vM := Meye(3); vVA := VarArrayCreate([0, 2], varVariant);
   SetLength(vDA, 2); vAP.pos := 0.1; vAP.speed := 0; vAP.final_time := 1;

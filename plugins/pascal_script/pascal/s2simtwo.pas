@@ -240,6 +240,13 @@ procedure setModbusInput(bit_addr: integer; new_state: boolean);
 function S2SimAxisCount(R: integer): integer;
 function S2SimAxisJoint(R, i: integer; out which: integer): string;
 function S2SimScriptFolder: string;
+{ A file name as SimTwo's scripts mean it: a relative one in the script's folder (SimTwo works in
+  the project's folder). }
+function InScriptFolder(const name: string): string;
+
+{ dynmatrixutils' Mload and Msave, a relative file name in the script's folder. }
+function Mload(const fname: string): Matrix;
+procedure Msave(M: Matrix; const fname: string);
 
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
@@ -659,6 +666,13 @@ begin
   result := HostText;
 end;
 function S2SimScriptFolder: string; begin HostCall(hScriptFolder, []); result := HostText; end;
+function InScriptFolder(const name: string): string;
+begin
+  if (name <> '') and (name[1] = '/') then result := name
+  else result := IncludeTrailingPathDelimiter(S2SimScriptFolder) + name;
+end;
+function Mload(const fname: string): Matrix; begin result := s2simtwo_matrix.Mload(InScriptFolder(fname)); end;
+procedure Msave(M: Matrix; const fname: string); begin s2simtwo_matrix.Msave(M, InScriptFolder(fname)); end;
 
 procedure S2SimPublishHUD;
 begin

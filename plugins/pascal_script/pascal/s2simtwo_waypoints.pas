@@ -53,12 +53,6 @@ begin
     raise EScriptHostError.Create(SysUtils.Format('List index (%d) out of bounds', [i]));
 end;
 
-function InFolder(const name: string): string;
-begin
-  if (name <> '') and (name[1] = '/') then result := name
-  else result := IncludeTrailingPathDelimiter(S2SimScriptFolder) + name;
-end;
-
 function Attribute(node: TDOMNode; const name, default: string): string;
 var a: TDOMNode;
 begin
@@ -93,7 +87,7 @@ begin
   k := RobotOf(r);
   SetLength(Robots[k].ids, 0);
   for a := 0 to High(Robots[k].axes) do SetLength(Robots[k].axes[a], 0);
-  file_ := InFolder(JointPointsFileName);
+  file_ := InScriptFolder(JointPointsFileName);
   try
     ReadXMLFile(doc, file_);
   except
@@ -170,11 +164,11 @@ begin
       end;
     end;
     try
-      WriteXMLFile(doc, InFolder(JointPointsFileName));
+      WriteXMLFile(doc, InScriptFolder(JointPointsFileName));
     except
       on E: Exception do
         raise EScriptHostError.Create('SaveJointWayPoints: cannot write ' +
-          InFolder(JointPointsFileName) + ': ' + E.Message);
+          InScriptFolder(JointPointsFileName) + ': ' + E.Message);
     end;
   finally
     doc.Free;
