@@ -173,6 +173,18 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       }
       return point(mass > 0 ? (1 / mass) * sum : sum);
     }
+    case HostFn::SetBeltSpeed: {  // the belt's surface speed along its +X, the input belt_speed
+      need(3);
+      const SolidRef& sd = solid(a[0], a[1]);
+      if (sd.belt.index < 0) fail("SetBeltSpeed: solid '" + sd.id + "' is not a belt");
+      ctx.set_input(sd.belt, a[2]);
+      return 0;
+    }
+    case HostFn::GetBeltSpeed: {
+      need(2);
+      const SolidRef& sd = solid(a[0], a[1]);
+      return sd.belt.index < 0 ? 0 : ctx.input(sd.belt);
+    }
     case HostFn::GetSolidTag:
       need(2);
       text_result_ = solid(a[0], a[1]).tag;

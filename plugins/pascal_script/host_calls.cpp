@@ -497,6 +497,8 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::SetSolidTag:
     case HostFn::GetObstacleColor:
     case HostFn::GetObstacleRotMat:
+    case HostFn::SetBeltSpeed:
+    case HostFn::GetBeltSpeed:
       return call_bodies(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
     case HostFn::ChartSeriesSetColor:

@@ -134,7 +134,9 @@
   X(GetObstacleRotMat) \
   X(AxisCount) \
   X(AxisJoint) \
-  X(ScriptFolder)
+  X(ScriptFolder) \
+  X(SetBeltSpeed) \
+  X(GetBeltSpeed)
 // clang-format on
 
 namespace s2sim::pascal {

@@ -44,7 +44,15 @@ void ScriptController::configure(ConfigureContext& ctx) {
       const std::string sk = k + "solid_" + std::to_string(i) + "_";
       const BodyHandle body = ctx.body(p.text(sk + "body"));
       robot.solids.push_back(
-          {p.text(sk + "id"), body, ctx.body_mass_kg(body), read_look(p, sk), {}});
+          {p.text(sk + "id"), body, ctx.body_mass_kg(body), read_look(p, sk), {}, {}});
+      robot.solids.back().belt.index = -1;
+      if (p.boolean(sk + "belt", false)) {
+        try {
+          robot.solids.back().belt = ctx.input(p.text(sk + "body") + "/belt_speed");
+        } catch (const Error&) {
+          // a belt without a belt surface has no speed to set: SetBeltSpeed says so
+        }
+      }
     }
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;

@@ -94,7 +94,8 @@ struct SolidRef {
   BodyHandle body;
   double mass_kg = 0;  // as loaded (GetSolidMass)
   Look look;
-  std::string tag;  // SetSolidTag's
+  std::string tag;     // SetSolidTag's
+  InputHandle belt{};  // a conveyor belt's surface speed (index -1 for other solids)
 };
 
 struct RobotRef {

@@ -98,6 +98,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       set(k + "solid_" + std::to_string(i) + "_id", b.id);
       set(k + "solid_" + std::to_string(i) + "_body", sim::solid_path(rp, b.id));
       solid_look(k + "solid_" + std::to_string(i) + "_", b);
+      if (b.kind == scene::SolidKind::belt) set(k + "solid_" + std::to_string(i) + "_belt", "1");
     }
     // SimTwo's axis list: one per joint axis in joint order, Fixed and Ball joints included,
     // a Universal joint's axis 2 before its axis 1 (quirk of §2).

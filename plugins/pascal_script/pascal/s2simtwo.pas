@@ -640,8 +640,8 @@ begin
   M := HostValues;
   result.Bv := M.data[0]; result.Fc := M.data[1]; result.CoulombLimit := M.data[2];
 end;
-procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin NotYetAvailable('SetBeltSpeed'); end;
-function GetBeltSpeed(R, i: integer): double; begin NotYetAvailable('GetBeltSpeed'); end;
+procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin HostCall(hSetBeltSpeed, [R, i, nSpeed]); end;
+function GetBeltSpeed(R, i: integer): double; begin result := HostCall(hGetBeltSpeed, [R, i]); end;
 procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin HostCall(hSetAxisSpring, [R, i, k, ZeroPos]); end;
 
 

@@ -120,6 +120,28 @@ TEST_F(ScriptApi, JointWayPointsAreReadAndWrittenAsSimTwoDoes) {
   EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
 }
 
+TEST_F(ScriptApi, BeltSpeedSetByTheScriptCarriesTheCrateOnIt) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("belt_speed.pas");
+  o.sheet_cells = {{1, 1, "0"}};
+  auto sim = Simulation::load(kScene, o);
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.5);  // the scene's
+  sim->run_until(1.0);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.2);
+  EXPECT_EQ(sim->signal("sheet/A1"), 0.2);
+  EXPECT_NEAR(sim->signal("things/crate/vx"), 0.2, 0.01);  // carried at the belt's speed
+  // Snapshot and reset bring the run back exactly.
+  const auto snap = sim->save();
+  sim->run_until(1.5);
+  const double x = sim->signal("things/crate/x");
+  sim->restore(snap);
+  sim->run_until(1.5);
+  EXPECT_EQ(sim->signal("things/crate/x"), x);
+  sim->reset();
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.5);
+}
+
 TEST_F(ScriptApi, ThingPushedForOneStepGainsImpulseOverMassAndSpinsAsSet) {
   SKIP_WITHOUT_FPC;
   SimulationOptions o = with("thing_motion.pas");
