@@ -201,9 +201,16 @@ CompileResult compile_script(const std::filesystem::path& script,
     std::ofstream(build / "s2script.pas", std::ios::binary) << wrapper;
     std::ofstream(build / script.filename(), std::ios::binary) << text;
   }
-  const std::string command = shell_quote(settings.compiler) + " -Mdelphi -g -O1 -vewn -Fu" +
-                              shell_quote(build.string()) + " -FE" + shell_quote(build.string()) +
-                              " " + shell_quote((build / "s2script.pas").string());
+  // In the build folder: fpc looks for units in its working folder first, and one of the same
+  // name where the user runs S2Sim (a stale s2simtwo.ppu) would be taken for ours.
+  // A compiler named by a relative path (S2SIM_FPC=./fpc) is the caller's, not the folder's.
+  const std::string compiler = settings.compiler.find('/') != std::string::npos
+                                   ? std::filesystem::absolute(settings.compiler).string()
+                                   : settings.compiler;
+  const std::string command = "cd " + shell_quote(build.string()) + " && " + shell_quote(compiler) +
+                              " -Mdelphi -g -O1 -vewn -Fu" + shell_quote(build.string()) + " -FE" +
+                              shell_quote(build.string()) + " " +
+                              shell_quote((build / "s2script.pas").string());
   const int status = run(command, result.output);
   const auto built = build / "libs2script.so";
   if (status == 0 && std::filesystem::exists(built)) {

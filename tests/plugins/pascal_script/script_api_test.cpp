@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -140,6 +141,25 @@ TEST_F(ScriptApi, BeltSpeedSetByTheScriptCarriesTheCrateOnIt) {
   EXPECT_EQ(sim->signal("things/crate/x"), x);
   sim->reset();
   EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.5);
+}
+
+TEST_F(ScriptApi, UnitsOfTheSameNameWhereS2SimRunsAreNotTakenForTheSupportUnits) {
+  SKIP_WITHOUT_FPC;
+  // A folder holding a broken s2simtwo_types.pas, made the working folder for the compile.
+  const fs::path here = work_ / "cwd";
+  fs::create_directories(here);
+  std::ofstream(here / "s2simtwo_types.pas") << "unit s2simtwo_types; this is not Pascal\n";
+  const fs::path before = fs::current_path();
+  fs::current_path(here);
+  const fs::path cache = work_ / "cache";  // a compile of its own, not the shared cache's copy
+  ::setenv("S2SIM_PASCAL_CACHE", cache.c_str(), 1);
+  std::unique_ptr<Simulation> sim;
+  EXPECT_NO_THROW(sim = Simulation::load(kScene, with("belt_speed.pas")));
+  fs::current_path(before);
+  ::setenv("S2SIM_PASCAL_CACHE", S2SIM_PASCAL_TEST_CACHE, 1);
+  ASSERT_TRUE(sim);
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
 }
 
 TEST_F(ScriptApi, ThingPushedForOneStepGainsImpulseOverMassAndSpinsAsSet) {
