@@ -173,6 +173,18 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       }
       return point(mass > 0 ? (1 / mass) * sum : sum);
     }
+    case HostFn::GetShellPos:
+    case HostFn::GetShellColor: {
+      need(2);
+      const RobotRef& rb = robot(a[0]);
+      if (a[1] < 0 || a[1] >= static_cast<double>(rb.shells.size())) fail(index_error(a[1]));
+      const RobotRef::Shell& shell = rb.shells[static_cast<std::size_t>(a[1])];
+      if (fn == HostFn::GetShellPos) return point(pose_of(shell.body) * shell.position);
+      numbers_.clear();
+      for (double v : shell.rgba)
+        numbers_.push_back(std::round(v * 255));
+      return 0;
+    }
     case HostFn::SetBeltSpeed: {  // the belt's surface speed along its +X, the input belt_speed
       need(3);
       const SolidRef& sd = solid(a[0], a[1]);

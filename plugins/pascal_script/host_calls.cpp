@@ -499,6 +499,8 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetObstacleRotMat:
     case HostFn::SetBeltSpeed:
     case HostFn::GetBeltSpeed:
+    case HostFn::GetShellPos:
+    case HostFn::GetShellColor:
       return call_bodies(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
     case HostFn::ChartSeriesSetColor:

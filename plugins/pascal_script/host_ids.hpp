@@ -136,7 +136,9 @@
   X(AxisJoint) \
   X(ScriptFolder) \
   X(SetBeltSpeed) \
-  X(GetBeltSpeed)
+  X(GetBeltSpeed) \
+  X(GetShellPos) \
+  X(GetShellColor)
 // clang-format on
 
 namespace s2sim::pascal {

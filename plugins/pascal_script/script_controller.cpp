@@ -54,6 +54,16 @@ void ScriptController::configure(ConfigureContext& ctx) {
         }
       }
     }
+    for (std::int64_t i = 0, n = p.integer(k + "shells"); i < n; ++i) {
+      const std::string sk = k + "shell_" + std::to_string(i) + "_";
+      RobotRef::Shell shell;
+      shell.body = ctx.body(p.text(sk + "body"));
+      shell.position = {p.number(sk + "x"), p.number(sk + "y"), p.number(sk + "z")};
+      const char* rgba[] = {"r", "g", "b", "a"};
+      for (int c = 0; c < 4; ++c)
+        shell.rgba[c] = p.number(sk + rgba[c]);
+      robot.shells.push_back(shell);
+    }
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;
       a.path = p.text(k + "axis_" + std::to_string(i), "");

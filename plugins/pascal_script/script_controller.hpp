@@ -108,6 +108,12 @@ struct RobotRef {
   std::vector<AxisRef> axes;
   std::vector<int> sensors;  // indices into global sensors
   std::vector<std::string> shell_tags;
+  struct Shell {
+    BodyHandle body;
+    Vec3 position;  // in the body frame
+    double rgba[4] = {0, 0, 0, 0};
+  };
+  std::vector<Shell> shells;  // in SimTwo's order
 };
 
 struct ThingRef {

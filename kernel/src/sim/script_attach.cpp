@@ -100,6 +100,22 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       solid_look(k + "solid_" + std::to_string(i) + "_", b);
       if (b.kind == scene::SolidKind::belt) set(k + "solid_" + std::to_string(i) + "_belt", "1");
     }
+    // The shells (GetShellPos, GetShellColor): their solid, pose in its frame, colour.
+    set(k + "shells", std::to_string(robot.shells.size()));
+    for (std::size_t i = 0; i < robot.shells.size(); ++i) {
+      const auto [body, geom] = robot.shells[i];
+      const scene::Body& b = scene.bodies[static_cast<std::size_t>(body)];
+      const scene::Geom& g = b.geoms[static_cast<std::size_t>(geom)];
+      const std::string sk = k + "shell_" + std::to_string(i) + "_";
+      set(sk + "body", sim::solid_path(rp, b.id));
+      set(sk + "x", exact_decimal(g.pose.position.x));
+      set(sk + "y", exact_decimal(g.pose.position.y));
+      set(sk + "z", exact_decimal(g.pose.position.z));
+      const char* rgba[] = {"r", "g", "b", "a"};
+      const double c[] = {g.visual.color.r, g.visual.color.g, g.visual.color.b, g.visual.color.a};
+      for (int j = 0; j < 4; ++j)
+        set(sk + rgba[j], exact_decimal(c[j]));
+    }
     // SimTwo's axis list: one per joint axis in joint order, Fixed and Ball joints included,
     // a Universal joint's axis 2 before its axis 1 (quirk of §2).
     std::vector<std::pair<std::string, std::string>> axes;  // (axis path, joint id)

@@ -585,9 +585,16 @@ procedure SetThingLinearVel(T: integer; x, y, z: double); begin HostCall(hSetThi
 procedure SetThingAngularVel(T: integer; x, y, z: double); begin HostCall(hSetThingAngularVel, [T, x, y, z]); end;
 function GetThingAngularVel(T: integer): TPoint3D; begin result := HostPoint(hGetThingAngularVel, [T]); end;
 
-function GetShellPos(R, i: integer): TPoint3D; begin NotYetAvailable('GetShellPos'); end;
+function GetShellPos(R, i: integer): TPoint3D; begin result := HostPoint(hGetShellPos, [R, i]); end;
 procedure SetShellColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetShellColor'); end;
-function GetShellColor(R, i: integer): TRGBAColor; begin NotYetAvailable('GetShellColor'); end;
+function GetShellColor(R, i: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetShellColor, [R, i]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
 
 function GetObstacleIndex(ID: string): integer; begin result := Round(HostCallS(hGetObstacleIndex, [], ID)); end;
 procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetObstacleColor'); end;

@@ -103,7 +103,7 @@ TEST_F(ScriptApi, SceneQueriesGiveTheSceneFilesSizesColoursAndCentresOfMass) {
   sim->run_until(0.1);
   EXPECT_EQ(sim->signal("controllers/script/error"), 0);
   const auto checks = lines_starting(*sim, "CHECK ");
-  EXPECT_EQ(checks.size(), 9u);
+  EXPECT_EQ(checks.size(), 11u);
   for (const auto& c : checks)
     EXPECT_EQ(c.substr(c.size() - 3), " ok") << c;
   EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
