@@ -122,10 +122,15 @@ int run(const s2sim::runner::Options& o) {
   // Stepping in chunks keeps the clock and the progress bar out of the per-step cost, and
   // lets the parts run ahead over a chunk with --threads (docs/scheduling.md): a hundredth of
   // the run, a thousandth when paced in real time.
+  // A SimTwo script may end the run (CloseSimTwo): then the steps go one by one, so that the
+  // run stops at the step of the request, its outputs written as at the end.
+  const std::optional<std::size_t> close = sim->find_signal("controllers/script/close");
   const std::int64_t chunk =
-      log ? log_every : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
+      close ? 1
+      : log ? log_every
+            : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
   std::int64_t done = 0;
-  while (done < total_ticks) {
+  while (done < total_ticks && !(close && sim->signal(*close) != 0)) {
     apply_presses();
     std::int64_t n = std::min(chunk, total_ticks - done);
     if (next_press < presses.size())

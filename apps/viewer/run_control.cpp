@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 namespace s2sim::viewer {
 
@@ -52,8 +53,11 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
   for (; pending_steps_ > 0; --pending_steps_, ++done)
     step_one(sim, chart);
 
+  // A SimTwo script's CloseSimTwo (signal controllers/script/close) stops the run too.
+  const std::optional<std::size_t> close = sim.find_signal("controllers/script/close");
   auto at_pause_point = [&] {
-    return pause_at_s >= 0 && sim.time_s() >= pause_at_s - 0.5 * sim.tick_s();
+    return (pause_at_s >= 0 && sim.time_s() >= pause_at_s - 0.5 * sim.tick_s()) ||
+           (close && sim.signal(*close) != 0);
   };
   if (playing && !at_pause_point()) {
     const double tick_s = sim.tick_s();

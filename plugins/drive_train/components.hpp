@@ -57,11 +57,15 @@ class DcMotor final : public Component {
     double R, L, K, vmax, imax, N;
   };
   Parameters parameters(const StepContext& ctx) const;
+  /// A friction input, refused (a run-time error naming it) when negative or not finite.
+  double friction(const StepContext& ctx, InputHandle h, const char* name) const;
   InputHandle ref_voltage_;
   InputHandle active_in_, simple_in_, ri_in_, li_in_, ki_in_, vmax_in_, imax_in_, gear_in_;
+  /// The axis's spring and friction as inputs (SimTwo's SetAxisSpring, SetFrictionDef).
+  InputHandle spring_k_in_, spring_zero_in_, friction_bv_in_, friction_fc_in_;
   std::string prefix_;
-  SignalHandle voltage_, current_, back_emf_, motor_torque_, power_, energy_sig_;
-  StateHandle current_state_, energy_;
+  SignalHandle voltage_, current_, back_emf_, motor_torque_, power_, energy_sig_, drawn_sig_;
+  StateHandle current_state_, energy_;  // energy: [0] signed V·I, [1] drawn (V·I > 0 only)
 };
 
 /// Encoder: counts `ppr` ticks per joint revolution with carried residue, optional noise.
@@ -94,8 +98,14 @@ class MotorController final : public Component {
   bool simtwo_law_ = false, wrap_ = false;
   double kp_ = 1, ki_ = 0, kd_ = 0, kf_ = 0, vmax_ = 24;
   InputHandle ref_voltage_, ref_speed_, ref_pos_, active_, motor_active_;
+  /// SimTwo's SetMotorControllerPars and SetMotorControllerMode: the gains and the mode (0
+  /// pidspeed, 1 pidposition, 2 state) as inputs, the scene's as their initial values.
+  InputHandle kp_in_, ki_in_, kd_in_, kf_in_, mode_in_;
+  std::string prefix_;
   SignalHandle error_;
-  StateHandle state_;  // integral, previous error, primed, was active
+  // integral, previous error, primed, was active, then the gains and mode last used (a change
+  // restarts the integral)
+  StateHandle state_;
 };
 
 }  // namespace s2sim::drive_train

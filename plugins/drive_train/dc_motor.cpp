@@ -70,6 +70,12 @@ void DcMotor::configure(ConfigureContext& ctx) {
   vmax_in_ = ctx.declare_input_at(at + "motor_vmax", "V", vmax_);
   imax_in_ = ctx.declare_input_at(at + "motor_imax", "A", imax_);
   gear_in_ = ctx.declare_input_at(at + "gear_ratio", "1", N_);
+  // SimTwo's SetAxisSpring and SetFrictionDef: the scene's spring and friction are the initial
+  // values (the zero position in rad or m, as the script gives it).
+  spring_k_in_ = ctx.declare_input_at(at + "spring_k", linear ? "N/m" : "N*m/rad", spring_k_);
+  spring_zero_in_ = ctx.declare_input_at(at + "spring_zeropos", linear ? "m" : "rad", zero_pos_);
+  friction_bv_in_ = ctx.declare_input_at(at + "friction_bv", linear ? "N*s/m" : "N*m*s/rad", bv_);
+  friction_fc_in_ = ctx.declare_input_at(at + "friction_fc", torque_unit, fc_);
   prefix_ = at;
   voltage_ = ctx.declare_signal_at(at + "voltage", "V");
   current_ = ctx.declare_signal_at(at + "current", "A");
@@ -77,13 +83,15 @@ void DcMotor::configure(ConfigureContext& ctx) {
   motor_torque_ = ctx.declare_signal_at(at + "motor_torque", torque_unit);
   power_ = ctx.declare_signal_at(at + "power", "W");
   energy_sig_ = ctx.declare_signal_at(at + "energy", "J");
+  drawn_sig_ = ctx.declare_signal_at(at + "energy_drawn", "J");  // SimTwo's energy meter
   current_state_ = ctx.declare_state("current", 1, 0.0);
-  energy_ = ctx.declare_state("energy", 1, 0.0);
+  energy_ = ctx.declare_state("energy", 2, 0.0);
 }
 
 void DcMotor::initialize(StepContext& ctx) {
   ctx.state(current_state_)[0] = 0.0;
   ctx.state(energy_)[0] = 0.0;
+  ctx.state(energy_)[1] = 0.0;
 }
 
 DcMotor::Parameters DcMotor::parameters(const StepContext& ctx) const {
@@ -113,6 +121,7 @@ void DcMotor::update(StepContext& ctx) {
   const double dt = ctx.tick_s();
   double& i = ctx.state(current_state_)[0];
   double& energy = ctx.state(energy_)[0];
+  double& drawn = ctx.state(energy_)[1];
 
   double v = 0, e = 0, motor_torque = 0, power = 0;
   if (ctx.input(active_in_) != 0.0) {
@@ -134,6 +143,7 @@ void DcMotor::update(StepContext& ctx) {
     motor_torque = m.N * m.K * step.mean;
     power = v * step.mean;
     energy += power * dt;
+    if (power > 0) drawn += power * dt;  // what the supply gives; regeneration is not credited
     // The motor torque falls with the speed through the back-EMF, within the current limit:
     // a drive, which the kernel integrates implicitly (stable and without ringing on any
     // inertia, docs/models/dc-motor.md).
@@ -146,9 +156,16 @@ void DcMotor::update(StepContext& ctx) {
   }
   // The viscous friction is a drive too; the spring stays an explicit force: the leapfrog
   // keeps its energy exactly, an implicit spring would bleed it.
-  if (bv_ > 0) ctx.apply_axis_drive(axis_, -bv_ * w, bv_);
-  if (spring_k_ > 0) ctx.apply_axis_force(axis_, -spring_k_ * (q - zero_pos_));
-  if (fc_ > 0) ctx.apply_axis_friction(axis_, fc_);
+  const double bv = friction(ctx, friction_bv_in_, "friction_bv");
+  const double fc = friction(ctx, friction_fc_in_, "friction_fc");
+  const double k = ctx.input(spring_k_in_), zero = ctx.input(spring_zero_in_);
+  if (!std::isfinite(k) || !std::isfinite(zero))
+    throw Error(ErrorKind::runtime, "input '" + prefix_ +
+                                        (std::isfinite(k) ? "spring_zeropos" : "spring_k") +
+                                        "' is not finite");
+  if (bv > 0) ctx.apply_axis_drive(axis_, -bv * w, bv);
+  if (k != 0) ctx.apply_axis_force(axis_, -k * (q - zero));
+  if (fc > 0) ctx.apply_axis_friction(axis_, fc);
 
   ctx.publish(voltage_, v);
   ctx.publish(current_, i);
@@ -156,6 +173,15 @@ void DcMotor::update(StepContext& ctx) {
   ctx.publish(motor_torque_, motor_torque);
   ctx.publish(power_, power);
   ctx.publish(energy_sig_, energy);
+  ctx.publish(drawn_sig_, drawn);
+}
+
+double DcMotor::friction(const StepContext& ctx, InputHandle h, const char* name) const {
+  const double v = ctx.input(h);
+  if (std::isfinite(v) && v >= 0) return v;
+  char value[32];
+  std::snprintf(value, sizeof value, "%.17g", v);
+  throw Error(ErrorKind::runtime, "input '" + prefix_ + name + "' = " + value + ": must be >= 0");
 }
 
 }  // namespace s2sim::drive_train

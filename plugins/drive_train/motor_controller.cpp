@@ -13,7 +13,14 @@
 namespace s2sim::drive_train {
 
 namespace {
-enum : int { kIntegral = 0, kPrevious = 1, kPrimed = 2, kWasActive = 3, kSize = 4 };
+enum : int {
+  kIntegral = 0,
+  kPrevious = 1,
+  kPrimed = 2,
+  kWasActive = 3,
+  kGains = 4,  // kp, ki, kd, kf, mode as last used
+  kSize = 9
+};
 }
 
 void MotorController::configure(ConfigureContext& ctx) {
@@ -63,6 +70,12 @@ void MotorController::configure(ConfigureContext& ctx) {
   motor_active_ = ctx.declare_input_at(at + "motor_active", "1", motor_active ? 1.0 : 0.0);
   const char* error_unit =
       mode_ == Mode::pid_speed ? (linear ? "m/s" : "rad/s") : (linear ? "m" : "rad");
+  kp_in_ = ctx.declare_input_at(at + "controller_kp", "1", kp_);
+  ki_in_ = ctx.declare_input_at(at + "controller_ki", "1", ki_);
+  kd_in_ = ctx.declare_input_at(at + "controller_kd", "1", kd_);
+  kf_in_ = ctx.declare_input_at(at + "controller_kf", "1", kf_);
+  mode_in_ = ctx.declare_input_at(at + "controller_mode", "1", static_cast<double>(mode_));
+  prefix_ = at;
   error_ = ctx.declare_signal_at(at + "control_error", error_unit);
   state_ = ctx.declare_state("pid", kSize, 0.0);
 }
@@ -71,6 +84,9 @@ void MotorController::initialize(StepContext& ctx) {
   const Span<double> s = ctx.state(state_);
   for (int k = 0; k < kSize; ++k)
     s[k] = 0.0;
+  const double gains[] = {kp_, ki_, kd_, kf_, static_cast<double>(mode_)};
+  for (int k = 0; k < 5; ++k)
+    s[kGains + k] = gains[k];
 }
 
 void MotorController::update(StepContext& ctx) {
@@ -87,11 +103,31 @@ void MotorController::update(StepContext& ctx) {
     s[kIntegral] = s[kPrevious] = s[kPrimed] = 0.0;
     s[kWasActive] = 1.0;
   }
+  // The gains and the mode as the inputs hold them; a change restarts the integral (SimTwo's
+  // SetMotorControllerPars and SetMotorControllerMode clear its error sum).
+  const double now[] = {ctx.input(kp_in_), ctx.input(ki_in_), ctx.input(kd_in_), ctx.input(kf_in_),
+                        ctx.input(mode_in_)};
+  for (int k = 0; k < 4; ++k)
+    if (!std::isfinite(now[k]))
+      throw Error(ErrorKind::runtime,
+                  "input '" + prefix_ + "controller_k" + "pidf"[k] + "' is not finite");
+  if (now[4] != 0 && now[4] != 1 && now[4] != 2)
+    throw Error(ErrorKind::runtime, "input '" + prefix_ +
+                                        "controller_mode' must be 0 (pidspeed), 1 (pidposition) "
+                                        "or 2 (state)");
+  bool changed = false;
+  for (int k = 0; k < 5; ++k)
+    if (now[k] != s[kGains + k]) {
+      changed = true;
+      s[kGains + k] = now[k];
+    }
+  if (changed) s[kIntegral] = 0.0;
+  const Mode mode = static_cast<Mode>(static_cast<int>(now[4]));
   PidState pid{s[kIntegral], s[kPrevious], s[kPrimed] != 0.0};
-  const PidGains gains{kp_, ki_, kd_, kf_, vmax_};
+  const PidGains gains{now[0], now[1], now[2], now[3], vmax_};
   const double q = ctx.axis_position(axis_), w = ctx.axis_velocity(axis_);
   double u = 0, e = 0;
-  if (mode_ == Mode::pid_speed) {
+  if (mode == Mode::pid_speed) {
     const double ref = ctx.input(ref_speed_);
     e = ref - w;
     u = simtwo_law_ ? pid_simtwo(pid, gains, e, ref, ctx.tick_s())
@@ -100,7 +136,7 @@ void MotorController::update(StepContext& ctx) {
     const double ref = ctx.input(ref_pos_);
     e = ref - q;
     if (wrap_) e = wrap_pi(e);  // the shortest way round
-    if (mode_ == Mode::pid_position) {
+    if (mode == Mode::pid_position) {
       u = simtwo_law_ ? pid_simtwo(pid, gains, e, ref, ctx.tick_s())
                       : pid_textbook(pid, gains, e, ref, ctx.period_s());
     } else {

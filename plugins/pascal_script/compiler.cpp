@@ -16,8 +16,6 @@
 
 namespace s2sim::pascal {
 
-extern const char* const kSupportUnitSource;  // support_unit_source.cpp (generated)
-
 namespace {
 
 std::string read_file(const std::filesystem::path& p) {
@@ -89,21 +87,28 @@ CompilerSettings CompilerSettings::from_environment() {
   return s;
 }
 
-std::string support_unit_text() {
+std::vector<std::pair<std::string, std::string>> support_units() {
   std::string ids = "const\n";
   for (int i = 0; i < static_cast<int>(HostFn::count); ++i)
     ids += "  h" + std::string(kHostFnNames[i]) + " = " + std::to_string(i) + ";\n";
-  std::string unit = kSupportUnitSource;
-  const std::string mark = "{S2SIM_HOST_IDS}";
-  unit.replace(unit.find(mark), mark.size(), ids);
-  return unit;
+  std::vector<std::pair<std::string, std::string>> units;
+  for (int u = 0; u < kSupportUnitCount; ++u) {
+    std::string text = kSupportUnits[u].text;
+    const std::string mark = "{S2SIM_HOST_IDS}";
+    if (const auto at = text.find(mark); at != std::string::npos)
+      text.replace(at, mark.size(), ids);
+    units.emplace_back(kSupportUnits[u].file, std::move(text));
+  }
+  return units;
 }
 
 std::string wrapper_text(const std::filesystem::path& script, const std::string& script_text) {
   std::string w =
       "library s2script;\n"
       "{$mode delphi}{$H+}\n"
-      "uses SysUtils, Classes, Math, s2simtwo;\n"
+      "uses SysUtils, Classes, Math, Types, Variants, s2simtwo_types, s2simtwo_engine,\n"
+      "  s2simtwo_matrix, s2simtwo_helpers, s2simtwo_astar, s2simtwo_rendering, s2simtwo,\n"
+      "  s2simtwo_waypoints;\n"
       "{$I '" +
       script.filename().string() + "'}\n";
   if (!declares_initialize(script_text))  // SimTwo compiles it and fails at the first run
@@ -168,7 +173,10 @@ CompileResult compile_script(const std::filesystem::path& script,
   // The generated copy the wrapper includes: the user's text with its locals zeroed on the
   // begin lines (zero_locals.hpp), under the user's file name, so messages name it.
   const std::string text = zero_locals(read_file(script));
-  const std::string support = support_unit_text();
+  const auto units = support_units();
+  std::string support;
+  for (const auto& [file, unit] : units)
+    support += file + '\0' + unit + '\0';
   const std::string wrapper = wrapper_text(script, text);
   const std::string key = hash_hex(text + '\0' + support + '\0' + wrapper + '\0' + version);
   std::error_code ec;
@@ -188,13 +196,21 @@ CompileResult compile_script(const std::filesystem::path& script,
   }
   const std::filesystem::path build = tmpl;
   {
-    std::ofstream(build / "s2simtwo.pas", std::ios::binary) << support;
+    for (const auto& [file, unit] : units)
+      std::ofstream(build / file, std::ios::binary) << unit;
     std::ofstream(build / "s2script.pas", std::ios::binary) << wrapper;
     std::ofstream(build / script.filename(), std::ios::binary) << text;
   }
-  const std::string command = shell_quote(settings.compiler) + " -Mdelphi -g -O1 -vewn -Fu" +
-                              shell_quote(build.string()) + " -FE" + shell_quote(build.string()) +
-                              " " + shell_quote((build / "s2script.pas").string());
+  // In the build folder: fpc looks for units in its working folder first, and one of the same
+  // name where the user runs S2Sim (a stale s2simtwo.ppu) would be taken for ours.
+  // A compiler named by a relative path (S2SIM_FPC=./fpc) is the caller's, not the folder's.
+  const std::string compiler = settings.compiler.find('/') != std::string::npos
+                                   ? std::filesystem::absolute(settings.compiler).string()
+                                   : settings.compiler;
+  const std::string command = "cd " + shell_quote(build.string()) + " && " + shell_quote(compiler) +
+                              " -Mdelphi -g -O1 -vewn -Fu" + shell_quote(build.string()) + " -FE" +
+                              shell_quote(build.string()) + " " +
+                              shell_quote((build / "s2script.pas").string());
   const int status = run(command, result.output);
   const auto built = build / "libs2script.so";
   if (status == 0 && std::filesystem::exists(built)) {

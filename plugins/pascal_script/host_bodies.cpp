@@ -137,10 +137,90 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       ctx.request_move(b, pose);
       return 0;
     }
-    case HostFn::SetSolidColor:  // bytes 0..255, opaque
+    case HostFn::SetSolidColor: {  // bytes 0..255, opaque
       need(5);
-      ctx.set_body_color(solid(a[0], a[1]).body, a[2] / 255, a[3] / 255, a[4] / 255);
+      SolidRef& sd = solid(a[0], a[1]);
+      for (int k = 0; k < 3; ++k)
+        sd.look.rgba[k] = a[2 + k] / 255;
+      sd.look.rgba[3] = 1;
+      ctx.set_body_color(sd.body, a[2] / 255, a[3] / 255, a[4] / 255);
       return 0;
+    }
+    case HostFn::GetSolidColor: {
+      need(2);
+      numbers_.clear();
+      for (double v : solid(a[0], a[1]).look.rgba)
+        numbers_.push_back(std::round(v * 255));
+      return 0;
+    }
+    case HostFn::GetSolidSize:
+      need(2);
+      return point(solid(a[0], a[1]).look.size);
+    case HostFn::GetThingSize:
+      need(1);
+      return point(thing(a[0]).look.size);
+    case HostFn::GetSolidCenterOfMass:
+      need(2);
+      return point(solid(a[0], a[1]).look.com);
+    case HostFn::GetRobotCenterOfMass: {
+      // The solids' masses at their centres of mass, in the world.
+      need(1);
+      Vec3 sum{0, 0, 0};
+      double mass = 0;
+      for (const SolidRef& sd : robot(a[0]).solids) {
+        sum = sum + sd.mass_kg * (pose_of(sd.body) * sd.look.com);
+        mass += sd.mass_kg;
+      }
+      return point(mass > 0 ? (1 / mass) * sum : sum);
+    }
+    case HostFn::GetShellPos:
+    case HostFn::GetShellColor: {
+      need(2);
+      const RobotRef& rb = robot(a[0]);
+      if (a[1] < 0 || a[1] >= static_cast<double>(rb.shells.size())) fail(index_error(a[1]));
+      const RobotRef::Shell& shell = rb.shells[static_cast<std::size_t>(a[1])];
+      if (fn == HostFn::GetShellPos) return point(pose_of(shell.body) * shell.position);
+      numbers_.clear();
+      for (double v : shell.rgba)
+        numbers_.push_back(std::round(v * 255));
+      return 0;
+    }
+    case HostFn::SetBeltSpeed: {  // the belt's surface speed along its +X, the input belt_speed
+      need(3);
+      const SolidRef& sd = solid(a[0], a[1]);
+      if (sd.belt.index < 0) fail("SetBeltSpeed: solid '" + sd.id + "' is not a belt");
+      ctx.set_input(sd.belt, a[2]);
+      return 0;
+    }
+    case HostFn::GetBeltSpeed: {
+      need(2);
+      const SolidRef& sd = solid(a[0], a[1]);
+      return sd.belt.index < 0 ? 0 : ctx.input(sd.belt);
+    }
+    case HostFn::GetSolidTag:
+      need(2);
+      text_result_ = solid(a[0], a[1]).tag;
+      return 0;
+    case HostFn::SetSolidTag:
+      need(2);
+      solid(a[0], a[1]).tag = s;
+      return 0;
+    case HostFn::GetObstacleColor:
+    case HostFn::GetObstacleRotMat: {
+      need(1);
+      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
+      const ObstacleRef& ob = obstacles_[static_cast<std::size_t>(a[0])];
+      numbers_.clear();
+      if (fn == HostFn::GetObstacleColor) {
+        for (double v : ob.rgba)
+          numbers_.push_back(std::round(v * 255));
+        return 0;
+      }
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          numbers_.push_back(ob.rotation.m[r][c]);
+      return 3 * 65536 + 3;
+    }
     case HostFn::SetShellTag: {
       need(2);
       RobotRef& rb = robot(a[0]);
@@ -172,14 +252,106 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       need(1);
       const ThingRef& th = thing(a[0]);
       numbers_.clear();
-      for (double v : th.rgba)
+      for (double v : th.look.rgba)
         numbers_.push_back(std::round(v * 255));
       return 0;
     }
     case HostFn::GetObstaclePos:
       need(1);
       if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      return point(obstacles_[static_cast<std::size_t>(a[0])]);
+      return point(obstacles_[static_cast<std::size_t>(a[0])].position);
+    case HostFn::GetSolidAngularVel:
+      need(2);
+      return point(ctx.body_twist(solid(a[0], a[1]).body).angular_rad_s);
+    case HostFn::GetSolidMass:
+      need(2);
+      return solid(a[0], a[1]).mass_kg;
+    case HostFn::SetSolidForce: {
+      // For this tick, at the body frame origin (ODE's force of the next step, at the centre
+      // of mass: the same point without massive shells).
+      need(5);
+      const BodyHandle b = solid(a[0], a[1]).body;
+      ctx.apply_force(b, Vec3{a[2], a[3], a[4]}, pose_of(b).position);
+      return 0;
+    }
+    case HostFn::SetThingColor: {  // SimTwo ignores the part index c
+      need(5);
+      ThingRef& th = thing(a[0]);
+      for (int k = 0; k < 3; ++k)
+        th.look.rgba[k] = a[2 + k] / 255;
+      th.look.rgba[3] = 1;
+      ctx.set_body_color(th.body, th.look.rgba[0], th.look.rgba[1], th.look.rgba[2]);
+      return 0;
+    }
+    case HostFn::GetThingRotMat: {
+      need(1);
+      const Mat3& R = pose_of(thing(a[0]).body).rotation;
+      numbers_.clear();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+          numbers_.push_back(R.m[r][c]);
+      return 3 * 65536 + 3;
+    }
+    case HostFn::SetThingRotationMat: {
+      need(3);
+      const BodyHandle b = thing(a[0]).body;
+      if (a[1] < 3 || a[2] < 3 || n < 3 + static_cast<int>(a[1] * a[2]))
+        fail("Invalid (row,col) value: SetThingRotationMat needs a 3x3 matrix");
+      const int cols = static_cast<int>(a[2]);
+      Mat3 rotation;
+      for (int r = 0; r < 3; ++r) {
+        require_finite("SetThingRotationMat", a, 3 + r * cols, 3);
+        for (int c = 0; c < 3; ++c)
+          rotation.m[r][c] = a[3 + r * cols + c];
+      }
+      if (determinant(rotation) < 0.1)
+        fail("SetThingRotationMat: the matrix is not a rotation (determinant " +
+             number_text(determinant(rotation)) + ")");
+      Pose& pose = move_of(b);
+      pose.rotation = rotation;
+      ctx.request_move(b, pose);
+      return 0;
+    }
+    case HostFn::GetThingAngularVel:
+      need(1);
+      return point(ctx.body_twist(thing(a[0]).body).angular_rad_s);
+    case HostFn::GetThingSpeed:
+      need(1);
+      return point(ctx.body_twist(thing(a[0]).body).linear_m_s);
+    case HostFn::SetThingSpeed:
+    case HostFn::SetThingLinearVel:
+    case HostFn::SetThingAngularVel: {
+      need(4);
+      const BodyHandle b = thing(a[0]).body;
+      Twist& twist = velocity_of(b);
+      (fn == HostFn::SetThingAngularVel ? twist.angular_rad_s : twist.linear_m_s) =
+          Vec3{a[1], a[2], a[3]};
+      ctx.request_velocity(b, twist);
+      return 0;
+    }
+    case HostFn::SetThingForce:
+    case HostFn::SetThingForceAtRelPos:
+    case HostFn::SetThingRelForce:
+    case HostFn::SetThingRelForceAtRelPos: {
+      // ODE's dBodyAdd(Rel)Force(AtRelPos): a force in the world (Rel: the body's) frame, at the
+      // body origin or at a point given in the body's frame; for this tick.
+      const bool at_point =
+          fn == HostFn::SetThingForceAtRelPos || fn == HostFn::SetThingRelForceAtRelPos;
+      need(at_point ? 7 : 4);
+      const BodyHandle b = thing(a[0]).body;
+      const Pose& pose = pose_of(b);
+      Vec3 force{a[1], a[2], a[3]};
+      if (fn == HostFn::SetThingRelForce || fn == HostFn::SetThingRelForceAtRelPos)
+        force = pose.rotation * force;
+      const Vec3 at =
+          at_point ? pose.position + pose.rotation * Vec3{a[4], a[5], a[6]} : pose.position;
+      ctx.apply_force(b, force, at);
+      return 0;
+    }
+    case HostFn::GetObstacleIndex:
+      for (std::size_t i = 0; i < obstacles_.size(); ++i)
+        if (obstacles_[i].id == s) return static_cast<double>(i);
+      return -1;
     case HostFn::AddOBstacleBox:
     case HostFn::ClearObstacles:
       not_provided(fn, "obstacles are fixed at load");

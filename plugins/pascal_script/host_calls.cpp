@@ -14,7 +14,7 @@ void ScriptController::fail(const std::string& message) {
 }
 
 void ScriptController::not_provided(HostFn fn, const char* why) {
-  fail(std::string(kHostFnNames[static_cast<int>(fn)]) + " is not provided by S2Sim" +
+  fail(std::string(kHostFnNames[static_cast<int>(fn)]) + " is not yet available in S2Sim" +
        (why && *why ? std::string(": ") + why : std::string()));
 }
 
@@ -136,6 +136,7 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
   // matrix may carry unused cells: past their indices they check their own.
   const int checked = fn == HostFn::SetMotorPars          ? std::min(n, 2)
                       : fn == HostFn::SetSolidRotationMat ? std::min(n, 4)
+                      : fn == HostFn::SetThingRotationMat ? std::min(n, 3)
                                                           : n;
   for (int k = 0; k < checked; ++k)
     if (!std::isfinite(a[k]))
@@ -164,6 +165,36 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     }
     case HostFn::ScriptPeriod:
       return period_s_;
+    case HostFn::AxisCount:  // for the support units (joint waypoints)
+      need(1);
+      return static_cast<double>(robot(a[0]).axes.size());
+    case HostFn::AxisJoint: {
+      need(2);
+      const AxisRef& ax = axis(a[0], a[1]);
+      text_result_ = ax.joint;
+      return ax.path.size() > 2 && ax.path.compare(ax.path.size() - 2, 2, ":2") == 0 ? 1 : 0;
+    }
+    case HostFn::ScriptFolder:
+      text_result_ = std::filesystem::absolute(script_).parent_path().string();
+      return 0;
+    case HostFn::getModbusCoil:
+      need(1);
+      return modbus_.coil(static_cast<int>(a[0])) ? 1 : 0;
+    case HostFn::getModbusInput:
+      need(1);
+      return modbus_.input(static_cast<int>(a[0])) ? 1 : 0;
+    case HostFn::setModbusCoil:
+      need(2);
+      modbus_.set_coil(static_cast<int>(a[0]), a[1] != 0);
+      return 0;
+    case HostFn::setModbusInput:
+      need(2);
+      modbus_.set_input(static_cast<int>(a[0]), a[1] != 0);
+      return 0;
+    case HostFn::CloseSimTwo:  // SimTwo closes once the call returns; the runner stops there
+      ctx.publish(sig_close_, 1);
+      ctx.log_line("CloseSimTwo: the script ends the run");
+      return 0;
     case HostFn::GetSceneConstant: {
       need(1);
       for (const auto& [name, value] : constants_) {
@@ -406,6 +437,17 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       need(1);
       sensor_values(global_sensor(a[0]));
       return static_cast<double>(numbers_.size()) * 65536 + 1;
+    case HostFn::SetGlobalSensorVin: {
+      need(2);
+      SensorRef& sn = global_sensor(a[0]);
+      if (sn.vin.index >= 0) ctx.set_input(sn.vin, a[1]);
+      return 0;
+    }
+    case HostFn::GetAxisUIPower: {
+      need(2);
+      const AxisRef& ax = motor(drive(a[0], a[1]));
+      return ctx.signal(ax.power);
+    }
     case HostFn::SetRobotPos:
     case HostFn::GetRobotX:
     case HostFn::GetRobotY:
@@ -430,34 +472,62 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetObstaclePos:
     case HostFn::AddOBstacleBox:
     case HostFn::ClearObstacles:
+    case HostFn::GetSolidAngularVel:
+    case HostFn::GetSolidMass:
+    case HostFn::SetSolidForce:
+    case HostFn::SetThingColor:
+    case HostFn::GetThingRotMat:
+    case HostFn::SetThingRotationMat:
+    case HostFn::GetThingAngularVel:
+    case HostFn::GetThingSpeed:
+    case HostFn::SetThingSpeed:
+    case HostFn::SetThingLinearVel:
+    case HostFn::SetThingAngularVel:
+    case HostFn::SetThingForce:
+    case HostFn::SetThingForceAtRelPos:
+    case HostFn::SetThingRelForce:
+    case HostFn::SetThingRelForceAtRelPos:
+    case HostFn::GetObstacleIndex:
+    case HostFn::GetSolidColor:
+    case HostFn::GetSolidSize:
+    case HostFn::GetThingSize:
+    case HostFn::GetSolidCenterOfMass:
+    case HostFn::GetRobotCenterOfMass:
+    case HostFn::GetSolidTag:
+    case HostFn::SetSolidTag:
+    case HostFn::GetObstacleColor:
+    case HostFn::GetObstacleRotMat:
+    case HostFn::SetBeltSpeed:
+    case HostFn::GetBeltSpeed:
+    case HostFn::GetShellPos:
+    case HostFn::GetShellColor:
       return call_bodies(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
-      need(2);
-      (void)chart_series(a[0], 0);
-      if (a[1] < 0 || a[1] > kMaxChartSeries) fail(index_error(a[1]));
-      return 0;  // series exist once they have points
     case HostFn::ChartSeriesSetColor:
-      need(3);
-      (void)chart_series(a[0], a[1]);
-      return 0;  // the viewer colours series itself (docs/scripting.md)
     case HostFn::ChartSeriesClear:
-      need(2);
-      ctx.clear_xy_series(chart_series(a[0], a[1]));
-      return 0;
     case HostFn::ChartSeriesAddXY:
-      need(4);
-      ctx.add_xy_point(chart_series(a[0], a[1]), a[2], a[3]);
-      return 0;
+    case HostFn::ChartSetAxisMinMax:
+    case HostFn::ChartSeriesGetCount:
+    case HostFn::ChartSeriesCreate:
+    case HostFn::ChartSeriesDeleteAll:
     case HostFn::AddTrailNode:
-      need(4);
-      if (a[0] < 0 || a[0] > kMaxTrails) fail(index_error(a[0]));
-      ctx.add_trail_point(static_cast<int>(a[0]), Vec3{a[1], a[2], a[3]});
-      return 0;
     case HostFn::ClearTrail:
-      need(1);
-      if (a[0] < 0 || a[0] > kMaxTrails) fail(index_error(a[0]));
-      ctx.clear_trail(static_cast<int>(a[0]));
-      return 0;
+    case HostFn::DelTrailNode:
+    case HostFn::SetTrailColor:
+    case HostFn::SetRCBackColor:
+    case HostFn::ReadUDPPacket:
+    case HostFn::GetUDPPacketCount:
+      return call_annotations(fn, a, n);
+    case HostFn::SetAxisSpring:
+    case HostFn::SetFrictionDef:
+    case HostFn::GetFrictionDef:
+    case HostFn::SetMotorControllerPars:
+    case HostFn::GetMotorControllerPars:
+    case HostFn::SetMotorControllerMode:
+    case HostFn::GetMotorControllerMode:
+    case HostFn::GetAxisEnergy:
+    case HostFn::ResetAxisEnergy:
+      return call_axes(fn, a, n, s);
     case HostFn::WriteUDPData:
       need(1);
       udp_.send(s, static_cast<int>(a[0]), s2);

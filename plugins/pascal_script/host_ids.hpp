@@ -81,7 +81,64 @@
   X(ReadUDPData) \
   X(WriteComPort) \
   X(ReadComPort) \
-  X(HUDText)
+  X(HUDText) \
+  X(GetSolidAngularVel) \
+  X(GetSolidMass) \
+  X(SetSolidForce) \
+  X(SetThingColor) \
+  X(GetThingRotMat) \
+  X(SetThingRotationMat) \
+  X(GetThingAngularVel) \
+  X(GetThingSpeed) \
+  X(SetThingSpeed) \
+  X(SetThingLinearVel) \
+  X(SetThingAngularVel) \
+  X(SetThingForce) \
+  X(SetThingForceAtRelPos) \
+  X(SetThingRelForce) \
+  X(SetThingRelForceAtRelPos) \
+  X(GetObstacleIndex) \
+  X(SetGlobalSensorVin) \
+  X(GetAxisUIPower) \
+  X(SetTrailColor) \
+  X(DelTrailNode) \
+  X(ChartSetAxisMinMax) \
+  X(ChartSeriesGetCount) \
+  X(ChartSeriesCreate) \
+  X(ChartSeriesDeleteAll) \
+  X(SetRCBackColor) \
+  X(ReadUDPPacket) \
+  X(GetUDPPacketCount) \
+  X(SetAxisSpring) \
+  X(SetFrictionDef) \
+  X(GetFrictionDef) \
+  X(SetMotorControllerPars) \
+  X(GetMotorControllerPars) \
+  X(SetMotorControllerMode) \
+  X(GetMotorControllerMode) \
+  X(GetAxisEnergy) \
+  X(ResetAxisEnergy) \
+  X(CloseSimTwo) \
+  X(getModbusCoil) \
+  X(getModbusInput) \
+  X(setModbusCoil) \
+  X(setModbusInput) \
+  X(GetSolidColor) \
+  X(GetSolidSize) \
+  X(GetThingSize) \
+  X(GetSolidCenterOfMass) \
+  X(GetRobotCenterOfMass) \
+  X(GetSolidTag) \
+  X(SetSolidTag) \
+  X(GetObstacleColor) \
+  X(GetObstacleRotMat) \
+  X(AxisCount) \
+  X(AxisJoint) \
+  X(ScriptFolder) \
+  X(SetBeltSpeed) \
+  X(GetBeltSpeed) \
+  X(GetShellPos) \
+  X(GetShellColor)
 // clang-format on
 
 namespace s2sim::pascal {

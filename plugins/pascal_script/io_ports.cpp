@@ -36,16 +36,41 @@ void UdpPort::send(const std::string& ip, int port, const std::string& data) {
   (void)::sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
 }
 
-std::string UdpPort::receive() {
-  std::string all;
-  if (fd_ < 0 || bound_port_ == 0) return all;
+namespace {
+constexpr std::size_t kMaxPackets = 4096;
+}
+
+void UdpPort::poll() {
+  if (fd_ < 0 || bound_port_ == 0) return;
   char buf[65536];
   for (;;) {
     const ssize_t n = ::recv(fd_, buf, sizeof buf, 0);
     if (n < 0) break;
-    all.append(buf, static_cast<std::size_t>(n));
+    packets_.emplace_back(buf, static_cast<std::size_t>(n));
+    if (packets_.size() > kMaxPackets) packets_.pop_front();  // a script that never reads
   }
+}
+
+std::string UdpPort::receive() {
+  poll();
+  std::string all;
+  for (const auto& p : packets_)
+    all += p;
+  packets_.clear();
   return all;
+}
+
+std::string UdpPort::receive_packet() {
+  poll();
+  if (packets_.empty()) return {};
+  std::string p = std::move(packets_.front());
+  packets_.pop_front();
+  return p;
+}
+
+int UdpPort::packet_count() {
+  poll();
+  return static_cast<int>(packets_.size());
 }
 
 SerialPort::~SerialPort() {

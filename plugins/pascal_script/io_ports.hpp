@@ -6,6 +6,7 @@
 /// named by S2SIM_COM_PORT, raw 8N1; without one the port is closed, as in SimTwo: writes do
 /// nothing and reads return ''.
 
+#include <deque>
 #include <string>
 
 namespace s2sim::pascal {
@@ -16,13 +17,19 @@ class UdpPort {
   /// Binds to `port` on all interfaces; false (socket then send-only) when that fails.
   bool open(int port);
   void send(const std::string& ip, int port, const std::string& data);
-  /// All bytes received since the last call, datagrams concatenated.
+  /// All bytes received and not yet read, datagrams concatenated.
   std::string receive();
+  /// The oldest datagram not yet read ('' when none).
+  std::string receive_packet();
+  /// How many datagrams wait to be read.
+  int packet_count();
   int bound_port() const { return bound_port_; }
 
  private:
+  void poll();
   int fd_ = -1;
   int bound_port_ = 0;
+  std::deque<std::string> packets_;  // received, not yet read by the script
 };
 
 class SerialPort {

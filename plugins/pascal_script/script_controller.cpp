@@ -7,6 +7,18 @@
 
 namespace s2sim::pascal {
 
+namespace {
+Look read_look(const Params& p, const std::string& k) {
+  Look look;
+  const char* rgba[] = {"r", "g", "b", "a"};
+  for (int c = 0; c < 4; ++c)
+    look.rgba_loaded[c] = look.rgba[c] = p.number(k + rgba[c]);
+  look.size = {p.number(k + "size_x"), p.number(k + "size_y"), p.number(k + "size_z")};
+  look.com = {p.number(k + "com_x"), p.number(k + "com_y"), p.number(k + "com_z")};
+  return look;
+}
+}  // namespace
+
 void ScriptController::configure(ConfigureContext& ctx) {
   const Params& p = ctx.params();
   script_ = p.text("file");
@@ -30,7 +42,27 @@ void ScriptController::configure(ConfigureContext& ctx) {
     robot.yaw = p.number(k + "yaw");
     for (std::int64_t i = 0, n = p.integer(k + "solids"); i < n; ++i) {
       const std::string sk = k + "solid_" + std::to_string(i) + "_";
-      robot.solids.push_back({p.text(sk + "id"), ctx.body(p.text(sk + "body"))});
+      const BodyHandle body = ctx.body(p.text(sk + "body"));
+      robot.solids.push_back(
+          {p.text(sk + "id"), body, ctx.body_mass_kg(body), read_look(p, sk), {}, {}});
+      robot.solids.back().belt.index = -1;
+      if (p.boolean(sk + "belt", false)) {
+        try {
+          robot.solids.back().belt = ctx.input(p.text(sk + "body") + "/belt_speed");
+        } catch (const Error&) {
+          // a belt without a belt surface has no speed to set: SetBeltSpeed says so
+        }
+      }
+    }
+    for (std::int64_t i = 0, n = p.integer(k + "shells"); i < n; ++i) {
+      const std::string sk = k + "shell_" + std::to_string(i) + "_";
+      RobotRef::Shell shell;
+      shell.body = ctx.body(p.text(sk + "body"));
+      shell.position = {p.number(sk + "x"), p.number(sk + "y"), p.number(sk + "z")};
+      const char* rgba[] = {"r", "g", "b", "a"};
+      for (int c = 0; c < 4; ++c)
+        shell.rgba[c] = p.number(sk + rgba[c]);
+      robot.shells.push_back(shell);
     }
     for (std::int64_t i = 0, n = p.integer(k + "axes"); i < n; ++i) {
       AxisRef a;
@@ -50,6 +82,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
           a.encoder = ctx.published_signal(a.path + "/encoder");
           a.current = ctx.published_signal(a.path + "/current");
           a.voltage = ctx.published_signal(a.path + "/voltage");
+          a.power = ctx.published_signal(a.path + "/power");
           const char* motor_inputs[kMotorParCount] = {"motor_ri",     "motor_li",    "motor_ki",
                                                       "motor_vmax",   "motor_imax",  "gear_ratio",
                                                       "motor_simple", "motor_active"};
@@ -60,6 +93,18 @@ void ScriptController::configure(ConfigureContext& ctx) {
           for (std::size_t m = 0; m < a.motor.size(); ++m)
             a.motor[m] = ctx.declare_input_at(a.path + "/" + motor_inputs[m], motor_units[m], 0.0);
           a.has_motor = true;
+          a.spring_k =
+              ctx.declare_input_at(a.path + "/spring_k", a.linear ? "N/m" : "N*m/rad", 0.0);
+          a.spring_zeropos = ctx.declare_input_at(a.path + "/spring_zeropos", u, 0.0);
+          a.friction_bv =
+              ctx.declare_input_at(a.path + "/friction_bv", a.linear ? "N*s/m" : "N*m*s/rad", 0.0);
+          a.friction_fc =
+              ctx.declare_input_at(a.path + "/friction_fc", a.linear ? "N" : "N*m", 0.0);
+          const char* gains[] = {"controller_kp", "controller_ki", "controller_kd", "controller_kf",
+                                 "controller_mode"};
+          for (std::size_t g = 0; g < a.controller.size(); ++g)
+            a.controller[g] = ctx.declare_input_at(a.path + "/" + gains[g], "1", 0.0);
+          a.energy_drawn = ctx.published_signal(a.path + "/energy_drawn");
         } catch (const Error&) {
           // an axis without a drive train (loop-closing): GetAxisOdo/I/U raise if asked
         }
@@ -107,16 +152,21 @@ void ScriptController::configure(ConfigureContext& ctx) {
     ThingRef th;
     th.id = p.text(tk + "id");
     th.body = ctx.body(p.text(tk + "body"));
-    th.rgba[0] = p.number(tk + "r");
-    th.rgba[1] = p.number(tk + "g");
-    th.rgba[2] = p.number(tk + "b");
-    th.rgba[3] = p.number(tk + "a");
+    th.look = read_look(p, tk);
     things_.push_back(th);
   }
   for (std::int64_t o = 0, n = p.integer("obstacles"); o < n; ++o) {
     const std::string ok = "obstacle_" + std::to_string(o) + "_";
-    obstacle_ids_.push_back(p.text(ok + "id", ""));
-    obstacles_.push_back({p.number(ok + "x"), p.number(ok + "y"), p.number(ok + "z")});
+    ObstacleRef ob;
+    ob.id = p.text(ok + "id", "");
+    ob.position = {p.number(ok + "x"), p.number(ok + "y"), p.number(ok + "z")};
+    const char* rgba[] = {"r", "g", "b", "a"};
+    for (int c = 0; c < 4; ++c)
+      ob.rgba[c] = p.number(ok + rgba[c]);
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c)
+        ob.rotation.m[r][c] = p.number(ok + "rot_" + std::to_string(r) + std::to_string(c));
+    obstacles_.push_back(ob);
   }
   for (std::int64_t i = 0, n = p.integer("constants"); i < n; ++i)
     constants_.emplace_back(p.text("constant_" + std::to_string(i) + "_name"),
@@ -139,12 +189,13 @@ void ScriptController::configure(ConfigureContext& ctx) {
   for (int code : kKeyCodes)
     keys_.push_back(ctx.declare_input_at("keyboard/" + std::to_string(code), "1", 0.0));
 
-  std::size_t axis_count = 0;
-  for (const auto& r : robots_)
-    axis_count += r.axes.size();
-  state_ = ctx.declare_state("script", static_cast<int>(3 + axis_count), 0.0);
+  for (auto& r : robots_)
+    for (auto& a : r.axes)
+      a.index = static_cast<int>(axis_count_++);
+  state_ = ctx.declare_state("script", static_cast<int>(3 + 2 * axis_count_), 0.0);
   sig_error_ = ctx.declare_signal("error", "1");
   sig_calls_ = ctx.declare_signal("calls", "1");
+  sig_close_ = ctx.declare_signal("close", "1");
   // SimTwo's Stop and Run (the viewer's Script window): 0 stops the calls; a new non-zero
   // value starts the script afresh (fresh globals, Initialize at the next script tick).
   run_input_ = ctx.declare_input("running", "1", 1.0);
@@ -188,6 +239,12 @@ void ScriptController::configure(ConfigureContext& ctx) {
     if (!serial_.open(com, why))
       ctx.warn("cannot open the serial port " + std::string(com) + ": " + why);
   }
+  if (const char* port = std::getenv("S2SIM_MODBUS_PORT"); port && *port) {
+    std::string why;
+    if (!modbus_.open(std::atoi(port), why))
+      ctx.warn("cannot listen on Modbus/TCP port " + std::string(port) + ": " + why +
+               "; the Modbus routines work on the script's own tables only");
+  }
   numbers_.reserve(kMaxNumbers);
 }
 
@@ -210,6 +267,17 @@ void ScriptController::initialize(StepContext& ctx) {
     ctx.set_input(sheet_inputs_[i], sheet_initial_values_[i]);
   output_.clear();
   hud_.clear();
+  trails_.assign(kMaxTrails + 1, {});
+  // The kernel's reset restores the scene's colours and the script's tags start empty.
+  auto restore = [](Look& look) { std::copy(look.rgba_loaded, look.rgba_loaded + 4, look.rgba); };
+  for (auto& r : robots_)
+    for (auto& sd : r.solids) {
+      restore(sd.look);
+      sd.tag.clear();
+    }
+  for (auto& th : things_)
+    restore(th.look);
+  chart_series_count_.assign(kMaxCharts, 0);
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
   if (available_) {
@@ -221,6 +289,7 @@ void ScriptController::initialize(StepContext& ctx) {
   }
   ctx.publish(sig_error_, 0);
   ctx.publish(sig_calls_, 0);
+  ctx.publish(sig_close_, 0);
 }
 
 void ScriptController::update(StepContext& ctx) {
@@ -255,6 +324,7 @@ void ScriptController::update(StepContext& ctx) {
   }
   if (run == 0) return;   // stopped (SimTwo's Stop)
   if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
+  modbus_.serve();        // the clients' requests of the last period, before the script reads
   ctx_ = &ctx;
   std::string error;
   bool ok = true;

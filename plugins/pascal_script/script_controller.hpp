@@ -6,6 +6,7 @@
 #include "compiler.hpp"
 #include "host_ids.hpp"
 #include "io_ports.hpp"
+#include "modbus_server.hpp"
 #include "script_library.hpp"
 #include "sheet.hpp"
 
@@ -41,7 +42,9 @@ enum MotorPar : int {
 };
 inline constexpr const char* kMotorParNames[kMotorParCount] = {
     "Ri", "Li", "Ki", "Vmax", "Imax", "GearRatio", "simple", "active"};
-inline constexpr int kMaxChartSeries = 100;  // a host function's numeric result (ranger rays...)
+inline constexpr int kMaxChartSeries = 100;
+/// The nodes a trail keeps (the viewer's too).
+inline constexpr std::size_t kMaxTrailNodes = 10000;
 
 /// Virtual-key codes the viewer can press: the input `keyboard/<code>` is 1 while held.
 inline constexpr int kKeyCodes[] = {9, 13, 27, 32, 33, 34, 37, 38, 39, 40};
@@ -57,12 +60,18 @@ struct AxisRef {
   AxisHandle axis;
   bool linear = false;
   InputHandle ref_voltage, ref_speed, ref_pos, ref_torque, controller_active;
-  SignalHandle encoder{-1}, current{-1}, voltage{-1};
+  SignalHandle encoder{-1}, current{-1}, voltage{-1}, power{-1};  // power: V·I (GetAxisUIPower)
   SignalReader torque;  // the kernel's axis torque (GetAxisTorque)
   /// The DC motor's run-time parameters (TMotorPars order: Ri, Li, Ki, Vmax, Imax,
   /// GearRatio, simple, active); index -1 without a motor.
   std::array<InputHandle, 8> motor{};
   bool has_motor = false;
+  /// The drive train's spring, friction and controller inputs (SetAxisSpring, SetFrictionDef,
+  /// SetMotorControllerPars/Mode) and its energy meter (GetAxisEnergy).
+  InputHandle spring_k, spring_zeropos, friction_bv, friction_fc;
+  std::array<InputHandle, 5> controller{};  // kp, ki, kd, kf, mode
+  SignalHandle energy_drawn{-1};
+  int index = 0;  // among every robot's axes (the script state's per-axis slots)
 };
 
 struct SensorRef {
@@ -72,9 +81,21 @@ struct SensorRef {
   InputHandle vin{-1};
 };
 
+/// A solid's or thing's look and mass as loaded (GetSolidColor, GetSolidSize, GetSolidMass...).
+struct Look {
+  double rgba_loaded[4] = {0, 0, 0, 0};
+  double rgba[4] = {0, 0, 0, 0};  // as the script last set it (a reset restores the loaded)
+  Vec3 size;                      // SimTwo's GetSize: box edges; cylinder r, r, l; sphere r, r, r
+  Vec3 com;                       // centre of mass in the body frame
+};
+
 struct SolidRef {
   std::string id;
   BodyHandle body;
+  double mass_kg = 0;  // as loaded (GetSolidMass)
+  Look look;
+  std::string tag;     // SetSolidTag's
+  InputHandle belt{};  // a conveyor belt's surface speed (index -1 for other solids)
 };
 
 struct RobotRef {
@@ -87,11 +108,24 @@ struct RobotRef {
   std::vector<AxisRef> axes;
   std::vector<int> sensors;  // indices into global sensors
   std::vector<std::string> shell_tags;
+  struct Shell {
+    BodyHandle body;
+    Vec3 position;  // in the body frame
+    double rgba[4] = {0, 0, 0, 0};
+  };
+  std::vector<Shell> shells;  // in SimTwo's order
 };
 
 struct ThingRef {
   std::string id;
   BodyHandle body;
+  Look look;
+};
+
+struct ObstacleRef {
+  std::string id;
+  Vec3 position;
+  Mat3 rotation;
   double rgba[4] = {0, 0, 0, 0};
 };
 
@@ -117,6 +151,10 @@ class ScriptController final : public Component {
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
   /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
+  /// Springs, friction, controller gains and modes, the energy meter (host_axes.cpp).
+  double call_axes(HostFn fn, const double* a, int n, const std::string& s);
+  /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).
+  double call_annotations(HostFn fn, const double* a, int n);
   /// A script error naming `fn` when it got fewer than `want` arguments.
   void require_arguments(HostFn fn, int have, int want);
   [[noreturn]] void fail(const std::string& message);
@@ -145,8 +183,7 @@ class ScriptController final : public Component {
   std::vector<RobotRef> robots_;
   std::vector<SensorRef> sensors_;  // SimTwo's global list
   std::vector<ThingRef> things_;
-  std::vector<Vec3> obstacles_;
-  std::vector<std::string> obstacle_ids_;
+  std::vector<ObstacleRef> obstacles_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;
   std::vector<double> sheet_initial_values_;  // the inputs' values at reset
@@ -155,10 +192,14 @@ class ScriptController final : public Component {
   Sheet sheet_;
   Sheet sheet_initial_;
   std::vector<std::pair<std::string, InputHandle>> sheet_input_names_;
-  StateHandle state_;  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count
+  // [0] started, [1] stopped, [2] calls, then per axis the last encoder count, then per axis
+  // the energy meter's zero (ResetAxisEnergy)
+  StateHandle state_;
+  std::size_t axis_count_ = 0;
   // No "compiled" signal: whether this load found the library in the cache is not part of
   // the run, and a signal of it made the logs of a cold and a warm run differ.
   SignalHandle sig_error_, sig_calls_;
+  SignalHandle sig_close_;  // 1 once the script called CloseSimTwo (s2sim-run stops there)
   InputHandle run_input_;
   double last_run_value_ = 1;  // the `running` input as last seen (Run restarts on a change)
   bool loaded_poses_ = false;
@@ -178,9 +219,14 @@ class ScriptController final : public Component {
   Pose& move_of(BodyHandle b);
   Twist& velocity_of(BodyHandle b);
   std::deque<std::string> output_;  // WriteLn, the last 100 lines
+  // The script's trails as it built them (DelTrailNode redraws a trail less its oldest node)
+  // and its charts' series counts (ChartSeriesCreate, ChartSeriesGetCount).
+  std::vector<std::deque<Vec3>> trails_;
+  std::vector<int> chart_series_count_;
   std::string hud_;
   UdpPort udp_;
   SerialPort serial_;
+  ModbusServer modbus_;
   bool warned_unavailable_ = false;
 };
 

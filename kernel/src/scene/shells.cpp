@@ -89,6 +89,8 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
       const Mat3& R = g.pose.rotation;
       add_rigid_part(b, mass, prim.pos, R * uniform_inertia(g.shape, mass) * R.transposed());
     }
+    scene.robots[static_cast<std::size_t>(robot)].shells.emplace_back(
+        body, static_cast<int>(b.geoms.size()));
     b.geoms.push_back(std::move(g));
   }
 }

@@ -41,6 +41,36 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   auto set = [&](std::string key, std::string value) {
     el.attributes.emplace_back(std::move(key), std::move(value));
   };
+  // A solid's or thing's colour (its own primitive's), size as SimTwo's GetSize gives it (a box
+  // its edges; a cylinder r, r, length; a sphere r, r, r), mass and centre of mass (body frame).
+  auto solid_look = [&](const std::string& k, const scene::Body& b) {
+    const scene::Color c = b.geoms.empty() ? scene::Color{} : b.geoms[0].visual.color;
+    const char* rgba[] = {"r", "g", "b", "a"};
+    const double v[] = {c.r, c.g, c.b, c.a};
+    for (int i = 0; i < 4; ++i)
+      set(k + rgba[i], exact_decimal(v[i]));
+    Vec3 size;
+    if (!b.geoms.empty()) {
+      const scene::Shape& shape = b.geoms[0].shape;
+      switch (shape.type) {
+        case scene::ShapeType::box:
+          size = shape.size_m;
+          break;
+        case scene::ShapeType::cylinder:
+          size = {shape.radius_m, shape.radius_m, shape.length_m};
+          break;
+        case scene::ShapeType::sphere:
+          size = {shape.radius_m, shape.radius_m, shape.radius_m};
+          break;
+      }
+    }
+    set(k + "size_x", exact_decimal(size.x));
+    set(k + "size_y", exact_decimal(size.y));
+    set(k + "size_z", exact_decimal(size.z));
+    set(k + "com_x", exact_decimal(b.com_m.x));
+    set(k + "com_y", exact_decimal(b.com_m.y));
+    set(k + "com_z", exact_decimal(b.com_m.z));
+  };
   set("file", file.string());
   set("found_by", found_by);
   set("period_s", exact_decimal(scene.settings.control_period_s));
@@ -67,6 +97,24 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       const scene::Body& b = scene.bodies[static_cast<std::size_t>(robot.bodies[i])];
       set(k + "solid_" + std::to_string(i) + "_id", b.id);
       set(k + "solid_" + std::to_string(i) + "_body", sim::solid_path(rp, b.id));
+      solid_look(k + "solid_" + std::to_string(i) + "_", b);
+      if (b.kind == scene::SolidKind::belt) set(k + "solid_" + std::to_string(i) + "_belt", "1");
+    }
+    // The shells (GetShellPos, GetShellColor): their solid, pose in its frame, colour.
+    set(k + "shells", std::to_string(robot.shells.size()));
+    for (std::size_t i = 0; i < robot.shells.size(); ++i) {
+      const auto [body, geom] = robot.shells[i];
+      const scene::Body& b = scene.bodies[static_cast<std::size_t>(body)];
+      const scene::Geom& g = b.geoms[static_cast<std::size_t>(geom)];
+      const std::string sk = k + "shell_" + std::to_string(i) + "_";
+      set(sk + "body", sim::solid_path(rp, b.id));
+      set(sk + "x", exact_decimal(g.pose.position.x));
+      set(sk + "y", exact_decimal(g.pose.position.y));
+      set(sk + "z", exact_decimal(g.pose.position.z));
+      const char* rgba[] = {"r", "g", "b", "a"};
+      const double c[] = {g.visual.color.r, g.visual.color.g, g.visual.color.b, g.visual.color.a};
+      for (int j = 0; j < 4; ++j)
+        set(sk + rgba[j], exact_decimal(c[j]));
     }
     // SimTwo's axis list: one per joint axis in joint order, Fixed and Ball joints included,
     // a Universal joint's axis 2 before its axis 1 (quirk of §2).
@@ -116,6 +164,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
     set(tk + "g", exact_decimal(c.g));
     set(tk + "b", exact_decimal(c.b));
     set(tk + "a", exact_decimal(c.a));
+    solid_look(tk, b);
   }
   set("obstacles", std::to_string(scene.obstacles.size()));
   for (std::size_t o = 0; o < scene.obstacles.size(); ++o) {
@@ -125,6 +174,14 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
     set(ok + "x", exact_decimal(ob.pose.position.x));
     set(ok + "y", exact_decimal(ob.pose.position.y));
     set(ok + "z", exact_decimal(ob.pose.position.z));
+    const char* rgba[] = {"r", "g", "b", "a"};
+    const double c[] = {ob.visual.color.r, ob.visual.color.g, ob.visual.color.b, ob.visual.color.a};
+    for (int k = 0; k < 4; ++k)
+      set(ok + rgba[k], exact_decimal(c[k]));
+    for (int r = 0; r < 3; ++r)
+      for (int col = 0; col < 3; ++col)
+        set(ok + "rot_" + std::to_string(r) + std::to_string(col),
+            exact_decimal(ob.pose.rotation.m[r][col]));
   }
   // The file's cells, then the caller's (later ones win in the plugin's sheet).
   std::vector<scene::SheetCell> cells = scene.sheet;

@@ -1,77 +1,21 @@
-{ S2Sim's SimTwo script support unit (written for S2Sim; no SimTwo source). It gives a SimTwo
-  `control.pas`, compiled unchanged with Free Pascal -Mdelphi, what SimTwo's Pascal Script
-  engine gives it: SimTwo's types and constants, its pure helpers with SimTwo's definitions,
-  the Matrix API, and the host functions, each forwarding to the C++ host through one table
-  filled at load (plugins/pascal_script/host_api.cpp). It comes last in the wrapper's `uses`,
-  so its WriteLn, Sqr, Sign, Format, TStringList... shadow the RTL's (docs/scripting.md). }
+{ S2Sim's SimTwo script host unit (written for S2Sim; no SimTwo source). It gives a SimTwo
+  `control.pas`, compiled unchanged with Free Pascal -Mdelphi, the host functions, each
+  forwarding to the C++ host through one table filled at load (plugins/pascal_script/
+  host_calls.cpp), SimTwo's TStringList, Time and HUDStrings. It comes after the RTL in the
+  wrapper's `uses`, so its names shadow the RTL's (docs/scripting.md); the other support units
+  hold the types, Matrix, the pure helpers, A*, rendering and the axis points. }
 unit s2simtwo;
 
 {$mode delphi}{$H+}
 
 interface
 
-uses SysUtils, Classes, Math;
+uses SysUtils, Classes, Math, Types, s2simtwo_types, s2simtwo_matrix, s2simtwo_helpers,
+  s2simtwo_rendering;
 
 {S2SIM_HOST_IDS}
 
-const
-  MaxDim = 8;
-  k = MaxDim - 1;
-
-  VK_LBUTTON = 1; VK_RBUTTON = 2; VK_CANCEL = 3; VK_MBUTTON = 4; VK_BACK = 8; VK_TAB = 9;
-  VK_CLEAR = 12; VK_RETURN = 13; VK_SHIFT = 16; VK_CONTROL = 17; VK_MENU = 18; VK_PAUSE = 19;
-  VK_CAPITAL = 20; VK_KANA = 21; VK_HANGUL = 21; VK_JUNJA = 23; VK_FINAL = 24; VK_HANJA = 25;
-  VK_KANJI = 25; VK_ESCAPE = 27; VK_CONVERT = 28; VK_NONCONVERT = 29; VK_ACCEPT = 30;
-  VK_MODECHANGE = 31; VK_SPACE = 32; VK_PRIOR = 33; VK_NEXT = 34; VK_END = 35; VK_HOME = 36;
-  VK_LEFT = 37; VK_UP = 38; VK_RIGHT = 39; VK_DOWN = 40; VK_SELECT = 41; VK_PRINT = 42;
-  VK_EXECUTE = 43; VK_SNAPSHOT = 44; VK_INSERT = 45; VK_DELETE = 46; VK_HELP = 47;
-  VK_LWIN = 91; VK_RWIN = 92; VK_APPS = 93;
-  VK_NUMPAD0 = 96; VK_NUMPAD1 = 97; VK_NUMPAD2 = 98; VK_NUMPAD3 = 99; VK_NUMPAD4 = 100;
-  VK_NUMPAD5 = 101; VK_NUMPAD6 = 102; VK_NUMPAD7 = 103; VK_NUMPAD8 = 104; VK_NUMPAD9 = 105;
-  VK_MULTIPLY = 106; VK_ADD = 107; VK_SEPARATOR = 108; VK_SUBTRACT = 109; VK_DECIMAL = 110;
-  VK_DIVIDE = 111; VK_F1 = 112; VK_F2 = 113; VK_F3 = 114; VK_F4 = 115; VK_F5 = 116;
-  VK_F6 = 117; VK_F7 = 118; VK_F8 = 119; VK_F9 = 120; VK_F10 = 121; VK_F11 = 122; VK_F12 = 123;
-  VK_F13 = 124; VK_F14 = 125; VK_F15 = 126; VK_F16 = 127; VK_F17 = 128; VK_F18 = 129;
-  VK_F19 = 130; VK_F20 = 131; VK_F21 = 132; VK_F22 = 133; VK_F23 = 134; VK_F24 = 135;
-  VK_NUMLOCK = 144; VK_SCROLL = 145; VK_LSHIFT = 160; VK_RSHIFT = 161; VK_LCONTROL = 162;
-  VK_RCONTROL = 163; VK_LMENU = 164; VK_RMENU = 165; VK_PROCESSKEY = 229; VK_ATTN = 246;
-  VK_CRSEL = 247; VK_EXSEL = 248; VK_EREOF = 249; VK_PLAY = 250; VK_ZOOM = 251;
-  VK_NONAME = 252; VK_PA1 = 253; VK_OEM_CLEAR = 254;
-
 type
-  TColor = longint;
-
-const
-  clBlack = TColor($000000); clMaroon = TColor($000080); clGreen = TColor($008000);
-  clOlive = TColor($008080); clNavy = TColor($800000); clPurple = TColor($800080);
-  clTeal = TColor($808000); clGray = TColor($808080); clSilver = TColor($C0C0C0);
-  clRed = TColor($0000FF); clLime = TColor($00FF00); clYellow = TColor($00FFFF);
-  clBlue = TColor($FF0000); clFuchsia = TColor($FF00FF); clAqua = TColor($FFFF00);
-  clLtGray = TColor($C0C0C0); clDkGray = TColor($808080); clWhite = TColor($FFFFFF);
-  clNone = TColor($1FFFFFFF); clDefault = TColor($20000000);
-
-type
-  TPoint3D = record x, y, z: double; end;
-  TState2D = record x, y, angle: double; end;
-  TAxisState = record pos, vel, Torque, Vm, Im: double; end;
-  TAxisPoint = record pos, speed, final_time: double; end;
-  TSpringDef = record K, ZeroPos: double; end;
-  TMotorPars = record Ri, Li, Ki, Vmax, Imax, GearRatio: double; simple, active: boolean; end;
-  TMotorControllerPars = record Ki, Kd, Kp, Kf: double; end;
-  TFrictionDef = record Bv, Fc, CoulombLimit: double; end;
-  TRGBAColor = record Red, Green, Blue, alpha: integer; end;
-  TExtents = record Min, Max: TPoint3D; end;
-
-  Matrix = record
-    data: array of double;
-    rows, cols: Longword;
-  end;
-
-  TUDPBuffer = record
-    data: array[0..1499] of byte;
-    MessSize, ReadDisp: integer;
-  end;
-
   { SimTwo (Windows) joins lines with CR LF; FPC on Linux with LF. Setting Text splits on
     LF, CR LF or CR alike, as SimTwo's does: FPC splits on LineBreak alone once it differs
     from the platform's, so an LF-only datagram would stay one line. }
@@ -94,67 +38,11 @@ type
     result: THostResult;
   end;
 
-  EScriptHostError = class(Exception);
-
 var
   Time: double;
   HUDStrings: TStringList;
+  UDPDataRead: TMemoryStream;  { declared; S2Sim does not fill it (docs/scripting.md) }
   Host: THostTable;
-
-{ --- pure helpers, SimTwo's definitions --- }
-function Format(const sFormat: string; const Args: array of const): string;
-function Rad(angle: double): double;
-function Deg(angle: double): double;
-function Sqr(X: double): double;
-function Sign(a: double): double;
-function Sat(a, limit: double): double;
-function ATan2(y, x: double): double;
-function DiffAngle(a1, a2: double): double;
-function NormalizeAngle(ang: double): double;
-function Dist(x, y: double): double;
-function ACos2(y, x: double): double;
-function ASin2(y, x: double): double;
-function random01: double;
-function Pi: double;
-
-{ --- Matrix (SimTwo's dynmatrix API) --- }
-function Mzeros(r, c: Longword): Matrix;
-function Meye(n: Longword): Matrix;
-function Minc(r, c: Longword): Matrix;
-procedure MSetSize(var M: Matrix; r, c: Longword);
-procedure Msetv(var M: Matrix; r, c: Longword; v: double);
-function Mgetv(const M: Matrix; r, c: Longword): double;
-procedure MUsetv(var M: Matrix; r, c: Longword; v: double);
-function MUgetv(const M: Matrix; r, c: Longword): double;
-function MNumRows(const M: Matrix): Longword;
-function MNumCols(const M: Matrix): Longword;
-function Madd(const A, B: Matrix): Matrix;
-function Msub(const A, B: Matrix): Matrix;
-function Mmult(const A, B: Matrix): Matrix;
-function MmultReal(const A: Matrix; k: double): Matrix;
-function MaddReal(const A: Matrix; k: double): Matrix;
-function MsubReal(const A: Matrix; k: double): Matrix;
-function Mneg(const A: Matrix): Matrix;
-function Mtran(const A: Matrix): Matrix;
-function Minv(const A: Matrix): Matrix;
-function MOneCol(const A: Matrix; c: Longword): Matrix;
-function MOneRow(const A: Matrix; r: Longword): Matrix;
-function Mmin(const A: Matrix): double;
-function Mmax(const A: Matrix): double;
-function MmaxAbs(const A: Matrix): double;
-
-{ --- net buffer (SimTwo's rlan helpers) --- }
-procedure ClearUDPBuffer(var Buf: TUDPBuffer);
-procedure NetPutByte(var Buf: TUDPBuffer; value: byte);
-procedure NetPutWord(var Buf: TUDPBuffer; value: word);
-procedure NetPutShort(var Buf: TUDPBuffer; value: smallint);
-procedure NetPutInt(var Buf: TUDPBuffer; value: integer);
-procedure NetPutFloat(var Buf: TUDPBuffer; value: single);
-function NetGetByte(var Buf: TUDPBuffer): byte;
-function NetGetWord(var Buf: TUDPBuffer): word;
-function NetGetInt(var Buf: TUDPBuffer): integer;
-function NetGetFloat(var Buf: TUDPBuffer): single;
-function NetStringBuffer(const Buf: TUDPBuffer): string;
 
 { --- host functions (S2Sim's implementation: plugins/pascal_script/host_api.cpp) --- }
 procedure WriteLn(S: string);
@@ -251,6 +139,114 @@ procedure WriteUDPData(ToIP: string; ToPort: integer; s: string);
 function ReadUDPData: string;
 procedure WriteComPort(s: string);
 function ReadComPort: string;
+
+{ --- routines added for SimTwo's whole list (docs/scripting.md, coverage) --- }
+function RGBToColor(R, G, B: Byte): TColor;
+procedure SetRCBackColor(r, c: integer; newColor: TColor);
+procedure CloseSimTwo;
+function GetRobotVel2D(R: integer): TState2D;
+function GetRobotCenterOfMass(R: integer): TPoint3D;
+procedure SetSolidPosMat(R, i: integer; P: Matrix);
+function GetSolidLinearVelMat(R, i: integer): Matrix;
+function GetSolidAgularVelMat(R, i: integer): Matrix;
+function GetSolidVx(R, i: integer): double;
+function GetSolidVy(R, i: integer): double;
+function GetSolidVz(R, i: integer): double;
+procedure SetSolidMass(R, i: integer; nmass: double);
+function GetSolidMass(R, i: integer): double;
+function GetSolidCenterOfMass(R, i: integer): TPoint3D;
+function GetSolidTag(R, i: integer): string;
+procedure SetSolidTag(R, i: integer; newTag: string);
+function GetSolidColor(R, i: integer): TRGBAColor;
+procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double);
+procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double);
+function GetSolidSize(R, i: integer): TPoint3D;
+procedure SetSolidSize(R, i: integer; x, y, z: double);
+procedure SetFireScale(x, y, z: double);
+procedure SetFirePosition(x, y, z: double);
+procedure StartFire;
+procedure StopFire;
+procedure StopSolidFire(R, I: integer);
+procedure StartSolidFire(R, I: integer);
+procedure SetGlobalSensorVin(i: integer; Vin: byte);
+procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte);
+procedure SetThingColor(T, c: integer; Red, Green, Blue: byte);
+function GetThingRotMat(T: integer): Matrix;
+procedure SetThingRotationMat(T: integer; Rot: Matrix);
+function GetThingAgularVelMat(T: integer): Matrix;
+function GetThingSize(T: integer): TPoint3D;
+procedure SetThingSize(T: integer; x, y, z: double);
+function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
+function AddThingSphere(ID: string; mass, posX, posY, posZ, radius: double; rgb24: integer): integer;
+function AddThingCylinder(ID: string; mass, posx, posY, posZ, radius, len: double; rgb24: integer): integer;
+function DeleteThing(ID: string): integer;
+procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
+procedure ClearThings;
+procedure SetThingForce(T: integer; Fx, Fy, Fz: double);
+procedure SetThingForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+procedure SetThingRelForce(T: integer; Fx, Fy, Fz: double);
+procedure SetThingRelForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+procedure SetThingSurfaceMu(T: integer; mu, mu2: double);
+function GetThingSpeed(T: integer): TPoint3D;
+procedure SetThingSpeed(T: integer; vx, vy, vz: double);
+procedure SetThingLinearVel(T: integer; x, y, z: double);
+procedure SetThingAngularVel(T: integer; x, y, z: double);
+function GetThingAngularVel(T: integer): TPoint3D;
+function GetShellPos(R, i: integer): TPoint3D;
+procedure SetShellColor(R, i: integer; Red, Green, Blue: byte);
+function GetShellColor(R, i: integer): TRGBAColor;
+function GetObstacleIndex(ID: string): integer;
+procedure SetObstacleColor(I: integer; Red, Green, Blue: byte);
+function GetObstacleColor(I: integer): TRGBAColor;
+procedure SetObstaclePos(T: integer; x, y, z: double);
+function GetObstacleRotMat(T: integer): Matrix;
+procedure SetObstacleRotationMat(T: integer; Rot: Matrix);
+function DeleteObstacle(ID: string): integer;
+function GetAxisUIPower(R, i: integer): double;
+function GetAxisTWPower(R, i: integer): double;
+function GetAxisStateRef(R, i: integer): TAxisState;
+procedure SetAxisStateRef(R, i: integer; aState: TAxisState);
+function GetAxisPosRefDeg(R, i: integer): double;
+function GetAxisSpeedRefDeg(R, i: integer): double;
+function GetAxisMotorSpeed(R, i: integer): double;
+function GetAxisMotorPos(R, i: integer): double;
+function GetAxisMotorPosDeg(R, i: integer): double;
+function GetAxisEnergy(R, i: integer): double;
+procedure ResetAxisEnergy(R, i: integer);
+procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double);
+function GetMotorControllerPars(R, i: integer): TMotorControllerPars;
+procedure SetMotorControllerMode(R, i: integer; newMode: string);
+function GetMotorControllerMode(R, i: integer): string;
+procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double);
+function GetFrictionDef(R, i: integer): TFrictionDef;
+procedure SetBeltSpeed(R, i: integer; nSpeed: double);
+function GetBeltSpeed(R, i: integer): double;
+procedure SetAxisSpring(R, i: integer; k, ZeroPos: double);
+procedure SetTrailColor(T: integer; Red, Green, Blue: byte);
+procedure DelTrailNode(T: integer);
+procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
+function ChartSeriesGetCount(ChartIndex: integer): integer;
+function ChartSeriesCreate(ChartIndex: integer): integer;
+procedure ChartSeriesDeleteAll(ChartIndex: integer);
+function ReadUDPPacket: string;
+function GetUDPPacketCount: integer;
+function getModbusCoil(bit_addr: integer): boolean;
+function getModbusInput(bit_addr: integer): boolean;
+procedure setModbusCoil(bit_addr: integer; new_state: boolean);
+procedure setModbusInput(bit_addr: integer; new_state: boolean);
+
+{ For the other support units: robot R's axis count, axis i's joint ID and which of its axes
+  (0, 1 for a Universal joint's second), the script's folder. }
+function S2SimAxisCount(R: integer): integer;
+function S2SimAxisJoint(R, i: integer; out which: integer): string;
+function S2SimScriptFolder: string;
+{ A file name as SimTwo's scripts mean it: a relative one in the script's folder (SimTwo works in
+  the project's folder). }
+function InScriptFolder(const name: string): string;
+
+{ dynmatrixutils' Mload and Msave, a relative file name in the script's folder. }
+function Mload(const fname: string): Matrix;
+procedure Msave(M: Matrix; const fname: string);
 
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
@@ -359,336 +355,6 @@ begin
   for i := 0 to High(M.data) do buf[Length(a) + 2 + i] := M.data[i];
   result := Host.call(Host.host, fn, @buf[0], Length(buf), nil, 0, nil, 0);
   HostCheck;
-end;
-
-{ --- Format: SimTwo's Win64 Format prints a bare %g / %e with 15 digits, FPC's with 17 --- }
-
-function Format(const sFormat: string; const Args: array of const): string;
-var s: string; i, j: integer; hasPrec: boolean;
-begin
-  s := '';
-  i := 1;
-  while i <= Length(sFormat) do begin
-    if sFormat[i] <> '%' then begin s := s + sFormat[i]; Inc(i); continue; end;
-    if (i < Length(sFormat)) and (sFormat[i + 1] = '%') then begin s := s + '%%'; Inc(i, 2); continue; end;
-    j := i + 1;
-    hasPrec := false;
-    while (j <= Length(sFormat)) and (sFormat[j] in ['0'..'9', '-', ':', '.', '*']) do begin
-      if sFormat[j] = '.' then hasPrec := true;
-      Inc(j);
-    end;
-    if (j <= Length(sFormat)) and (UpCase(sFormat[j]) in ['G', 'E']) and not hasPrec then
-      s := s + Copy(sFormat, i, j - i) + '.15' + sFormat[j]
-    else
-      s := s + Copy(sFormat, i, j - i + 1);
-    i := j + 1;
-  end;
-  result := SysUtils.Format(s, Args);
-end;
-
-function Rad(angle: double): double; begin result := angle * System.Pi / 180; end;
-function Deg(angle: double): double; begin result := angle * 180 / System.Pi; end;
-function Sqr(X: double): double; begin result := X * X; end;
-function Sign(a: double): double; begin if a < 0 then result := -1 else result := 1; end;
-function Pi: double; begin result := System.Pi; end;
-
-function Sat(a, limit: double): double;
-begin
-  if a > limit then result := limit
-  else if a < -limit then result := -limit
-  else result := a;
-end;
-
-function ATan2(y, x: double): double;
-begin
-  if (abs(x) < 1e-10) and (abs(y) < 1e-10) then result := 0
-  else result := Math.ArcTan2(y, x);
-end;
-
-function DiffAngle(a1, a2: double): double;
-begin
-  result := a1 - a2;
-  result := result - 2 * System.Pi * Int(result / (2 * System.Pi));
-  if result > System.Pi then result := result - 2 * System.Pi
-  else if result < -System.Pi then result := result + 2 * System.Pi;
-end;
-
-function NormalizeAngle(ang: double): double;
-begin
-  result := ang - 2 * System.Pi * Floor((ang + System.Pi) / (2 * System.Pi));
-end;
-
-function Dist(x, y: double): double; begin result := sqrt(x * x + y * y); end;
-
-function ACos2(y, x: double): double;
-begin
-  result := Math.ArcCos(Math.EnsureRange(x, -1, 1));
-  if y < 0 then result := -result;
-end;
-
-function ASin2(y, x: double): double;
-var s: double;
-begin
-  s := Math.ArcSin(Math.EnsureRange(y, -1, 1));
-  if x >= 0 then result := s
-  else if y > 0 then result := System.Pi + s
-  else result := -System.Pi + s;
-end;
-
-function random01: double; begin result := System.Random; end;
-
-{ --- Matrix: row-major, element (r, c) at data[c + r * cols] --- }
-
-procedure MatrixError(const msg: string);
-begin
-  raise Exception.Create(msg);
-end;
-
-procedure MSetSize(var M: Matrix; r, c: Longword);
-begin
-  M.rows := r; M.cols := c;
-  SetLength(M.data, r * c);
-end;
-
-function Mzeros(r, c: Longword): Matrix;
-var i: integer;
-begin
-  MSetSize(result, r, c);
-  for i := 0 to High(result.data) do result.data[i] := 0;
-end;
-
-function Meye(n: Longword): Matrix;
-var i: Longword;
-begin
-  result := Mzeros(n, n);
-  if n > 0 then for i := 0 to n - 1 do result.data[i + i * n] := 1;
-end;
-
-function Minc(r, c: Longword): Matrix;
-var i: integer;
-begin
-  MSetSize(result, r, c);
-  for i := 0 to High(result.data) do result.data[i] := i;
-end;
-
-function BadElement(const M: Matrix; r, c: Longword): string;
-begin
-  result := SysUtils.Format('Invalid (row,col) value. Matrix is (%d,%d), element required is (%d,%d)',
-    [M.rows, M.cols, r, c]);
-end;
-
-procedure Msetv(var M: Matrix; r, c: Longword; v: double);
-begin
-  if (r >= M.rows) or (c >= M.cols) then MatrixError(BadElement(M, r, c));
-  SetLength(M.data, Length(M.data));  { unshare before writing: value semantics }
-  M.data[c + r * M.cols] := v;
-end;
-
-function Mgetv(const M: Matrix; r, c: Longword): double;
-begin
-  if (r >= M.rows) or (c >= M.cols) then MatrixError(BadElement(M, r, c));
-  result := M.data[c + r * M.cols];
-end;
-
-procedure MUsetv(var M: Matrix; r, c: Longword; v: double);
-begin
-  if (r >= M.rows) or (c >= M.cols) then exit;
-  SetLength(M.data, Length(M.data));
-  M.data[c + r * M.cols] := v;
-end;
-
-function MUgetv(const M: Matrix; r, c: Longword): double;
-begin
-  if (r >= M.rows) or (c >= M.cols) then result := 0
-  else result := M.data[c + r * M.cols];
-end;
-
-function MNumRows(const M: Matrix): Longword; begin result := M.rows; end;
-function MNumCols(const M: Matrix): Longword; begin result := M.cols; end;
-
-function Madd(const A, B: Matrix): Matrix;
-var i: integer;
-begin
-  if (A.rows <> B.rows) or (A.cols <> B.cols) then
-    MatrixError(SysUtils.Format('Cannot add matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] + B.data[i];
-end;
-
-function Msub(const A, B: Matrix): Matrix;
-var i: integer;
-begin
-  if (A.rows <> B.rows) or (A.cols <> B.cols) then
-    MatrixError(SysUtils.Format('Cannot subtract matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] - B.data[i];
-end;
-
-function Mmult(const A, B: Matrix): Matrix;
-var r, c, k: Longword; s: double;
-begin
-  if A.cols <> B.rows then
-    MatrixError(SysUtils.Format('Cannot multiply matrix (%d,%d) with matrix (%d,%d)', [A.rows, A.cols, B.rows, B.cols]));
-  MSetSize(result, A.rows, B.cols);
-  if (A.rows = 0) or (B.cols = 0) then exit;
-  for r := 0 to A.rows - 1 do
-    for c := 0 to B.cols - 1 do begin
-      s := 0;
-      if A.cols > 0 then
-        for k := 0 to A.cols - 1 do s := s + A.data[k + r * A.cols] * B.data[c + k * B.cols];
-      result.data[c + r * B.cols] := s;
-    end;
-end;
-
-function MmultReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] * k;
-end;
-
-function MaddReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] + k;
-end;
-
-function MsubReal(const A: Matrix; k: double): Matrix;
-var i: integer;
-begin
-  MSetSize(result, A.rows, A.cols);
-  for i := 0 to High(A.data) do result.data[i] := A.data[i] - k;
-end;
-
-function Mneg(const A: Matrix): Matrix; begin result := MmultReal(A, -1); end;
-
-function Mtran(const A: Matrix): Matrix;
-var r, c: Longword;
-begin
-  MSetSize(result, A.cols, A.rows);
-  if (A.rows = 0) or (A.cols = 0) then exit;
-  for r := 0 to A.rows - 1 do
-    for c := 0 to A.cols - 1 do result.data[r + c * A.rows] := A.data[c + r * A.cols];
-end;
-
-{ Gauss-Jordan with full pivoting. }
-function Minv(const A: Matrix): Matrix;
-var n, i, j, k, pr, pc: integer; big, t: double;
-    a2: array of double; rowp, colp: array of integer; piv: array of boolean;
-begin
-  if A.rows <> A.cols then MatrixError('Cannot invert non-square matrix');
-  n := A.rows;
-  SetLength(a2, n * n);
-  for i := 0 to n * n - 1 do a2[i] := A.data[i];
-  SetLength(rowp, n); SetLength(colp, n); SetLength(piv, n);
-  for i := 0 to n - 1 do piv[i] := false;
-  for i := 0 to n - 1 do begin
-    big := 0; pr := 0; pc := 0;
-    for j := 0 to n - 1 do
-      if not piv[j] then
-        for k := 0 to n - 1 do
-          if (not piv[k]) and (abs(a2[k + j * n]) >= big) then begin
-            big := abs(a2[k + j * n]); pr := j; pc := k;
-          end;
-    piv[pc] := true;
-    if pr <> pc then
-      for k := 0 to n - 1 do begin
-        t := a2[k + pr * n]; a2[k + pr * n] := a2[k + pc * n]; a2[k + pc * n] := t;
-      end;
-    rowp[i] := pr; colp[i] := pc;
-    if a2[pc + pc * n] = 0 then MatrixError('Singular matrix: Pivot is 0');
-    t := 1 / a2[pc + pc * n];
-    a2[pc + pc * n] := 1;
-    for k := 0 to n - 1 do a2[k + pc * n] := a2[k + pc * n] * t;
-    for j := 0 to n - 1 do
-      if j <> pc then begin
-        t := a2[pc + j * n];
-        a2[pc + j * n] := 0;
-        for k := 0 to n - 1 do a2[k + j * n] := a2[k + j * n] - a2[k + pc * n] * t;
-      end;
-  end;
-  for i := n - 1 downto 0 do
-    if rowp[i] <> colp[i] then
-      for j := 0 to n - 1 do begin
-        t := a2[rowp[i] + j * n]; a2[rowp[i] + j * n] := a2[colp[i] + j * n]; a2[colp[i] + j * n] := t;
-      end;
-  MSetSize(result, n, n);
-  for i := 0 to n * n - 1 do result.data[i] := a2[i];
-end;
-
-function MOneCol(const A: Matrix; c: Longword): Matrix;
-var r: Longword;
-begin
-  if c >= A.cols then MatrixError(BadElement(A, 0, c));
-  MSetSize(result, A.rows, 1);
-  if A.rows > 0 then for r := 0 to A.rows - 1 do result.data[r] := A.data[c + r * A.cols];
-end;
-
-function MOneRow(const A: Matrix; r: Longword): Matrix;
-var c: Longword;
-begin
-  if r >= A.rows then MatrixError(BadElement(A, r, 0));
-  MSetSize(result, 1, A.cols);
-  if A.cols > 0 then for c := 0 to A.cols - 1 do result.data[c] := A.data[c + r * A.cols];
-end;
-
-function Mmin(const A: Matrix): double;
-var i: integer;
-begin
-  result := A.data[0];
-  for i := 1 to High(A.data) do if A.data[i] < result then result := A.data[i];
-end;
-
-function Mmax(const A: Matrix): double;
-var i: integer;
-begin
-  result := A.data[0];
-  for i := 1 to High(A.data) do if A.data[i] > result then result := A.data[i];
-end;
-
-function MmaxAbs(const A: Matrix): double;
-var i: integer;
-begin
-  result := abs(A.data[0]);
-  for i := 1 to High(A.data) do if abs(A.data[i]) > result then result := abs(A.data[i]);
-end;
-
-{ --- net buffer: little-endian, at most 1499 bytes (SimTwo's limit) --- }
-
-procedure ClearUDPBuffer(var Buf: TUDPBuffer);
-begin
-  FillChar(Buf.data, SizeOf(Buf.data), 0);
-  Buf.MessSize := 0;  { ReadDisp is kept, as SimTwo does }
-end;
-
-procedure NetPut(var Buf: TUDPBuffer; const src; size: integer);
-begin
-  if Buf.MessSize + size >= 1500 then raise Exception.Create('Write: UDP Message size too big');
-  Move(src, Buf.data[Buf.MessSize], size);
-  Inc(Buf.MessSize, size);
-end;
-
-procedure NetGet(var Buf: TUDPBuffer; var dst; size: integer);
-begin
-  if Buf.ReadDisp + size > Buf.MessSize then raise Exception.Create('Read: UDP Message size too big');
-  Move(Buf.data[Buf.ReadDisp], dst, size);
-  Inc(Buf.ReadDisp, size);
-end;
-
-procedure NetPutByte(var Buf: TUDPBuffer; value: byte); begin NetPut(Buf, value, 1); end;
-procedure NetPutWord(var Buf: TUDPBuffer; value: word); begin NetPut(Buf, value, 2); end;
-procedure NetPutShort(var Buf: TUDPBuffer; value: smallint); begin NetPut(Buf, value, 2); end;
-procedure NetPutInt(var Buf: TUDPBuffer; value: integer); begin NetPut(Buf, value, 4); end;
-procedure NetPutFloat(var Buf: TUDPBuffer; value: single); begin NetPut(Buf, value, 4); end;
-function NetGetByte(var Buf: TUDPBuffer): byte; begin NetGet(Buf, result, 1); end;
-function NetGetWord(var Buf: TUDPBuffer): word; begin NetGet(Buf, result, 2); end;
-function NetGetInt(var Buf: TUDPBuffer): integer; begin NetGet(Buf, result, 4); end;
-function NetGetFloat(var Buf: TUDPBuffer): single; begin NetGet(Buf, result, 4); end;
-
-function NetStringBuffer(const Buf: TUDPBuffer): string;
-begin
-  SetString(result, PChar(@Buf.data[0]), Buf.MessSize);
 end;
 
 { --- host functions --- }
@@ -840,6 +506,181 @@ function ReadUDPData: string; begin HostCall(hReadUDPData, []); result := HostTe
 procedure WriteComPort(s: string); begin HostCallS(hWriteComPort, [], s); end;
 function ReadComPort: string; begin HostCall(hReadComPort, []); result := HostText; end;
 
+{ --- what S2Sim does not have (yet): a named error, never a silent no-op --- }
+
+function RGBToColor(R, G, B: Byte): TColor; begin result := R or (G shl 8) or (B shl 16); end;
+procedure SetRCBackColor(r, c: integer; newColor: TColor); begin HostCall(hSetRCBackColor, [r, c, newColor]); end;
+procedure CloseSimTwo; begin HostCall(hCloseSimTwo, []); end;
+
+function GetRobotVel2D(R: integer): TState2D;
+begin result.x := GetRobotVx(R); result.y := GetRobotVy(R); result.angle := GetRobotW(R); end;
+function GetRobotCenterOfMass(R: integer): TPoint3D; begin result := HostPoint(hGetRobotCenterOfMass, [R]); end;
+procedure SetSolidPosMat(R, i: integer; P: Matrix);
+begin SetSolidPos(R, i, Mgetv(P, 0, 0), Mgetv(P, 1, 0), Mgetv(P, 2, 0)); end;
+function PointColumn(const p: TPoint3D): Matrix;
+begin
+  result := Mzeros(3, 1);
+  result.data[0] := p.x; result.data[1] := p.y; result.data[2] := p.z;
+end;
+function GetSolidLinearVelMat(R, i: integer): Matrix; begin result := PointColumn(GetSolidLinearVel(R, i)); end;
+function GetSolidAgularVelMat(R, i: integer): Matrix; begin result := PointColumn(HostPoint(hGetSolidAngularVel, [R, i])); end;
+function GetSolidVx(R, i: integer): double; begin result := GetSolidLinearVel(R, i).x; end;
+function GetSolidVy(R, i: integer): double; begin result := GetSolidLinearVel(R, i).y; end;
+function GetSolidVz(R, i: integer): double; begin result := GetSolidLinearVel(R, i).z; end;
+procedure SetSolidMass(R, i: integer; nmass: double); begin NotYetAvailable('SetSolidMass'); end;
+function GetSolidMass(R, i: integer): double; begin result := HostCall(hGetSolidMass, [R, i]); end;
+function GetSolidCenterOfMass(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidCenterOfMass, [R, i]); end;
+function GetSolidTag(R, i: integer): string; begin HostCall(hGetSolidTag, [R, i]); result := HostText; end;
+procedure SetSolidTag(R, i: integer; newTag: string); begin HostCallS(hSetSolidTag, [R, i], newTag); end;
+function GetSolidColor(R, i: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetSolidColor, [R, i]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
+procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double); begin NotYetAvailable('SetSolidSurfaceFriction'); end;
+procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double); begin HostCall(hSetSolidForce, [R, i, Fx, Fy, Fz]); end;
+function GetSolidSize(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidSize, [R, i]); end;
+procedure SetSolidSize(R, i: integer; x, y, z: double); begin NotYetAvailable('SetSolidSize'); end;
+
+
+procedure SetFireScale(x, y, z: double); begin NotYetAvailable('SetFireScale'); end;
+procedure SetFirePosition(x, y, z: double); begin NotYetAvailable('SetFirePosition'); end;
+procedure StartFire; begin NotYetAvailable('StartFire'); end;
+procedure StopFire; begin NotYetAvailable('StopFire'); end;
+procedure StopSolidFire(R, I: integer); begin NotYetAvailable('StopSolidFire'); end;
+procedure StartSolidFire(R, I: integer); begin NotYetAvailable('StartSolidFire'); end;
+
+procedure SetGlobalSensorVin(i: integer; Vin: byte); begin HostCall(hSetGlobalSensorVin, [i, Vin]); end;
+procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetSensorColor'); end;
+
+procedure SetThingColor(T, c: integer; Red, Green, Blue: byte); begin HostCall(hSetThingColor, [T, c, Red, Green, Blue]); end;
+function GetThingRotMat(T: integer): Matrix; begin result := HostMatrix(hGetThingRotMat, [T]); end;
+procedure SetThingRotationMat(T: integer; Rot: Matrix); begin CallMatrix(hSetThingRotationMat, [T], Rot); end;
+function GetThingAgularVelMat(T: integer): Matrix; begin result := PointColumn(GetThingAngularVel(T)); end;
+function GetThingSize(T: integer): TPoint3D; begin result := HostPoint(hGetThingSize, [T]); end;
+procedure SetThingSize(T: integer; x, y, z: double); begin NotYetAvailable('SetThingSize'); end;
+function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingBox'); result := -1; end;
+function AddThingSphere(ID: string; mass, posX, posY, posZ, radius: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingSphere'); result := -1; end;
+function AddThingCylinder(ID: string; mass, posx, posY, posZ, radius, len: double; rgb24: integer): integer;
+begin NotYetAvailable('AddThingCylinder'); result := -1; end;
+function DeleteThing(ID: string): integer; begin NotYetAvailable('DeleteThing'); result := -1; end;
+procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
+begin NotYetAvailable('MeshThing'); end;
+procedure ClearThings; begin NotYetAvailable('ClearThings'); end;
+procedure SetThingForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingForce, [T, Fx, Fy, Fz]); end;
+procedure SetThingForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+begin HostCall(hSetThingForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
+procedure SetThingRelForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingRelForce, [T, Fx, Fy, Fz]); end;
+procedure SetThingRelForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
+begin HostCall(hSetThingRelForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
+procedure SetThingSurfaceMu(T: integer; mu, mu2: double); begin NotYetAvailable('SetThingSurfaceMu'); end;
+function GetThingSpeed(T: integer): TPoint3D; begin result := HostPoint(hGetThingSpeed, [T]); end;
+procedure SetThingSpeed(T: integer; vx, vy, vz: double); begin HostCall(hSetThingSpeed, [T, vx, vy, vz]); end;
+procedure SetThingLinearVel(T: integer; x, y, z: double); begin HostCall(hSetThingLinearVel, [T, x, y, z]); end;
+procedure SetThingAngularVel(T: integer; x, y, z: double); begin HostCall(hSetThingAngularVel, [T, x, y, z]); end;
+function GetThingAngularVel(T: integer): TPoint3D; begin result := HostPoint(hGetThingAngularVel, [T]); end;
+
+function GetShellPos(R, i: integer): TPoint3D; begin result := HostPoint(hGetShellPos, [R, i]); end;
+procedure SetShellColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetShellColor'); end;
+function GetShellColor(R, i: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetShellColor, [R, i]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
+
+function GetObstacleIndex(ID: string): integer; begin result := Round(HostCallS(hGetObstacleIndex, [], ID)); end;
+procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetObstacleColor'); end;
+function GetObstacleColor(I: integer): TRGBAColor;
+var M: Matrix;
+begin
+  HostCall(hGetObstacleColor, [I]);
+  M := HostValues;
+  result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
+  result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
+end;
+procedure SetObstaclePos(T: integer; x, y, z: double); begin NotYetAvailable('SetObstaclePos'); end;
+function GetObstacleRotMat(T: integer): Matrix; begin result := HostMatrix(hGetObstacleRotMat, [T]); end;
+procedure SetObstacleRotationMat(T: integer; Rot: Matrix); begin NotYetAvailable('SetObstacleRotationMat'); end;
+function DeleteObstacle(ID: string): integer; begin NotYetAvailable('DeleteObstacle'); result := -1; end;
+
+function GetAxisUIPower(R, i: integer): double; begin result := HostCall(hGetAxisUIPower, [R, i]); end;
+function GetAxisTWPower(R, i: integer): double; begin result := GetAxisTorque(R, i) * GetAxisSpeed(R, i); end;
+function GetAxisStateRef(R, i: integer): TAxisState;
+begin
+  result.pos := GetAxisPosRef(R, i); result.vel := GetAxisSpeedRef(R, i);
+  result.Torque := 0; result.Vm := 0; result.Im := 0;
+end;
+procedure SetAxisStateRef(R, i: integer; aState: TAxisState);
+begin SetAxisPosRef(R, i, aState.pos); SetAxisSpeedRef(R, i, aState.vel); end;
+function GetAxisPosRefDeg(R, i: integer): double; begin result := Deg(GetAxisPosRef(R, i)); end;
+function GetAxisSpeedRefDeg(R, i: integer): double; begin result := Deg(GetAxisSpeedRef(R, i)); end;
+function GetAxisMotorSpeed(R, i: integer): double; begin NotYetAvailable('GetAxisMotorSpeed'); end;
+function GetAxisMotorPos(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPos'); end;
+function GetAxisMotorPosDeg(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPosDeg'); end;
+function GetAxisEnergy(R, i: integer): double; begin result := HostCall(hGetAxisEnergy, [R, i]); end;
+procedure ResetAxisEnergy(R, i: integer); begin HostCall(hResetAxisEnergy, [R, i]); end;
+procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double);
+begin HostCall(hSetMotorControllerPars, [R, i, nKi, nKd, nKp, nKf]); end;
+function GetMotorControllerPars(R, i: integer): TMotorControllerPars;
+var M: Matrix;
+begin
+  HostCall(hGetMotorControllerPars, [R, i]);
+  M := HostValues;
+  result.Ki := M.data[0]; result.Kd := M.data[1]; result.Kp := M.data[2]; result.Kf := M.data[3];
+end;
+procedure SetMotorControllerMode(R, i: integer; newMode: string); begin HostCallS(hSetMotorControllerMode, [R, i], newMode); end;
+function GetMotorControllerMode(R, i: integer): string; begin HostCall(hGetMotorControllerMode, [R, i]); result := HostText; end;
+procedure SetFrictionDef(R, i: integer; nBv, nFc, nCoulombLimit: double);
+begin HostCall(hSetFrictionDef, [R, i, nBv, nFc, nCoulombLimit]); end;
+function GetFrictionDef(R, i: integer): TFrictionDef;
+var M: Matrix;
+begin
+  HostCall(hGetFrictionDef, [R, i]);
+  M := HostValues;
+  result.Bv := M.data[0]; result.Fc := M.data[1]; result.CoulombLimit := M.data[2];
+end;
+procedure SetBeltSpeed(R, i: integer; nSpeed: double); begin HostCall(hSetBeltSpeed, [R, i, nSpeed]); end;
+function GetBeltSpeed(R, i: integer): double; begin result := HostCall(hGetBeltSpeed, [R, i]); end;
+procedure SetAxisSpring(R, i: integer; k, ZeroPos: double); begin HostCall(hSetAxisSpring, [R, i, k, ZeroPos]); end;
+
+
+procedure SetTrailColor(T: integer; Red, Green, Blue: byte); begin HostCall(hSetTrailColor, [T, Red, Green, Blue]); end;
+procedure DelTrailNode(T: integer); begin HostCall(hDelTrailNode, [T]); end;
+procedure ChartSetAxisMinMax(ChartIndex: integer; Xmin, Xmax, Ymin, Ymax: double);
+begin HostCall(hChartSetAxisMinMax, [ChartIndex, Xmin, Xmax, Ymin, Ymax]); end;
+function ChartSeriesGetCount(ChartIndex: integer): integer; begin result := Round(HostCall(hChartSeriesGetCount, [ChartIndex])); end;
+function ChartSeriesCreate(ChartIndex: integer): integer; begin result := Round(HostCall(hChartSeriesCreate, [ChartIndex])); end;
+procedure ChartSeriesDeleteAll(ChartIndex: integer); begin HostCall(hChartSeriesDeleteAll, [ChartIndex]); end;
+function ReadUDPPacket: string; begin HostCall(hReadUDPPacket, []); result := HostText; end;
+function GetUDPPacketCount: integer; begin result := Round(HostCall(hGetUDPPacketCount, [])); end;
+function getModbusCoil(bit_addr: integer): boolean; begin result := HostCall(hgetModbusCoil, [bit_addr]) <> 0; end;
+function getModbusInput(bit_addr: integer): boolean; begin result := HostCall(hgetModbusInput, [bit_addr]) <> 0; end;
+procedure setModbusCoil(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusCoil, [bit_addr, Ord(new_state)]); end;
+procedure setModbusInput(bit_addr: integer; new_state: boolean); begin HostCall(hsetModbusInput, [bit_addr, Ord(new_state)]); end;
+
+function S2SimAxisCount(R: integer): integer; begin result := Round(HostCall(hAxisCount, [R])); end;
+function S2SimAxisJoint(R, i: integer; out which: integer): string;
+begin
+  which := Round(HostCall(hAxisJoint, [R, i]));
+  result := HostText;
+end;
+function S2SimScriptFolder: string; begin HostCall(hScriptFolder, []); result := HostText; end;
+function InScriptFolder(const name: string): string;
+begin
+  if (name <> '') and (name[1] = '/') then result := name
+  else result := IncludeTrailingPathDelimiter(S2SimScriptFolder) + name;
+end;
+function Mload(const fname: string): Matrix; begin result := s2simtwo_matrix.Mload(InScriptFolder(fname)); end;
+procedure Msave(M: Matrix; const fname: string); begin s2simtwo_matrix.Msave(M, InScriptFolder(fname)); end;
+
 procedure S2SimPublishHUD;
 begin
   HostCallS(hHUDText, [], HUDStrings.Text);
@@ -848,6 +689,8 @@ end;
 initialization
   DefaultFormatSettings.DecimalSeparator := '.';
   HUDStrings := TStringList.Create;
+  UDPDataRead := TMemoryStream.Create;
 finalization
+  UDPDataRead.Free;
   HUDStrings.Free;
 end.

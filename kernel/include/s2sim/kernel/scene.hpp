@@ -288,6 +288,8 @@ struct Robot {
   std::vector<int> joints;  ///< in creation order
   std::vector<int> sensors;
   std::vector<int> plugins;
+  /// The shells in file order (SimTwo's shell indices): (body, index in its geoms).
+  std::vector<std::pair<int, int>> shells;
   /// Placement of §9.3, kept so that a run-time re-placement (SimTwo's `SetRobotPos`) can
   /// start again from the file coordinates: a file point p is at
   /// origin_m + offset_m + Rz(yaw_rad)·(p − origin_m) in the world.

@@ -1,0 +1,277 @@
+// SimTwo's routines that S2Sim added for the whole script API (docs/scripting.md, coverage), on
+// this folder's script_api scene: the pure ones against numbers worked by hand, things pushed
+// and spun, trails cut, UDP datagrams read one by one.
+#include <s2sim/kernel/annotations.hpp>
+#include <s2sim/kernel/simulation.hpp>
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using s2sim::ScriptMode;
+using s2sim::Simulation;
+using s2sim::SimulationOptions;
+
+namespace {
+
+const fs::path kScene = fs::path(S2SIM_PASCAL_FIXTURES) / ".." / "script_api";
+
+#define SKIP_WITHOUT_FPC \
+  if (std::system("fpc -iV > /dev/null 2>&1") != 0) GTEST_SKIP() << "no fpc"
+
+sockaddr_in loopback(int port) {
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = htons(static_cast<std::uint16_t>(port));
+  return a;
+}
+
+/// A non-blocking UDP socket on an ephemeral loopback port; -1 when none could be bound.
+int loopback_socket(int& port) {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
+  sockaddr_in me = loopback(0);
+  socklen_t len = sizeof me;
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len) != 0)
+    return -1;
+  port = ntohs(me.sin_port);
+  return fd;
+}
+
+class ScriptApi : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ::setenv("S2SIM_PASCAL_CACHE", S2SIM_PASCAL_TEST_CACHE, 1);
+    ::unsetenv("S2SIM_FPC");
+    ::unsetenv("S2SIM_COM_PORT");
+    int port = 0;
+    const int fd = loopback_socket(port);  // a free port for the script's socket
+    ::close(fd);
+    script_port_ = port;
+    ::setenv("S2SIM_UDP_PORT", std::to_string(port).c_str(), 1);
+    work_ = fs::temp_directory_path() / ("s2sim-script-api-" + std::to_string(::getpid()));
+    fs::create_directories(work_);
+    ::setenv("S2SIM_SCRIPT_API_DIR", work_.c_str(), 1);
+  }
+  void TearDown() override { fs::remove_all(work_); }
+
+  static SimulationOptions with(const char* fixture) {
+    SimulationOptions o;
+    o.script_mode = ScriptMode::always;
+    o.script_file = fs::path(S2SIM_PASCAL_FIXTURES) / fixture;
+    return o;
+  }
+
+  int script_port_ = 0;
+  fs::path work_;
+};
+
+std::vector<std::string> lines_starting(const Simulation& sim, const std::string& head) {
+  std::vector<std::string> found;
+  for (const auto& line : sim.annotations().lines)
+    if (line.text.rfind(head, 0) == 0) found.push_back(line.text);
+  return found;
+}
+
+TEST_F(ScriptApi, PureRoutinesGiveTheNumbersWorkedByHand) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("pure_routines.pas"));
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const auto checks = lines_starting(*sim, "CHECK ");
+  EXPECT_GE(checks.size(), 59u);
+  for (const auto& c : checks)
+    EXPECT_EQ(c.substr(c.size() - 3), " ok") << c;
+  EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
+}
+
+TEST_F(ScriptApi, SceneQueriesGiveTheSceneFilesSizesColoursAndCentresOfMass) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("scene_queries.pas"));
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const auto checks = lines_starting(*sim, "CHECK ");
+  EXPECT_EQ(checks.size(), 11u);
+  for (const auto& c : checks)
+    EXPECT_EQ(c.substr(c.size() - 3), " ok") << c;
+  EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
+}
+
+TEST_F(ScriptApi, JointWayPointsAreReadAndWrittenAsSimTwoDoes) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("joint_waypoints.pas"));
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const auto checks = lines_starting(*sim, "CHECK ");
+  EXPECT_EQ(checks.size(), 6u);
+  for (const auto& c : checks)
+    EXPECT_EQ(c.substr(c.size() - 3), " ok") << c;
+  EXPECT_EQ(lines_starting(*sim, "CHECKS DONE").size(), 1u);
+}
+
+TEST_F(ScriptApi, BeltSpeedSetByTheScriptCarriesTheCrateOnIt) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("belt_speed.pas");
+  o.sheet_cells = {{1, 1, "0"}};
+  auto sim = Simulation::load(kScene, o);
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.5);  // the scene's
+  sim->run_until(1.0);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.2);
+  EXPECT_EQ(sim->signal("sheet/A1"), 0.2);
+  EXPECT_NEAR(sim->signal("things/crate/vx"), 0.2, 0.01);  // carried at the belt's speed
+  // Snapshot and reset bring the run back exactly.
+  const auto snap = sim->save();
+  sim->run_until(1.5);
+  const double x = sim->signal("things/crate/x");
+  sim->restore(snap);
+  sim->run_until(1.5);
+  EXPECT_EQ(sim->signal("things/crate/x"), x);
+  sim->reset();
+  EXPECT_EQ(sim->signal("robots/conveyor/solids/belt/belt_speed"), 0.5);
+}
+
+TEST_F(ScriptApi, UnitsOfTheSameNameWhereS2SimRunsAreNotTakenForTheSupportUnits) {
+  SKIP_WITHOUT_FPC;
+  // A folder holding a broken s2simtwo_types.pas, made the working folder for the compile.
+  const fs::path here = work_ / "cwd";
+  fs::create_directories(here);
+  std::ofstream(here / "s2simtwo_types.pas") << "unit s2simtwo_types; this is not Pascal\n";
+  const fs::path before = fs::current_path();
+  fs::current_path(here);
+  const fs::path cache = work_ / "cache";  // a compile of its own, not the shared cache's copy
+  ::setenv("S2SIM_PASCAL_CACHE", cache.c_str(), 1);
+  std::unique_ptr<Simulation> sim;
+  EXPECT_NO_THROW(sim = Simulation::load(kScene, with("belt_speed.pas")));
+  fs::current_path(before);
+  ::setenv("S2SIM_PASCAL_CACHE", S2SIM_PASCAL_TEST_CACHE, 1);
+  ASSERT_TRUE(sim);
+  sim->run_until(0.1);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+}
+
+TEST_F(ScriptApi, ThingPushedForOneStepGainsImpulseOverMassAndSpinsAsSet) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("thing_motion.pas");
+  o.sheet_cells = {{1, 1, "0"}, {1, 2, "0"}, {1, 3, "0"}};  // the cells the script writes
+  auto sim = Simulation::load(kScene, o);
+  sim->run_until(0.1);  // calls at 39 and 79 ms
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  // 100 N for one 1 ms step on 0.2 kg: 0.5 m/s sliding; by the read, 40 ms later, the floor's
+  // friction has made the ball roll, at 5/7 of it (a solid sphere, I = 2/5 m r^2: 0.357 m/s;
+  // 0.3576 seen). Its spin about the vertical, set at 3 rad/s, meets no friction torque.
+  EXPECT_NEAR(sim->signal("sheet/A1"), 0.5 * 5 / 7, 0.005);
+  EXPECT_NEAR(sim->signal("sheet/B1"), 3, 1e-6);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/C1"), 0.5);  // the link's mass as loaded
+}
+
+TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
+  SKIP_WITHOUT_FPC;
+  int client_port = 0;
+  const int client = loopback_socket(client_port);
+  ASSERT_GE(client, 0);
+  SimulationOptions o = with("trails_and_packets.pas");
+  o.sheet_cells = {{1, 1, std::to_string(client_port)}};
+  auto sim = Simulation::load(kScene, o);
+  const sockaddr_in to = loopback(script_port_);
+  for (const std::string text : {"one", "two\n", "three"})
+    ASSERT_EQ(::sendto(client, text.data(), text.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+                       sizeof to),
+              static_cast<ssize_t>(text.size()));
+  sim->run_until(0.05);
+  std::vector<std::string> replies;
+  char buf[2048];
+  for (ssize_t n; (n = ::recv(client, buf, sizeof buf, 0)) > 0;)
+    replies.emplace_back(buf, static_cast<std::size_t>(n));
+  ::close(client);
+  EXPECT_EQ(replies, (std::vector<std::string>{"count 3", "one", "two\n", "three", "after 0"}));
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  bool found = false;
+  for (const auto& trail : sim->annotations().trails)
+    if (trail.id == 3) {
+      found = true;
+      ASSERT_EQ(trail.points_m.size(), 2u);
+      EXPECT_EQ(trail.points_m.front().x, 2);
+      EXPECT_EQ(trail.points_m.back().x, 3);
+    }
+  EXPECT_TRUE(found);
+}
+
+/// A free TCP port on loopback (bound and released).
+int free_tcp_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in me = loopback(0);
+  socklen_t len = sizeof me;
+  ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me);
+  ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len);
+  ::close(fd);
+  return ntohs(me.sin_port);
+}
+
+std::string bytes(std::initializer_list<int> b) {
+  std::string s;
+  for (int v : b)
+    s += static_cast<char>(v);
+  return s;
+}
+
+TEST_F(ScriptApi, ModbusTcpHoldingRegistersCoilsAndInputsByteForByte) {
+  SKIP_WITHOUT_FPC;
+  const int port = free_tcp_port();
+  ::setenv("S2SIM_MODBUS_PORT", std::to_string(port).c_str(), 1);
+  SimulationOptions o = with("modbus_mirror.pas");
+  o.sheet_cells = {{1, 1, "0"}};
+  auto sim = Simulation::load(kScene, o);
+  ::unsetenv("S2SIM_MODBUS_PORT");
+  const int client = ::socket(AF_INET, SOCK_STREAM, 0);
+  const sockaddr_in to = loopback(port);
+  ASSERT_EQ(::connect(client, reinterpret_cast<const sockaddr*>(&to), sizeof to), 0);
+  const int yes = 1;
+  ::setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
+  // One request, one script period (the server answers at each script tick), the answer.
+  auto exchange = [&](const std::string& request) {
+    EXPECT_EQ(::send(client, request.data(), request.size(), 0),
+              static_cast<ssize_t>(request.size()));
+    sim->run_until(sim->time_s() + 0.04);
+    std::string reply;
+    char buf[512];
+    for (ssize_t n; (n = ::recv(client, buf, sizeof buf, MSG_DONTWAIT)) > 0;)
+      reply.append(buf, static_cast<std::size_t>(n));
+    return reply;
+  };
+  // Write 3 holding registers at 100 (function 16), transaction 0x0102, unit 7.
+  EXPECT_EQ(exchange(bytes({0x01, 0x02, 0, 0, 0, 13, 7, 16, 0, 100, 0, 3, 6, 0x12, 0x34, 0xAB, 0xCD,
+                            0x00, 0x01})),
+            bytes({0x01, 0x02, 0, 0, 0, 6, 7, 16, 0, 100, 0, 3}));
+  // Read them back (function 3).
+  EXPECT_EQ(exchange(bytes({0x00, 0x03, 0, 0, 0, 6, 7, 3, 0, 100, 0, 3})),
+            bytes({0x00, 0x03, 0, 0, 0, 9, 7, 3, 6, 0x12, 0x34, 0xAB, 0xCD, 0x00, 0x01}));
+  // Coil 3 on (function 5): the script mirrors it into input 5 at its next call.
+  EXPECT_EQ(exchange(bytes({0x00, 0x04, 0, 0, 0, 6, 7, 5, 0, 3, 0xFF, 0x00})),
+            bytes({0x00, 0x04, 0, 0, 0, 6, 7, 5, 0, 3, 0xFF, 0x00}));
+  EXPECT_EQ(sim->signal("sheet/A1"), 1);
+  // Discrete inputs 0..7 (function 2): bit 5.
+  EXPECT_EQ(exchange(bytes({0x00, 0x05, 0, 0, 0, 6, 7, 2, 0, 0, 0, 8})),
+            bytes({0x00, 0x05, 0, 0, 0, 4, 7, 2, 1, 0x20}));
+  // Coils 0..15 (function 1), and a function the server has not: exception 1.
+  EXPECT_EQ(exchange(bytes({0x00, 0x06, 0, 0, 0, 6, 7, 1, 0, 0, 0, 16})),
+            bytes({0x00, 0x06, 0, 0, 0, 5, 7, 1, 2, 0x08, 0x00}));
+  EXPECT_EQ(exchange(bytes({0x00, 0x07, 0, 0, 0, 2, 7, 0x2B})),
+            bytes({0x00, 0x07, 0, 0, 0, 3, 7, 0xAB, 1}));
+  ::close(client);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+}
+
+}  // namespace
