@@ -198,8 +198,10 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     // carries the load and separates it at held_recovery_speed(). The spring, which would
     // throw the bodies apart at about omega·depth, is bounded by the point's share of the
     // critical damper times the speed still missing to that one (or to the rebound the
-    // restitution asks for). A closing point (a landing) keeps the whole law until it turns.
-    if (kin.bounded_recovery && approach <= 0 && point.depth_m > 1.5 * law.hold_depth_m) {
+    // restitution asks for), from a quarter of a hold depth beyond it: the whole spring
+    // carries a stack's loads just past the hold depth. A closing point (a landing) keeps the
+    // whole law until it turns.
+    if (kin.bounded_recovery && approach <= 0 && point.depth_m > 1.25 * law.hold_depth_m) {
       const double rebound = restitution_at(state.approach_speed_m_s) * state.approach_speed_m_s;
       const double target = std::max(rebound, held_recovery_speed(law, point.depth_m));
       normal =

@@ -162,7 +162,7 @@ Recovery recover(const scene::Scene& s) {
   return r;
 }
 
-TEST(ContactFidelity, DISABLED_ABoxStartedACentimetreIntoAnotherSeparatesGently) {
+TEST(ContactFidelity, ABoxStartedACentimetreIntoAnotherSeparatesGently) {
   // Side by side on the floor, 1 cm into each other: pushed apart along X.
   scene::Scene s;
   s.settings.world_walls = false;
