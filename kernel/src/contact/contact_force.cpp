@@ -111,6 +111,14 @@ PairMaterial combine_surfaces(const Surface& a, double beta_a, const Surface* b,
   return m;
 }
 
+double held_recovery_speed(const ForceLawSettings& law, double depth_m) {
+  const double beyond_hold = depth_m - law.hold_depth_m;
+  if (!(beyond_hold > 0)) return 0;
+  const double walking = std::min(law.min_recovery_speed_m_s,
+                                  (beyond_hold - law.hold_depth_m) / (0.1 * law.recovery_time_s));
+  return std::min(law.max_recovery_speed_m_s, std::max(walking, beyond_hold / law.recovery_time_s));
+}
+
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
                    PointState& state, PointRole& role) {
@@ -182,8 +190,23 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     }
     // The dampers of the points on one body act on its speed together: each takes at most its
     // share of it per step, or a box on four corners would overshoot every step and ring.
-    damping = std::min(damping, m / (h * kin.points_sharing));
+    const double damping_bound = m / (h * kin.points_sharing);
+    damping = std::min(damping, damping_bound);
     normal = std::max(0.0, k * point.depth_m + damping * approach);
+    // Overlap recovery (docs/models/contact.md): between jointless bodies (or one and a
+    // static shape) a point deeper than the hold depth is held (stop_graph.hpp), and its row
+    // carries the load and separates it at held_recovery_speed(). The spring, which would
+    // throw the bodies apart at about omega·depth, is bounded by the point's share of the
+    // critical damper times the speed still missing to that one (or to the rebound the
+    // restitution asks for), from a quarter of a hold depth beyond it: the whole spring
+    // carries a stack's loads just past the hold depth. A closing point (a landing) keeps the
+    // whole law until it turns.
+    if (kin.bounded_recovery && approach <= 0 && point.depth_m > 1.25 * law.hold_depth_m) {
+      const double rebound = restitution_at(state.approach_speed_m_s) * state.approach_speed_m_s;
+      const double target = std::max(rebound, held_recovery_speed(law, point.depth_m));
+      normal =
+          std::min(normal, std::max(0.0, std::min(critical, damping_bound) * (target + approach)));
+    }
   }
 
   // Friction bounds the whole normal load: the spring's and what a hold carried last step.

@@ -51,6 +51,11 @@ struct ForceLawSettings {
   /// A resting contact between jointless bodies (or one and a static shape) deeper than this
   /// closes no further: the spring carries what it can, an impulse the rest (stop_graph.hpp).
   double hold_depth_m = 0.001;
+  /// Overlap recovery (docs/models/contact.md): held points leave a deep overlap at
+  /// held_recovery_speed() (`<s2sim><contact recovery_speed>` sets the largest).
+  double max_recovery_speed_m_s = 0.3;
+  double min_recovery_speed_m_s = 0.1;
+  double recovery_time_s = 0.1;
   double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
   double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
@@ -91,7 +96,16 @@ struct PointKinematics {
   /// Touching points on the more crowded of the two bodies (at least 1): the dampers of points
   /// on one body act together, each may take only its share of the body's speed per step.
   int points_sharing = 1;
+  /// Overlap recovery bounds the normal force (both bodies jointless, or one static: their
+  /// held points make up a resting load the bound leaves short, stop_graph.hpp).
+  bool bounded_recovery = false;
 };
+
+/// The speed at which a held point (stop_graph.hpp) `depth_m` deep separates: 0 at the hold
+/// depth d_h, (d − d_h)/T_r beyond it up to v_max, and at least v_min from 2·d_h on, tapering
+/// to (d − 2·d_h)/(T_r/10) below: a load resting on a light point just past the hold depth
+/// rises by micrometres, a deep overlap leaves at a walking pace, never faster than v_max.
+double held_recovery_speed(const ForceLawSettings& law, double depth_m);
 
 /// Force on shape a at the point (world frame). Updates `state` and says what the point is:
 /// a point with depth <= 0 (within the speculative margin) gets the force that brings it to the

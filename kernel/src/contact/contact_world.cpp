@@ -71,6 +71,7 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
       placement_(shapes),
       query_(shapes) {
   law_.erp = scene.settings.erp;
+  law_.max_recovery_speed_m_s = scene.settings.contact_recovery_speed_m_s;
   for (const auto& surface : table_.surfaces())
     restitution_beta_.push_back(surface.restitution > 0 ? restitution_beta(surface.restitution)
                                                         : 0.0);
@@ -534,6 +535,8 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
       std::max({1, touching_points_[static_cast<std::size_t>(body_a)],
                 body_b > 0 ? touching_points_[static_cast<std::size_t>(body_b)] : 0});
 
+  kin.bounded_recovery = jointless_[body_a] && (body_b == 0 || jointless_[body_b]);
+
   const std::uint64_t other_id =
       other_is_plane ? static_cast<std::uint64_t>(table_.size()) + static_cast<std::uint64_t>(other)
                      : static_cast<std::uint64_t>(other);
@@ -587,7 +590,7 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
   if (role == PointRole::contact && jointless_[body_a] && (body_b == 0 || jointless_[body_b]))
     stops.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
                       p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(infos.size() - 1),
-                      memory_ref, last_hold_N * step_s);
+                      memory_ref, last_hold_N * step_s, held_recovery_speed(law_, p.depth_m));
 }
 
 }  // namespace s2sim::contact

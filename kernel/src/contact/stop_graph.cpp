@@ -56,13 +56,14 @@ void StopGraph::add_stop(std::int32_t body_a, std::int32_t body_b, const Vec3& p
 
 void StopGraph::take(Resting& r, const ContactInfo* info) {
   // Closing no faster than max(closing, 0): the separating speed may drop by -min(closing, 0)
-  // at most, i.e. change by at least min(closing, 0). A held point may not close at all.
+  // at most, i.e. change by at least min(closing, 0). A held point may not close at all, and
+  // one deep in an overlap separates at its recovery speed.
   const ContactInfo& c = info[r.info];
   rows_.push_back({r.body_a,
                    r.body_b,
                    c.point_m,
                    c.normal,
-                   r.held ? r.closing_m_s : std::min(r.closing_m_s, 0.0),
+                   r.held ? r.closing_m_s + r.recovery_m_s : std::min(r.closing_m_s, 0.0),
                    r.info,
                    r.memory,
                    {},

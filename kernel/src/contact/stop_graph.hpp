@@ -54,9 +54,13 @@ class StopGraph {
   /// stop reaches it or not, and may not close at all. `memory`: the caller's index of the
   /// point's memory, handed back by resting_forces(); `last_impulse_N_s`: what the point took
   /// last step, where the solve starts from (a load held from step to step needs few sweeps).
+  /// `recovery_m_s`: a held point overlapping deeply is to separate at this speed (no faster:
+  /// an impulse only makes up what the forces of the step leave short of it).
   void add_resting(std::int32_t body_a, std::int32_t body_b, double closing_m_s, bool held,
-                   std::int32_t info, std::int32_t memory, double last_impulse_N_s) {
-    resting_.push_back({body_a, body_b, info, memory, closing_m_s, last_impulse_N_s, held, 0});
+                   std::int32_t info, std::int32_t memory, double last_impulse_N_s,
+                   double recovery_m_s = 0) {
+    resting_.push_back(
+        {body_a, body_b, info, memory, closing_m_s, last_impulse_N_s, recovery_m_s, held, 0});
     held_count_ += held ? 1 : 0;
   }
 
@@ -89,7 +93,7 @@ class StopGraph {
   };
   struct Resting {
     std::int32_t body_a, body_b, info, memory;
-    double closing_m_s, last_impulse_N_s;
+    double closing_m_s, last_impulse_N_s, recovery_m_s;
     bool held;
     char taken;
   };

@@ -145,6 +145,9 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
     } else if (c.name == "friction") {
       positive(c, "default", s.default_friction, 1);
       any = true;
+    } else if (c.name == "contact") {
+      positive(c, "recovery_speed", s.contact_recovery_speed_m_s, 1);
+      any = true;
     } else if (c.name == "walls") {
       s.world_walls = r.boolean(c, "active", s.world_walls);
       positive(c, "distance", s.world_wall_distance_m, 1);

@@ -550,6 +550,7 @@ TEST(SceneLoader, S2SimSettingsOverrideTheIni) {
   EXPECT_EQ(st.substeps, 4);
   EXPECT_DOUBLE_EQ(st.control_period_s, 0.02);
   EXPECT_DOUBLE_EQ(st.default_friction, 0.8);
+  EXPECT_DOUBLE_EQ(st.contact_recovery_speed_m_s, 0.2);
   EXPECT_DOUBLE_EQ(st.erp, 0.3);
   EXPECT_DOUBLE_EQ(st.cfm, 1e-4);
   EXPECT_TRUE(near_vec(st.wind_m_s, {1, -2, 0.5}));
@@ -570,6 +571,7 @@ TEST(SceneLoader, SettingsDefaultsWithoutIni) {
   EXPECT_DOUBLE_EQ(s.settings.physics_step_s, 1e-3);
   EXPECT_DOUBLE_EQ(s.settings.control_period_s, 0.04);
   EXPECT_DOUBLE_EQ(s.settings.default_friction, 0.95);
+  EXPECT_DOUBLE_EQ(s.settings.contact_recovery_speed_m_s, 0.3);
   EXPECT_EQ(s.settings.substeps, 1);
 }
 

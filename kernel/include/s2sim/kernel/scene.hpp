@@ -317,6 +317,9 @@ struct Settings {
   /// softness plays its part.
   double erp = 0.4, cfm = 1e-5;
   bool ir_noise = false;
+  /// The fastest speed at which contact pushes apart jointless bodies that overlap deeply
+  /// (docs/models/contact.md, "Overlap recovery").
+  double contact_recovery_speed_m_s = 0.3;
   /// SimTwo's four invisible wall planes x, y = ±world_wall_distance_m (§4.3 of the spec).
   bool world_walls = true;
   double world_wall_distance_m = 12;
