@@ -3,6 +3,7 @@
 /// scopes of §2.2: robot, things and track files get a copy of G; scene-level robot/things
 /// defines and obstacle files write into G.
 
+#include "scene/import_model.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
@@ -105,6 +106,10 @@ void load_scene_robot(LoadContext& ctx, const Reader& r, const Element& el, Cons
   const std::string name = r.text(*body, "file", "");
   const auto file = ctx.resolve(name);
   if (!exists_or_warn(ctx, r, *body, "file", name, file, "robot '" + placement.id + "'")) return;
+  if (const std::string format = robot_format(file); !format.empty()) {
+    load_imported_robot(ctx, file, format, placement);
+    return;
+  }
   load_robot_file(ctx, file, g, placement);
 }
 
@@ -141,11 +146,13 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
                 ec && ec != std::errc::no_such_file_or_directory
                     ? "cannot read the scene: " + ec.message()
                     : std::string("scene file not found"));
+  if (const std::string format = robot_format(file); !format.empty())
+    return load_robot_scene(file, format, options);
 
   Scene scene;
   scene.file = file;
   scene.folder = file.parent_path();
-  LoadContext ctx{scene, scene.folder, {}, {}};
+  LoadContext ctx{scene, scene.folder, {}, {}, model_search_path(options.model_path)};
   scene.settings = load_settings(scene.folder);
 
   ConstantTable& g = scene.globals;

@@ -350,10 +350,15 @@ struct Scene {
 struct LoadOptions {
   /// Constants set before `scene.xml` is read, as if they led its `<defines>`.
   std::vector<std::pair<std::string, double>> constants;
+  /// Folders searched first for the `package://` and `model://` URIs of URDF, SDF and MJCF
+  /// robots (then S2SIM_MODEL_PATH, ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH).
+  std::vector<std::filesystem::path> model_path;
 };
 
-/// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`. Throws `s2sim::Error`
-/// (kind scene) naming file, element and attribute.
+/// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`; or a robot file in URDF
+/// (`.urdf`), SDF (`.sdf`) or MJCF (an `.xml` whose root is `<mujoco>`), run on the default
+/// floor (docs/models/import.md). Throws `s2sim::Error` (kind scene) naming file, element and
+/// attribute.
 Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace s2sim::scene

@@ -1,0 +1,256 @@
+/// \file
+/// SDF through sdformat (libsdformat 12, docs/models/import.md, "SDF"): a model file, or the
+/// first model of a world file. Poses are resolved by sdformat into the model frame; messages
+/// name the element by sdformat's XML path and line.
+
+#include "scene/import_model.hpp"
+
+#include "scene/attributes.hpp"
+
+#include <sdf/sdf.hh>
+
+#include <cmath>
+#include <limits>
+#include <map>
+
+namespace s2sim::scene::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+Pose to_pose(const ignition::math::Pose3d& p) {
+  const auto& q = p.Rot();
+  return Pose{Vec3{p.Pos().X(), p.Pos().Y(), p.Pos().Z()},
+              to_matrix(Quat{q.W(), q.X(), q.Y(), q.Z()})};
+}
+
+Mat3 transpose(const Mat3& a) {
+  Mat3 t;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      t.m[i][j] = a.m[j][i];
+  return t;
+}
+
+/// A located place in an SDF file: the file and line, the element's XML path.
+Location sdf_at(const std::string& display, const sdf::ElementPtr& el,
+                const std::string& attribute = {}) {
+  if (!el) return Location{display, "", attribute};
+  std::string file = display;
+  if (const auto line = el->LineNumber()) file.append(":").append(std::to_string(*line));
+  return Location{file, el->XmlPath(), attribute};
+}
+
+[[noreturn]] void fail_with(const std::string& display, const sdf::Errors& errors) {
+  const sdf::Error& e = errors.front();
+  std::string file = display;
+  if (const auto line = e.LineNumber()) file.append(":").append(std::to_string(*line));
+  std::string message = e.Message();
+  for (std::size_t k = 1; k < errors.size() && k < 4; ++k)
+    message += "; " + errors[k].Message();
+  throw Error(ErrorKind::scene, Location{file, e.XmlPath().value_or(""), ""},
+              "sdformat: " + message);
+}
+
+void resolve_or_fail(const std::string& display, const sdf::Errors& errors) {
+  if (!errors.empty()) fail_with(display, errors);
+}
+
+}  // namespace
+
+ImportedModel read_sdf(const fs::path& file, const std::string& display,
+                       const std::vector<fs::path>& search_path) {
+  ImportedModel model;
+  model.file = file;
+  model.display = display;
+
+  sdf::ParserConfig config;
+  // <include><uri>model://name</uri>: a folder `name` on the model path.
+  config.SetFindCallback([&](const std::string& uri) -> std::string {
+    std::string name = uri;
+    if (name.compare(0, 8, "model://") == 0) name = name.substr(8);
+    std::vector<fs::path> roots = search_path;
+    for (fs::path up = file.parent_path(); !up.empty() && up != up.parent_path();
+         up = up.parent_path())
+      roots.push_back(up);
+    for (const fs::path& root : roots) {
+      std::error_code ec;
+      if (fs::exists(root / name, ec)) return (root / name).string();
+    }
+    return {};
+  });
+  sdf::Root root;
+  resolve_or_fail(display, root.Load(file.string(), config));
+  const sdf::Model* m = root.Model();
+  if (!m && root.WorldCount() > 0 && root.WorldByIndex(0)->ModelCount() > 0) {
+    const sdf::World* w = root.WorldByIndex(0);
+    m = w->ModelByIndex(0);
+    if (w->ModelCount() > 1)
+      model.warnings.push_back(display + ": the world holds " + std::to_string(w->ModelCount()) +
+                               " models; only the first, '" + m->Name() + "', is loaded");
+  }
+  if (!m) throw Error(ErrorKind::scene, Location{display, "sdf", ""}, "no <model> in the file");
+  model.name = m->Name();
+  if (m->ModelCount() > 0)
+    model.warnings.push_back(sdf_at(display, m->Element()).str() +
+                             ": nested models are not loaded");
+
+  std::map<std::string, int> index;
+  for (uint64_t i = 0; i < m->LinkCount(); ++i) {
+    const sdf::Link* link = m->LinkByIndex(i);
+    ImportedLink l;
+    l.name = link->Name();
+    l.where = sdf_at(display, link->Element());
+    ignition::math::Pose3d pose;
+    resolve_or_fail(display, link->SemanticPose().Resolve(pose, "__model__"));
+    l.pose = to_pose(pose);
+    const auto& inertial = link->Inertial();
+    l.has_inertial = true;
+    sdf::ElementPtr inertial_el =
+        link->Element()->HasElement("inertial") ? link->Element()->GetElement("inertial") : nullptr;
+    l.inertia_where = inertial_el ? sdf_at(display, inertial_el) : l.where;
+    l.mass_kg = inertial.MassMatrix().Mass();
+    const Pose frame = to_pose(inertial.Pose());
+    const auto d = inertial.MassMatrix().DiagonalMoments();
+    const auto o = inertial.MassMatrix().OffDiagonalMoments();  // ixy, ixz, iyz
+    const Mat3 in{{{d.X(), o.X(), o.Y()}, {o.X(), d.Y(), o.Z()}, {o.Y(), o.Z(), d.Z()}}};
+    l.com_m = frame.position;
+    l.inertia_kg_m2 = frame.rotation * in * transpose(frame.rotation);
+
+    Color color;
+    bool has_color = false;
+    for (uint64_t v = 0; v < link->VisualCount() && !has_color; ++v)
+      if (const sdf::Material* mat = link->VisualByIndex(v)->Material()) {
+        const auto c = mat->Diffuse();
+        color = Color{c.R(), c.G(), c.B(), c.A()};
+        has_color = true;
+      }
+    for (uint64_t c = 0; c < link->CollisionCount(); ++c) {
+      const sdf::Collision* col = link->CollisionByIndex(c);
+      ignition::math::Pose3d cp;
+      resolve_or_fail(display, col->SemanticPose().Resolve(cp, link->Name()));
+      Geom g;
+      g.pose = to_pose(cp);
+      g.where = sdf_at(display, col->Element());
+      const sdf::Geometry* geom = col->Geom();
+      switch (geom->Type()) {
+        case sdf::GeometryType::BOX: {
+          const auto s = geom->BoxShape()->Size();
+          g.shape.type = ShapeType::box;
+          g.shape.size_m = Vec3{s.X(), s.Y(), s.Z()};
+          break;
+        }
+        case sdf::GeometryType::CYLINDER:
+          g.shape.type = ShapeType::cylinder;
+          g.shape.radius_m = geom->CylinderShape()->Radius();
+          g.shape.length_m = geom->CylinderShape()->Length();
+          break;
+        case sdf::GeometryType::SPHERE:
+          g.shape.type = ShapeType::sphere;
+          g.shape.radius_m = geom->SphereShape()->Radius();
+          break;
+        case sdf::GeometryType::MESH: {
+          const sdf::Mesh* mesh = geom->MeshShape();
+          const Location where = sdf_at(display, mesh->Element(), "uri");
+          const fs::path path =
+              resolve_model_uri(mesh->Uri(), file.parent_path(), search_path, where);
+          const auto s = mesh->Scale();
+          g = mesh_geom(model, path, Vec3{s.X(), s.Y(), s.Z()}, g.pose, where);
+          break;
+        }
+        default:
+          model.warnings.push_back(g.where.str() + ": collision '" + col->Name() +
+                                   "': this geometry type is not supported; it does not collide");
+          continue;
+      }
+      g.id = l.name + "/" + col->Name();
+      if (has_color) g.visual.color = color;
+      l.geoms.push_back(std::move(g));
+    }
+    for (uint64_t s = 0; s < link->SensorCount(); ++s)
+      model.warnings.push_back(sdf_at(display, link->SensorByIndex(s)->Element()).str() +
+                               ": sensor '" + link->SensorByIndex(s)->Name() + "' is not imported");
+    index.emplace(l.name, static_cast<int>(model.links.size()));
+    model.links.push_back(std::move(l));
+  }
+
+  for (uint64_t i = 0; i < m->JointCount(); ++i) {
+    const sdf::Joint* j = m->JointByIndex(i);
+    ImportedJoint ij;
+    ij.name = j->Name();
+    ij.where = sdf_at(display, j->Element());
+    std::string child_name, parent_name;
+    resolve_or_fail(display, j->ResolveChildLink(child_name));
+    resolve_or_fail(display, j->ResolveParentLink(parent_name));
+    const auto child = index.find(child_name);
+    if (child == index.end())
+      throw Error(ErrorKind::scene, ij.where, "joint '" + ij.name + "': no child link");
+    ij.child = child->second;
+    const auto parent = index.find(parent_name);
+    ij.parent = parent == index.end() ? -1 : parent->second;  // "world"
+    switch (j->Type()) {
+      case sdf::JointType::REVOLUTE:
+        ij.type = ImportedJointType::revolute;
+        break;
+      case sdf::JointType::CONTINUOUS:
+        ij.type = ImportedJointType::continuous;
+        break;
+      case sdf::JointType::PRISMATIC:
+        ij.type = ImportedJointType::prismatic;
+        break;
+      case sdf::JointType::FIXED:
+        ij.type = ImportedJointType::fixed;
+        break;
+      case sdf::JointType::BALL:
+        ij.type = ImportedJointType::ball;
+        break;
+      default: {
+        const std::string text = j->Element()->GetAttribute("type")
+                                     ? j->Element()->GetAttribute("type")->GetAsString()
+                                     : std::string("?");
+        throw Error(ErrorKind::scene, sdf_at(display, j->Element(), "type"),
+                    "joint '" + ij.name + "': joint type '" + text +
+                        "' is not supported (expected revolute, continuous, prismatic, fixed or "
+                        "ball)");
+      }
+    }
+    ignition::math::Pose3d jp;
+    resolve_or_fail(display, j->SemanticPose().Resolve(jp, "__model__"));
+    ij.anchor_m = to_pose(jp).position;
+    if (const sdf::JointAxis* axis = j->Axis(0)) {
+      ignition::math::Vector3d xyz;
+      resolve_or_fail(display, axis->ResolveXyz(xyz, "__model__"));
+      const Vec3 a{xyz.X(), xyz.Y(), xyz.Z()};
+      if (!(norm(a) > 1e-12))
+        throw Error(ErrorKind::scene, sdf_at(display, axis->Element()),
+                    "joint '" + ij.name + "': the axis is the zero vector");
+      ij.axis = a / norm(a);
+      // SDF's defaults: limits ±1e16 (none), effort and velocity -1 (none).
+      if (ij.type == ImportedJointType::revolute || ij.type == ImportedJointType::prismatic) {
+        ij.limited = axis->Lower() > -1e15 || axis->Upper() < 1e15;
+        ij.lower = axis->Lower() > -1e15 ? axis->Lower() : -std::numeric_limits<double>::infinity();
+        ij.upper = axis->Upper() < 1e15 ? axis->Upper() : std::numeric_limits<double>::infinity();
+      }
+      if (axis->Effort() >= 0 && std::isfinite(axis->Effort())) ij.effort_limit = axis->Effort();
+      if (axis->MaxVelocity() >= 0 && std::isfinite(axis->MaxVelocity()))
+        ij.velocity_limit = axis->MaxVelocity();
+      ij.damping = axis->Damping();
+      ij.friction = axis->Friction();
+      ij.spring_stiffness = axis->SpringStiffness();
+      ij.spring_reference = axis->SpringReference();
+      if (ij.damping < 0 || ij.friction < 0 || ij.spring_stiffness < 0)
+        throw Error(ErrorKind::scene, sdf_at(display, axis->Element()),
+                    "joint '" + ij.name + "': damping, friction and spring stiffness must be >= 0");
+    }
+    if (j->Axis(1))
+      model.warnings.push_back(ij.where.str() + ": joint '" + ij.name +
+                               "': the second axis is not applied");
+    // SDF has no transmission: a joint with an effort limit gets a bounded torque input.
+    ij.actuated = ij.effort_limit.has_value() && ij.type != ImportedJointType::fixed &&
+                  ij.type != ImportedJointType::ball;
+    model.joints.push_back(std::move(ij));
+  }
+  return model;
+}
+
+}  // namespace s2sim::scene::detail
