@@ -62,6 +62,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   auto primitive = [&](Drawable& d, const scene::Shape& s) {
     switch (s.type) {
       case scene::ShapeType::box:
+      case scene::ShapeType::convex:  // a hull without its mesh: drawn as its bounding box
         d.item.mesh = box_;
         d.local = d.local * scale_matrix(to_f(s.size_m));
         break;

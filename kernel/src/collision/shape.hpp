@@ -9,17 +9,23 @@
 #include <algorithm>
 #include <cstdint>
 
+namespace s2sim::scene {
+struct ConvexHull;
+}
+
 namespace s2sim::collision {
 
-enum class ShapeKind : std::uint8_t { box, cylinder, sphere };
+/// `convex`: a mesh's convex hull (scene::ConvexHull, kept alive by the ShapeTable).
+enum class ShapeKind : std::uint8_t { box, cylinder, sphere, convex };
 
 /// The geometry of one primitive in its own frame (a cylinder's axis is local Z).
 struct Shape {
   ShapeKind kind = ShapeKind::box;
-  Vec3 half_extents_m;           ///< box
-  double radius_m = 0;           ///< cylinder, sphere
-  double half_length_m = 0;      ///< cylinder, along local Z
-  double bounding_radius_m = 0;  ///< about the shape origin
+  const scene::ConvexHull* hull = nullptr;  ///< convex: vertices, faces, in the shape frame
+  Vec3 half_extents_m;                      ///< box
+  double radius_m = 0;                      ///< cylinder, sphere
+  double half_length_m = 0;                 ///< cylinder, along local Z
+  double bounding_radius_m = 0;             ///< about the shape origin
   /// A cylinder that touches a plane at its mid-plane only (omni and mecanum wheels roll on
   /// their rollers' crowns), not at its tread's two edges.
   bool mid_plane = false;

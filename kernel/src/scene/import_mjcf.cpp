@@ -143,19 +143,15 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
       case mjGEOM_MESH: {
         const int mesh = m->geom_dataid[g];
         const float* v = m->mesh_vert + 3 * m->mesh_vertadr[mesh];
-        Vec3 lo{v[0], v[1], v[2]}, hi = lo;
-        for (int k = 1; k < m->mesh_vertnum[mesh]; ++k) {
-          const Vec3 p{v[3 * k], v[3 * k + 1], v[3 * k + 2]};
-          lo = Vec3{std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-          hi = Vec3{std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-        }
-        geom.shape.type = ShapeType::box;
-        geom.shape.size_m = Vec3{std::max(hi.x - lo.x, 1e-4), std::max(hi.y - lo.y, 1e-4),
-                                 std::max(hi.z - lo.z, 1e-4)};
-        geom.pose = Pose{geom.pose * ((lo + hi) * 0.5), geom.pose.rotation};
-        model.warnings.push_back(geom.where.str() + ": mesh '" +
-                                 name_of(m, mjOBJ_MESH, mesh, "mesh") +
-                                 "' collides as its bounding box");
+        std::vector<Vec3> vertices;
+        for (int k = 0; k < m->mesh_vertnum[mesh]; ++k)
+          vertices.push_back(Vec3{v[3 * k], v[3 * k + 1], v[3 * k + 2]});
+        if (vertices.empty()) continue;
+        const Color color = geom.visual.color;
+        geom =
+            hull_geom(model, vertices, geom.pose, name_of(m, mjOBJ_MESH, mesh, "mesh"), geom.where);
+        geom.id = gname;
+        geom.visual.color = color;
         break;
       }
       case mjGEOM_PLANE:

@@ -163,6 +163,12 @@ double lowest_point(const Pose& pose, const Shape& shape) {
     }
     case ShapeType::sphere:
       return pose.position.z - shape.radius_m;
+    case ShapeType::convex: {
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const Vec3& v : shape.hull->vertices)
+        lowest = std::min(lowest, (pose * v).z);
+      return lowest;
+    }
   }
   return pose.position.z;
 }

@@ -78,11 +78,14 @@ std::filesystem::path resolve_model_uri(const std::string& uri,
                                         const std::vector<std::filesystem::path>& search_path,
                                         const Location& where);
 
-/// A mesh collision geom: until meshes collide, the mesh's bounding box (scaled) stands in as
-/// a box, with a warning naming the file; the mesh is drawn. A mesh that cannot be read is an
-/// error at `where`.
+/// A mesh collision geom: the convex hull of its vertices (scaled), drawn as the mesh; the geom
+/// frame is `pose` moved to the centre of the mesh's bounding box. A mesh that cannot be read
+/// is an error at `where`; one without a hull (flat) collides as its bounding box, warned.
 Geom mesh_geom(ImportedModel& model, const std::filesystem::path& file, const Vec3& scale,
                const Pose& pose, const Location& where);
+/// The same for vertices already read (`vertices` in the mesh frame at `pose`).
+Geom hull_geom(ImportedModel& model, const std::vector<Vec3>& vertices, const Pose& pose,
+               const std::string& mesh_name, const Location& where);
 
 /// Adds the model to the scene as one robot, placed by `placement` (§8 of the format page).
 /// Links joined by fixed joints are merged into one body (the child's mass, inertia and

@@ -6,6 +6,7 @@
 #include "scene/import_model.hpp"
 
 #include "scene/attributes.hpp"
+#include "scene/xml.hpp"
 
 #include <sdf/sdf.hh>
 
@@ -56,6 +57,28 @@ void resolve_or_fail(const std::string& display, const sdf::Errors& errors) {
   if (!errors.empty()) fail_with(display, errors);
 }
 
+/// sdformat names neither the joint nor the line of an unknown joint type: checked first on
+/// the element tree, located.
+void check_joint_types(const Element& el, const std::string& display) {
+  static const char* const kTypes[] = {"revolute",  "revolute2", "prismatic",  "ball",   "screw",
+                                       "universal", "fixed",     "continuous", "gearbox"};
+  if (el.name == "joint")
+    if (const std::string* type = el.attribute("type")) {
+      bool known = false;
+      for (const char* t : kTypes)
+        known = known || *type == t;
+      const std::string* name = el.attribute("name");
+      if (!known)
+        throw Error(ErrorKind::scene, Location{display, el.path, "type"},
+                    "joint '" + (name ? *name : std::string("?")) + "': unknown joint type '" +
+                        *type +
+                        "' (SDF's are revolute, revolute2, prismatic, ball, screw, universal, "
+                        "fixed, continuous and gearbox)");
+    }
+  for (const Element& c : el.children)
+    check_joint_types(c, display);
+}
+
 }  // namespace
 
 ImportedModel read_sdf(const fs::path& file, const std::string& display,
@@ -64,6 +87,7 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
   model.file = file;
   model.display = display;
 
+  check_joint_types(read_xml_file(file, display), display);
   sdf::ParserConfig config;
   // <include><uri>model://name</uri>: a folder `name` on the model path.
   config.SetFindCallback([&](const std::string& uri) -> std::string {

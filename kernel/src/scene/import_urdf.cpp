@@ -251,14 +251,15 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
         }
       }
       const double extent =
-          g.shape.type == ShapeType::box
+          g.shape.type == ShapeType::box || g.shape.type == ShapeType::convex
               ? std::min({g.shape.size_m.x, g.shape.size_m.y, g.shape.size_m.z})
               : (g.shape.type == ShapeType::cylinder ? std::min(g.shape.radius_m, g.shape.length_m)
                                                      : g.shape.radius_m);
       if (!(extent > 0) || !std::isfinite(extent))
         throw Error(ErrorKind::scene, g.where,
                     "link '" + l.name + "': collision geometry needs positive sizes");
-      g.id = l.name + (link->collision_array.size() > 1 ? "/" + std::to_string(k + 1) : "");
+      g.id = l.name;
+      if (link->collision_array.size() > 1) g.id.append("/").append(std::to_string(k + 1));
       if (has_color) g.visual.color = color;
       l.geoms.push_back(std::move(g));
     }

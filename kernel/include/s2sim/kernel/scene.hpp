@@ -10,6 +10,7 @@
 #include <s2sim/schedule.hpp>
 #include <s2sim/sensor.hpp>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -71,14 +72,27 @@ struct Color {
   double r = 0.5, g = 0.5, b = 0.5, a = 1.0;
 };
 
-enum class ShapeType { box, cylinder, sphere };
+/// `convex`: the convex hull of a mesh (URDF, SDF and MJCF collision meshes).
+enum class ShapeType { box, cylinder, sphere, convex };
 
-/// A collision primitive in its own frame. Cylinders are aligned with local Z.
+/// A convex polytope in its geom's frame, built once at load (the hull of a mesh's vertices).
+struct ConvexHull {
+  struct Face {
+    Vec3 normal;          ///< unit, outward
+    double offset_m = 0;  ///< the face's plane: dot(normal, p) = offset_m; inside is below
+  };
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  std::vector<Face> faces;                    ///< one per triangle
+};
+
+/// A collision shape in its own frame. Cylinders are aligned with local Z.
 struct Shape {
   ShapeType type = ShapeType::box;
-  Vec3 size_m{1, 1, 1};  ///< box: full edge lengths
-  double radius_m = 0;   ///< cylinder, sphere
-  double length_m = 0;   ///< cylinder, along local Z
+  Vec3 size_m{1, 1, 1};                    ///< box: full edge lengths; convex: its bounding box
+  double radius_m = 0;                     ///< cylinder, sphere
+  double length_m = 0;                     ///< cylinder, along local Z
+  std::shared_ptr<const ConvexHull> hull;  ///< convex
 };
 
 /// SimTwo's `<surface>`. `explicit_surface` is SimTwo's "has surface" (an explicit mu >= 0,
