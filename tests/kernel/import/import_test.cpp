@@ -406,3 +406,34 @@ TEST(Import, SdfAndMjcfErrorsNameTheFileTheLineAndTheValue) {
 
 }  // namespace
 }  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+TEST(Import, TheQuadrupedStandsOnItsMeshFeetUnderPositionControl) {
+  // Hips and knees under the <s2sim> extension's DC motors and pidposition controllers,
+  // holding their start angles; the feet are STL icosahedra colliding as their hulls.
+  auto sim = Simulation::load(kFixtures / "quadruped/quadruped.urdf", options());
+  int hulls = 0;
+  for (const scene::Body& b : sim->scene().bodies)
+    for (const scene::Geom& g : b.geoms)
+      hulls += g.shape.type == scene::ShapeType::convex;
+  EXPECT_EQ(hulls, 4);
+  const std::size_t z = sim->signal_index("robots/quadruped/solids/body/z");
+  const std::size_t pitch = sim->signal_index("robots/quadruped/solids/body/pitch");
+  const double start = sim->signal(z);
+  sim->run_until(3.0);
+  const double sink = start - sim->signal(z);
+  std::printf(
+      "quadruped: body from %.6f m to %.6f m in 3 s: sank %.3f mm; pitch %.2g rad; "
+      "%zu contacts\n",
+      start, sim->signal(z), 1e3 * sink, sim->signal(pitch), sim->contact_count());
+  EXPECT_GE(sink, 0.0);
+  EXPECT_LT(sink, 2e-3);
+  EXPECT_LT(std::abs(sim->signal(pitch)), 1e-3);
+  EXPECT_GE(sim->contact_count(), 4u);
+  EXPECT_LT(std::abs(sim->signal("robots/quadruped/axes/fl_knee/pos")), 2e-3);
+}
+
+}  // namespace
+}  // namespace s2sim
