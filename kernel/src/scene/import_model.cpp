@@ -219,8 +219,7 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
   const int robot_index = static_cast<int>(scene.robots.size() - 1);
   Robot& rb = scene.robots.back();
 
-  // One body per owner link, in link order; the first link without a parent joint (the
-  // model's root) is the main body.
+  // One body per owner link, in link order.
   std::vector<int> body_of(n_links, -1);
   for (std::size_t l = 0; l < n_links; ++l) {
     if (owner[l] != static_cast<int>(l)) continue;
@@ -262,8 +261,10 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
       b.geoms.push_back(std::move(g));
     }
   }
+  // The main body: the first link that hangs from nothing or from the world.
   for (std::size_t l = 0; l < n_links && rb.main_body < 0; ++l)
-    if (parent_joint[l] < 0) rb.main_body = body_of[l];
+    if (parent_joint[l] < 0 || model.joints[static_cast<std::size_t>(parent_joint[l])].parent < 0)
+      rb.main_body = body_of[l];
 
   const auto constants = std::make_shared<const ConstantTable>();
   std::vector<std::string> unapplied_velocity, unactuated_effort;

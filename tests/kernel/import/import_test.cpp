@@ -201,6 +201,8 @@ TEST(Import, ASimTwoScenePlacesImportedRobotsWithTheirIdAndPose) {
   ASSERT_EQ(s.robots.size(), 2u);
   EXPECT_EQ(s.robots[0].id, "rover_a");
   EXPECT_EQ(s.robots[1].id, "pendulum");
+  EXPECT_EQ(s.bodies[static_cast<std::size_t>(s.robots[0].main_body)].id, "base_link");
+  EXPECT_EQ(s.bodies[static_cast<std::size_t>(s.robots[1].main_body)].id, "upper");
   const Pose& base = sim->body_pose(body_of(*sim, "base_link"));
   EXPECT_NEAR(base.position.x, 1, 1e-12);
   EXPECT_NEAR(base.position.y, 2, 1e-12);
@@ -433,6 +435,62 @@ TEST(Import, TheQuadrupedStandsOnItsMeshFeetUnderPositionControl) {
   EXPECT_LT(std::abs(sim->signal(pitch)), 1e-3);
   EXPECT_GE(sim->contact_count(), 4u);
   EXPECT_LT(std::abs(sim->signal("robots/quadruped/axes/fl_knee/pos")), 2e-3);
+}
+
+}  // namespace
+}  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+TEST(Import, ARosStyleDescriptionLoadsWithItsPackageOnTheModelPathAndSaysWhatItIgnores) {
+  // The meshes' package `probe_meshes` lies outside the folders above the URDF: it is found
+  // through the model path (--model-path), then through ROS_PACKAGE_PATH.
+  const fs::path share = kFixtures / "ros_style/share";
+  const fs::path other = kFixtures / "ros_style/other";
+  SimulationOptions o = options();
+  o.model_path = {other};
+  auto sim = Simulation::load(share / "probe_description/urdf/probe.urdf", o);
+  const scene::Scene& s = sim->scene();
+  ASSERT_EQ(s.robots.size(), 1u);
+  // base_footprint, base_link and imu_link are one body (fixed joints merged), then the flaps.
+  EXPECT_EQ(s.bodies.size(), 3u);
+  EXPECT_EQ(s.bodies[0].id, "base_footprint");
+  EXPECT_DOUBLE_EQ(s.bodies[0].mass_kg, 3.0);
+  ASSERT_EQ(s.bodies[0].geoms.size(), 1u);
+  EXPECT_EQ(s.bodies[0].geoms[0].shape.type, scene::ShapeType::convex);
+  EXPECT_EQ(s.bodies[0].geoms[0].shape.hull->vertices.size(), 8u);
+  EXPECT_EQ(s.bodies[0].geoms[0].visual.mesh.file.filename(), "chassis.obj");
+  // The chassis rests on the floor: its box bottom at z = 0.
+  EXPECT_NEAR(sim->body_pose(1).position.z, 0.0, 1e-9);  // assimp reads floats
+  std::string warnings;
+  for (const std::string& w : sim->warnings())
+    warnings += w + "\n";
+  EXPECT_THAT(warnings, HasSubstr("joint 'flap2_joint' mimics 'flap_joint': not applied"));
+  EXPECT_THAT(warnings, HasSubstr("<gazebo> extension elements are ignored"));
+  EXPECT_THAT(warnings, HasSubstr("velocity limits are not applied"));
+  EXPECT_THAT(warnings, HasSubstr("effort limits of joints without an actuator bound nothing "
+                                  "(joint 'flap2_joint')"));
+  // Only the transmission's joint gets the bounded input; damping and friction are applied.
+  EXPECT_TRUE(sim->find_signal("robots/probe/axes/flap_joint/effort_applied").has_value());
+  EXPECT_FALSE(sim->find_signal("robots/probe/axes/flap2_joint/effort_applied").has_value());
+  for (const scene::Joint& j : s.joints)
+    if (j.id == "flap_joint") {
+      EXPECT_TRUE(j.limits1.active);
+      EXPECT_DOUBLE_EQ(j.limits1.min, -0.5);
+      ASSERT_NE(j.drive1.element.child("friction"), nullptr);
+      EXPECT_EQ(*j.drive1.element.child("friction")->attribute("bv"), "0.01");
+      EXPECT_EQ(*j.drive1.element.child("friction")->attribute("fc"), "0.001");
+    }
+  sim->run_until(0.5);
+  EXPECT_TRUE(std::isfinite(sim->signal("robots/probe/axes/flap_joint/pos")));
+  // Without the model path the package is not found, and the error lists what was searched.
+  const Error e = load_error(share / "probe_description/urdf/probe.urdf");
+  EXPECT_THAT(e.message(), HasSubstr("cannot resolve 'package://probe_meshes/meshes/chassis.obj'"));
+  EXPECT_THAT(e.message(), HasSubstr((share / "probe_description/urdf").generic_string()));
+  ::setenv("ROS_PACKAGE_PATH", ("/nonexistent:" + other.string()).c_str(), 1);
+  EXPECT_NO_THROW(Simulation::load(share / "probe_description/urdf/probe.urdf", options()));
+  ::unsetenv("ROS_PACKAGE_PATH");
 }
 
 }  // namespace
