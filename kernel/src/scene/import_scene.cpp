@@ -45,18 +45,23 @@ std::string robot_format(const fs::path& file) {
   return {};
 }
 
+namespace {
+
+/// The model of a robot file in `format`; `settings` takes what a lone file sets (MJCF's step).
+ImportedModel read_model(const std::string& format, const fs::path& file,
+                         const std::string& display, const std::vector<fs::path>& search_path,
+                         Settings* settings) {
+  if (format == "urdf") return read_urdf(file, display, search_path);
+  if (format == "sdf") return read_sdf(file, display, search_path);
+  return read_mjcf(file, display, search_path, settings);
+}
+
+}  // namespace
+
 void load_imported_robot(LoadContext& ctx, const fs::path& file, const std::string& format,
                          const RobotPlacement& placement) {
-  const std::string display = ctx.display(file);
-  ImportedModel model;
-  if (format == "urdf") {
-    model = read_urdf(file, display, ctx.model_path);
-  } else if (format == "sdf") {
-    model = read_sdf(file, display, ctx.model_path);
-  } else {
-    model = read_mjcf(file, display, ctx.model_path, nullptr);
-  }
-  add_imported_robot(ctx, std::move(model), placement);
+  add_imported_robot(ctx, read_model(format, file, ctx.display(file), ctx.model_path, nullptr),
+                     placement);
 }
 
 Scene load_robot_scene(const fs::path& path, const std::string& format,
@@ -74,15 +79,8 @@ Scene load_robot_scene(const fs::path& path, const std::string& format,
   RobotPlacement placement;
   placement.where = Location{ctx.display(file), "", ""};
   placement.rest_on_floor = true;
-  ImportedModel model;
-  const std::string display = ctx.display(file);
-  if (format == "urdf") {
-    model = read_urdf(file, display, ctx.model_path);
-  } else if (format == "sdf") {
-    model = read_sdf(file, display, ctx.model_path);
-  } else {
-    model = read_mjcf(file, display, ctx.model_path, &scene.settings);
-  }
+  ImportedModel model =
+      read_model(format, file, ctx.display(file), ctx.model_path, &scene.settings);
   placement.id = model.name.empty() ? std::string("robot0") : model.name;
   add_imported_robot(ctx, std::move(model), placement);
   return scene;
