@@ -114,6 +114,9 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
     const float* rgba =
         m->geom_matid[g] >= 0 ? m->mat_rgba + 4 * m->geom_matid[g] : m->geom_rgba + 4 * g;
     geom.visual.color = Color{rgba[0], rgba[1], rgba[2], rgba[3]};
+    // MuJoCo's sliding friction (its default is 1); torsional and rolling are not modelled.
+    geom.surface.explicit_surface = true;
+    geom.surface.mu = m->geom_friction[3 * g];
     switch (m->geom_type[g]) {
       case mjGEOM_BOX:
         geom.shape.type = ShapeType::box;
@@ -147,11 +150,12 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
         for (int k = 0; k < m->mesh_vertnum[mesh]; ++k)
           vertices.push_back(Vec3{v[3 * k], v[3 * k + 1], v[3 * k + 2]});
         if (vertices.empty()) continue;
-        const Color color = geom.visual.color;
+        const Geom primitive = geom;
         geom =
             hull_geom(model, vertices, geom.pose, name_of(m, mjOBJ_MESH, mesh, "mesh"), geom.where);
         geom.id = gname;
-        geom.visual.color = color;
+        geom.visual.color = primitive.visual.color;
+        geom.surface = primitive.surface;
         break;
       }
       case mjGEOM_PLANE:

@@ -187,6 +187,18 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
                                    "': this geometry type is not supported; it does not collide");
           continue;
       }
+      // <surface><friction><ode><mu>, <mu2>: Gazebo's friction, where the file writes it.
+      sdf::ElementPtr friction = col->Element();
+      for (const char* child : {"surface", "friction", "ode"})
+        friction = friction && friction->HasElement(child) ? friction->GetElement(child) : nullptr;
+      if (friction && friction->HasElement("mu")) {
+        g.surface.explicit_surface = true;
+        g.surface.mu = friction->Get<double>("mu");
+        if (friction->HasElement("mu2")) g.surface.mu2 = friction->Get<double>("mu2");
+        if (!(g.surface.mu >= 0) || !std::isfinite(g.surface.mu))
+          throw Error(ErrorKind::scene, sdf_at(display, friction, "mu"),
+                      "friction mu must be >= 0, got " + format_number(g.surface.mu));
+      }
       g.id = l.name + "/" + col->Name();
       if (has_color) g.visual.color = color;
       l.geoms.push_back(std::move(g));

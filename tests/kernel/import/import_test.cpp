@@ -495,3 +495,27 @@ TEST(Import, ARosStyleDescriptionLoadsWithItsPackageOnTheModelPathAndSaysWhatItI
 
 }  // namespace
 }  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+TEST(Import, SdfAndMjcfFrictionReachesTheSurface) {
+  const fs::path sdf =
+      test::edited_copy(kFixtures, "double_pendulum.sdf",
+                        "<geometry><box><size>0.04 0.04 0.4</size></box></geometry>",
+                        "<geometry><box><size>0.04 0.04 0.4</size></box></geometry>"
+                        "<surface><friction><ode><mu>0.3</mu><mu2>0.2</mu2></ode>"
+                        "</friction></surface>") /
+      "double_pendulum.sdf";
+  auto a = Simulation::load(sdf, options());
+  const scene::Geom& lower = a->scene().bodies.at(1).geoms.at(0);
+  EXPECT_TRUE(lower.surface.explicit_surface);
+  EXPECT_EQ(lower.surface.mu, 0.3);
+  EXPECT_EQ(lower.surface.mu2, 0.2);
+  EXPECT_FALSE(a->scene().bodies.at(0).geoms.at(0).surface.explicit_surface);  // none written
+  auto b = Simulation::load(kFixtures / "double_pendulum_mjcf.xml", options());
+  EXPECT_EQ(b->scene().bodies.at(0).geoms.at(0).surface.mu, 1.0);  // MuJoCo's default
+}
+
+}  // namespace
+}  // namespace s2sim
