@@ -266,6 +266,9 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
       model.warnings.push_back(display + ": actuator '" +
                                name_of(m, mjOBJ_ACTUATOR, u, "actuator") +
                                "' does not act on a joint; ignored");
+  if (m->nsensor > 0)
+    model.warnings.push_back(display + ": " + std::to_string(m->nsensor) +
+                             " sensors are not imported");
   if (m->neq > 0)
     model.warnings.push_back(display + ": " + std::to_string(m->neq) +
                              " equality constraints are not applied");

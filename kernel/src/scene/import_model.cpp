@@ -395,6 +395,22 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
                       "' is free and needs an inertia with positive principal moments (" +
                       inertia_text(b.inertia_kg_m2) + ")");
   }
+  for (ImportedSensor& is : model.sensors) {
+    Sensor s = std::move(is.sensor);
+    const ImportedLink& link = model.links[static_cast<std::size_t>(is.link)];
+    s.robot = robot_index;
+    s.body = body_of[static_cast<std::size_t>(is.link)];
+    // The sensor in its body's frame: body⁻¹ · link · sensor.
+    const Body& b = scene.bodies[static_cast<std::size_t>(s.body)];
+    s.pose = b.pose.inverse() * link.pose * s.pose;
+    for (int other : rb.sensors)
+      if (scene.sensors[static_cast<std::size_t>(other)].name == s.name)
+        throw Error(ErrorKind::scene, s.where,
+                    "a second sensor named '" + s.name + "' in this robot (the first is at " +
+                        scene.sensors[static_cast<std::size_t>(other)].where.str() + ")");
+    scene.sensors.push_back(std::move(s));
+    rb.sensors.push_back(static_cast<int>(scene.sensors.size() - 1));
+  }
   for (std::string& w : model.warnings)
     scene.warnings.push_back(std::move(w));
   Vec3 offset = placement.offset_m;

@@ -53,13 +53,20 @@ struct ImportedJoint {
   Location where;
 };
 
+/// A sensor of the format, already in S2Sim's terms; `sensor.pose` in its link's frame.
+struct ImportedSensor {
+  int link = -1;
+  Sensor sensor;
+};
+
 struct ImportedModel {
   std::string name;
   std::filesystem::path file;  ///< absolute
   std::string display;         ///< how messages name the file
   std::vector<ImportedLink> links;
   std::vector<ImportedJoint> joints;
-  std::vector<Geom> world_geoms;      ///< static geometry, poses in the model frame
+  std::vector<Geom> world_geoms;  ///< static geometry, poses in the model frame
+  std::vector<ImportedSensor> sensors;
   std::vector<std::string> warnings;  ///< already located
 };
 

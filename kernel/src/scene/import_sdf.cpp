@@ -10,9 +10,12 @@
 
 #include <sdf/sdf.hh>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
+#include <optional>
 
 namespace s2sim::scene::detail {
 namespace {
@@ -55,6 +58,79 @@ Location sdf_at(const std::string& display, const sdf::ElementPtr& el,
 
 void resolve_or_fail(const std::string& display, const sdf::Errors& errors) {
   if (!errors.empty()) fail_with(display, errors);
+}
+
+bool has_descendant(const sdf::ElementPtr& el, const std::string& name) {
+  for (sdf::ElementPtr c = el->GetFirstElement(); c; c = c->GetNextElement())
+    if (c->GetName() == name || has_descendant(c, name)) return true;
+  return false;
+}
+
+/// An SDF sensor as S2Sim's kind (docs/models/import.md, "Sensors"): `imu` → imu, `lidar`,
+/// `gpu_lidar` (and their older names `ray`, `gpu_ray`) → a ranger2d scanning at once,
+/// `contact` → touch; the others are warned about. The pose is in the link's frame.
+std::optional<Sensor> imported_sensor(ImportedModel& model, const sdf::Sensor& in,
+                                      const std::string& link, const std::string& display) {
+  Sensor s;
+  s.where = sdf_at(display, in.Element());
+  s.id = s.name = in.Name();
+  ignition::math::Pose3d pose;
+  resolve_or_fail(display, in.SemanticPose().Resolve(pose, link));
+  s.pose = to_pose(pose);
+  if (in.UpdateRate() > 0) s.period_s = 1.0 / in.UpdateRate();
+  if (const SensorRuleBroken broken = check_sensor_period(s.period_s))
+    throw Error(ErrorKind::scene, sdf_at(display, in.Element(), "update_rate"), broken.message);
+  Element params;
+  params.path = s.where.element;
+  switch (in.Type()) {
+    case sdf::SensorType::IMU:
+      s.kind = "imu";
+      break;
+    case sdf::SensorType::CONTACT:
+      s.kind = "touch";
+      break;
+    case sdf::SensorType::LIDAR:
+    case sdf::SensorType::GPU_LIDAR: {
+      const sdf::Lidar* lidar = in.LidarSensor();
+      if (!lidar) return std::nullopt;
+      s.kind = "ranger2d";
+      const double lo = lidar->HorizontalScanMinAngle().Radian();
+      const double hi = lidar->HorizontalScanMaxAngle().Radian();
+      s.beam.length_m = lidar->RangeMax();
+      s.beam.angle_rad = hi - lo;
+      s.beam.rays = static_cast<int>(
+          std::min<unsigned>(lidar->HorizontalScanSamples(), static_cast<unsigned>(kMaxBeamRays)));
+      // S2Sim fans the rays about the frame's +X: the frame turned to the scan's middle.
+      const double mid = 0.5 * (lo + hi);
+      s.pose.rotation =
+          s.pose.rotation *
+          Mat3{{{std::cos(mid), -std::sin(mid), 0}, {std::sin(mid), std::cos(mid), 0}, {0, 0, 1}}};
+      if (const SensorRuleBroken broken = check_beam(s.beam))
+        throw Error(ErrorKind::scene, s.where, "lidar '" + s.name + "': " + broken.message);
+      if (lidar->VerticalScanSamples() > 1)
+        model.warnings.push_back(s.where.str() + ": lidar '" + s.name +
+                                 "': only the horizontal scan is imported (a 2-D ranger)");
+      if (lidar->RangeMin() > 0)
+        model.warnings.push_back(s.where.str() + ": lidar '" + s.name +
+                                 "': the minimum range is not applied");
+      Element scan;
+      scan.name = "scan";
+      scan.path = params.path + "/scan";
+      scan.attributes = {{"mode", "instant"}};
+      params.children.push_back(std::move(scan));
+      break;
+    }
+    default:
+      model.warnings.push_back(s.where.str() + ": sensor '" + in.Name() + "' of type '" +
+                               in.TypeStr() + "' is not imported");
+      return std::nullopt;
+  }
+  if (has_descendant(in.Element(), "noise"))
+    model.warnings.push_back(s.where.str() + ": sensor '" + s.name +
+                             "': its <noise> is not imported (S2Sim's noise models differ)");
+  params.name = s.kind;
+  s.params = ParamSource{std::move(params), display, std::make_shared<const ConstantTable>()};
+  return s;
 }
 
 /// sdformat names neither the joint nor the line of an unknown joint type: checked first on
@@ -204,8 +280,8 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
       l.geoms.push_back(std::move(g));
     }
     for (uint64_t s = 0; s < link->SensorCount(); ++s)
-      model.warnings.push_back(sdf_at(display, link->SensorByIndex(s)->Element()).str() +
-                               ": sensor '" + link->SensorByIndex(s)->Name() + "' is not imported");
+      if (auto sensor = imported_sensor(model, *link->SensorByIndex(s), link->Name(), display))
+        model.sensors.push_back({static_cast<int>(model.links.size()), std::move(*sensor)});
     index.emplace(l.name, static_cast<int>(model.links.size()));
     model.links.push_back(std::move(l));
   }

@@ -519,3 +519,36 @@ TEST(Import, SdfAndMjcfFrictionReachesTheSurface) {
 
 }  // namespace
 }  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+TEST(Import, SdfSensorsBecomeS2SimSensorsAndMeasure) {
+  auto sim = Simulation::load(kFixtures / "sensor_cart.sdf", options());
+  const scene::Scene& s = sim->scene();
+  ASSERT_EQ(s.sensors.size(), 3u);
+  EXPECT_EQ(s.sensors[0].kind, "imu");
+  EXPECT_DOUBLE_EQ(s.sensors[0].period_s, 0.01);
+  const scene::Sensor& lidar = s.sensors[1];
+  EXPECT_EQ(lidar.kind, "ranger2d");
+  EXPECT_EQ(lidar.beam.rays, 5);
+  EXPECT_NEAR(lidar.beam.angle_rad, 0.4, 1e-12);
+  EXPECT_DOUBLE_EQ(lidar.beam.length_m, 2.0);
+  EXPECT_EQ(s.sensors[2].kind, "touch");
+  std::string warnings;
+  for (const std::string& w : sim->warnings())
+    warnings += w + "\n";
+  EXPECT_THAT(warnings, HasSubstr("sensor 'eye' of type 'camera' is not imported"));
+  EXPECT_THAT(warnings, HasSubstr("sensor 'down_lidar': its <noise> is not imported"));
+  EXPECT_THAT(warnings, HasSubstr("the minimum range is not applied"));
+  // Resting on the floor (its bottom at z = 0), the cart's lidar looks down from 0.5 m.
+  sim->run_until(0.5);
+  const double middle = sim->signal("robots/sensor_cart/sensors/down_lidar/ray/2");
+  std::printf("lidar's middle ray: %.6f m\n", middle);
+  EXPECT_NEAR(middle, 0.5, 2e-3);
+  EXPECT_EQ(sim->signal("robots/sensor_cart/sensors/bumper/value"), 1.0);  // on the floor
+  EXPECT_NEAR(sim->signal("robots/sensor_cart/sensors/bumper/force"), 9.81, 0.1);
+}
+
+}  // namespace
+}  // namespace s2sim
