@@ -233,6 +233,7 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
     b.com_m = link.com_m;
     b.inertia_kg_m2 = link.inertia_kg_m2;
     b.geoms = link.geoms;
+    b.visuals = link.visuals;
     b.where = link.where;
     scene.bodies.push_back(std::move(b));
     body_of[l] = static_cast<int>(scene.bodies.size() - 1);
@@ -259,6 +260,10 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
     for (Geom g : link.geoms) {
       g.pose = t * g.pose;
       b.geoms.push_back(std::move(g));
+    }
+    for (Geom g : link.visuals) {
+      g.pose = t * g.pose;
+      b.visuals.push_back(std::move(g));
     }
   }
   // The main body: the first link that hangs from nothing or from the world.

@@ -25,9 +25,10 @@ struct ImportedLink {
   Vec3 com_m;                                                ///< in the link frame
   Mat3 inertia_kg_m2 = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};  ///< about the COM, link axes
   bool has_inertial = false;
-  std::vector<Geom> geoms;  ///< poses in the link frame
-  Location where;           ///< the link element
-  Location inertia_where;   ///< the element holding the inertia values
+  std::vector<Geom> geoms;    ///< collision, poses in the link frame
+  std::vector<Geom> visuals;  ///< drawn only, poses in the link frame
+  Location where;             ///< the link element
+  Location inertia_where;     ///< the element holding the inertia values
 };
 
 enum class ImportedJointType { revolute, continuous, prismatic, fixed, floating, planar, ball };

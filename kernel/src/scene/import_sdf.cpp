@@ -279,6 +279,50 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
       if (has_color) g.visual.color = color;
       l.geoms.push_back(std::move(g));
     }
+    for (uint64_t v = 0; v < link->VisualCount(); ++v) {
+      const sdf::Visual* visual = link->VisualByIndex(v);
+      ignition::math::Pose3d vp;
+      resolve_or_fail(display, visual->SemanticPose().Resolve(vp, link->Name()));
+      Geom g;
+      g.id = l.name + "/" + visual->Name();
+      g.pose = to_pose(vp);
+      g.where = sdf_at(display, visual->Element());
+      if (const sdf::Material* mat = visual->Material()) {
+        const auto c = mat->Diffuse();
+        g.visual.color = Color{c.R(), c.G(), c.B(), c.A()};
+      }
+      const sdf::Geometry* geom = visual->Geom();
+      switch (geom->Type()) {
+        case sdf::GeometryType::BOX: {
+          const auto size = geom->BoxShape()->Size();
+          g.shape.size_m = Vec3{size.X(), size.Y(), size.Z()};
+          break;
+        }
+        case sdf::GeometryType::CYLINDER:
+          g.shape.type = ShapeType::cylinder;
+          g.shape.radius_m = geom->CylinderShape()->Radius();
+          g.shape.length_m = geom->CylinderShape()->Length();
+          break;
+        case sdf::GeometryType::SPHERE:
+          g.shape.type = ShapeType::sphere;
+          g.shape.radius_m = geom->SphereShape()->Radius();
+          break;
+        case sdf::GeometryType::MESH:
+          try {
+            g.visual.mesh.file =
+                resolve_model_uri(geom->MeshShape()->Uri(), file.parent_path(), search_path,
+                                  sdf_at(display, geom->MeshShape()->Element(), "uri"));
+          } catch (const Error& e) {
+            model.warnings.push_back(std::string(e.what()) + " (a visual mesh: not drawn)");
+            continue;
+          }
+          g.visual.mesh.scale = geom->MeshShape()->Scale().X();
+          break;
+        default:
+          continue;  // not drawn
+      }
+      l.visuals.push_back(std::move(g));
+    }
     for (uint64_t s = 0; s < link->SensorCount(); ++s)
       if (auto sensor = imported_sensor(model, *link->SensorByIndex(s), link->Name(), display))
         model.sensors.push_back({static_cast<int>(model.links.size()), std::move(*sensor)});

@@ -263,42 +263,52 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
       if (has_color) g.visual.color = color;
       l.geoms.push_back(std::move(g));
     }
-    // Visual meshes are drawn on the collision geom they share an orientation with; a
-    // missing one is a warning, since it changes no physics.
+    // Visual geometry: drawn instead of the collision geometry; a missing visual mesh is a
+    // warning, since it changes no physics.
     for (std::size_t k = 0; k < link->visual_array.size(); ++k) {
       const urdf::VisualSharedPtr& v = link->visual_array[k];
-      if (!v || !v->geometry || v->geometry->type != urdf::Geometry::MESH) continue;
-      const auto& m = static_cast<const urdf::Mesh&>(*v->geometry);
+      if (!v || !v->geometry) continue;
       const Element& vel = nth_child(el, "visual", k);
-      const Location where = at(nth_child(nth_child(vel, "geometry", 0), "mesh", 0), "filename");
-      fs::path mesh;
-      try {
-        mesh = resolve_model_uri(m.filename, file.parent_path(), search_path, where);
-      } catch (const Error& e) {
-        model.warnings.push_back(std::string(e.what()) + " (a visual mesh: not drawn)");
-        continue;
-      }
-      const Pose pose = to_pose(v->origin);
-      Geom* host = nullptr;
-      for (Geom& g : l.geoms) {
-        double d = 0;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j)
-            d = std::max(d, std::abs(g.pose.rotation.m[i][j] - pose.rotation.m[i][j]));
-        if (d < 1e-9 && g.visual.mesh.file.empty()) {
-          host = &g;
+      Geom g;
+      g.id = l.name + "/visual";
+      g.pose = to_pose(v->origin);
+      g.where = at(vel);
+      g.visual.color = v->material ? Color{v->material->color.r, v->material->color.g,
+                                           v->material->color.b, v->material->color.a}
+                                   : (has_color ? color : g.visual.color);
+      switch (v->geometry->type) {
+        case urdf::Geometry::BOX: {
+          const auto& b = static_cast<const urdf::Box&>(*v->geometry);
+          g.shape.size_m = Vec3{b.dim.x, b.dim.y, b.dim.z};
+          break;
+        }
+        case urdf::Geometry::CYLINDER: {
+          const auto& cy = static_cast<const urdf::Cylinder&>(*v->geometry);
+          g.shape.type = ShapeType::cylinder;
+          g.shape.radius_m = cy.radius;
+          g.shape.length_m = cy.length;
+          break;
+        }
+        case urdf::Geometry::SPHERE:
+          g.shape.type = ShapeType::sphere;
+          g.shape.radius_m = static_cast<const urdf::Sphere&>(*v->geometry).radius;
+          break;
+        case urdf::Geometry::MESH: {
+          const auto& m = static_cast<const urdf::Mesh&>(*v->geometry);
+          const Location where =
+              at(nth_child(nth_child(vel, "geometry", 0), "mesh", 0), "filename");
+          try {
+            g.visual.mesh.file =
+                resolve_model_uri(m.filename, file.parent_path(), search_path, where);
+          } catch (const Error& e) {
+            model.warnings.push_back(std::string(e.what()) + " (a visual mesh: not drawn)");
+            continue;
+          }
+          g.visual.mesh.scale = m.scale.x;
           break;
         }
       }
-      if (!host) {
-        model.warnings.push_back(where.str() + ": visual mesh '" + mesh.filename().string() +
-                                 "' is not drawn (no collision geometry of this link has its "
-                                 "orientation)");
-        continue;
-      }
-      host->visual.mesh.file = mesh;
-      host->visual.mesh.scale = m.scale.x;
-      host->visual.mesh.offset_m = pose.position - host->pose.position;
+      l.visuals.push_back(std::move(g));
     }
   }
 

@@ -254,7 +254,15 @@ TEST(Import, MeshWheelsCollideAsTheirHullsAndTheRoverDrivesAtRadiusTimesWheelSpe
         EXPECT_EQ(g.visual.mesh.file.filename(), "wheel.stl");
       }
   EXPECT_EQ(hulls, 4);
+  // What the viewer draws: the URDF's visuals, the chassis blue, each wheel its STL mesh.
   const int base = body_of(*sim, "base_link");
+  const scene::Body& chassis = s.bodies.at(static_cast<std::size_t>(base - 1));
+  ASSERT_EQ(chassis.visuals.size(), 1u);
+  EXPECT_EQ(chassis.visuals[0].shape.type, scene::ShapeType::box);
+  EXPECT_FLOAT_EQ(static_cast<float>(chassis.visuals[0].visual.color.b), 0.8f);
+  const scene::Body& wheel = s.bodies.at(static_cast<std::size_t>(body_of(*sim, "wheel_fl") - 1));
+  ASSERT_EQ(wheel.visuals.size(), 1u);
+  EXPECT_EQ(wheel.visuals[0].visual.mesh.file.filename(), "wheel.stl");
   EXPECT_NEAR(sim->body_pose(base).position.z, 0.05, 1e-9) << "not lifted onto its wheels";
   auto axis = [](const std::string& w, const char* what) {
     return "robots/rover_mesh/axes/wheel_" + w + "_joint/" + what;

@@ -184,6 +184,9 @@ struct Body {
   Vec3 com_m;  ///< centre of mass in the body frame (moved by massive shells)
   Mat3 inertia_kg_m2 = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};  ///< about the COM, body axes
   std::vector<Geom> geoms;  ///< geoms[0] is the solid's own primitive, then its shells
+  /// Geometry drawn instead of `geoms` and never collided (an imported link's visuals);
+  /// empty for SimTwo solids.
+  std::vector<Geom> visuals;
   Drag drag;
   Buoyancy buoyancy;
   double thrust_coefficient = 0;  ///< propellers
