@@ -9,6 +9,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libsimbody-dev libeigen3-dev libboost-dev libboost-filesystem-dev
   libfcl-dev libassimp-dev
+  liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev

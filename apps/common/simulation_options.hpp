@@ -21,6 +21,9 @@ SimulationOptions simulation_options(const CommandLine& o) {
   if constexpr (requires { o.check_dynamics; }) so.check_dynamics = o.check_dynamics;
   for (const auto& p : o.plugin_path)
     so.plugin_path.emplace_back(p);
+  if constexpr (requires { o.model_path; })
+    for (const auto& p : o.model_path)
+      so.model_path.emplace_back(p);
   if constexpr (requires { o.default_plugin_path; }) so.default_plugin_path = o.default_plugin_path;
   if constexpr (requires { o.script_mode; }) {  // the runner's SimTwo script options
     so.script_mode = o.script_mode;

@@ -53,7 +53,8 @@ std::pair<int, int> parse_cell(std::string_view option, const std::string& text)
 
 const char* usage_text() {
   return R"(Usage: s2sim-run SCENE [options]
-Runs a SimTwo/S2Sim scene headless. SCENE is a scene folder or its scene.xml.
+Runs a SimTwo/S2Sim scene headless. SCENE is a scene folder or its scene.xml, or a robot
+file in URDF (.urdf), SDF (.sdf) or MJCF (.xml with a <mujoco> root), run on the floor.
 
 Options:
   --duration S         simulated seconds to run (default 10)
@@ -86,6 +87,8 @@ Options:
                        the first library on the path that provides a kind wins)
   --no-default-plugin-path
                        search only the --plugin-path folders
+  --model-path DIR     search DIR for package:// and model:// URIs before
+                       S2SIM_MODEL_PATH, ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH (repeatable)
   --script FILE        run this SimTwo script instead of the one the project names
   --run-script         run the project's script even when its control block is not
                        "Script" (SimTwo's Run)
@@ -179,6 +182,8 @@ Options parse_options(int argc, char** argv) {
       o.check_dynamics = true;
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value());
+    } else if (a == "--model-path") {
+      o.model_path.push_back(value());
     } else if (a == "--no-default-plugin-path") {
       o.default_plugin_path = false;
     } else if (a == "--script") {

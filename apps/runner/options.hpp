@@ -33,6 +33,7 @@ struct Options {
   double watchdog_s = 120.0;
   std::vector<std::string> plugin_path;  ///< searched before the default folders
   bool default_plugin_path = true;       ///< false: --no-default-plugin-path
+  std::vector<std::string> model_path;   ///< --model-path: package:// and model:// folders
   /// The project's SimTwo script: as its control block says (default), --run-script, --no-script.
   ScriptMode script_mode = ScriptMode::control_block;
   std::string script_file;  ///< --script FILE

@@ -372,6 +372,7 @@ class App {
       if (r.main_body < 0) continue;
       const Pose& pose = state_.sim->body_pose(r.main_body + 1);
       const scene::Body& body = scene.bodies[r.main_body];
+      if (body.geoms.empty()) continue;  // an imported link may have no collision geometry
       const Vec3f centre = to_f(pose * body.geoms.front().pose.position);
       project(centre, "robot", r.id, &body.geoms.front().visual.color);
       // Along the light onto the floor: where the centre's shadow falls.

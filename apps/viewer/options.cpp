@@ -38,12 +38,13 @@ std::pair<std::string, double> parse_assignment(const std::string& option,
 
 const char* usage_text() {
   return R"(usage: s2sim-view SCENE [options]
-  SCENE                    a scene folder or its scene.xml
+  SCENE                    a scene folder or its scene.xml, or a URDF, SDF or MJCF robot
   --seed N                 seed of every random stream (1)
   --physics-step S         physics step, seconds    --substeps N
   --define NAME=VALUE      constant set before scene.xml is read
   --set INPUT=VALUE        hold an input at a value
   --plugin-path DIR        plugin folder searched first (repeatable)
+  --model-path DIR         folder for package:// and model:// URIs (repeatable)
   --size WxH               window size in pixels (1280x720)
   --speed X                times real time, 0.1 to 1000; 0 = as fast as possible (1)
   --paused                 start paused
@@ -96,6 +97,8 @@ Options parse_options(int argc, char** argv) {
       o.inputs.push_back(parse_assignment(a, value(i, a)));
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value(i, a));
+    } else if (a == "--model-path") {
+      o.model_path.push_back(value(i, a));
     } else if (a == "--size") {
       const std::string v = value(i, a);
       const auto x = v.find('x');

@@ -20,6 +20,7 @@ struct Options {
   std::vector<std::pair<std::string, double>> constants;  ///< --define
   std::vector<std::pair<std::string, double>> inputs;     ///< --set
   std::vector<std::string> plugin_path;
+  std::vector<std::string> model_path;  ///< --model-path
   int width_px = 1280;
   int height_px = 720;
   std::string screenshot_file;  ///< write the last frame as PNG, then quit

@@ -62,6 +62,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   auto primitive = [&](Drawable& d, const scene::Shape& s) {
     switch (s.type) {
       case scene::ShapeType::box:
+      case scene::ShapeType::convex:  // a hull without its mesh: drawn as its bounding box
         d.item.mesh = box_;
         d.local = d.local * scale_matrix(to_f(s.size_m));
         break;
@@ -138,10 +139,14 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     drawables_.push_back(d);
   };
 
-  for (std::size_t b = 0; b < scene.bodies.size(); ++b)
-    for (std::size_t k = 0; k < scene.bodies[b].geoms.size(); ++k)
-      add_geom(scene.bodies[b].geoms[k], static_cast<int>(b) + 1,
+  for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
+    // An imported link's visual geometry replaces its collision geometry on screen.
+    const auto& drawn =
+        scene.bodies[b].visuals.empty() ? scene.bodies[b].geoms : scene.bodies[b].visuals;
+    for (std::size_t k = 0; k < drawn.size(); ++k)
+      add_geom(drawn[k], static_cast<int>(b) + 1,
                k == 0 ? Drawable::Kind::solid : Drawable::Kind::shell);
+  }
   for (const auto& g : scene.obstacles)
     add_geom(g, 0, Drawable::Kind::obstacle);
 

@@ -1,5 +1,7 @@
 #include "collision/contact_primitives.hpp"
 
+#include <s2sim/kernel/scene.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -51,6 +53,59 @@ int cylinder_plane(double radius, double half_length, const Pose& pose, const Pl
   return n;
 }
 
+/// The hull's vertices within the margin of the plane; beyond kMaxPointsPerPair of them (a
+/// flat sole), the deepest one and the extreme ones along eight directions of the plane, so
+/// that the points span the support polygon. A point's feature is its vertex index.
+int convex_plane(const scene::ConvexHull& hull, const Pose& pose, const Plane& plane, double margin,
+                 ContactPoint* out) {
+  int n = 0;
+  int deepest = -1;
+  double deepest_depth = -margin;
+  std::int32_t best[8];
+  double best_score[8];
+  const Vec3 t1 = std::abs(plane.normal.z) < 0.9 ? cross(plane.normal, Vec3{0, 0, 1})
+                                                 : cross(plane.normal, Vec3{1, 0, 0});
+  const Vec3 u = t1 / norm(t1), w = cross(plane.normal, u);
+  const Vec3 directions[7] = {u, -u, w, -w, u + w, -(u + w), u - w};
+  for (double& s : best_score)
+    s = -1e300;
+  int touching = 0;
+  for (std::size_t i = 0; i < hull.vertices.size(); ++i) {
+    const Vec3 p = pose * hull.vertices[i];
+    const double depth = plane.offset_m - dot(plane.normal, p);
+    if (depth <= -margin) continue;
+    if (touching < kMaxPointsPerPair)
+      out[touching] = {p, plane.normal, depth, static_cast<std::int32_t>(i)};
+    ++touching;
+    if (depth > deepest_depth || deepest < 0) {
+      deepest_depth = depth;
+      deepest = static_cast<int>(i);
+    }
+    for (int k = 0; k < 7; ++k) {
+      const double score = dot(directions[k], p);
+      if (score > best_score[k]) {
+        best_score[k] = score;
+        best[k] = static_cast<std::int32_t>(i);
+      }
+    }
+  }
+  if (touching <= kMaxPointsPerPair) return touching;
+  // Too many: the deepest, then each direction's extreme, without repeats.
+  std::int32_t chosen[8];
+  chosen[n++] = deepest;
+  for (int k = 0; k < 7 && n < kMaxPointsPerPair; ++k) {
+    bool seen = false;
+    for (int c = 0; c < n; ++c)
+      seen = seen || chosen[c] == best[k];
+    if (!seen) chosen[n++] = best[k];
+  }
+  for (int c = 0; c < n; ++c) {
+    const Vec3 p = pose * hull.vertices[static_cast<std::size_t>(chosen[c])];
+    out[c] = {p, plane.normal, plane.offset_m - dot(plane.normal, p), chosen[c]};
+  }
+  return n;
+}
+
 }  // namespace
 
 int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, ContactPoint* out,
@@ -69,6 +124,8 @@ int plane_contacts(const Shape& shape, const Pose& pose, const Plane& plane, Con
       out[0] = {pose.position - plane.normal * shape.radius_m, plane.normal, depth, 0};
       return 1;
     }
+    case ShapeKind::convex:
+      return convex_plane(*shape.hull, pose, plane, margin_m, out);
   }
   return 0;
 }

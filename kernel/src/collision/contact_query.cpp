@@ -9,6 +9,7 @@ ContactQuery::ContactQuery(const ShapeTable& table)
       max_pairs_(kMaxPairsBase + kMaxPairsPerShape * static_cast<std::size_t>(table.size())) {
   broad_phase_.resize(count_);
   pairs_.reserve(64 + 16 * static_cast<std::size_t>(count_));
+  fcl_.prepare(table.shapes());
 }
 
 void ContactQuery::reset() {

@@ -4,6 +4,9 @@
 #include <fcl/narrowphase/detail/gjk_solver_libccd.h>
 #include <fcl/narrowphase/detail/primitive_shape_algorithm/box_box.h>
 
+#include <s2sim/kernel/scene.hpp>
+
+#include <unordered_map>
 #include <vector>
 
 namespace s2sim::collision {
@@ -29,7 +32,24 @@ Vec3 from_fcl(const fcl::Vector3d& v) {
 struct FclPairs::Impl {
   fcl::detail::GJKSolver_libccd<double> solver;
   std::vector<fcl::ContactPoint<double>> points;  // reused: capacity kept between calls
+  std::unordered_map<const scene::ConvexHull*, std::unique_ptr<fcl::Convexd>> convex;
 };
+
+void FclPairs::prepare(const std::vector<Shape>& shapes) {
+  for (const Shape& s : shapes) {
+    if (s.kind != ShapeKind::convex || impl_->convex.count(s.hull)) continue;
+    auto vertices = std::make_shared<std::vector<fcl::Vector3d>>();
+    for (const Vec3& v : s.hull->vertices)
+      vertices->emplace_back(v.x, v.y, v.z);
+    auto faces = std::make_shared<std::vector<int>>();
+    for (const auto& t : s.hull->triangles) {
+      faces->push_back(3);
+      faces->insert(faces->end(), t.begin(), t.end());
+    }
+    impl_->convex.emplace(s.hull, std::make_unique<fcl::Convexd>(
+                                      vertices, static_cast<int>(s.hull->triangles.size()), faces));
+  }
+}
 
 FclPairs::FclPairs() : impl_(std::make_unique<Impl>()) {
   impl_->points.reserve(8);
@@ -46,6 +66,7 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
   };
   auto cylinder = [](const Shape& s) { return fcl::Cylinderd(s.radius_m, 2 * s.half_length_m); };
   auto sphere = [](const Shape& s) { return fcl::Sphered(s.radius_m); };
+  auto convex = [&](const Shape& s) -> const fcl::Convexd& { return *impl_->convex.at(s.hull); };
   double grown = 0;  // b's box grown by this on every side: depths come out that much deeper
   if (a.kind == ShapeKind::box && b.kind == ShapeKind::box) {
     fcl::Vector3d normal;
@@ -70,6 +91,9 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
         case ShapeKind::sphere:
           hit = impl_->solver.shapeIntersect(sa, ta, sphere(b), tb, &points);
           break;
+        case ShapeKind::convex:
+          hit = impl_->solver.shapeIntersect(sa, ta, convex(b), tb, &points);
+          break;
       }
       if (!hit) points.clear();
     };
@@ -82,6 +106,9 @@ int FclPairs::collide(const Shape& a, const Pose& pose_a, const Shape& b, const 
         break;
       case ShapeKind::sphere:
         dispatch(sphere(a));
+        break;
+      case ShapeKind::convex:
+        dispatch(convex(a));
         break;
     }
   }

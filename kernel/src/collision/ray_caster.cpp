@@ -142,6 +142,9 @@ bool RayCaster::test_shape(std::int32_t s, const Vec3& o, const Vec3& d, double 
     case ShapeKind::cylinder:
       hit = ray_cylinder(lo, ld, shape.radius_m, shape.half_length_m, t_max, t, n);
       break;
+    case ShapeKind::convex:
+      hit = ray_convex(lo, ld, *shape.hull, t_max, t, n);
+      break;
   }
   if (!hit || (best.hit && t >= best.distance_m)) return false;
   best.hit = true;

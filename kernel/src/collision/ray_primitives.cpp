@@ -1,5 +1,7 @@
 #include "collision/ray_primitives.hpp"
 
+#include <s2sim/kernel/scene.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -60,6 +62,36 @@ bool ray_sphere(const Vec3& o, const Vec3& d, double r, double t_max, double& t,
   if (s < 0 || s > t_max) return false;
   t = s;
   n = (o + d * s) / r;
+  return true;
+}
+
+bool ray_convex(const Vec3& o, const Vec3& d, const scene::ConvexHull& hull, double t_max,
+                double& t, Vec3& n) {
+  // Cyrus–Beck: the ray's interval inside every face's half-space; it enters through the face
+  // it crosses last.
+  double enter = -kInf, leave = t_max;
+  Vec3 enter_normal;
+  for (const auto& f : hull.faces) {
+    const double distance = dot(f.normal, o) - f.offset_m;  // > 0: outside this face
+    const double approach = dot(f.normal, d);
+    if (approach == 0) {
+      if (distance > 0) return false;  // parallel and outside
+      continue;
+    }
+    const double s = -distance / approach;
+    if (approach < 0) {
+      if (s > enter) {
+        enter = s;
+        enter_normal = f.normal;
+      }
+    } else {
+      leave = std::min(leave, s);
+    }
+  }
+  // Starting inside (or on) the hull, every entry lies behind the origin: not seen.
+  if (!(enter > 0) || enter > leave) return false;
+  t = enter;
+  n = enter_normal;
   return true;
 }
 

@@ -13,6 +13,10 @@
 #include <cmath>
 #include <utility>
 
+namespace s2sim::scene {
+struct ConvexHull;
+}
+
 namespace s2sim::collision {
 
 /// Axis-aligned box centred at the origin with half extents `half` (slab test).
@@ -22,6 +26,10 @@ bool ray_box(const Vec3& o, const Vec3& d, const Vec3& half, double t_max, doubl
 bool ray_sphere(const Vec3& o, const Vec3& d, double r, double t_max, double& t, Vec3& n);
 
 /// Capped cylinder along local Z, radius `r`, from z = -half_length to +half_length.
+/// A convex hull (scene::ConvexHull) in its own frame, hit from outside.
+bool ray_convex(const Vec3& o, const Vec3& d, const scene::ConvexHull& hull, double t_max,
+                double& t, Vec3& n);
+
 bool ray_cylinder(const Vec3& o, const Vec3& d, double r, double half_length, double t_max,
                   double& t, Vec3& n);
 

@@ -9,21 +9,29 @@
 #include <algorithm>
 #include <cstdint>
 
+namespace s2sim::scene {
+struct ConvexHull;
+}
+
 namespace s2sim::collision {
 
-enum class ShapeKind : std::uint8_t { box, cylinder, sphere };
+/// `convex`: a mesh's convex hull (scene::ConvexHull, kept alive by the ShapeTable).
+enum class ShapeKind : std::uint8_t { box, cylinder, sphere, convex };
 
 /// The geometry of one primitive in its own frame (a cylinder's axis is local Z).
+/// (Members ordered so that the hull pointer keeps the struct at 64 bytes, one cache line.)
 struct Shape {
   ShapeKind kind = ShapeKind::box;
-  Vec3 half_extents_m;           ///< box
-  double radius_m = 0;           ///< cylinder, sphere
-  double half_length_m = 0;      ///< cylinder, along local Z
-  double bounding_radius_m = 0;  ///< about the shape origin
   /// A cylinder that touches a plane at its mid-plane only (omni and mecanum wheels roll on
   /// their rollers' crowns), not at its tread's two edges.
   bool mid_plane = false;
+  Vec3 half_extents_m;                      ///< box
+  double radius_m = 0;                      ///< cylinder, sphere
+  double half_length_m = 0;                 ///< cylinder, along local Z
+  double bounding_radius_m = 0;             ///< about the shape origin
+  const scene::ConvexHull* hull = nullptr;  ///< convex: vertices, faces, in the shape frame
 };
+static_assert(sizeof(Shape) == 64, "a shape fills one cache line");
 
 /// Anisotropic friction (spec §4.3): the direction of the full coefficient `mu`; `mu2` acts
 /// across it.

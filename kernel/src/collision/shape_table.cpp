@@ -27,6 +27,12 @@ Shape make_shape(const scene::Geom& g) {
       s.radius_m = g.shape.radius_m;
       s.bounding_radius_m = s.radius_m;
       break;
+    case scene::ShapeType::convex:
+      s.kind = ShapeKind::convex;
+      s.hull = g.shape.hull.get();
+      for (const Vec3& v : s.hull->vertices)
+        s.bounding_radius_m = std::max(s.bounding_radius_m, norm(v));
+      break;
   }
   s.mid_plane = g.friction != scene::FrictionKind::isotropic;
   return s;
@@ -91,6 +97,14 @@ Vec3 extent(const Shape& s, const Mat3& r) {
     case ShapeKind::sphere:
       e = {s.radius_m, s.radius_m, s.radius_m};
       break;
+    case ShapeKind::convex:
+      // The hull's turned vertices, each side's farthest from the shape origin.
+      for (const Vec3& v : s.hull->vertices) {
+        const Vec3 p = r * v;
+        e = {std::max(e.x, std::abs(p.x)), std::max(e.y, std::abs(p.y)),
+             std::max(e.z, std::abs(p.z))};
+      }
+      break;
   }
   return e;
 }
@@ -120,6 +134,7 @@ ShapeTable::ShapeTable(const scene::Scene& scene) {
 void ShapeTable::add(const scene::Geom& g, std::int32_t body, bool belt) {
   const auto index = static_cast<std::int32_t>(shape_.size());
   shape_.push_back(make_shape(g));
+  if (g.shape.hull) hulls_.push_back(g.shape.hull);
   body_.push_back(body);
   local_.push_back(g.pose);
   local_identity_.push_back(g.pose.position == Vec3{} && g.pose.rotation == Mat3::identity());

@@ -13,6 +13,7 @@
 #include <s2sim/kernel/scene.hpp>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace s2sim::collision {
@@ -52,6 +53,7 @@ class ShapeTable {
   std::vector<std::uint32_t> material_;
   std::vector<std::int32_t> moving_, statics_;
   std::vector<Plane> planes_;
+  std::vector<std::shared_ptr<const scene::ConvexHull>> hulls_;  ///< what convex shapes point at
   bool walls_ = false;
   double wall_distance_m_ = 0;
 };

@@ -4,6 +4,7 @@
 /// defines and obstacle files write into G.
 
 #include "common/closest_names.hpp"
+#include "scene/import_model.hpp"
 #include "scene/loading.hpp"
 #include "scene/rotation.hpp"
 #include "scene/xml.hpp"
@@ -109,6 +110,10 @@ void load_scene_robot(LoadContext& ctx, const Reader& r, const Element& el, Cons
   const std::string name = r.text(*body, "file", "");
   const auto file = ctx.resolve(name);
   if (!exists_or_warn(ctx, r, *body, "file", name, file, "robot '" + placement.id + "'")) return;
+  if (const std::string format = robot_format(file); !format.empty()) {
+    load_imported_robot(ctx, file, format, placement);
+    return;
+  }
   load_robot_file(ctx, file, g, placement);
 }
 
@@ -175,11 +180,16 @@ Scene load_scene(const std::filesystem::path& path, const LoadOptions& options) 
                 ec && ec != std::errc::no_such_file_or_directory
                     ? "cannot read the scene: " + ec.message()
                     : std::string("scene file not found"));
+  if (const std::string format = robot_format(file); !format.empty()) {
+    Scene robot = load_robot_scene(file, format, options);
+    check_outside_constants(options, robot.globals, file.filename().string());
+    return robot;
+  }
 
   Scene scene;
   scene.file = file;
   scene.folder = file.parent_path();
-  LoadContext ctx{scene, scene.folder, {}, {}};
+  LoadContext ctx{scene, scene.folder, {}, {}, model_search_path(options.model_path)};
   scene.settings = load_settings(scene.folder);
 
   ConstantTable& g = scene.globals;

@@ -26,6 +26,8 @@ struct LoadContext {
   std::map<std::string, std::string> last_file;
   /// Plugin instances per kind so far, for default IDs `<kind><n>`.
   std::map<std::string, int> plugin_count;
+  /// Where `package://` and `model://` URIs of imported robots are looked for.
+  std::vector<std::filesystem::path> model_path;
 
   /// A file name from the XML (Windows separators accepted) resolved against the folder.
   std::filesystem::path resolve(std::string_view name) const;
@@ -90,7 +92,13 @@ struct RobotPlacement {
   Vec3 offset_m;
   double yaw_deg = 0;  ///< `rot_deg z`
   Location where;
+  /// An imported robot run on its own: when nothing joins it to the world, it is lifted so
+  /// that its lowest collision point rests on the floor (z = 0).
+  bool rest_on_floor = false;
 };
+/// Robot placement: the main body ends at P0 + t, yawed by ψ about the vertical through P0;
+/// bodies, joint anchors and axes move, geoms and sensors follow their bodies.
+void place_robot(Scene& scene, Robot& robot, const Vec3& offset, double yaw_deg);
 /// Loads a robot file into the scene and places it; `globals` is copied for its scope.
 void load_robot_file(LoadContext& ctx, const std::filesystem::path& file,
                      const ConstantTable& globals, const RobotPlacement& placement);

@@ -33,7 +33,8 @@ Mat3 point_inertia(double m, const Vec3& d) {
 
 Mat3 uniform_inertia(const Shape& shape, double m) {
   switch (shape.type) {
-    case ShapeType::box: {
+    case ShapeType::box:
+    case ShapeType::convex: {  // a hull: its bounding box (imported links give their inertia)
       const Vec3& s = shape.size_m;
       return diagonal(m * (s.y * s.y + s.z * s.z) / 12, m * (s.x * s.x + s.z * s.z) / 12,
                       m * (s.x * s.x + s.y * s.y) / 12);

@@ -8,9 +8,7 @@
 #include "scene/xml.hpp"
 
 namespace s2sim::scene::detail {
-namespace {
 
-/// Robot placement: the main body ends at P0 + t, yawed by ψ about the vertical through P0.
 void place_robot(Scene& scene, Robot& rb, const Vec3& offset, double yaw_deg) {
   const Vec3 p0 = rb.main_body >= 0
                       ? scene.bodies[static_cast<std::size_t>(rb.main_body)].pose.position
@@ -32,8 +30,6 @@ void place_robot(Scene& scene, Robot& rb, const Vec3& offset, double yaw_deg) {
   }
   // Sensors and geoms are in body frames and follow their bodies.
 }
-
-}  // namespace
 
 void load_robot_file(LoadContext& ctx, const std::filesystem::path& file,
                      const ConstantTable& globals, const RobotPlacement& placement) {

@@ -13,6 +13,7 @@ namespace {
 Vec3 projected_areas(const scene::Shape& s) {
   switch (s.type) {
     case scene::ShapeType::box:
+    case scene::ShapeType::convex:  // a hull: its bounding box
       return {s.size_m.y * s.size_m.z, s.size_m.x * s.size_m.z, s.size_m.x * s.size_m.y};
     case scene::ShapeType::cylinder: {
       const double side = 2 * s.radius_m * s.length_m;

@@ -21,6 +21,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.options = options;
   scene::LoadOptions load_options;
   load_options.constants = options.constants;
+  load_options.model_path = options.model_path;
   m.scene = scene::load_scene(scene_path, load_options);
   m.warnings = m.scene.warnings;
 

@@ -10,6 +10,7 @@
 #include <s2sim/schedule.hpp>
 #include <s2sim/sensor.hpp>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -84,14 +85,27 @@ struct Color {
   double r = 0.5, g = 0.5, b = 0.5, a = 1.0;
 };
 
-enum class ShapeType { box, cylinder, sphere };
+/// `convex`: the convex hull of a mesh (URDF, SDF and MJCF collision meshes).
+enum class ShapeType { box, cylinder, sphere, convex };
 
-/// A collision primitive in its own frame. Cylinders are aligned with local Z.
+/// A convex polytope in its geom's frame, built once at load (the hull of a mesh's vertices).
+struct ConvexHull {
+  struct Face {
+    Vec3 normal;          ///< unit, outward
+    double offset_m = 0;  ///< the face's plane: dot(normal, p) = offset_m; inside is below
+  };
+  std::vector<Vec3> vertices;
+  std::vector<std::array<int, 3>> triangles;  ///< counter-clockwise seen from outside
+  std::vector<Face> faces;                    ///< one per triangle
+};
+
+/// A collision shape in its own frame. Cylinders are aligned with local Z.
 struct Shape {
   ShapeType type = ShapeType::box;
-  Vec3 size_m{1, 1, 1};  ///< box: full edge lengths
-  double radius_m = 0;   ///< cylinder, sphere
-  double length_m = 0;   ///< cylinder, along local Z
+  Vec3 size_m{1, 1, 1};                    ///< box: full edge lengths; convex: its bounding box
+  double radius_m = 0;                     ///< cylinder, sphere
+  double length_m = 0;                     ///< cylinder, along local Z
+  std::shared_ptr<const ConvexHull> hull;  ///< convex
 };
 
 /// SimTwo's `<surface>`. `explicit_surface` is SimTwo's "has surface" (an explicit mu >= 0,
@@ -183,6 +197,9 @@ struct Body {
   Vec3 com_m;  ///< centre of mass in the body frame (moved by massive shells)
   Mat3 inertia_kg_m2 = {{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};  ///< about the COM, body axes
   std::vector<Geom> geoms;  ///< geoms[0] is the solid's own primitive, then its shells
+  /// Geometry drawn instead of `geoms` and never collided (an imported link's visuals);
+  /// empty for SimTwo solids.
+  std::vector<Geom> visuals;
   Drag drag;
   Buoyancy buoyancy;
   double thrust_coefficient = 0;  ///< propellers
@@ -368,10 +385,15 @@ struct Scene {
 struct LoadOptions {
   /// Constants set before `scene.xml` is read, as if they led its `<defines>`.
   std::vector<std::pair<std::string, double>> constants;
+  /// Folders searched first for the `package://` and `model://` URIs of URDF, SDF and MJCF
+  /// robots (then S2SIM_MODEL_PATH, ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH).
+  std::vector<std::filesystem::path> model_path;
 };
 
-/// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`. Throws `s2sim::Error`
-/// (kind scene) naming file, element and attribute.
+/// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`; or a robot file in URDF
+/// (`.urdf`), SDF (`.sdf`) or MJCF (an `.xml` whose root is `<mujoco>`), run on the default
+/// floor (docs/models/import.md). Throws `s2sim::Error` (kind scene) naming file, element and
+/// attribute.
 Scene load_scene(const std::filesystem::path& path, const LoadOptions& options = {});
 
 }  // namespace s2sim::scene

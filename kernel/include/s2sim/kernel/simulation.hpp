@@ -58,6 +58,10 @@ struct SimulationOptions {
   std::vector<std::filesystem::path> plugin_path;
   /// false: search `plugin_path` only.
   bool default_plugin_path = true;
+  /// Folders searched first for the `package://` and `model://` URIs of URDF, SDF and MJCF
+  /// robots, before S2SIM_MODEL_PATH, ROS_PACKAGE_PATH and GZ_SIM_RESOURCE_PATH
+  /// (docs/models/import.md).
+  std::vector<std::filesystem::path> model_path;
   /// Constants defined before scene.xml is read (as `--define`).
   std::vector<std::pair<std::string, double>> constants;
   /// The project's script: when it runs, and a file to use instead of the one the project
