@@ -54,6 +54,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       const scene::Shape& shape = b.geoms[0].shape;
       switch (shape.type) {
         case scene::ShapeType::box:
+        case scene::ShapeType::convex:  // its bounding box's edges
           size = shape.size_m;
           break;
         case scene::ShapeType::cylinder:
