@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "loopback.hpp"
+
 #include <arpa/inet.h>
 #include <fcntl.h>
 #include <netinet/in.h>
@@ -490,33 +492,14 @@ TEST_F(PascalScript, SameSceneScriptSeedAndInputsGiveIdenticalRuns) {
     ASSERT_EQ(std::memcmp(&a[i], &b[i], sizeof(double)), 0) << "value " << i;
 }
 
-/// The loopback address at `port`.
-sockaddr_in loopback(int port) {
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  return a;
-}
-
-/// A test client's non-blocking UDP socket on an ephemeral loopback port (`port`); -1 when
-/// none could be bound.
-int loopback_client(int& port) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-  sockaddr_in me = loopback(0);
-  socklen_t len = sizeof me;
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len) != 0)
-    return -1;
-  port = ntohs(me.sin_port);
-  return fd;
-}
+using s2sim::test::loopback;
+using s2sim::test::loopback_socket;
 
 TEST_F(PascalScript, UdpLoopbackClientDrivesTheMotorAndReadsItsSensors) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   // The test's client socket on an ephemeral loopback port.
   int client_port = 0;
-  const int client = loopback_client(client_port);
+  const int client = loopback_socket(client_port);
   ASSERT_GE(client, 0);
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "udp_motor.pas");
   o.sheet_cells = {{1, 1, std::to_string(client_port)}};
@@ -593,7 +576,7 @@ const std::string kParsed = "3|u 0.3|V|6|u 0.3\r\nV\r\n6\r\n";
 TEST_F(PascalScript, UdpTextLinesEndingInLfCrOrCrLfAreSplitAlike) {
   SKIP_WITHOUT_SHARED("MotorModel_V3AGM");
   int client_port = 0;
-  const int client = loopback_client(client_port);
+  const int client = loopback_socket(client_port);
   ASSERT_GE(client, 0);
   SimulationOptions o = with_script(fs::path(S2SIM_PASCAL_FIXTURES) / "text_lines.pas");
   o.sheet_cells = {{1, 1, std::to_string(client_port)}};

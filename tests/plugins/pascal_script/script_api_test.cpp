@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "loopback.hpp"
+
 #include <arpa/inet.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
@@ -30,25 +32,8 @@ const fs::path kScene = fs::path(S2SIM_PASCAL_FIXTURES) / ".." / "script_api";
 #define SKIP_WITHOUT_FPC \
   if (std::system("fpc -iV > /dev/null 2>&1") != 0) GTEST_SKIP() << "no fpc"
 
-sockaddr_in loopback(int port) {
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  a.sin_port = htons(static_cast<std::uint16_t>(port));
-  return a;
-}
-
-/// A non-blocking UDP socket on an ephemeral loopback port; -1 when none could be bound.
-int loopback_socket(int& port) {
-  const int fd = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK, 0);
-  sockaddr_in me = loopback(0);
-  socklen_t len = sizeof me;
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&me), sizeof me) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&me), &len) != 0)
-    return -1;
-  port = ntohs(me.sin_port);
-  return fd;
-}
+using s2sim::test::loopback;
+using s2sim::test::loopback_socket;
 
 class ScriptApi : public ::testing::Test {
  protected:
