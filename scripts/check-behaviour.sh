@@ -48,7 +48,7 @@ trap 'rm -rf "$work"' EXIT
 run_cases() {
   local runner="$1/s2sim-run" out="$2"
   mkdir -p "$out"
-  while IFS='|' read -r name scene args flags; do
+  while IFS='|' read -r name scene args; do
     name="$(echo "$name" | xargs)"
     [[ -z "$name" || "$name" == \#* ]] && continue
     scene="$(echo "$scene" | xargs)"
@@ -57,10 +57,6 @@ run_cases() {
       continue
     fi
     local check="$check_dynamics"
-    if [[ -n "$check" && "$flags" == *no-dynamics-check* ]]; then
-      echo "  $name: dynamics check skipped (${flags#*no-dynamics-check: })"
-      check=""
-    fi
     # shellcheck disable=SC2086
     (cd "$root" && "$runner" "$scene" $args $threads $check --quiet --no-timing \
       --log "$out/$name.csv" --summary "$out/$name.json" 2> "$out/$name.err") ||

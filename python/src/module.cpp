@@ -303,10 +303,15 @@ PYBIND11_MODULE(_s2sim, m) {
             d["worst_relative"] = c.worst_relative;
             d["worst_time"] = c.worst_time_s;
             d["agreement"] = c.agreement;
+            d["judged_on_loops"] = c.judged_on_loops;
+            d["worst_loop_error"] = c.worst_loop_error;
+            d["worst_reference_loop_error"] = c.worst_reference_loop_error;
             return d;
           },
           "With check_dynamics: the accelerations compared with Simbody's, the largest "
-          "difference relative to the largest acceleration, when, and the agreement allowed.")
+          "difference relative to the largest acceleration, when, the agreement allowed, and "
+          "on loops the substeps judged after moving both onto the loop constraints with the "
+          "largest loop errors of the tree's and Simbody's.")
       .def_property_readonly(
           "run_ahead_counts",
           [](const PySimulation& s) {

@@ -63,9 +63,11 @@ struct DynamicsCheck {
   double worst_relative = 0;
   double worst_time_s = 0;  ///< when the worst one was seen
   double agreement = 0;     ///< the largest relative difference allowed (kDynamicsAgreement)
-  /// Substeps where the two parted because Simbody's accelerations broke the loops'
-  /// acceleration constraints while the tree's held them: no verdict there.
-  std::int64_t reference_off_constraints = 0;
+  /// Substeps where the two parted beyond the agreement on a system with loops and were
+  /// judged after moving both onto the loops' acceleration constraints, and the largest RMS
+  /// loop acceleration errors (relative, as above) of the tree's and Simbody's found there.
+  std::int64_t judged_on_loops = 0;
+  double worst_loop_error = 0, worst_reference_loop_error = 0;
 };
 
 /// The scene's bodies and joints as a Simbody system, and the integrator's operations on it.

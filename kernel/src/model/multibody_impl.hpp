@@ -165,8 +165,10 @@ struct Multibody::Impl {
   DynamicsChoice choice = DynamicsChoice::tree_where_possible;
   const Dynamics* dynamics = nullptr;
   DynamicsCheck check;              // what the checked dynamics found so far (not state)
-  SimTK::Vector reference_udot;     // the checked dynamics' scratch: Simbody's accelerations
-  SimTK::Vector constraint_errors;  // and the loops' acceleration errors of either
+  // The checked dynamics' scratch: Simbody's accelerations, the tree's moved onto the loops,
+  // and the loops' acceleration errors, impulses and their speed changes.
+  SimTK::Vector reference_udot, projected_udot;
+  SimTK::Vector constraint_errors, constraint_impulses, constraint_forces, constraint_du;
 
   // === State: what a snapshot holds (declare_state, multibody.cpp) ==============================
   // multibody/time

@@ -149,7 +149,10 @@ DynamicsCheck MultibodyIslands::dynamics_check() const {
   for (const auto& part : parts_) {
     const DynamicsCheck check = part.multibody->dynamics_check();
     all.compared += check.compared;
-    all.reference_off_constraints += check.reference_off_constraints;
+    all.judged_on_loops += check.judged_on_loops;
+    all.worst_loop_error = std::max(all.worst_loop_error, check.worst_loop_error);
+    all.worst_reference_loop_error =
+        std::max(all.worst_reference_loop_error, check.worst_reference_loop_error);
     if (check.worst_relative > all.worst_relative) {
       all.worst_relative = check.worst_relative;
       all.worst_time_s = check.worst_time_s;

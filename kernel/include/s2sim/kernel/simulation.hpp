@@ -148,9 +148,13 @@ class Simulation {
     double worst_relative = 0;
     double worst_time_s = 0;
     double agreement = 0;  ///< the largest relative difference allowed
-    /// Substeps not judged: Simbody's accelerations broke the loops' acceleration
-    /// constraints there while the tree's held them (redundant loop rows).
-    std::int64_t reference_off_constraints = 0;
+    /// Substeps where the two parted on a system with loops (redundant loop rows leave the
+    /// constraint forces open) and were judged after moving both onto the loops'
+    /// acceleration constraints; the largest RMS loop acceleration errors, relative to the
+    /// largest acceleration, of the tree's and of Simbody's accelerations there.
+    std::int64_t judged_on_loops = 0;
+    double worst_loop_error = 0;
+    double worst_reference_loop_error = 0;
   };
   DynamicsCheck dynamics_check() const;
   /// Back to t = 0: initial configuration, inputs at their initial values, components
