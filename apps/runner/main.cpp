@@ -158,6 +158,12 @@ int run(const s2sim::runner::Options& o) {
     out.close();  // flushes: a write error (full disk) only shows after this
     if (!out) throw runner::OutputError("--summary: cannot write '" + o.summary_file + "'");
   }
+  // close 2: the script ended the run with Halt and a non-zero code (its stderr line names
+  // it): a failed run, its outputs written.
+  if (close && sim->signal(*close) == 2) {
+    std::fputs("s2sim-run: error: the script ended the run with a non-zero Halt code\n", stderr);
+    return exit_code(ErrorKind::runtime);
+  }
   return 0;
 }
 

@@ -126,7 +126,8 @@ begin
   RandSeed := seed;
 end;
 
-{ which: 0 Initialize, 1 Control. 0 = ok; otherwise the message (class, text, where) in err. }
+{ which: 0 Initialize, 1 Control. 0 = ok; 1 = raised, the message (class, text, where) in err;
+  2 = the script called Halt, 'Halt(code)' and where in err. }
 function s2s_run(which: longint; now_s: double; err: PChar; errcap: longint): longint; cdecl;
 var msg: string;
     frames: PCodePointer;
@@ -138,6 +139,15 @@ begin
     if which = 0 then Initialize else Control;
     S2SimPublishHUD;
   except
+    on H: TScriptHalt do begin
+      msg := 'Halt(' + IntToStr(H.Code) + ') | $' + HexStr(ExceptAddr);
+      frames := ExceptFrames;
+      for i := 0 to ExceptFrameCount - 1 do
+        msg := msg + ' | $' + HexStr(frames[i]);
+      StrPLCopy(err, msg, errcap - 1);
+      S2SimPublishHUD;
+      result := 2;
+    end;
     on E: Exception do begin
       { the raising address, then the callers, as bare addresses: the host names the first
         in the user's file with addr2line. Not the RTL's line-info unit: it walks past the end

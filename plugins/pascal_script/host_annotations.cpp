@@ -90,10 +90,10 @@ double ScriptController::call_annotations(HostFn fn, const double* a, int n) {
       if (a[0] < 0 || a[1] < 0) fail(index_error(a[0] < 0 ? a[0] : a[1]));
       return 0;  // the viewer's sheet has no cell colours (docs/scripting.md)
     case HostFn::ReadUDPPacket:
-      text_result_ = udp_.receive_packet();
+      text_result_ = udp().receive_packet();
       return 0;
     case HostFn::GetUDPPacketCount:
-      return udp_.packet_count();
+      return udp().packet_count();
     default:
       fail("invalid host call");
   }

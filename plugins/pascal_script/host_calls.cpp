@@ -530,10 +530,10 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       return call_axes(fn, a, n, s);
     case HostFn::WriteUDPData:
       need(1);
-      udp_.send(s, static_cast<int>(a[0]), s2);
+      udp().send(s, static_cast<int>(a[0]), s2);
       return 0;
     case HostFn::ReadUDPData:
-      text_result_ = udp_.receive();
+      text_result_ = udp().receive();
       return 0;
     case HostFn::WriteComPort:
       serial_.write(s);

@@ -13,17 +13,31 @@ namespace s2sim::pascal {
 
 UdpPort::~UdpPort() {
   if (fd_ >= 0) ::close(fd_);
+  if (other_fd_ >= 0) ::close(other_fd_);
 }
 
-bool UdpPort::open(int port) {
-  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
-  if (fd_ < 0) return false;
+bool UdpPort::open(const std::string& address, int port, std::string& error) {
+  if (opened_) return bound_port_ != 0;
+  opened_ = true;
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_ANY);
   addr.sin_port = htons(static_cast<std::uint16_t>(port));
-  if (::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) return false;
+  if (::inet_pton(AF_INET, address.c_str(), &addr.sin_addr) != 1) {
+    error = "'" + address + "' is not an IPv4 address";
+    return false;
+  }
+  fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) {
+    error = std::strerror(errno);
+    return false;
+  }
+  if (port < 1 || port > 65535 ||
+      ::bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0) {
+    error = port < 1 || port > 65535 ? "no such port" : std::strerror(errno);
+    return false;
+  }
   bound_port_ = port;
+  bound_to_loopback_ = (ntohl(addr.sin_addr.s_addr) >> 24) == 127;
   return true;
 }
 
@@ -33,7 +47,14 @@ void UdpPort::send(const std::string& ip, int port, const std::string& data) {
   to.sin_family = AF_INET;
   to.sin_port = htons(static_cast<std::uint16_t>(port));
   if (::inet_pton(AF_INET, ip.c_str(), &to.sin_addr) != 1) return;
-  (void)::sendto(fd_, data.data(), data.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
+  int fd = fd_;
+  // A socket bound to loopback cannot reach another machine: those go from a port of their own.
+  if (bound_to_loopback_ && (ntohl(to.sin_addr.s_addr) >> 24) != 127) {
+    if (other_fd_ < 0) other_fd_ = ::socket(AF_INET, SOCK_DGRAM | SOCK_NONBLOCK | SOCK_CLOEXEC, 0);
+    fd = other_fd_;
+  }
+  if (fd < 0) return;
+  (void)::sendto(fd, data.data(), data.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof to);
 }
 
 namespace {

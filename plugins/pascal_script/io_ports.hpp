@@ -1,8 +1,10 @@
 #pragma once
 /// \file
-/// The script's UDP socket and serial port (simtwo-script-api.md §3.7). UDP: one socket bound
-/// to the listening port (SimTwo's 9808 by default, S2SIM_UDP_PORT to change it); a datagram
-/// per WriteUDPData, ReadUDPData drains everything received. Serial: the tty or pseudo-terminal
+/// The script's UDP socket and serial port (simtwo-script-api.md §3.7). UDP: one socket,
+/// opened at the script's first UDP call (a script that never uses UDP opens nothing), bound to
+/// the listening port (SimTwo's 9808 by default, S2SIM_UDP_PORT to change it) on loopback
+/// unless S2SIM_UDP_ADDRESS names another address; a datagram per WriteUDPData, ReadUDPData
+/// drains everything received. Serial: the tty or pseudo-terminal
 /// named by S2SIM_COM_PORT, raw 8N1; without one the port is closed, as in SimTwo: writes do
 /// nothing and reads return ''.
 
@@ -14,8 +16,10 @@ namespace s2sim::pascal {
 class UdpPort {
  public:
   ~UdpPort();
-  /// Binds to `port` on all interfaces; false (socket then send-only) when that fails.
-  bool open(int port);
+  /// Opens the socket and binds it to `address`:`port`; false with `error` set (the socket
+  /// then only sends) when that fails. Once: later calls return what the first did.
+  bool open(const std::string& address, int port, std::string& error);
+  bool opened() const { return opened_; }
   void send(const std::string& ip, int port, const std::string& data);
   /// All bytes received and not yet read, datagrams concatenated.
   std::string receive();
@@ -27,7 +31,10 @@ class UdpPort {
 
  private:
   void poll();
+  bool opened_ = false;
+  bool bound_to_loopback_ = false;
   int fd_ = -1;
+  int other_fd_ = -1;  // sends to other machines when fd_ listens on loopback only
   int bound_port_ = 0;
   std::deque<std::string> packets_;  // received, not yet read by the script
 };

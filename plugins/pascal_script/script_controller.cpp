@@ -5,9 +5,22 @@
 // The host functions the support unit forwards here are in host_calls.cpp.
 #include "script_controller.hpp"
 
+#include "pascal_tokens.hpp"
+
+#include <fstream>
+#include <iterator>
+
 namespace s2sim::pascal {
 
 namespace {
+
+/// Whether the script's own file names a UDP routine (outside comments and strings).
+bool uses_udp(const std::filesystem::path& script) {
+  std::ifstream in(script, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return mentions_any(text, {"readudpdata", "writeudpdata", "readudppacket", "getudppacketcount"});
+}
+
 Look read_look(const Params& p, const std::string& k) {
   Look look;
   const char* rgba[] = {"r", "g", "b", "a"};
@@ -229,18 +242,17 @@ void ScriptController::configure(ConfigureContext& ctx) {
   const double ticks = std::round(period_s_ / ctx.tick_s());
   ctx.set_schedule(Stage::control, ticks * ctx.tick_s(), (ticks - 1) * ctx.tick_s());
 
-  int udp_port = 9808;
-  if (const char* env = std::getenv("S2SIM_UDP_PORT"); env && *env) udp_port = std::atoi(env);
-  if (!udp_.open(udp_port))
-    ctx.warn("cannot listen on UDP port " + std::to_string(udp_port) +
-             " (in use?); ReadUDPData returns '' and WriteUDPData sends from another port");
+  // UDP listens from the start, as SimTwo's, when the script names a UDP routine; otherwise
+  // it opens nothing (or at a first call the text did not show: udp()).
+  if (const char* env = std::getenv("S2SIM_UDP_PORT"); env && *env) udp_port_ = std::atoi(env);
+  if (const char* env = std::getenv("S2SIM_UDP_ADDRESS"); env && *env) udp_address_ = env;
+  std::string why;
+  if (uses_udp(script_) && !udp_.open(udp_address_, udp_port_, why)) ctx.warn(udp_failure(why));
   if (const char* com = std::getenv("S2SIM_COM_PORT"); com && *com) {
-    std::string why;
     if (!serial_.open(com, why))
       ctx.warn("cannot open the serial port " + std::string(com) + ": " + why);
   }
   if (const char* port = std::getenv("S2SIM_MODBUS_PORT"); port && *port) {
-    std::string why;
     if (!modbus_.open(std::atoi(port), why))
       ctx.warn("cannot listen on Modbus/TCP port " + std::string(port) + ": " + why +
                "; the Modbus routines work on the script's own tables only");
@@ -326,19 +338,22 @@ void ScriptController::update(StepContext& ctx) {
   if (s[1] != 0) return;  // stopped by a run-time error; SimTwo still zeroes the references
   modbus_.serve();        // the clients' requests of the last period, before the script reads
   ctx_ = &ctx;
+  using Outcome = ScriptLibrary::Outcome;
   std::string error;
-  bool ok = true;
-  const bool first = s[0] == 0;
-  if (first) {
+  Outcome outcome = Outcome::returned;
+  const char* routine = "Initialize";
+  if (s[0] == 0) {
     s[0] = 1;
-    ok = library_.run(0, ctx.time_s(), error);
-    if (!ok) report_error("Initialize", error);
+    outcome = library_.run(0, ctx.time_s(), error);
   }
-  if (ok) {
-    ok = library_.run(1, ctx.time_s(), error);
-    if (!ok) report_error("Control", error);
+  if (outcome == Outcome::returned) {
+    routine = "Control";
+    outcome = library_.run(1, ctx.time_s(), error);
   }
   ctx_ = nullptr;
+  const bool ok = outcome == Outcome::returned;
+  if (outcome == Outcome::raised) report_error(routine, error);
+  if (outcome == Outcome::halted) report_halt(ctx, routine, error);
   // Encoder counts of this tick, for the next period's deltas.
   k = 3;
   for (auto& robot : robots_)
@@ -348,17 +363,33 @@ void ScriptController::update(StepContext& ctx) {
     }
   s[2] += 1;
   ctx.publish(sig_calls_, s[2]);
-  if (!ok) {
+  if (outcome == Outcome::raised) {
     s[1] = 1;  // SimTwo switches the control block to None: no further calls
     ctx.publish(sig_error_, 1);
     ctx.log_line(last_error_ + "; the script is stopped");
   }
+  if (!ok) s[1] = 1;
 }
 
-void ScriptController::report_error(const std::string& routine, const std::string& message) {
-  // "EClass: text |  $addr |  $addr ...": the raising address, then its callers. Name the first
-  // frame in the user's file (fpc -g DWARF line table, read by addr2line), else the first one
-  // known.
+std::string ScriptController::udp_failure(const std::string& why) const {
+  return "cannot listen on UDP " + udp_address_ + ":" + std::to_string(udp_port_) + " (" + why +
+         "); ReadUDPData returns '' and WriteUDPData sends from another port";
+}
+
+UdpPort& ScriptController::udp() {
+  std::string why;
+  if (!udp_.opened() && !udp_.open(udp_address_, udp_port_, why)) {
+    const std::string text = udp_failure(why);
+    if (ctx_) ctx_->log_line(text);
+    std::fprintf(stderr, "script %s: %s\n", script_.string().c_str(), text.c_str());
+  }
+  return udp_;
+}
+
+namespace {
+
+/// "first | $addr | $addr ...": the text, then the raising address and its callers.
+std::vector<std::string> split_frames(const std::string& message) {
   std::vector<std::string> parts;
   for (std::size_t from = 0;;) {
     const auto bar = message.find(" |", from);
@@ -366,13 +397,47 @@ void ScriptController::report_error(const std::string& routine, const std::strin
     if (bar == std::string::npos) break;
     from = bar + 2;
   }
+  return parts;
+}
+
+}  // namespace
+
+void ScriptController::report_halt(StepContext& ctx, const std::string& routine,
+                                   const std::string& message) {
+  const std::vector<std::string> parts = split_frames(message);
+  const std::string where = where_raised(parts);
+  const std::string& halt = parts.front();  // "Halt(code)"
+  const long code = std::strtol(halt.c_str() + std::min<std::size_t>(5, halt.size()), nullptr, 10);
+  // Halt(0) ends the run as CloseSimTwo does; another code ends it as a failure (exit 5).
+  ctx.publish(sig_close_, code == 0 ? 1 : 2);
+  const std::string text = "the script called " + halt + " in " + routine +
+                           (where.empty() ? std::string() : " (" + where + ")") + ": the run ends";
+  ctx.log_line(text);
+  std::fprintf(stderr, "script %s: %s\n", script_.string().c_str(), text.c_str());
+}
+
+void ScriptController::report_error(const std::string& routine, const std::string& message) {
+  // "EClass: text |  $addr |  $addr ...": the raising address, then its callers.
+  const std::vector<std::string> parts = split_frames(message);
+  const std::string where = where_raised(parts);
+  last_error_ = "run-time error in " + routine + ": " + parts.front() +
+                (where.empty() ? std::string() : " (" + where + ")");
+  std::fprintf(stderr, "script %s: %s; the script is stopped\n", script_.string().c_str(),
+               last_error_.c_str());
+}
+
+std::string ScriptController::where_raised(const std::vector<std::string>& parts) const {
+  // Name the first frame in the user's file (fpc -g DWARF line table, read by addr2line), else
+  // the first one known.
   std::string where, any;
   const std::string file = script_.filename().string();
   for (std::size_t i = 1; i < parts.size() && where.empty(); ++i) {
     const auto dollar = parts[i].find('$');
     if (dollar == std::string::npos) continue;
+    // parts[1] is where the raise was, the rest are return addresses (ExceptFrames).
     const std::string f = library_.describe(
-        static_cast<std::uintptr_t>(std::strtoull(parts[i].c_str() + dollar + 1, nullptr, 16)));
+        static_cast<std::uintptr_t>(std::strtoull(parts[i].c_str() + dollar + 1, nullptr, 16)),
+        i > 1);
     if (f.empty()) continue;
     if (any.empty()) any = f;
     if (f.find("/" + file + ":") != std::string::npos ||
@@ -385,10 +450,7 @@ void ScriptController::report_error(const std::string& routine, const std::strin
     const auto space = where.rfind(' ', at);
     where = where.substr(0, space + 1) + script_.string() + where.substr(at + 1 + file.size());
   }
-  last_error_ = "run-time error in " + routine + ": " + parts.front() +
-                (where.empty() ? std::string() : " (" + where + ")");
-  std::fprintf(stderr, "script %s: %s; the script is stopped\n", script_.string().c_str(),
-               last_error_.c_str());
+  return where;
 }
 
 }  // namespace s2sim::pascal

@@ -173,6 +173,14 @@ class ScriptController final : public Component {
   void sensor_values(const SensorRef& s);
   void load_library();
   void report_error(const std::string& routine, const std::string& message);
+  /// The script's UDP socket, opened at configure when the script names a UDP routine, else
+  /// at its first use (io_ports.hpp).
+  UdpPort& udp();
+  std::string udp_failure(const std::string& why) const;
+  /// The script called Halt: the run ends (close 1 for Halt(0), 2 for another code).
+  void report_halt(StepContext& ctx, const std::string& routine, const std::string& message);
+  /// "ROUTINE at file:line" of the first frame in the user's file, else the first known.
+  std::string where_raised(const std::vector<std::string>& parts) const;
 
   // The model, from configure().
   std::filesystem::path script_;
@@ -225,6 +233,8 @@ class ScriptController final : public Component {
   std::vector<int> chart_series_count_;
   std::string hud_;
   UdpPort udp_;
+  std::string udp_address_ = "127.0.0.1";  // S2SIM_UDP_ADDRESS
+  int udp_port_ = 9808;                    // S2SIM_UDP_PORT
   SerialPort serial_;
   ModbusServer modbus_;
   bool warned_unavailable_ = false;

@@ -1,8 +1,10 @@
 #include "script_library.hpp"
 
 #include <dlfcn.h>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <cfenv>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
@@ -34,18 +36,41 @@ void ScriptLibrary::unload() {
   }
   handle_ = nullptr;
   run_ = nullptr;
-  if (!copy_.empty()) {
-    std::error_code ec;
-    std::filesystem::remove(copy_, ec);
-    copy_.clear();
+  copy_.clear();
+}
+
+namespace {
+
+constexpr const char* kCopyPrefix = "s2sim-script-";
+
+/// Copies that a process killed between its copy and its load left behind (the load removes
+/// its own at once): ours by name, owner and age.
+void remove_stale_copies(const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kCopyPrefix, 0) != 0) continue;
+    struct stat st {};
+    if (::lstat(it->path().c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_uid != ::getuid())
+      continue;
+    std::error_code time_ec;
+    const auto written = fs::last_write_time(it->path(), time_ec);
+    if (!time_ec && now - written > std::chrono::minutes(10)) fs::remove(it->path(), time_ec);
   }
 }
+
+}  // namespace
 
 void ScriptLibrary::load(const std::filesystem::path& library, const HostTable& table,
                          std::int32_t seed) {
   unload();
-  // A private copy: dlopen of the same path would share the script's globals.
-  std::string tmpl = (std::filesystem::temp_directory_path() / "s2sim-script-XXXXXX").string();
+  const std::filesystem::path folder = std::filesystem::temp_directory_path();
+  remove_stale_copies(folder);
+  // A private copy: dlopen of the same path would share the script's globals. Removed as soon
+  // as it is loaded (the mapping stays), so a crash, a kill or Halt leaves nothing behind.
+  std::string tmpl = (folder / (std::string(kCopyPrefix) + "XXXXXX")).string();
   const int fd = ::mkstemp(tmpl.data());
   if (fd < 0) throw std::runtime_error("cannot create a temporary copy of " + library.string());
   ::close(fd);
@@ -54,8 +79,12 @@ void ScriptLibrary::load(const std::filesystem::path& library, const HostTable& 
     FpuGuard guard;  // the Pascal RTL's start-up sets its own FPU masks
     handle_ = ::dlopen(tmpl.c_str(), RTLD_NOW | RTLD_LOCAL);
   }
-  // Kept while loaded: addr2line reads its line table (fpc -g) from the file on an error.
+  std::error_code ec;
+  std::filesystem::remove(tmpl, ec);
+  // dladdr names the copy's path; addr2line reads the same bytes' line table (fpc -g) from
+  // the compiled library.
   copy_ = tmpl;
+  library_ = library;
   if (!handle_)
     throw std::runtime_error(std::string("cannot load the compiled script: ") + ::dlerror());
   auto bind =
@@ -71,16 +100,20 @@ void ScriptLibrary::load(const std::filesystem::path& library, const HostTable& 
   bind(&table_, seed);
 }
 
-std::string ScriptLibrary::describe(std::uintptr_t address) const {
+std::string ScriptLibrary::describe(std::uintptr_t address, bool is_return) const {
   Dl_info info{};
   if (!handle_ || ::dladdr(reinterpret_cast<void*>(address), &info) == 0 || !info.dli_fbase)
     return {};
-  if (std::filesystem::path(info.dli_fname) != copy_) return {};  // not the script's code
+  if (copy_ != info.dli_fname) return {};  // not the script's code
   char offset[32];
   std::snprintf(
       offset, sizeof offset, "0x%lx",
-      static_cast<unsigned long>(address - reinterpret_cast<std::uintptr_t>(info.dli_fbase) - 1));
-  const std::string command = "addr2line -f -e '" + copy_.string() + "' " + offset + " 2>/dev/null";
+      static_cast<unsigned long>(address - reinterpret_cast<std::uintptr_t>(info.dli_fbase) -
+                                 (is_return ? 1 : 0)));
+  std::string quoted = "'";
+  for (char c : library_.string())
+    quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  const std::string command = "addr2line -f -e " + quoted + "' " + offset + " 2>/dev/null";
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return {};
   char routine[512] = {0}, where[1024] = {0};
@@ -100,16 +133,16 @@ std::string ScriptLibrary::describe(std::uintptr_t address) const {
   return r + " at " + w;
 }
 
-bool ScriptLibrary::run(int which, double now_s, std::string& error) {
+ScriptLibrary::Outcome ScriptLibrary::run(int which, double now_s, std::string& error) {
   char message[2048] = {0};
   int status = 0;
   {
     FpuGuard guard;
     status = run_(which, now_s, message, static_cast<std::int32_t>(sizeof message));
   }
-  if (status == 0) return true;
+  if (status == 0) return Outcome::returned;
   error = message;
-  return false;
+  return status == 2 ? Outcome::halted : Outcome::raised;
 }
 
 }  // namespace s2sim::pascal

@@ -33,15 +33,20 @@ class ScriptLibrary {
   void load(const std::filesystem::path& library, const HostTable& table, std::int32_t seed);
   void unload();
   bool loaded() const { return handle_ != nullptr; }
-  /// Runs Initialize (which 0) or Control (1); false with `error` set when it raised.
-  bool run(int which, double now_s, std::string& error);
+  /// How a call into the script ended.
+  enum class Outcome { returned, raised, halted };
+  /// Runs Initialize (which 0) or Control (1). Raised: `error` holds "class: text | $address
+  /// ...". Halted (the script called Halt): `error` holds "Halt(code) | $address ...".
+  Outcome run(int which, double now_s, std::string& error);
   /// "ROUTINE at file:line" for a code address inside the library, from its debug line table
-  /// (binutils' addr2line, which fpc itself needs); empty when unknown.
-  std::string describe(std::uintptr_t address) const;
+  /// (binutils' addr2line, which fpc itself needs); empty when unknown. A return address
+  /// (`is_return`) is looked up one byte back, inside its call; a raise's own address as it is.
+  std::string describe(std::uintptr_t address, bool is_return) const;
 
  private:
   void* handle_ = nullptr;
-  std::filesystem::path copy_;  // the private copy, removed at unload
+  std::filesystem::path library_;  // the compiled library (the cache's), for its line table
+  std::string copy_;  // the private copy's path, as the loader names it; removed once loaded
   int (*run_)(std::int32_t, double, char*, std::int32_t) = nullptr;
   HostTable table_{};
 };

@@ -1,5 +1,7 @@
 #include "zero_locals.hpp"
 
+#include "pascal_tokens.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <map>
@@ -7,60 +9,6 @@
 
 namespace s2sim::pascal {
 namespace {
-
-struct Token {
-  std::string text;     // as written
-  std::string lower;    // for keywords
-  std::size_t end = 0;  // offset just past the token in the script
-};
-
-/// Identifiers, numbers and symbols; comments and string literals are skipped.
-std::vector<Token> tokenize(const std::string& s) {
-  std::vector<Token> out;
-  std::size_t i = 0;
-  const std::size_t n = s.size();
-  while (i < n) {
-    const char c = s[i];
-    if (std::isspace(static_cast<unsigned char>(c))) {
-      ++i;
-    } else if (c == '/' && i + 1 < n && s[i + 1] == '/') {
-      while (i < n && s[i] != '\n')
-        ++i;
-    } else if (c == '{') {
-      while (i < n && s[i] != '}')
-        ++i;
-      ++i;
-    } else if (c == '(' && i + 1 < n && s[i + 1] == '*') {
-      i += 2;
-      while (i + 1 < n && !(s[i] == '*' && s[i + 1] == ')'))
-        ++i;
-      i += 2;
-    } else if (c == '\'') {
-      ++i;
-      while (i < n && s[i] != '\'')
-        ++i;
-      ++i;
-      out.push_back({"''", "''", std::min(i, n)});
-    } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '$' || c == '#') {
-      const std::size_t b = i;
-      while (i < n && (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' ||
-                       s[i] == '$' || s[i] == '#'))
-        ++i;
-      std::string t = s.substr(b, i - b), l = t;
-      std::transform(l.begin(), l.end(), l.begin(),
-                     [](unsigned char ch) { return std::tolower(ch); });
-      out.push_back({t, l, i});
-    } else {
-      // two-character symbols matter only as ".." and ":="
-      std::string t(1, c);
-      if (i + 1 < n && ((c == '.' && s[i + 1] == '.') || (c == ':' && s[i + 1] == '=')))
-        t += s[i + 1];
-      i += t.size();
-      out.push_back({t, t, i});
-    }
-  }
-  return out;
-}
 
 bool is_identifier(const std::string& t) {
   return !t.empty() && (std::isalpha(static_cast<unsigned char>(t[0])) || t[0] == '_');
@@ -72,6 +20,12 @@ const char* const kPlain[] = {"integer", "longint",  "cardinal", "longword", "wo
 
 bool is_plain(const std::string& lower) {
   return std::find(std::begin(kPlain), std::end(kPlain), lower) != std::end(kPlain);
+}
+
+/// File variables (TextFile, Text, File, file of T) take no Default: fpc refuses it, and
+/// Pascal Script never had them zeroed to begin with (they are set by AssignFile).
+bool is_file_type(const std::vector<std::string>& type) {
+  return !type.empty() && (type[0] == "textfile" || type[0] == "text" || type[0] == "file");
 }
 
 }  // namespace
@@ -156,6 +110,7 @@ std::string zero_locals(const std::string& script) {
       }
       if (k < n && t[k].text == ";") ++k;
       if (std::find(type.begin(), type.end(), "=") != type.end()) continue;  // initialised
+      if (is_file_type(type)) continue;
       for (const auto& name : names) {
         if (type.size() == 1 && is_identifier(type[0])) {
           statements += " " + name + " := Default(" + type[0] + ");";

@@ -251,7 +251,41 @@ procedure Msave(M: Matrix; const fname: string);
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
 
+type
+  { The RTL's Halt would end S2Sim itself, with the script's code and without its outputs.
+    This one ends the run through the host instead: the wrapper catches it, the runner writes
+    its outputs and names the line. Not an Exception, so a script's `on E: Exception` lets it
+    pass. }
+  TScriptHalt = class
+  public
+    Code: longint;
+    constructor Create(ACode: longint);
+  end;
+
+procedure Halt(ErrorCode: longint); overload;
+procedure Halt; overload;
+
 implementation
+
+constructor TScriptHalt.Create(ACode: longint);
+begin
+  inherited Create;
+  Code := ACode;
+end;
+
+{ Raised at the call in the script (its return address less one byte), so the host names the
+  script's line. }
+procedure Halt(ErrorCode: longint);
+begin
+  raise TScriptHalt.Create(ErrorCode) at CodePointer(PtrUInt(get_caller_addr(get_frame)) - 1),
+    get_caller_frame(get_frame);
+end;
+
+procedure Halt;
+begin
+  raise TScriptHalt.Create(0) at CodePointer(PtrUInt(get_caller_addr(get_frame)) - 1),
+    get_caller_frame(get_frame);
+end;
 
 constructor TStringList.Create;
 begin
