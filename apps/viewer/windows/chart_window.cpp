@@ -6,9 +6,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace s2sim::viewer {
 namespace {
+
+/// The chart's draw budget per frame (segments of all signals together), and the fewest points
+/// a signal is drawn with however many share the budget.
+constexpr std::size_t kMaxChartSegments = std::size_t{1} << 16;
+constexpr std::size_t kMinChartPointsPerSignal = 64;
 
 ImU32 series_colour(std::size_t k) {
   static const ImU32 palette[] = {IM_COL32(31, 119, 180, 255),  IM_COL32(255, 127, 14, 255),
@@ -125,23 +131,34 @@ void plot(ViewerState& state) {
     dl->AddText(ImVec2(x_of(t) - 12, bottom + 3), IM_COL32(230, 230, 230, 255), label);
   }
   dl->PushClipRect(ImVec2(left, top), ImVec2(right, bottom), true);
-  // At most about two points per pixel column: long histories draw as fast as short ones.
+  // At most about two points per pixel column, so long histories draw as fast as short ones,
+  // and at most kMaxChartSegments segments for all the signals together: each segment is
+  // ImGui draw data (about 100 bytes), which 881 signals at two points a column made 650 MB.
+  const std::size_t columns = static_cast<std::size_t>(2 * std::max(1.0f, right - left));
+  const std::size_t per_signal =
+      std::max<std::size_t>(kMinChartPointsPerSignal,
+                            kMaxChartSegments / std::max<std::size_t>(1, chart.signals().size()));
   const std::size_t stride =
-      std::max<std::size_t>(1, (last - first) / static_cast<std::size_t>(2 * (right - left)));
+      std::max<std::size_t>(1, (last - first) / std::min(columns, per_signal));
+  // One polyline per finite run (half the vertices of a line per segment), one pixel wide so
+  // that ImGui draws it anti-aliased from its texture: two triangles a segment.
+  static std::vector<ImVec2> run;  // the UI thread's scratch, kept between frames
+  run.reserve(kMaxChartSegments);
+  auto flush = [&](std::size_t k) {
+    if (run.size() >= 2)
+      dl->AddPolyline(run.data(), static_cast<int>(run.size()), series_colour(k), 0, 1.0f);
+    run.clear();
+  };
   for (std::size_t k = 0; k < chart.signals().size(); ++k) {
     const auto values = chart.values(k);
-    ImVec2 previous;
-    bool has_previous = false;
     for (std::size_t i = first; i < last; i += stride) {
       if (!std::isfinite(values[i])) {
-        has_previous = false;
+        flush(k);
         continue;
       }
-      const ImVec2 p(x_of(times[i]), y_of(values[i]));
-      if (has_previous) dl->AddLine(previous, p, series_colour(k), 1.5f);
-      previous = p;
-      has_previous = true;
+      run.emplace_back(x_of(times[i]), y_of(values[i]));
     }
+    flush(k);
   }
   dl->PopClipRect();
   dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
