@@ -242,3 +242,13 @@ def test_new_entry_points_are_refused_while_another_thread_steps():
         time.sleep(0.001)
     thread.join()
     assert refused, "the long step ended before a second call could be tried"
+
+
+def test_set_state_refuses_a_loop_closing_axis_and_changes_nothing():
+    sim = s2sim.Simulation(os.path.join(SOURCE, "scenes", "default"))  # it has loops
+    sim.step(10)
+    before = sim.save()
+    with pytest.raises(s2sim.UsageError, match="closes a kinematic loop") as error:
+        sim.set_state(q=np.array(sim.q) + 0.1)  # every axis moved, loop axes among them
+    assert any(name in str(error.value) for name in sim.axis_names)
+    assert sim.save() == before
