@@ -27,14 +27,15 @@ namespace s2sim::python {
 /// The search path of a Simulation given no plugin_path (module.cpp).
 std::vector<std::filesystem::path> default_plugin_path();
 
-/// A snapshot as Python sees it: opaque, restorable into the simulation it came from.
+/// A snapshot as Python sees it: restorable into the simulation it came from or another of the
+/// same scene and options; pickled and saved through snapshots.cpp.
 struct PySnapshot {
   Simulation::Snapshot snapshot;
   double time_s = 0;
 };
 
 /// The façade plus what the Python side caches: the signal indices of each pattern asked
-/// (globbing every call would dominate a tight learning loop) and the bodies' names.
+/// (globbing every call would dominate a tight learning loop), the bodies' and axes' names.
 class PySimulation {
  public:
   PySimulation(const std::filesystem::path& scene, std::uint64_t seed,
