@@ -1,8 +1,9 @@
 """S2Sim for Python (docs/python.md).
 
-``Simulation`` and the error classes come from the compiled module ``s2sim._s2sim``;
-``s2sim.remote`` (the client of the ``remote`` controller) and ``s2sim.sweeps`` (behind
-``s2sim.sweep``) are pure Python. ``s2sim.remote`` needs neither the compiled module nor
+``Simulation``, ``Snapshot`` and the error classes come from the compiled module
+``s2sim._s2sim``; ``s2sim.remote`` (the client of the ``remote`` controller), ``s2sim.sweeps``
+(behind ``s2sim.sweep``), ``s2sim.snapshots`` (snapshot files) and ``s2sim.envs`` (gymnasium
+environments) are pure Python. ``s2sim.remote`` needs neither the compiled module nor
 anything outside the standard library, so it can be copied to a machine without S2Sim.
 """
 
@@ -35,6 +36,12 @@ else:
 
     from ._s2sim import _set_package_plugin_dirs
     _set_package_plugin_dirs(_plugin_dirs())
+
+    from .snapshots import load_snapshot, save_snapshot  # noqa: F401
+
+    # snapshot.save(path) and Snapshot.load(path): the file format is s2sim/snapshots.py's.
+    Snapshot.save = save_snapshot
+    Snapshot.load = staticmethod(load_snapshot)
 
     def sweep(*args, **kwargs):
         """Runs many simulations on Dask; see s2sim.sweeps.sweep."""

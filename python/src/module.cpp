@@ -3,6 +3,7 @@
 // (docs/signals.md). The GIL is released while the simulation loads and steps, so that other
 // Python threads (a remote client, a Dask worker's heartbeat) run meanwhile.
 #include "errors.hpp"
+#include "py_simulation.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 #include <s2sim/version.hpp>
@@ -36,6 +37,8 @@ std::vector<std::filesystem::path>& package_plugin_dirs() {
   return dirs;
 }
 
+}  // namespace
+
 /// The search path of a Simulation given no plugin_path: S2SIM_PLUGIN_PATH's folders, then the
 /// package's; empty (the kernel's default) when there are none.
 std::vector<std::filesystem::path> default_plugin_path() {
@@ -54,178 +57,7 @@ std::vector<std::filesystem::path> default_plugin_path() {
   return out;
 }
 
-/// A snapshot as Python sees it: opaque, restorable into the simulation it came from.
-struct PySnapshot {
-  Simulation::Snapshot snapshot;
-  double time_s = 0;
-};
-
-/// The façade plus what the Python side caches: the signal indices of each pattern asked
-/// (globbing every call would dominate a tight learning loop) and the bodies' names.
-class PySimulation {
- public:
-  PySimulation(const std::filesystem::path& scene, std::uint64_t seed,
-               std::optional<double> physics_step_s, std::optional<int> substeps,
-               const std::map<std::string, double>& defines,
-               const std::vector<std::filesystem::path>& plugin_path, int threads,
-               bool simbody_dynamics, bool run_ahead, bool check_dynamics) {
-    SimulationOptions options;
-    options.seed = seed;
-    options.threads = threads;
-    options.run_ahead = run_ahead;
-    options.simbody_dynamics_only = simbody_dynamics;
-    options.check_dynamics = check_dynamics;
-    options.physics_step_s = physics_step_s;
-    options.substeps = substeps;
-    options.plugin_path = plugin_path.empty() ? default_plugin_path() : plugin_path;
-    for (const auto& [name, value] : defines)
-      options.constants.emplace_back(name, value);
-    {
-      py::gil_scoped_release release;
-      sim_ = Simulation::load(scene, options);
-    }
-    const auto& sc = sim_->scene();
-    body_names_.push_back("world");
-    for (const auto& body : sc.bodies)
-      body_names_.push_back(body.robot >= 0
-                                ? "robots/" + sc.robots[body.robot].id + "/solids/" + body.id
-                                : "things/" + body.id);
-    for (std::size_t i = 0; i < body_names_.size(); ++i)
-      body_by_name_.emplace(body_names_[i], static_cast<int>(i));
-    for (std::size_t r = 0; r < sc.robots.size(); ++r)
-      if (sc.robots[r].main_body >= 0)  // a robot by its own name: its main body
-        body_by_name_.emplace("robots/" + sc.robots[r].id, sc.robots[r].main_body + 1);
-  }
-
-  /// The simulation, for a call that holds the GIL throughout: refused while another thread
-  /// runs one that released it (Exclusive).
-  Simulation& sim() {
-    refuse_if_busy();
-    return *sim_;
-  }
-  const Simulation& sim() const {
-    refuse_if_busy();
-    return *sim_;
-  }
-
-  /// A call that releases the GIL (load, step, run_until, reset) owns the simulation until it
-  /// returns: constructed before the release and destroyed after the GIL is taken back, so that
-  /// any other thread's call in between sees the simulation busy and gets a clear error instead
-  /// of a torn state or a crash. Several Simulations on several threads run at once.
-  class Exclusive {
-   public:
-    Exclusive(PySimulation& s, const char* what) : s_(s) {
-      s_.refuse_if_busy();
-      s_.busy_with_ = what;
-    }
-    ~Exclusive() { s_.busy_with_ = nullptr; }
-    Exclusive(const Exclusive&) = delete;
-    Exclusive& operator=(const Exclusive&) = delete;
-
-   private:
-    PySimulation& s_;
-  };
-
-  void step(std::int64_t ticks) {
-    if (ticks < 0)
-      throw Error(ErrorKind::usage, "step(n): n must be >= 0, got " + std::to_string(ticks));
-    Exclusive own(*this, "step()");
-    py::gil_scoped_release release;
-    sim_->step(ticks);
-  }
-  void run_until(double t_s) {
-    if (!std::isfinite(t_s))
-      throw Error(ErrorKind::usage, "run_until(t): t must be finite, got " + std::to_string(t_s));
-    Exclusive own(*this, "run_until()");
-    py::gil_scoped_release release;
-    sim_->run_until(t_s);
-  }
-  void reset() {
-    Exclusive own(*this, "reset()");
-    py::gil_scoped_release release;
-    sim_->reset();
-  }
-
-  const std::vector<std::size_t>& match(const std::string& pattern) {
-    auto it = matches_.find(pattern);
-    if (it != matches_.end()) return it->second;
-    std::vector<std::size_t> found = sim().match_signals(pattern);
-    if (found.empty()) {
-      // An exact name that is not there deserves the façade's "did you mean".
-      if (pattern.find_first_of("*?") == std::string::npos) (void)sim_->signal_index(pattern);
-      throw Error(ErrorKind::usage, "no signal matches '" + pattern + "'");
-    }
-    return matches_.emplace(pattern, std::move(found)).first->second;
-  }
-
-  /// The indices of several patterns, one after another (cached under their joined text).
-  const std::vector<std::size_t>& match(const std::vector<std::string>& patterns) {
-    std::string key = "\n";  // no single pattern starts with a newline
-    for (const auto& p : patterns)
-      key += p + "\n";
-    auto it = matches_.find(key);
-    if (it != matches_.end()) return it->second;
-    std::vector<std::size_t> all;
-    for (const auto& p : patterns) {
-      const auto& found = match(p);
-      all.insert(all.end(), found.begin(), found.end());
-    }
-    return matches_.emplace(key, std::move(all)).first->second;
-  }
-
-  template <class Patterns>
-  py::array_t<double> signals(const Patterns& pattern) {
-    const auto& indices = match(pattern);
-    py::array_t<double> out(static_cast<py::ssize_t>(indices.size()));
-    auto view = out.mutable_unchecked<1>();
-    for (std::size_t i = 0; i < indices.size(); ++i)
-      view(static_cast<py::ssize_t>(i)) = sim().signal(indices[i]);
-    return out;
-  }
-
-  std::vector<std::string> signal_names(const std::string& pattern) {
-    std::vector<std::string> names;
-    for (std::size_t i : sim().match_signals(pattern))
-      names.push_back(sim_->signal_info(i).name);
-    return names;
-  }
-
-  int body_index(const py::object& body) const {
-    if (py::isinstance<py::int_>(body)) {
-      const int index = body.cast<int>();
-      if (index < 0 || index >= sim().body_count())
-        throw Error(ErrorKind::usage, "body index " + std::to_string(index) +
-                                          " is out of range (0 to " +
-                                          std::to_string(sim_->body_count() - 1) + ")");
-      return index;
-    }
-    const auto name = body.cast<std::string>();
-    auto it = body_by_name_.find(name);
-    if (it == body_by_name_.end())
-      throw Error(ErrorKind::usage, "unknown body '" + name +
-                                        "' (names: robots/<robot>, robots/<robot>/solids/<id>, "
-                                        "things/<id>; see body_names())");
-    return it->second;
-  }
-
-  const std::vector<std::string>& body_names() const { return body_names_; }
-
- private:
-  void refuse_if_busy() const {
-    // Read and written only with the GIL held: no other synchronisation is needed.
-    if (busy_with_)
-      throw Error(ErrorKind::usage,
-                  std::string("this Simulation is in use by another thread (") + busy_with_ +
-                      " has not returned): one Simulation takes one call at a time; give each "
-                      "thread its own Simulation");
-  }
-
-  std::unique_ptr<Simulation> sim_;
-  const char* busy_with_ = nullptr;  // the GIL-releasing call that owns the simulation
-  std::unordered_map<std::string, std::vector<std::size_t>> matches_;
-  std::vector<std::string> body_names_;
-  std::unordered_map<std::string, int> body_by_name_;
-};
+namespace {
 
 py::array_t<double> vec3(const Vec3& v) {
   py::array_t<double> a(3);
@@ -260,21 +92,28 @@ PYBIND11_MODULE(_s2sim, m) {
       [](const std::vector<std::filesystem::path>& dirs) { package_plugin_dirs() = dirs; },
       "Called by s2sim/__init__.py with the plugin folders next to the package.");
 
-  py::class_<PySnapshot>(m, "Snapshot",
-                         "The whole state of a simulation (Simulation.save()); restore it into "
-                         "the simulation it came from with Simulation.restore().")
-      .def_property_readonly("time", [](const PySnapshot& s) { return s.time_s; })
+  py::class_<PySnapshot> snapshot(
+      m, "Snapshot",
+      "The whole state of a simulation (Simulation.save()); restore it with "
+      "Simulation.restore() into the simulation it came from or into another of the same scene "
+      "and options. Pickles (to a Dask worker, say), and saves to a file (save(path), "
+      "Snapshot.load(path)).");
+  bind_snapshot(snapshot);
+  snapshot.def_property_readonly("time", [](const PySnapshot& s) { return s.time_s; })
       .def_property_readonly("layout", [](const PySnapshot& s) { return s.snapshot.layout; })
       .def_property_readonly("values", [](const PySnapshot& s) {
         return py::array_t<double>(static_cast<py::ssize_t>(s.snapshot.values.size()),
                                    s.snapshot.values.data());
       });
 
-  py::class_<PySimulation>(m, "Simulation",
-                           "A loaded scene ready to step (docs/python.md). Simulation(scene, "
-                           "seed=1, physics_step=None, substeps=None, defines={}, "
-                           "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True, "
-                           "check_dynamics=False).")
+  PySimulationClass simulation(m, "Simulation",
+                               "A loaded scene ready to step (docs/python.md). Simulation(scene, "
+                               "seed=1, physics_step=None, substeps=None, defines={}, "
+                               "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True, "
+                               "check_dynamics=False).");
+  bind_state(simulation);
+  bind_queries(simulation);
+  simulation
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,
                     const std::vector<std::filesystem::path>&, int, bool, bool, bool>(),
@@ -389,8 +228,14 @@ PYBIND11_MODULE(_s2sim, m) {
           [](PySimulation& s, const PySnapshot& snap) { s.sim().restore(snap.snapshot); },
           py::arg("snapshot"), "Continues exactly from a snapshot of this simulation.")
       .def(
-          "reset", [](PySimulation& s) { s.reset(); },
-          "Back to t = 0; a reset run repeats the first bit for bit.")
+          "reset", [](PySimulation& s, std::optional<std::uint64_t> seed) { s.reset(seed); },
+          py::arg("seed") = py::none(),
+          "Back to t = 0; a reset run repeats the first bit for bit. seed: a new seed for every "
+          "component's random stream (sensor noise), kept by later resets; the same seed gives "
+          "the same run.")
+      .def_property_readonly(
+          "seed", [](const PySimulation& s) { return s.sim().seed(); },
+          "The seed of the random streams (the constructor's, or the last reset(seed)'s).")
       .def("body_names", &PySimulation::body_names,
            "Bodies by index: 0 'world', then robots/<robot>/solids/<id> and things/<id>.")
       .def(

@@ -54,3 +54,78 @@ def test_bad_arguments():
         s2sim.sweep(NXT, {"motor_ki": [1]})
     with pytest.raises(TypeError):
         s2sim.sweep(NXT, [1, 2], duration=0.1, signals="time")
+
+
+def where_and_how_far(sim, params):
+    sim.run_until(sim.time + 0.3)
+    return {"x": sim.signal("robots/nxt/x"), "cwd": os.getcwd(), "time": sim.time}
+
+
+@pytest.fixture
+def worker_elsewhere(tmp_path):
+    """A scheduler in this process and one worker process started in an empty folder, where
+    `scenes/nxt` is not (the worker has only the package, through PYTHONPATH)."""
+    import subprocess
+    import sys
+
+    from dask.distributed import Client, LocalCluster
+
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    # tcp on the loopback: the worker is another process (an in-process cluster talks inproc).
+    cluster = LocalCluster(n_workers=0, processes=False, protocol="tcp", host="127.0.0.1",
+                           dashboard_address=None)
+    env = dict(os.environ)  # the package only; absolute, since the worker's cwd is elsewhere
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in
+                                        env.get("PYTHONPATH", "").split(os.pathsep) if p)
+    worker = subprocess.Popen(
+        [sys.executable, "-m", "distributed.cli.dask_worker", cluster.scheduler_address,
+         "--nworkers", "1", "--nthreads", "1", "--no-dashboard", "--no-nanny",
+         "--local-directory", str(elsewhere)],
+        cwd=str(elsewhere), env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        with Client(cluster.scheduler_address) as client:
+            client.wait_for_workers(1, timeout=60)
+        yield cluster.scheduler_address, str(elsewhere)
+    finally:
+        worker.terminate()
+        worker.wait(timeout=30)
+        cluster.close()
+
+
+def test_the_scene_and_a_snapshot_travel_to_a_worker_started_in_another_folder(worker_elsewhere):
+    address, elsewhere = worker_elsewhere
+    relative = os.path.relpath(NXT)  # scenes/nxt from the source tree, where this test runs
+    assert not os.path.isabs(relative)
+    assert not os.path.exists(os.path.join(elsewhere, relative))
+    # The path alone does not reach that worker: the old behaviour, kept as ship_scene=False.
+    with pytest.raises(Exception, match="not found|no such|No such|does not exist"):
+        s2sim.sweep(relative, [{RIGHT: 3.0}], run=where_and_how_far, scheduler=address,
+                    ship_scene=False)
+    # A run started here, stopped at 0.4 s, continued there from its snapshot.
+    local = s2sim.Simulation(NXT, seed=9)
+    local.set_inputs({RIGHT: 6.0, LEFT: -6.0})
+    local.run_until(0.4)
+    snapshot = local.save()
+    local.set_input(RIGHT, 4.0)
+    local.run_until(0.7)
+    table = rows_of(s2sim.sweep(relative, [{"seed": 9, RIGHT: 4.0}], run=where_and_how_far,
+                                scheduler=address, start=snapshot))
+    assert table[0]["cwd"] == elsewhere
+    assert table[0]["time"] == local.time
+    assert table[0]["x"] == local.signal("robots/nxt/x")  # bit for bit
+
+
+def test_a_scene_bundle_carries_the_folder_and_refuses_paths_that_leave_it(tmp_path):
+    from s2sim.sweeps import scene_bundle, scene_path
+
+    bundle = scene_bundle(os.path.join(NXT, "scene.xml"))
+    assert bundle["entry"] == "scene.xml" and set(bundle["files"]) == {"scene.xml", "nxt.xml"}
+    path = scene_path(bundle)
+    assert path.endswith(os.path.join("nxt", "scene.xml")) and os.path.isfile(path)
+    assert scene_path(bundle) == path  # written once per process
+    assert s2sim.Simulation(path).body_names() == s2sim.Simulation(NXT).body_names()
+    with pytest.raises(ValueError, match="leaves the scene folder"):
+        scene_path({"name": "x", "entry": None, "files": {"../evil.xml": b""}})
+    with pytest.raises(FileNotFoundError, match="no such folder"):
+        scene_bundle(tmp_path / "missing")

@@ -2,6 +2,7 @@
 // SetRobotPos (place_free_body), SetSolidPos / SetSolidRotationMat (move_body) and
 // SetSolidLinearVel / SetSolidAngularVel (set_body_velocity). A jointed body cannot leave its
 // joint: it goes as close as the joint allows, its children following (docs/models/multibody.md).
+// Axes set from outside (set_axis_state: Python's set_state) write their mobilizer coordinate.
 #include "model/multibody_impl.hpp"
 
 #include <cmath>
@@ -138,6 +139,18 @@ bool Multibody::set_body_velocity(int body, const Twist& twist) {
   SimTK::Vector& u = s.updU();
   for (int k = 0; k < nu; ++k)
     u[first + k] = rhs[k];
+  m.system.realize(s, SimTK::Stage::Velocity);
+  return true;
+}
+
+bool Multibody::set_axis_state(std::size_t axis, double position, double velocity) {
+  Impl& m = *impl_;
+  if (axis >= m.axis_impl.size() || m.axes[axis].loop) return false;
+  m.bodies_fresh = false;
+  SimTK::State& s = m.current;
+  const double sign = m.axis_impl[axis].sign;  // ±1: axis value = sign · q
+  s.updQ()[m.axis_q[axis]] = sign * position;
+  s.updU()[m.axis_u[axis]] = sign * velocity;
   m.system.realize(s, SimTK::Stage::Velocity);
   return true;
 }

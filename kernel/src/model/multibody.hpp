@@ -231,6 +231,11 @@ class Multibody {
   /// Sets a body's velocity (world frame, of its origin) as closely as its joint allows, the
   /// same way; false for the world or an unknown index.
   bool set_body_velocity(int body, const Twist& twist);
+  /// Sets a tree axis's coordinate and rate (axis units: rad or m, rad/s or m/s, with the
+  /// axis's sign), the bodies outboard of it following; the other coordinates are kept. False,
+  /// changing nothing, for a loop-closing axis (its value follows from the bodies it joins) or
+  /// an unknown index.
+  bool set_axis_state(std::size_t axis, double position, double velocity);
 
   struct Impl;  // Simbody's objects, defined in multibody.cpp
 

@@ -334,6 +334,12 @@ bool MultibodyIslands::set_body_velocity(int body, const Twist& twist) {
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_body_velocity(body, twist);
 }
+bool MultibodyIslands::set_axis_state(std::size_t axis, double position, double velocity) {
+  if (axis >= part_of_axis_.size()) return false;
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
+  return parts_[static_cast<std::size_t>(part_of_axis_[axis])].multibody->set_axis_state(
+      static_cast<std::size_t>(local_axis_[axis]), position, velocity);
+}
 
 // --- The parallel substep ----------------------------------------------------------------------
 

@@ -92,6 +92,7 @@ class MultibodyIslands {
   bool place_free_body(int body, const Pose& pose);
   bool move_body(int body, const Pose& pose);
   bool set_body_velocity(int body, const Twist& twist);
+  bool set_axis_state(std::size_t axis, double position, double velocity);
 
   /// What the kernel runs in each part at the tick's edges, on the part's thread, when its
   /// components are stepped in the parts (sim/component_parts.hpp).

@@ -79,6 +79,22 @@ std::string Simulation::Impl::axis_prefix(int axis) const {
   return sim::axis_path(scope_prefix(ax.robot), ax.name);
 }
 
+std::string Simulation::body_path(int body) const {
+  const Impl& m = *impl_;
+  if (body < 0 || body > static_cast<int>(m.scene.bodies.size()))
+    throw Error(ErrorKind::usage, "body index " + std::to_string(body) + " is out of range (0 to " +
+                                      std::to_string(m.scene.bodies.size()) + ")");
+  if (body == 0) return std::string(sim::kWorldScope);
+  const auto& b = m.scene.bodies[static_cast<std::size_t>(body - 1)];
+  return b.robot >= 0 ? sim::solid_path(m.robot_prefix(b.robot), b.id) : sim::thing_path(b.id);
+}
+std::string Simulation::axis_path(std::size_t index) const {
+  if (index >= impl_->axis_views.size())
+    throw Error(ErrorKind::usage, "axis index " + std::to_string(index) + " is out of range (" +
+                                      std::to_string(impl_->axis_views.size()) + " axes)");
+  return impl_->axis_prefix(static_cast<int>(index));
+}
+
 void Simulation::Impl::register_kernel_signals() {
   add_signal("time", "s", sim::Source::time, 0);
   add_signal("contacts/count", "1", sim::Source::contact_count, 0);
@@ -205,6 +221,20 @@ std::size_t Simulation::signal_index(std::string_view name) const {
 double Simulation::signal(std::size_t index) const {
   return impl_->read_signal(index);
 }
+void Simulation::Impl::changed() const {
+  if (!signal_values_kept) return;
+  for (std::size_t i = 0; i < signal_values.size(); ++i)
+    signal_values[i] = read_signal(i);
+}
+const std::vector<double>& Simulation::signal_values() const {
+  Impl& m = *impl_;
+  if (!m.signal_values_kept) {
+    m.signal_values.assign(m.signal_infos.size(), 0.0);  // its size is fixed at load
+    m.signal_values_kept = true;
+    m.changed();
+  }
+  return m.signal_values;
+}
 std::vector<std::size_t> Simulation::match_signals(std::string_view pattern) const {
   std::vector<std::size_t> out;
   for (std::size_t i = 0; i < impl_->signal_infos.size(); ++i)
@@ -231,9 +261,13 @@ void Simulation::set_input(std::size_t index, double value) {
     throw Error(ErrorKind::usage, "input '" + impl_->input_infos.at(index).name +
                                       "' must be finite, got " + std::to_string(value));
   impl_->inputs.at(index) = value;
+  impl_->changed();
 }
 double Simulation::input(std::size_t index) const {
   return impl_->inputs.at(index);
+}
+const std::vector<double>& Simulation::inputs() const {
+  return impl_->inputs;
 }
 
 }  // namespace s2sim

@@ -3,6 +3,7 @@
 #include "sim/simulation_impl.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace s2sim {
 
@@ -78,6 +79,12 @@ const Pose& Simulation::body_pose(int body) const {
 const Twist& Simulation::body_twist(int body) const {
   return impl_->twists.at(body);
 }
+const std::vector<Pose>& Simulation::body_poses() const {
+  return impl_->poses;
+}
+const std::vector<Twist>& Simulation::body_twists() const {
+  return impl_->twists;
+}
 RayHit Simulation::cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
                             int ignore_body) const {
   return impl_->ray_caster->cast(origin_m, direction, max_distance_m, ignore_body);
@@ -94,6 +101,29 @@ double Simulation::axis_position(std::size_t i) const {
 }
 double Simulation::axis_velocity(std::size_t i) const {
   return impl_->axis_velocity.at(i);
+}
+const std::vector<double>& Simulation::axis_positions() const {
+  return impl_->axis_position;
+}
+const std::vector<double>& Simulation::axis_velocities() const {
+  return impl_->axis_velocity;
+}
+void Simulation::set_axis_state(std::size_t index, double position, double velocity) {
+  Impl& m = *impl_;
+  if (index >= m.axis_views.size())
+    throw Error(ErrorKind::usage, "axis index " + std::to_string(index) + " is out of range (" +
+                                      std::to_string(m.axis_views.size()) + " axes)");
+  const std::string name = m.axis_prefix(static_cast<int>(index));
+  if (!std::isfinite(position) || !std::isfinite(velocity))
+    throw Error(ErrorKind::usage,
+                "axis '" + name + "': position and velocity must be finite, got " +
+                    std::to_string(position) + " and " + std::to_string(velocity));
+  if (!m.multibody->set_axis_state(index, position, velocity))
+    throw Error(ErrorKind::usage, "axis '" + name +
+                                      "' closes a kinematic loop: its position follows from the "
+                                      "bodies it joins and cannot be set");
+  m.refresh();
+  m.changed();
 }
 
 std::size_t Simulation::contact_count() const {

@@ -135,6 +135,12 @@ struct Simulation::Impl {
   detail::WorldView world;
 
   std::vector<SignalInfo> signal_infos;
+  /// Simulation::signal_values(): every signal's value, kept up to date once asked for.
+  mutable std::vector<double> signal_values;
+  mutable bool signal_values_kept = false;
+  /// At the end of a façade call that changed the state or an input: signal_values rewritten
+  /// when it is kept.
+  void changed() const;
   std::vector<sim::SignalEntry> signal_entries;
   std::unordered_map<std::string, std::size_t> signal_by_name;
   std::vector<SignalInfo> input_infos;

@@ -74,6 +74,7 @@ void Simulation::restore(const Snapshot& snapshot) {
   Impl& m = *impl_;
   m.layout.restore(snapshot.layout, entries_of(snapshot), snapshot.values);
   m.restored();
+  m.changed();
 }
 
 void Simulation::Impl::restored() {
@@ -95,6 +96,7 @@ void Simulation::place_body(int body, const Pose& pose) {
                     " cannot be placed: only a thing or a robot's root body (free "
                     "on the world) can be moved");
   m.refresh();
+  m.changed();
 }
 
 }  // namespace s2sim

@@ -426,15 +426,25 @@ void Simulation::Impl::reset() {
 
 void Simulation::step(std::int64_t ticks) {
   impl_->advance(ticks);
+  impl_->changed();
 }
 
 void Simulation::run_until(double t_s) {
   const auto target = static_cast<std::int64_t>(std::llround(t_s / impl_->tick_s));
   if (impl_->tick < target) impl_->advance(target - impl_->tick);
+  impl_->changed();
 }
 
 void Simulation::reset() {
   impl_->reset();
+  impl_->changed();
+}
+void Simulation::reset(std::uint64_t seed) {
+  impl_->options.seed = seed;
+  reset();
+}
+std::uint64_t Simulation::seed() const {
+  return impl_->options.seed;
 }
 void Simulation::set_profiling(bool on) {
   if (!on) {

@@ -160,6 +160,11 @@ class Simulation {
   /// Back to t = 0: initial configuration, inputs at their initial values, components
   /// re-initialised, random streams re-seeded. A reset run repeats the first bit for bit.
   void reset();
+  /// reset() with `seed` for every component's random stream, from this reset on (later
+  /// resets keep it): a new seed gives new sensor noise, the same seed the same run.
+  void reset(std::uint64_t seed);
+  /// The seed of the random streams: SimulationOptions::seed, or the last reset(seed)'s.
+  std::uint64_t seed() const;
 
   // Signals: every readable value, by index (fast) or name.
   std::size_t signal_count() const;
@@ -171,6 +176,12 @@ class Simulation {
   double signal(std::string_view name) const { return signal(signal_index(name)); }
   /// Signals whose names match a glob pattern (`*` any run of characters, `?` one).
   std::vector<std::size_t> match_signals(std::string_view pattern) const;
+  /// Every signal's value in index order, in one buffer that stays where it is for the
+  /// Simulation's life (for views that change in place, e.g. a NumPy array over it). Kept up
+  /// to date only once asked for: from the first call on, every call below that changes a
+  /// value (step, run_until, reset, restore, place_body, set_input, set_axis_state) rewrites it
+  /// before returning; until then it costs nothing.
+  const std::vector<double>& signal_values() const;
 
   // Inputs: values set from outside that hold until set again.
   std::size_t input_count() const;
@@ -180,11 +191,21 @@ class Simulation {
   void set_input(std::size_t index, double value);
   void set_input(std::string_view name, double value) { set_input(input_index(name), value); }
   double input(std::size_t index) const;
+  /// Every input's value in index order; the buffer stays where it is for the Simulation's
+  /// life (written by set_input, reset and restore).
+  const std::vector<double>& inputs() const;
 
   // Bodies: index 0 is the world, scene body i is body i + 1.
   int body_count() const;
   const Pose& body_pose(int body) const;
   const Twist& body_twist(int body) const;
+  /// A body's path, the prefix of its signals: `robots/<robot>/solids/<solid>`,
+  /// `things/<thing>`, or `world` for body 0 (docs/signals.md).
+  std::string body_path(int body) const;
+  /// Every body's pose and twist by index (what body_pose and body_twist read): buffers sized
+  /// at load that stay where they are for the Simulation's life, holding the current state.
+  const std::vector<Pose>& body_poses() const;
+  const std::vector<Twist>& body_twists() const;
   /// The first collision surface along a ray from `origin_m` in `direction` (world frame)
   /// within `max_distance_m`, skipping the geoms of body `ignore_body` (> 0): what sensors
   /// see (ground, walls, obstacles, every body), for picking and tests.
@@ -202,6 +223,17 @@ class Simulation {
   const AxisView& axis(std::size_t index) const;
   double axis_position(std::size_t index) const;
   double axis_velocity(std::size_t index) const;
+  /// An axis's path, the prefix of its signals and inputs: `<robot or world>/axes/<axis>`.
+  std::string axis_path(std::size_t index) const;
+  /// Every axis's position and velocity in axis order (the joints' coordinates and rates):
+  /// buffers that stay where they are for the Simulation's life, holding the current state.
+  const std::vector<double>& axis_positions() const;
+  const std::vector<double>& axis_velocities() const;
+  /// Sets axis `index`'s position (rad or m) and velocity (rad/s or m/s) in the current state,
+  /// the bodies it carries following (its other coordinates, and the other axes, kept); time
+  /// does not change. Throws s2sim::Error (usage), changing nothing, naming the axis for a
+  /// loop-closing axis (its value follows from the bodies it joins) or a non-finite value.
+  void set_axis_state(std::size_t index, double position, double velocity);
 
   /// Contacts of the last physics substep (points, normals, forces, bodies).
   std::size_t contact_count() const;
