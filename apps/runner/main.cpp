@@ -3,6 +3,7 @@
 #include "crash_report.hpp"
 #include "options.hpp"
 #include "outputs.hpp"
+#include "scene_search.hpp"
 #include "simulation_options.hpp"
 #include "watchdog.hpp"
 
@@ -44,7 +45,7 @@ int run(const s2sim::runner::Options& o) {
   // Watching from the load on: a component's configure may hang too.
   std::optional<runner::Watchdog> watchdog;
   if (o.watchdog_s > 0) watchdog.emplace(o.watchdog_s);
-  auto sim = Simulation::load(o.scene, options);
+  auto sim = Simulation::load(apps::find_scene(o.scene), options);
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());
