@@ -45,7 +45,7 @@ dpkg -x "$deb" "$root"
 for f in usr/bin/s2sim-run usr/bin/s2sim-view usr/share/s2sim/scenes/default/scene.xml \
          usr/share/s2sim/scenes/nxt/scene.xml usr/share/s2sim/examples/CMakeLists.txt \
          usr/share/s2sim/examples/python/nxt_pid.py usr/share/doc/s2sim/README.md \
-         usr/share/doc/s2sim/docs/remote.md usr/lib/python3/dist-packages/s2sim/remote.py; do
+         usr/share/doc/s2sim/docs/recording.md usr/lib/python3/dist-packages/s2sim/recording.py; do
   [ -e "$root/$f" ] || fail "/$f is not in the package"
 done
 mkdir "$tmp/elsewhere"
@@ -69,6 +69,7 @@ cat misspelt.err
 step "the package's Python module with the package's scene"
 PYTHONPATH=$root/usr/lib/python3/dist-packages /usr/bin/python3 -c '
 import sys, s2sim, numpy
+from s2sim import recording
 assert s2sim.__file__.startswith(sys.argv[1]), s2sim.__file__
 s = s2sim.Simulation(sys.argv[1] + "/usr/share/s2sim/scenes/nxt")
 s.step(20)
