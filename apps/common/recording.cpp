@@ -492,6 +492,11 @@ std::unique_ptr<Simulation> load_recorded_simulation(const Recording& rec,
                                                      const std::string& scene_override) {
   const RecordingHeader& h = rec.header;
   const std::string scene = scene_override.empty() ? h.scene : scene_override;
+  std::error_code ec;
+  if (scene_override.empty() && !std::filesystem::exists(scene, ec))
+    throw bad(rec.file, "the recorded scene '" + scene +
+                            "' is not there (moved, or recorded on another machine): name it, "
+                            "s2sim-view SCENE --replay FILE");
   auto sim = Simulation::load(scene, h.options);
   auto differs = [&](const std::string& what) {
     return bad(rec.file, "the scene '" + scene + "' is not the recorded one: " + what +

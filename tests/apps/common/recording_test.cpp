@@ -175,7 +175,18 @@ TEST_F(RecordingTest, BadFilesAreRefusedNamingTheFileAndTheFault) {
 TEST_F(RecordingTest, AnotherSceneIsNotTakenForTheRecordedOne) {
   const fs::path file = dir_ / "nxt.s2rec";
   record(file, 0.05, 10);
-  const Recording rec = read_recording(file.string());
+  Recording rec = read_recording(file.string());
+  // The recorded scene moved: a copy given by name is the recorded one.
+  fs::copy(kNxt, dir_ / "nxt_moved");
+  rec.header.scene = (dir_ / "gone" / "scene.xml").string();
+  try {
+    load_recorded_simulation(rec);
+    FAIL() << "a recording whose scene is gone loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not there"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(load_recorded_simulation(rec, (dir_ / "nxt_moved").string())->body_count(),
+            static_cast<int>(rec.header.bodies.size()) + 1);
   try {
     load_recorded_simulation(rec, (fs::path(S2SIM_SOURCE_DIR) / "scenes" / "default").string());
     FAIL() << "scenes/default taken for the recorded scenes/nxt";
