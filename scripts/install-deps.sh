@@ -2,7 +2,8 @@
 # Installs the Debian packages S2Sim builds against. Idempotent: only missing packages are
 # installed, and nothing is downloaded when everything is present. fpc (Free Pascal) compiles
 # SimTwo projects' control.pas scripts (docs/scripting.md); binutils' addr2line names the line
-# of a script's run-time error.
+# of a script's run-time error. libavcodec (with libavformat and libswscale) writes s2sim-view's
+# MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
 set -euo pipefail
 
 packages=(
@@ -17,6 +18,7 @@ packages=(
   gnuplot-nox
   python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed
   fpc binutils
+  libavcodec-dev libavformat-dev libswscale-dev
 )
 
 missing=()

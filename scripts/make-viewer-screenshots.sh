@@ -92,3 +92,10 @@ fi
 # Shadows on bodies as well as on the floor: the pile settling, seen close.
 shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "camera -60 25 1.4" \
   --do "wait 1"
+# A replay (docs/recording.md): the NXT's curve recorded by s2sim-run, scrubbed back to 1.8 s on
+# the timeline, the chart following it.
+"$build/bin/s2sim-run" "$nxt" --duration 3 --log-period 0.02 --quiet --record "$tmp/nxt.s2rec" \
+  --set robots/nxt/axes/right/ref_voltage=6 robots/nxt/axes/left/ref_voltage=2
+shot viewer-replay --replay "$tmp/nxt.s2rec" --paused \
+  --chart 'robots/nxt/x' 'robots/nxt/y' 'robots/nxt/axes/*/speed' --do "follow nxt" \
+  --do "camera -150 35 1.0" --do "replay-seek 3" --do "wait 2" --do "replay-seek 1.8" --do "wait 2"

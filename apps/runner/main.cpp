@@ -3,6 +3,8 @@
 #include "crash_report.hpp"
 #include "options.hpp"
 #include "outputs.hpp"
+#include "recording.hpp"
+#include "scene_search.hpp"
 #include "simulation_options.hpp"
 #include "watchdog.hpp"
 
@@ -44,7 +46,7 @@ int run(const s2sim::runner::Options& o) {
   // Watching from the load on: a component's configure may hang too.
   std::optional<runner::Watchdog> watchdog;
   if (o.watchdog_s > 0) watchdog.emplace(o.watchdog_s);
-  auto sim = Simulation::load(o.scene, options);
+  auto sim = Simulation::load(apps::find_scene(o.scene), options);
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -116,8 +118,17 @@ int run(const s2sim::runner::Options& o) {
       o.log_period_s ? std::min(*o.log_period_s / sim->tick_s(), kMaxTicks) : 1.0;
   const std::int64_t log_every = std::max<std::int64_t>(1, std::llround(period_ticks));
   const auto total_ticks = static_cast<std::int64_t>(std::llround(o.duration_s / sim->tick_s()));
+  std::optional<apps::RecordingWriter> recording;
+  if (!o.record_file.empty())
+    recording.emplace(o.record_file, apps::recording_header(*sim, options, log_every));
+  auto record_frame = [&] {
+    if (!recording) return;
+    if (const std::string error = recording->write_frame(*sim); !error.empty())
+      throw runner::OutputError(error);
+  };
   runner::ProgressBar progress(!o.quiet && isatty(STDERR_FILENO));
   if (log) log->write_row(*sim);
+  record_frame();
   const auto start = Clock::now();
   // Stepping in chunks keeps the clock and the progress bar out of the per-step cost, and
   // lets the parts run ahead over a chunk with --threads (docs/scheduling.md): a hundredth of
@@ -126,9 +137,9 @@ int run(const s2sim::runner::Options& o) {
   // run stops at the step of the request, its outputs written as at the end.
   const std::optional<std::size_t> close = sim->find_signal("controllers/script/close");
   const std::int64_t chunk =
-      close ? 1
-      : log ? log_every
-            : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
+      close              ? 1
+      : log || recording ? log_every
+                         : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
   std::int64_t done = 0;
   while (done < total_ticks && !(close && sim->signal(*close) != 0)) {
     apply_presses();
@@ -139,6 +150,7 @@ int run(const s2sim::runner::Options& o) {
     if (watchdog) watchdog->progressed(sim->time_s());
     done += n;
     if (log && done % log_every == 0) log->write_row(*sim);
+    if (done % log_every == 0) record_frame();
     if (o.realtime) {
       const double ahead = sim->time_s() - seconds_since(start);
       if (ahead > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead));
@@ -149,6 +161,9 @@ int run(const s2sim::runner::Options& o) {
   progress.update(sim->time_s(), o.duration_s, timing.wall_s, true);
   progress.finish();
   if (log) log->close();
+  if (recording)
+    if (const std::string error = recording->close(); !error.empty())
+      throw runner::OutputError(error);
 
   if (!o.quiet) std::fputs(runner::summary_text(*sim, timing).c_str(), stdout);
   if (o.check_dynamics) std::fputs(runner::dynamics_check_text(*sim).c_str(), stderr);

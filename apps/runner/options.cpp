@@ -62,7 +62,10 @@ Options:
   --fast               run as fast as possible (default)
   --log FILE.csv       write signals to a CSV file (header: name [unit])
   --signals PATTERN... signals to log, glob patterns (* and ?); default: all (needs --log)
-  --log-period S       seconds between CSV rows (default: every physics step; needs --log)
+  --log-period S       seconds between CSV rows and recorded frames (default: every
+                       physics step; needs --log or --record)
+  --record FILE        record the whole state at every log period (docs/recording.md):
+                       s2sim-view --replay FILE plays it, s2sim.recording reads it
   --summary FILE.json  write the final summary as JSON
   --no-timing          leave wall_time and rtf out of the JSON (byte-identical reruns)
   --seed N             seed of every random stream (default 1)
@@ -103,7 +106,8 @@ Options:
 
 Exit codes: 0 ok, 1 internal error, 2 bad scene, 3 plugin error, 4 bad usage
 (unknown signal or input, bad option), 5 the simulation failed (non-finite state),
-6 --log or --summary could not be written, 7 a fatal signal (the component is named).
+6 --log, --record or --summary could not be written, 7 a fatal signal (the component is
+named).
 )";
 }
 
@@ -133,6 +137,8 @@ Options parse_options(int argc, char** argv) {
       o.realtime = false;
     } else if (a == "--log") {
       o.log_file = value();
+    } else if (a == "--record") {
+      o.record_file = value();
     } else if (a == "--signals") {
       values(o.signal_patterns);
     } else if (a == "--log-period") {
@@ -242,7 +248,8 @@ Options parse_options(int argc, char** argv) {
   // --signals pattern never reported).
   if (o.log_file.empty() && !o.help && !o.version) {
     if (!o.signal_patterns.empty()) throw usage_error("--signals selects the columns of --log");
-    if (o.log_period_s) throw usage_error("--log-period sets the rows of --log");
+    if (o.log_period_s && o.record_file.empty())
+      throw usage_error("--log-period sets the rows of --log and the frames of --record");
   }
   return o;
 }

@@ -8,6 +8,7 @@
 #include "script_session.hpp"
 #include "simtwo_camera.hpp"
 #include "ui_script.hpp"
+#include "video_writer.hpp"
 #include "viewer_state.hpp"
 #include "windows/panels.hpp"
 #include "windows/published_overlay.hpp"
@@ -20,7 +21,9 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <recording.hpp>
 #include <s2sim/error.hpp>
+#include <scene_search.hpp>
 #include <signal_csv.hpp>
 
 #include <algorithm>
@@ -123,7 +126,23 @@ class App {
     ImGui::GetIO().FontGlobalScale = static_cast<float>(options.font_scale);
     ImGui::GetStyle().ScaleAllSizes(static_cast<float>(options.font_scale));
     state_.chart.set_span(options.chart_span_s);
-    install(load_simulation_keeping_script_errors(state_, options));
+    if (options.replay_file.empty()) {
+      install(load_simulation_keeping_script_errors(state_, options));
+    } else {
+      // The recorded scene, loaded as it was recorded; the run stands still, the replay's
+      // clock says which frame it shows.
+      apps::Recording recording = apps::read_recording(options.replay_file);
+      auto sim = apps::load_recorded_simulation(
+          recording,
+          options.scene.empty() ? std::string() : apps::find_scene(options.scene).string());
+      state_.replay = std::make_unique<Replay>(std::move(recording));
+      state_.replay->playing = !options.paused;
+      state_.replay->speed = options.speed > 0 ? options.speed : 1.0;
+      state_.run.playing = false;
+      install(std::move(sim));
+      state_.log_message("replay of " + options.replay_file + ": " +
+                         std::to_string(state_.replay->recording().frame_count()) + " frames");
+    }
     state_.run.held_inputs = options.inputs;
     // The runner's selection, so an exported chart has s2sim-run's columns in its order.
     if (!options.chart_signals.empty()) {
@@ -133,6 +152,7 @@ class App {
       state_.chart.record(*state_.sim);
       state_.windows.chart = state_.windows.chart || !options.hide_ui;
     }
+    if (state_.replay) state_.replay->show(*state_.sim, state_.chart);
     // Framed in the first frame, once the layout (which needs the font) gives the view's shape;
     // a SimTwo project opens with its author's saved camera instead.
     state_.frame_request = true;
@@ -143,12 +163,24 @@ class App {
     const Options& o = state_.options;
     // Scripted and screenshot runs advance a fixed 1/60 s of wall time per frame, so that
     // what they show does not depend on the machine.
-    const bool scripted = o.frames > 0 || !script_.empty();
+    const bool scripted = o.frames > 0 || !script_.empty() || !o.video_file.empty();
     const double fixed_frame_s = 1.0 / 60;
     int frames = 0;
     auto last = Clock::now();
     std::vector<double> frame_times_s;  // for --report-fps
     if (o.report_fps) frame_times_s.reserve(o.frames > 0 ? o.frames : 100000);
+    // --video: the replay at its speed, one video frame every 1/fps of wall time, from its
+    // start to its end.
+    std::optional<VideoWriter> video;
+    std::vector<unsigned char> video_pixels;
+    const double video_step_s = state_.replay ? state_.replay->speed / o.video_fps : 0;
+    if (!o.video_file.empty()) {
+      int width = 0, height = 0;
+      glfwGetFramebufferSize(window_, &width, &height);
+      video.emplace(o.video_file, width, height, o.video_fps);
+      video_pixels.resize(static_cast<std::size_t>(width) * height * 3);
+      state_.replay->playing = false;
+    }
     while (!glfwWindowShouldClose(window_) && !state_.quit) {
       glfwPollEvents();
       const auto now = Clock::now();
@@ -157,6 +189,10 @@ class App {
       if (o.report_fps && frames > 0) frame_times_s.push_back(wall_dt_s);
       state_.frame_time_s = state_.frame_time_s * 0.9 + wall_dt_s * 0.1;
 
+      if (state_.pending_simulation && state_.replay) {
+        state_.pending_simulation.reset();
+        state_.log_message("a replay shows the recorded scene: the edit is saved, not shown", true);
+      }
       if (state_.pending_simulation) install(std::move(state_.pending_simulation));
       std::string screenshot_file;
       script_.frame(state_, screenshot_file);
@@ -170,8 +206,16 @@ class App {
       update_layout(state_, display.x, display.y);
       input_.update(state_, drawables_);
       const bool fixed_pacing = scripted && !state_.scripted_wall_pacing;
-      state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
-                         fixed_pacing);
+      if (video) {
+        state_.replay->seek(state_.replay->start_s() + video->frames() * video_step_s);
+        state_.replay->show(*state_.sim, state_.chart);
+      } else if (state_.replay) {
+        state_.replay->advance(fixed_pacing ? fixed_frame_s : wall_dt_s);
+        state_.replay->show(*state_.sim, state_.chart);
+      } else {
+        state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
+                           fixed_pacing);
+      }
       drawables_.update(*state_.sim);
       record_trails(state_);
       collect_published_lines(state_);
@@ -194,8 +238,25 @@ class App {
       state_.end_of_frame_prints.clear();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
+      bool video_done = false;
+      if (video) {
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadBuffer(GL_BACK);
+        glReadPixels(0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, video_pixels.data());
+        video->add_frame(video_pixels.data());
+        // Done once the next frame would lie past the end (half a frame of slack for rounding).
+        video_done = state_.replay->start_s() + (video->frames() - 0.5) * video_step_s >=
+                     state_.replay->end_s();
+        if (video_done) {
+          video->finish();
+          std::printf("video %s: %d frames of %dx%d at %d fps (%s)\n", o.video_file.c_str(),
+                      video->frames(), width & ~1, height & ~1, o.video_fps,
+                      video->codec().c_str());
+          std::fflush(stdout);
+        }
+      }
       ++frames;
-      const bool last_frame = (o.frames > 0 && frames >= o.frames) ||
+      const bool last_frame = (o.frames > 0 && frames >= o.frames) || video_done ||
                               (!script_.empty() && script_.finished() && o.frames < 0);
       if (last_frame && !o.screenshot_file.empty()) screenshot_file = o.screenshot_file;
       if (!screenshot_file.empty()) {
@@ -421,7 +482,8 @@ class App {
 }  // namespace
 
 int run_viewer(const Options& options) {
-  const bool headless = !options.screenshot_file.empty() || options.frames > 0;
+  const bool headless =
+      !options.screenshot_file.empty() || options.frames > 0 || !options.video_file.empty();
   Window window(options.width_px, options.height_px, !headless);
   glfwSwapInterval(options.no_frame_cap || headless ? 0 : 1);
   ImGuiContextGuard imgui(window.handle, !headless && options.script.empty());

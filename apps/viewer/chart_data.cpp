@@ -62,7 +62,15 @@ void ChartData::drop_front(std::size_t count) {
 }
 
 void ChartData::record(const Simulation& sim) {
-  const double now_s = sim.time_s();
+  append(sim.time_s(), sim.tick_s(), [&](std::size_t signal) { return sim.signal(signal); });
+}
+
+void ChartData::record(double time_s, double tick_s, std::span<const double> signal_values) {
+  append(time_s, tick_s, [&](std::size_t signal) { return signal_values[signal]; });
+}
+
+template <class ReadSignal>
+void ChartData::append(double now_s, double tick_s, const ReadSignal& read) {
   const std::size_t per_sample = signals_.size() + 1;
   const std::size_t max_samples = std::max<std::size_t>(2, kMaxStoredValues * 4 / 5 / per_sample);
   if (times_s_.size() == times_s_.capacity()) {
@@ -77,10 +85,10 @@ void ChartData::record(const Simulation& sim) {
   }
   times_s_.push_back(now_s);
   for (std::size_t k = 0; k < signals_.size(); ++k)
-    values_[k].push_back(sim.signal(signals_[k]));
+    values_[k].push_back(read(signals_[k]));
   // The span (a tick's slack, so a span of T seconds keeps T / tick + 1 samples)...
   std::size_t old = 0;
-  const double from_s = now_s - span_s_ - 0.5 * sim.tick_s();
+  const double from_s = now_s - span_s_ - 0.5 * tick_s;
   while (old < size() && times_s_[begin_ + old] < from_s)
     ++old;
   // ...and the bound on the numbers kept (0.8 of it live, the rest slack before compaction).

@@ -43,6 +43,9 @@ class ChartData {
   /// Appends one sample of every chosen signal at the simulation's current time, and drops
   /// what falls out of the span or over the bound.
   void record(const Simulation& sim);
+  /// The same from recorded values (a replay): `signal_values` holds every signal of the
+  /// simulation, by index, at `time_s`.
+  void record(double time_s, double tick_s, std::span<const double> signal_values);
 
   /// The kept samples, oldest first.
   std::span<const double> times_s() const { return {times_s_.data() + begin_, size()}; }
@@ -60,6 +63,8 @@ class ChartData {
  private:
   std::size_t size() const { return times_s_.size() - begin_; }
   void drop_front(std::size_t count);
+  template <class ReadSignal>
+  void append(double now_s, double tick_s, const ReadSignal& read);
 
   double span_s_ = 60;
   std::vector<std::size_t> signals_;

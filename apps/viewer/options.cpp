@@ -38,7 +38,12 @@ std::pair<std::string, double> parse_assignment(const std::string& option,
 
 const char* usage_text() {
   return R"(usage: s2sim-view SCENE [options]
-  SCENE                    a scene folder or its scene.xml, or a URDF, SDF or MJCF robot
+  SCENE                    a scene folder or its scene.xml, or a URDF, SDF or MJCF robot;
+                           a bare name (default) is also looked up in the install's scenes
+  --replay FILE            play a recording of s2sim-run --record (SCENE: the recorded one
+                           unless given); a timeline scrubs it (docs/recording.md)
+  --video FILE.mp4         with --replay: write the replay as an MP4 video, then quit
+  --video-fps N            frames per second of the video, 1 to 240 (30)
   --seed N                 seed of every random stream (1)
   --physics-step S         physics step, seconds    --substeps N
   --define NAME=VALUE      constant set before scene.xml is read
@@ -85,15 +90,20 @@ Options parse_options(int argc, char** argv) {
     if (a == "--help" || a == "-h") {
       o.help = true;
     } else if (a == "--seed") {
+      o.load_option = a;
       o.seed = static_cast<std::uint64_t>(parse_int(a, value(i, a), 0));
     } else if (a == "--physics-step") {
+      o.load_option = a;
       o.physics_step_s = parse_double(a, value(i, a));
       if (*o.physics_step_s <= 0) throw Error(ErrorKind::usage, a + ": must be positive");
     } else if (a == "--substeps") {
+      o.load_option = a;
       o.substeps = parse_int(a, value(i, a), 1);
     } else if (a == "--define") {
+      o.load_option = a;
       o.constants.push_back(parse_assignment(a, value(i, a)));
     } else if (a == "--set") {
+      o.load_option = a;
       o.inputs.push_back(parse_assignment(a, value(i, a)));
     } else if (a == "--plugin-path") {
       o.plugin_path.push_back(value(i, a));
@@ -120,8 +130,10 @@ Options parse_options(int argc, char** argv) {
       if (!(o.chart_span_s >= 1 && o.chart_span_s <= 3600))
         throw Error(ErrorKind::usage, a + ": must be 1 to 3600 seconds");
     } else if (a == "--script-file") {
+      o.load_option = a;
       o.script_file = value(i, a);
     } else if (a == "--sheet") {
+      o.load_option = a;
       const std::string v = value(i, a);
       int row = 0, col = 0, used = 0;
       if (std::sscanf(v.c_str(), "%d,%d=%n", &row, &col, &used) != 2 || used == 0 || row < 1 ||
@@ -132,8 +144,10 @@ Options parse_options(int argc, char** argv) {
                     parse_double(a, v.substr(static_cast<std::size_t>(used))));
       o.sheet_cells.push_back({row, col, text});
     } else if (a == "--run-script") {
+      o.load_option = a;
       o.script_mode = ScriptMode::always;
     } else if (a == "--no-script") {
+      o.load_option = a;
       o.script_mode = ScriptMode::off;
     } else if (a == "--show-window") {
       o.show_windows.push_back(value(i, a));
@@ -164,6 +178,13 @@ Options parse_options(int argc, char** argv) {
       if (!in) throw Error(ErrorKind::usage, a + ": cannot read '" + file + "'");
       for (std::string line; std::getline(in, line);)
         if (!line.empty() && line[0] != '#') o.script.push_back(line);
+    } else if (a == "--replay") {
+      o.replay_file = value(i, a);
+    } else if (a == "--video") {
+      o.video_file = value(i, a);
+    } else if (a == "--video-fps") {
+      o.video_fps = parse_int(a, value(i, a), 1);
+      if (o.video_fps > 240) throw Error(ErrorKind::usage, a + ": must be 1 to 240");
     } else if (a == "--no-frame-cap") {
       o.no_frame_cap = true;
     } else if (a == "--report-fps") {
@@ -178,7 +199,13 @@ Options parse_options(int argc, char** argv) {
       throw Error(ErrorKind::usage, "more than one scene: '" + o.scene + "' and '" + a + "'");
     }
   }
-  if (!o.help && o.scene.empty()) throw Error(ErrorKind::usage, "no scene given (see --help)");
+  if (!o.help && o.scene.empty() && o.replay_file.empty())
+    throw Error(ErrorKind::usage, "no scene given (see --help)");
+  if (!o.replay_file.empty() && !o.load_option.empty())
+    throw Error(ErrorKind::usage,
+                "--replay with " + o.load_option + ": the recording says how its scene is loaded");
+  if (!o.video_file.empty() && o.replay_file.empty())
+    throw Error(ErrorKind::usage, "--video writes a replay: it needs --replay FILE");
   if (!o.screenshot_file.empty() && o.frames < 0) o.frames = 3;
   if (o.script_mode == ScriptMode::off && !o.script_file.empty())
     throw Error(ErrorKind::usage, "--script-file and --no-script contradict each other");

@@ -51,6 +51,13 @@ struct Options {
   std::vector<scene::SheetCell> sheet_cells;
   /// Simulated seconds of history the chart keeps (--chart-span), a ring per signal.
   double chart_span_s = 60;
+  /// --replay FILE: play a recording (the scene and how it was loaded come from the file).
+  std::string replay_file;
+  std::string video_file;  ///< --video FILE.mp4: write the replay as a video, then quit
+  int video_fps = 30;      ///< --video-fps
+  /// The last option given that says how the scene is loaded (--seed, --define, ...):
+  /// refused with --replay, whose recording says it.
+  std::string load_option;
   bool help = false;
 };
 

@@ -120,7 +120,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         throw bad(
             "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME, "
             "editor-error, script-errors, script-view, script-status, script-line N, hud, "
-            "log-count TEXT, script-trails, xy-series, chart-samples or memory");
+            "log-count TEXT, script-trails, xy-series, chart-samples, memory or replay");
       std::fflush(stdout);
     } else if (command == "overlay") {
       std::istringstream args(rest);
@@ -208,6 +208,8 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         if (robots[r].id == rest) state.camera.follow_robot = static_cast<int>(r);
       if (state.camera.follow_robot < 0) throw bad("no robot with that ID");
       state.frame_request = false;  // following frames the robot, not the whole scene
+    } else if (replay_command(state, command, rest)) {
+      // replay-seek, replay-speed, replay-step: ui_script_more.cpp
     } else if (more_commands(state, command, rest)) {
       // script-*, chart-xy, chart-time: ui_script_more.cpp
     } else if (command == "screenshot") {

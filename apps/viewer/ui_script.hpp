@@ -72,6 +72,12 @@ class UiScript {
 ///   print memory         "memory VmRSS_kB VmHWM_kB" (/proc/self/status)
 /// Each returns false for a command (or print argument) it does not know.
 bool more_commands(ViewerState& state, const std::string& command, const std::string& rest);
+/// A replay's commands (--replay; an error without one):
+///   replay-seek T        move the replay's clock to T seconds (as dragging the timeline)
+///   replay-speed X       recorded seconds per wall second, negative: backwards; and play
+///   replay-step N        N frames forwards (negative: back), paused
+///   print replay         "replay <clock s> <frame time s> <frame> <frames> <playing> <speed>"
+bool replay_command(ViewerState& state, const std::string& command, const std::string& rest);
 bool print_more(ViewerState& state, const std::string& what);
 
 /// Opens or closes a window by name; false for an unknown name.

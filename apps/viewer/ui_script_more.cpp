@@ -100,7 +100,12 @@ bool more_commands(ViewerState& state, const std::string& command, const std::st
 bool print_more(ViewerState& state, const std::string& what) {
   const ScriptEditorState& editor = state.script_editor;
   const Annotations& published = state.sim->annotations();
-  if (what == "script-errors") {
+  if (what == "replay") {
+    if (!state.replay) throw bad("print replay", "no replay (start with --replay FILE)");
+    const Replay& r = *state.replay;
+    std::printf("replay %.9f %.9f %zu %zu %d %.6g\n", r.time_s(), r.recording().times_s[r.frame()],
+                r.frame(), r.recording().frame_count(), r.playing ? 1 : 0, r.speed);
+  } else if (what == "script-errors") {
     for (const ScriptMessage& m : editor.errors)
       std::printf("script-error %s %d %d %s\n", m.file.c_str(), m.line, m.column, m.text.c_str());
     std::printf("script-errors %zu\n", editor.errors.size());
@@ -142,6 +147,25 @@ bool print_more(ViewerState& state, const std::string& what) {
     std::printf("memory %ld %ld\n", rss_kB, hwm_kB);
   } else {
     return false;
+  }
+  return true;
+}
+
+bool replay_command(ViewerState& state, const std::string& command, const std::string& rest) {
+  if (command.rfind("replay-", 0) != 0) return false;
+  if (!state.replay) throw bad(command + " " + rest, "no replay (start with --replay FILE)");
+  Replay& replay = *state.replay;
+  if (command == "replay-seek") {
+    replay.seek(std::stod(rest));
+  } else if (command == "replay-speed") {
+    replay.speed = std::stod(rest);
+    if (replay.speed == 0) throw bad(command + " " + rest, "the speed must not be 0 (pause)");
+    replay.playing = true;
+  } else if (command == "replay-step") {
+    replay.step_frames(std::stol(rest));
+    replay.playing = false;
+  } else {
+    throw bad(command + " " + rest, "replay-seek T, replay-speed X or replay-step N");
   }
   return true;
 }

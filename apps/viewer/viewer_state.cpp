@@ -1,5 +1,6 @@
 #include "viewer_state.hpp"
 
+#include "scene_search.hpp"
 #include "simulation_options.hpp"
 
 #include <imgui.h>
@@ -32,7 +33,7 @@ bool move_body(ViewerState& state, int body, const Vec3& position_m) {
 std::unique_ptr<Simulation> load_simulation(const Options& o) {
   SimulationOptions options = apps::simulation_options(o);
   options.sheet_cells = o.sheet_cells;
-  auto sim = Simulation::load(o.scene, options);
+  auto sim = Simulation::load(apps::find_scene(o.scene), options);
   for (const auto& [name, value] : o.inputs)
     sim->set_input(name, value);
   return sim;

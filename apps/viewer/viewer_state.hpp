@@ -9,6 +9,7 @@
 #include "layout.hpp"
 #include "options.hpp"
 #include "renderer.hpp"
+#include "replay.hpp"
 #include "run_control.hpp"
 #include "scene_drawables.hpp"
 #include "trails.hpp"
@@ -104,6 +105,8 @@ struct ViewerState {
   std::unique_ptr<Simulation> sim;
   Camera camera;
   RunControl run;
+  /// Set when the viewer plays a recording (--replay) instead of running the simulation.
+  std::unique_ptr<Replay> replay;
   ChartData chart;
   ChartView chart_view;
   std::vector<LogLine> log;

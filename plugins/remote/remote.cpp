@@ -35,6 +35,18 @@ double seconds_between(Clock::time_point a, Clock::time_point b) {
 
 class Remote final : public Component {
  public:
+  // The simulation is destroyed: its run is over (the runner's --duration, a closed viewer,
+  // an error). A lock-step client would otherwise wait for its next reply until its own
+  // timeout, so the client of an open session is told.
+  ~Remote() override {
+    if (has_client_ && !end_.empty()) {
+      s2sim_remote_write_header(end_.data(), S2SIM_REMOTE_END, last_sequence_,
+                                static_cast<std::uint32_t>(end_.size() - 16));
+      s2sim_remote_put_f64(end_.data() + 16, last_time_s_);
+      socket_.send(end_.data(), end_.size(), client_);
+    }
+  }
+
   void configure(ConfigureContext& ctx) override {
     const Params& p = ctx.params();
     served_.configure(ctx);  // before our own signals, which are not served
@@ -67,6 +79,9 @@ class Remote final : public Component {
     busy_.assign(S2SIM_REMOTE_HEADER_SIZE + busy.size(), 0);
     std::copy(busy.begin(), busy.end(), busy_.begin() + S2SIM_REMOTE_HEADER_SIZE);
     signals_packet_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 * (1 + served_.signals.size()), 0);
+    const std::string end = "end: the simulation ended; no more replies will come";
+    end_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 + end.size(), 0);
+    std::copy(end.begin(), end.end(), end_.begin() + S2SIM_REMOTE_HEADER_SIZE + 8);
     build_description(-0.12345678901234567);  // the size check, with a period as long as any
     const std::size_t largest = std::max({describe_.size(), signals_packet_.size(),
                                           S2SIM_REMOTE_HEADER_SIZE + 8 * served_.inputs.size()});
@@ -87,10 +102,12 @@ class Remote final : public Component {
   void initialize(StepContext& ctx) override {
     ctx.publish(port_, socket_.port());
     has_client_ = false;  // a reset run starts without a session: the next sender opens one
+    last_time_s_ = ctx.time_s();
     build_description(ctx.period_s());
   }
 
   void update(StepContext& ctx) override {
+    last_time_s_ = ctx.time_s();
     if (lockstep_)
       update_lockstep(ctx);
     else
@@ -284,6 +301,8 @@ class Remote final : public Component {
   Clock::time_point last_inputs_{};
   Clock::time_point last_heard_{};   // the client's last valid-looking request
   std::vector<unsigned char> busy_;  // the BUSY reply to another sender
+  std::vector<unsigned char> end_;   // END, sent to the client when the simulation ends
+  double last_time_s_ = 0;           // of the last control period, for END
 };
 
 }  // namespace

@@ -15,6 +15,15 @@ Real-time (the simulation never waits)::
 
     link.send([force])                   # applied at the next control period
     t, y = link.receive()                # the newest signals the simulation sent
+
+When the run ends (``--duration``, a closed viewer) the simulation sends END: the waiting call
+raises ``RunEnded`` (a ``RemoteError``), so a loop ``while True: link.step(...)`` stops::
+
+    try:
+        while True:
+            t, y = link.step(controller(y))
+    except RunEnded:
+        pass
 """
 
 import socket
@@ -27,11 +36,20 @@ HEADER_SIZE = HEADER.size  # 16
 DEFAULT_PORT = 9808
 MAX_DATAGRAM = 65507
 
-HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY, BYE = 1, 2, 3, 4, 5, 6, 7
+HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY, BYE, END = 1, 2, 3, 4, 5, 6, 7, 8
 
 
 class RemoteError(RuntimeError):
     """The simulation did not answer in time, or answered something unexpected."""
+
+
+class RunEnded(RemoteError):
+    """The simulation's run is over (an END datagram): no reply will come. ``time`` is the
+    simulated time of the link's last control period [s]."""
+
+    def __init__(self, time, text):
+        super().__init__("the simulation ended at t = %.6g s (%s)" % (time, text))
+        self.time = time
 
 
 def pack(msg_type, sequence, payload=b""):
@@ -119,11 +137,19 @@ class Client:
             if message is None:
                 continue
             msg_type, seq, payload = message
+            if msg_type == END:
+                self._ended(payload)
             if msg_type == BUSY and (sequence is None or seq == sequence):
                 raise RemoteError("%s:%d is busy: %s" % (self.address + (
                     payload.decode(errors="replace"),)))
             if msg_type == want_type and (sequence is None or seq == sequence):
                 return seq, payload
+
+    @staticmethod
+    def _ended(payload):
+        if len(payload) < 8:
+            raise RemoteError("a malformed END datagram (%d bytes of payload)" % len(payload))
+        raise RunEnded(struct.unpack_from("<d", payload)[0], payload[8:].decode(errors="replace"))
 
     @staticmethod
     def _signals(payload):
@@ -155,6 +181,8 @@ class Client:
         for attempt in range(retries + 1):
             try:
                 return self._signals(self._wait(SIGNALS, seq, timeout)[1])
+            except RunEnded:
+                raise
             except RemoteError:
                 if attempt == retries:
                     raise
@@ -169,6 +197,8 @@ class Client:
                 message = unpack(self.socket.recv(MAX_DATAGRAM + 1))
                 if message and message[0] == SIGNALS:
                     payload = message[2]
+                elif message and message[0] == END:
+                    self._ended(message[2])
         except (BlockingIOError, socket.timeout):
             pass
         finally:

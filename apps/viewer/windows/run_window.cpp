@@ -15,6 +15,11 @@ void draw_run_window(ViewerState& state) {
     ImGui::End();
     return;
   }
+  if (state.replay) {
+    draw_replay_controls(state);
+    ImGui::End();
+    return;
+  }
   RunControl& run = state.run;
   if (run.playing) {
     if (button(state, "Pause")) run.playing = false;

@@ -8,6 +8,8 @@ namespace s2sim::viewer {
 
 /// Play, pause, step, reset, speed, time and real-time factor.
 void draw_run_window(ViewerState& state);
+/// The Run window's contents in a replay: play, pause, direction, speed, frame steps, timeline.
+void draw_replay_controls(ViewerState& state);
 /// Physics step, controller periods, speed, camera, shadows; each robot's pose and speed.
 void draw_configuration_window(ViewerState& state);
 /// Any signals against time, with legend, zoom, pause and CSV export.

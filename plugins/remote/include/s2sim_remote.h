@@ -34,7 +34,8 @@ enum s2sim_remote_type {
   S2SIM_REMOTE_OBSERVE = 4,  /* client -> sim, no payload: answered by SIGNALS now */
   S2SIM_REMOTE_SIGNALS = 5,  /* sim -> client, doubles: time [s], then one per served signal */
   S2SIM_REMOTE_BUSY = 6,     /* sim -> another sender, text: the link serves another client */
-  S2SIM_REMOTE_BYE = 7       /* client -> sim, no payload: ends the client's session */
+  S2SIM_REMOTE_BYE = 7,      /* client -> sim, no payload: ends the client's session */
+  S2SIM_REMOTE_END = 8       /* sim -> client, a double (time [s]) and text: the run ended */
 };
 
 typedef struct s2sim_remote_header {
@@ -162,8 +163,9 @@ static inline uint32_t s2sim_remote_send(s2sim_remote_client* c, uint16_t type,
 
 /* Waits up to `timeout_ms` for a SIGNALS reply with `sequence` (0: any); copies its time and
  * at most `capacity` signal values. Returns the number of signal values in the reply, -1 on
- * timeout or error, or -2 when the link answered BUSY (it serves another client). Replies to
- * older requests are skipped. */
+ * timeout or error, -2 when the link answered BUSY (it serves another client), or -3 when the
+ * run ended (END, whatever its sequence: no reply will come; `*time_s` is the time of the
+ * link's last control period). Replies to older requests are skipped. */
 static inline int s2sim_remote_receive(s2sim_remote_client* c, uint32_t sequence, double* time_s,
                                        double* values, size_t capacity, int timeout_ms) {
   for (;;) {
@@ -178,6 +180,10 @@ static inline int s2sim_remote_receive(s2sim_remote_client* c, uint32_t sequence
     if (got < 0) return -1;
     if (s2sim_remote_read_header(c->buffer, (size_t)got, &h) != 0) continue;
     if (h.type == S2SIM_REMOTE_BUSY && (sequence == 0 || h.sequence == sequence)) return -2;
+    if (h.type == S2SIM_REMOTE_END && h.length >= 8) {
+      *time_s = s2sim_remote_get_f64(c->buffer + 16);
+      return -3;
+    }
     if (h.type != S2SIM_REMOTE_SIGNALS || h.length < 8 || h.length % 8 != 0) continue;
     if (sequence != 0 && h.sequence != sequence) continue;
     *time_s = s2sim_remote_get_f64(c->buffer + 16);
@@ -189,7 +195,7 @@ static inline int s2sim_remote_receive(s2sim_remote_client* c, uint32_t sequence
 }
 
 /* Lock-step: sends the inputs and waits for the signals one control period later. Returns the
- * number of signal values, -1 (timeout, error) or -2 (BUSY). */
+ * number of signal values, -1 (timeout, error), -2 (BUSY) or -3 (the run ended: END). */
 static inline int s2sim_remote_step(s2sim_remote_client* c, const double* inputs,
                                     size_t input_count, double* time_s, double* values,
                                     size_t capacity, int timeout_ms) {

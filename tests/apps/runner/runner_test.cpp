@@ -12,6 +12,8 @@
 // Boost 1.74's JSON parser still includes the deprecated boost/bind.hpp, which warns unless
 // the old global placeholders are asked for explicitly.
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#include <recording.hpp>
+
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
@@ -615,6 +617,25 @@ TEST_F(Runner, AFileInAnUnreadableFolderIsALocatedSceneError) {
   EXPECT_EQ(WEXITSTATUS(status), 2);
   EXPECT_THAT(read_file(dir_ / "out.txt"),
               HasSubstr("scene.xml: scene/things@file: cannot read 'locked/t.xml': "));
+}
+
+// A run stopped by an error still closes its recording: the frames before the error, readable.
+TEST_F(Runner, ARunStoppedByAnErrorLeavesAReadableRecording) {
+  const Result r = run({(kFixtures / "nonfinite_encoder").string(), "--quiet", "--duration", "1",
+                        "--log", "a.csv", "--record", "a.s2rec"});
+  EXPECT_EQ(r.status, 5) << r.err;
+  const s2sim::apps::Recording rec = s2sim::apps::read_recording((dir_ / "a.s2rec").string());
+  EXPECT_GT(rec.frame_count(), 1u);
+  EXPECT_LT(rec.times_s.back(), 1.0);
+  // One frame per CSV row: the same ticks.
+  const std::string text = read_file(dir_ / "a.csv");
+  EXPECT_EQ(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) - 1,
+            rec.frame_count());
+  // And a file that cannot be written is exit 4, naming it.
+  const Result bad = run({(kFixtures / "nonfinite_encoder").string(), "--quiet", "--duration",
+                          "0.1", "--record", (dir_ / "no" / "such" / "a.s2rec").string()});
+  EXPECT_EQ(bad.status, 4);
+  EXPECT_THAT(bad.err, HasSubstr("--record: cannot write '"));
 }
 
 // Bodies placed into one another stop the run at the first tick with a runtime error naming

@@ -122,6 +122,66 @@ def test_lockstep_runs_are_identical_and_balance_the_pole(tmp_path):
     assert len(open(a[0]).read().splitlines()) > 4000
 
 
+def start_cartpole_runner(duration_s):
+    """s2sim-run on the lock-step cart-pole with a port the system picks; (process, port)."""
+    runner = subprocess.Popen(
+        [os.path.join(BIN, "s2sim-run"), CARTPOLE, "--duration", str(duration_s), "--define",
+         "remote_port=0", "--quiet"], stderr=subprocess.PIPE, text=True)
+    for _ in range(100):  # the announce line, after any warning
+        line = runner.stderr.readline()
+        port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
+        if port or not line:
+            break
+    assert port, line
+    return runner, int(port.group(1))
+
+
+def test_a_lockstep_client_sees_the_end_of_the_run_and_stops():
+    """A client that does not know --duration steps until the simulation says END: the last
+    reply is the last control period's (0.48 s of a 0.5 s run), then RunEnded, not a timeout."""
+    runner, port = start_cartpole_runner(0.5)
+    times = []
+    with remote.Client(port=port, timeout=60) as link:
+        link.hello()
+        with pytest.raises(remote.RunEnded) as ended:
+            while True:
+                t, _ = link.step([0.0])
+                times.append(t)
+    assert runner.wait(timeout=60) == 0, runner.stderr.read()
+    assert times == pytest.approx([0.02 * k for k in range(1, 25)])
+    assert ended.value.time == pytest.approx(0.48)
+    assert "ended" in str(ended.value)
+
+
+def test_the_c_client_sees_the_end_of_the_run(tmp_path):
+    source = tmp_path / "until_end.c"
+    source.write_text(r'''
+#include "s2sim_remote.h"
+#include <stdio.h>
+#include <stdlib.h>
+int main(int argc, char** argv) {
+  s2sim_remote_client c;
+  double t = -1, y[8], u = 0.0;
+  int n, replies = 0;
+  if (argc < 2 || s2sim_remote_open(&c, "127.0.0.1", (uint16_t)atoi(argv[1])) != 0) return 2;
+  while ((n = s2sim_remote_step(&c, &u, 1, &t, y, 8, 60000)) >= 0) ++replies;
+  printf("%d %d %.6f\n", replies, n, t);
+  s2sim_remote_close(&c);
+  return n == -3 ? 0 : 1;
+}
+''')
+    exe = tmp_path / "until_end"
+    subprocess.run(["cc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-D_POSIX_C_SOURCE=200809L",
+                    "-I", os.path.join(SOURCE, "plugins", "remote", "include"), str(source),
+                    "-o", str(exe)], check=True)
+    runner, port = start_cartpole_runner(0.3)
+    out = subprocess.run([str(exe), str(port)], capture_output=True, text=True, timeout=120)
+    assert runner.wait(timeout=60) == 0, runner.stderr.read()
+    assert out.returncode == 0, out.stdout + out.stderr
+    replies, status, t = out.stdout.split()
+    assert (int(replies), int(status), float(t)) == (14, -3, pytest.approx(0.28))
+
+
 def pace(sim, seconds, period_s=0.02):
     """Steps the simulation in control periods at about real time, for `seconds` of wall time."""
     ticks = int(round(period_s / sim.tick_s))
