@@ -164,7 +164,7 @@ struct Multibody::Impl {
   // `choice`, the tree above and the joint reactions wanted.
   DynamicsChoice choice = DynamicsChoice::tree_where_possible;
   const Dynamics* dynamics = nullptr;
-  DynamicsCheck check;              // what the checked dynamics found so far (not state)
+  DynamicsCheck check;  // what the checked dynamics found so far (not state)
   // The checked dynamics' scratch: Simbody's accelerations, the tree's moved onto the loops,
   // and the loops' acceleration errors, impulses and their speed changes.
   SimTK::Vector reference_udot, projected_udot;

@@ -66,8 +66,13 @@ std::string Simulation::dynamics() const {
 }
 Simulation::DynamicsCheck Simulation::dynamics_check() const {
   const model::DynamicsCheck check = impl_->multibody->dynamics_check();
-  return {check.compared, check.worst_relative, check.worst_time_s, check.agreement,
-          check.judged_on_loops, check.worst_loop_error, check.worst_reference_loop_error};
+  return {check.compared,
+          check.worst_relative,
+          check.worst_time_s,
+          check.agreement,
+          check.judged_on_loops,
+          check.worst_loop_error,
+          check.worst_reference_loop_error};
 }
 
 int Simulation::body_count() const {
