@@ -351,7 +351,6 @@ void ScriptController::update(StepContext& ctx) {
     outcome = library_.run(1, ctx.time_s(), error);
   }
   ctx_ = nullptr;
-  const bool ok = outcome == Outcome::returned;
   if (outcome == Outcome::raised) report_error(routine, error);
   if (outcome == Outcome::halted) report_halt(ctx, routine, error);
   // Encoder counts of this tick, for the next period's deltas.
@@ -363,12 +362,12 @@ void ScriptController::update(StepContext& ctx) {
     }
   s[2] += 1;
   ctx.publish(sig_calls_, s[2]);
+  // A raise or a Halt stops the script: SimTwo switches the control block to None.
+  if (outcome != Outcome::returned) s[1] = 1;
   if (outcome == Outcome::raised) {
-    s[1] = 1;  // SimTwo switches the control block to None: no further calls
     ctx.publish(sig_error_, 1);
     ctx.log_line(last_error_ + "; the script is stopped");
   }
-  if (!ok) s[1] = 1;
 }
 
 std::string ScriptController::udp_failure(const std::string& why) const {
