@@ -119,9 +119,21 @@ double held_recovery_speed(const ForceLawSettings& law, double depth_m) {
   return std::min(law.max_recovery_speed_m_s, std::max(walking, beyond_hold / law.recovery_time_s));
 }
 
+bool pyramid_directions(const PairMaterial& material, const Vec3& n, const Vec3& friction_axis,
+                        Vec3& d1, Vec3& d2) {
+  if (!material.anisotropic) return false;
+  d1 = first_direction(material.anisotropy, n, friction_axis);
+  d1 -= dot(d1, n) * n;
+  if (!(norm(d1) > 1e-9)) return false;
+  d1 = d1 / norm(d1);
+  d2 = cross(n, d1);
+  return true;
+}
+
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
-                   PointState& state, PointRole& role) {
+                   PointState& state, PointRole& role, double* friction_load_N) {
+  if (friction_load_N) *friction_load_N = -1;
   const Vec3& n = point.normal;
   const double m = kin.mass_kg;
   const double h = kin.step_s;
@@ -214,6 +226,12 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   normal += state.held_force_N;
   state.held_force_N = 0;
 
+  if (friction_load_N && role == PointRole::contact) {  // solved with the axes
+    *friction_load_N = normal;
+    state.bristle_m = Vec3{};
+    return n * normal_spring;
+  }
+
   // Tangential: slip velocity in the tangent plane, bristle deflection carried along it.
   const Vec3 v_t = kin.relative_velocity_m_s - dot(kin.relative_velocity_m_s, n) * n;
   Vec3 bristle = new_point ? Vec3{} : state.bristle_m - dot(state.bristle_m, n) * n;
@@ -241,14 +259,10 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
     return std::pair<double, double>{f, s_new};
   };
   Vec3 friction;
-  Vec3 d1 =
-      material.anisotropic ? first_direction(material.anisotropy, n, kin.friction_axis) : Vec3{};
-  d1 -= dot(d1, n) * n;
-  if (material.anisotropic && norm(d1) > 1e-9) {
+  Vec3 d1, d2;
+  if (pyramid_directions(material, n, kin.friction_axis, d1, d2)) {
     // Anisotropic wheels: ODE's friction pyramid, mu along d1 and mu2 along d2, each on its
     // own (a circle or an ellipse would let the free roller direction steal the grip).
-    d1 = d1 / norm(d1);
-    const Vec3 d2 = cross(n, d1);
     const auto [f1, s1] = along(d1, material.mu1);
     const auto [f2, s2] = along(d2, material.mu2);
     friction = f1 * d1 + f2 * d2;

@@ -107,12 +107,22 @@ struct PointKinematics {
 /// rises by micrometres, a deep overlap leaves at a walking pace, never faster than v_max.
 double held_recovery_speed(const ForceLawSettings& law, double depth_m);
 
+/// The friction directions of an anisotropic pair (omni and mecanum wheels: ODE's pyramid, μ1
+/// along d1, μ2 along d2 = n × d1), from the pair's orienting axis; false when the pair is
+/// isotropic or its axis lies along the normal (the Coulomb circle then).
+bool pyramid_directions(const PairMaterial& material, const Vec3& n, const Vec3& friction_axis,
+                        Vec3& d1, Vec3& d2);
+
 /// Force on shape a at the point (world frame). Updates `state` and says what the point is:
 /// a point with depth <= 0 (within the speculative margin) gets the force that brings it to the
 /// surface by the step's end if it would cross it, else none (`apart`); the step after such a
 /// stop gives back e times the approach speed it had before the stop.
+/// With `friction_load_N`, a touching point's friction is left to the caller (the multibody
+/// solves it with the axes, model/substep_forces.hpp): the force is the normal one alone, the
+/// bristle is cleared, and the normal load that bounds the friction is written there (-1 for
+/// a point that is not `contact`, whose friction, if any, is in the force).
 Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
                    const PointKinematics& kin, const ForceLawSettings& law, bool new_point,
-                   PointState& state, PointRole& role);
+                   PointState& state, PointRole& role, double* friction_load_N = nullptr);
 
 }  // namespace s2sim::contact

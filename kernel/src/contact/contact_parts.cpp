@@ -83,8 +83,10 @@ bool ContactWorld::begin_parts(bool placed, const Pose* poses, const Twist* twis
 }
 
 void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
-                                Wrench* wrenches) {
+                                Wrench* wrenches, model::FrictionPoints* friction) {
   Lane& lane = lanes_[static_cast<std::size_t>(part)];
+  lane.friction = friction;
+  if (friction) friction->count = 0;
   for (const std::int32_t b : lane.bodies)
     wrenches[b] = Wrench{};
   lane.next_memory.clear();
@@ -143,7 +145,12 @@ const ContactInfo* ContactWorld::part_contacts(int part, const std::int32_t*& co
 }
 
 void ContactWorld::place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
-  place(&lanes_[static_cast<std::size_t>(part)], poses, twists, step_s);
+  Lane& lane = lanes_[static_cast<std::size_t>(part)];
+  if (lane.friction) {  // solved in the part's substep that just ran
+    take_friction(*lane.friction, lane.info);
+    lane.friction = nullptr;
+  }
+  place(&lane, poses, twists, step_s);
 }
 
 bool ContactWorld::fence_parts() {

@@ -339,9 +339,33 @@ void ContactWorld::place(Lane* lane, const Pose* poses, const Twist* twists, dou
   if (lanes_search_) bound_lane(*lane);
 }
 
-void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s,
-                           Wrench* wrenches) {
+void ContactWorld::set_solved_friction(const std::vector<char>& solved_per_body) {
+  solved_friction_.assign(apparent_mass_kg_.size(), 0);
+  for (std::size_t b = 1; b < solved_per_body.size() && b < solved_friction_.size(); ++b)
+    solved_friction_[b] = solved_per_body[b];
+}
+
+void ContactWorld::take_friction(const model::FrictionPoints& friction,
+                                 std::vector<ContactInfo>& infos) {
+  for (std::int32_t i = 0; i < friction.count; ++i) {
+    const model::FrictionPoint& p = friction.points[i];
+    infos[static_cast<std::size_t>(p.report)].force_N += p.force_N;
+  }
+}
+
+void ContactWorld::end_substep() {
+  if (!friction_) return;
+  take_friction(*friction_, info_);
+  friction_ = nullptr;
+}
+
+void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches,
+                           model::FrictionPoints* friction) {
   std::fill(wrenches, wrenches + apparent_mass_kg_.size(), Wrench{});
+  friction_ = friction;
+  if (friction) friction->count = 0;
+  for (Lane& lane : lanes_)
+    lane.friction = nullptr;
   place(nullptr, poses, twists, step_s);
   in_lanes_ = lanes_hold_last_ = false;  // this substep's list is the whole one, below
   info_.clear();
@@ -552,7 +576,15 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
   // info_). Its memory carries its approach speed to the impact's second half.
   PointRole role = PointRole::contact;
   const double last_hold_N = state.held_force_N;
-  const Vec3 force = contact_force(p, material, kin, law_, !known, state, role);
+  // A jointed body on a static surface: its friction is solved with the axes (when there is
+  // room in the substep's list), else the force law's.
+  model::FrictionPoints* friction = part_lane ? part_lane->friction : friction_;
+  const bool solve_friction = friction && body_b == 0 && friction->count < friction->capacity &&
+                              (material.mu1 > 0 || material.mu2 > 0) && !solved_friction_.empty() &&
+                              solved_friction_[static_cast<std::size_t>(body_a)];
+  double friction_load_N = -1;
+  const Vec3 force = contact_force(p, material, kin, law_, !known, state, role,
+                                   solve_friction ? &friction_load_N : nullptr);
   if (role == PointRole::apart) return;
   state.local_point_m = world[ia].inverse() * p.point_m;
   lane.next_memory.push_back({key, state});
@@ -587,6 +619,25 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
   info.depth_m = std::max(p.depth_m, 0.0);  // an impact completed just short of the surface
   infos.push_back(info);
   if (part_lane) part_lane->info_rank.push_back(f.rank);
+  if (friction_load_N >= 0) {
+    model::FrictionPoint& fp = friction->points[friction->count++];
+    fp.body = body_a;
+    fp.point_m = p.point_m;
+    fp.isotropic = !pyramid_directions(material, p.normal, kin.friction_axis, fp.direction[0],
+                                       fp.direction[1]);
+    if (fp.isotropic) {
+      fp.direction[0] = directions[1];
+      fp.direction[1] = directions[2];
+    }
+    fp.limit_N[0] = material.mu1 * friction_load_N;
+    fp.limit_N[1] = (fp.isotropic ? material.mu1 : material.mu2) * friction_load_N;
+    // The slip is a's point's velocity less the static side's material's (belts).
+    fp.surface_velocity_m_s =
+        (b ? belt_velocity(*b, ib, p.normal) : Vec3{}) - belt_velocity(a, ia, -p.normal);
+    fp.report = static_cast<std::int32_t>(infos.size() - 1);
+    fp.scene_index = -1;
+    fp.force_N = Vec3{};
+  }
   if (role == PointRole::contact && jointless_[body_a] && (body_b == 0 || jointless_[body_b]))
     stops.add_resting(body_a, body_b, -dot(kin.relative_velocity_m_s, p.normal),
                       p.depth_m > law_.hold_depth_m, static_cast<std::int32_t>(infos.size() - 1),

@@ -47,7 +47,17 @@ class ContactWorld final : public model::SubstepForces {
   /// caller exposes one per shape table surface marked `belt`.
   void set_belt_speed_input(std::int32_t body, std::int32_t input);
 
-  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override;
+  /// Per kernel body, whether the multibody solves the friction of its points on static
+  /// surfaces (model::Multibody::solves_contact_friction): with a friction list, those points'
+  /// friction goes there, solved with the axes, and their reported force includes it after the
+  /// substep.
+  void set_solved_friction(const std::vector<char>& solved_per_body);
+  /// The most points a substep can hold (room of every per-substep list).
+  std::int32_t point_capacity() const { return static_cast<std::int32_t>(reserve_); }
+
+  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches,
+               model::FrictionPoints* friction = nullptr) override;
+  void end_substep() override;
 
   // Part by part (model::SubstepForces; contact_parts.cpp): each part finds and computes the
   // points on its own bodies (against the ground, the walls and its own bodies) on its own
@@ -56,7 +66,7 @@ class ContactWorld final : public model::SubstepForces {
   bool split(const std::vector<int>& part_of_body, int parts) override;
   bool begin_parts(bool placed, const Pose* poses, const Twist* twists, double step_s) override;
   void compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
-                    Wrench* wrenches) override;
+                    Wrench* wrenches, model::FrictionPoints* friction = nullptr) override;
   void end_parts() override;
   void place_part(int part, const Pose* poses, const Twist* twists, double step_s) override;
   bool fence_parts() override;
@@ -129,11 +139,19 @@ class ContactWorld final : public model::SubstepForces {
     std::unique_ptr<collision::ContactQuery> query;
     collision::Aabb bound;
     collision::Aabb fence;  ///< the region its moving shapes keep to when running ahead
+    /// Its friction points of the substep computed part by part, until place_part() took
+    /// their forces into `info`.
+    model::FrictionPoints* friction = nullptr;
   };
+  /// Adds the solved friction of `friction`'s points to their entries of `infos`.
+  static void take_friction(const model::FrictionPoints& friction, std::vector<ContactInfo>& infos);
   /// `lane`: part by part, the part's lane, whose lists take the results; null: the whole
   /// substep's lists (info_, stops_), each point's memory its first shape's lane.
   void add_point(Lane* lane, const Found& f, const Pose* poses, const Twist* twists, double step_s,
                  Wrench* wrenches);
+  /// The substep computed whole: its friction points (null: friction as forces).
+  model::FrictionPoints* friction_ = nullptr;
+  std::vector<char> solved_friction_;  // per body: set_solved_friction()
   /// The points of moving shape `s` against the ground and the walls, appended to `out`.
   void plane_points(std::int32_t s, std::vector<Found>& out);
   /// The force of each of `found`, in order (`plane_count` first against the planes), then

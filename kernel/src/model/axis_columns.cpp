@@ -163,6 +163,8 @@ void find_mass_matrix_coordinates(Multibody::Impl& m) {
 void clear_columns(Multibody::Impl& m) {
   std::fill(m.column_valid.begin(), m.column_valid.end(), 0);
   std::fill(m.axis_mobility.begin(), m.axis_mobility.end(), 0.0);
+  for (auto& range : m.friction_ranges)
+    range.valid = false;
 }
 
 }  // namespace s2sim::model

@@ -156,6 +156,15 @@ class CheckedPath final : public Dynamics {
   void loop_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const override {
     tree().loop_axis_column(m, s, a);
   }
+  void point_force(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
+                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
+                   double* g) const override {
+    tree().point_force(m, s, body, point, direction, u_begin, u_end, g);
+  }
+  void solve_speeds(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
+                    int u_begin, int u_end, const double* g, double* x) const override {
+    tree().solve_speeds(m, s, body, u_begin, u_end, g, x);
+  }
   void qdot(Multibody::Impl& m) const override { tree().qdot(m); }
   void project_speeds(Multibody::Impl& m) const override { tree().project_speeds(m); }
   void project(Multibody::Impl& m) const override { tree().project(m); }

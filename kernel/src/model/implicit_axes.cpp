@@ -295,7 +295,139 @@ void sweep_tree(Multibody::Impl& m, SimTK::State& s, std::size_t tree, int begin
 
 }  // namespace
 
+namespace {
+
+/// Contact friction's sweeps (contact_friction.cpp) at most, and the largest speed change at a
+/// point (m/s) below which they have converged.
+constexpr int kMaxFrictionSweeps = 64;
+/// Rounds of the points' sweeps and the tree's axis solve at most (solve_friction_group).
+constexpr int kMaxFrictionRounds = 16;
+constexpr double kSlipTolerance_m_s = 1e-9;
+
+/// Folds into friction group `group`'s columns the implicit response of tree t's drives that
+/// answer linearly now (every row within its bounds, no Coulomb friction on the axis): with h
+/// the point's rates of those axes per unit impulse and A = I + κ·C·W over them (W the tree's
+/// Delassus matrix, C their damping), a friction impulse changes the drives by −A⁻¹·C·h, so
+/// its column becomes c − κ·M⁻¹·Gᵀ·A⁻¹·C·h and its W the Schur complement. Solved as
+/// A⁻¹·C = S·B⁻¹·S, B = I + κ·S·W·S, S = √C. Returns how many axes were folded in.
+int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int group, int begin,
+                              int end, double kick_s) {
+  const int n = end - begin;
+  const int* axis = m.solve_order.data() + begin;
+  const double* W = m.tree_delassus.data();  // the tree's, built by solve_axes
+  int* linear = m.friction_linear.data();
+  double* scale = m.friction_scale.data();
+  int count = 0;
+  for (int p = 0; p < n; ++p) {
+    const auto a = static_cast<std::size_t>(axis[p]);
+    if (m.first_row[a] < 0 || m.friction_bound[a] > 0 || m.axes[a].loop) continue;
+    const double rate = axis_dot(m, a, u);
+    double damping = 0;
+    bool inside = true;
+    for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
+      const auto& row = m.rows[static_cast<std::size_t>(j)];
+      const double f = row.force - row.damping * (rate - row.rate0);
+      damping += row.damping;
+      inside = inside && f > row.low && f < row.high;
+    }
+    if (!inside || !(damping > 0)) continue;
+    linear[count] = p;
+    scale[count++] = std::sqrt(damping);
+  }
+  if (count == 0) {
+    uncoupled_friction(m, group);
+    return 0;
+  }
+  copy_raw_friction(m, group);
+  double* B = m.friction_coupling.data();
+  for (int i = 0; i < count; ++i)
+    for (int k = 0; k < count; ++k)
+      B[i * count + k] =
+          (i == k ? 1.0 : 0.0) + kick_s * scale[i] * W[linear[i] * n + linear[k]] * scale[k];
+  common::cholesky_factor(B, count);
+  const auto stride = static_cast<std::size_t>(m.friction_stride);
+  double* y = m.friction_rhs.data();
+  for (int q = m.friction_group_start[static_cast<std::size_t>(group)];
+       q < m.friction_group_start[static_cast<std::size_t>(group) + 1]; ++q) {
+    const auto i = static_cast<std::size_t>(m.friction_order[static_cast<std::size_t>(q)]);
+    const auto body = static_cast<std::size_t>(m.friction.points[i].body);
+    const int u_begin = m.friction_u_begin[body], span = m.friction_u_end[body] - u_begin;
+    for (std::size_t j = 0; j < 2; ++j) {
+      const double* c = m.friction_column.data() + (2 * i + j) * stride;
+      double* effective = m.friction_effective_column.data() + (2 * i + j) * stride;
+      for (int l = 0; l < count; ++l) {  // S·h
+        const auto a = static_cast<std::size_t>(axis[linear[l]]);
+        y[l] = scale[l] * m.axis_impl[a].sign * c[m.axis_u[a] - u_begin];
+      }
+      common::cholesky_substitute(B, count, y, y);
+      for (int l = 0; l < count; ++l) {
+        const auto a = static_cast<std::size_t>(axis[linear[l]]);
+        const double* column = m.minv_column[a].getContiguousScalarData() + u_begin;
+        const double k = kick_s * scale[l] * y[l];
+        for (int e = 0; e < span; ++e)
+          effective[e] -= k * column[e];
+      }
+    }
+    const double* g = m.friction_g.data() + 2 * i * stride;
+    const double* c = m.friction_effective_column.data() + 2 * i * stride;
+    double* w = &m.friction_effective_w[4 * i];
+    for (std::size_t j = 0; j < 2; ++j)
+      for (std::size_t k = 0; k < 2; ++k) {
+        double sum = 0;
+        for (int e = 0; e < span; ++e)
+          sum += g[j * stride + static_cast<std::size_t>(e)] *
+                 c[k * stride + static_cast<std::size_t>(e)];
+        w[2 * j + k] = sum;
+      }
+  }
+  build_friction_blocks(m, group);
+  return count;
+}
+
+/// Friction group `group` solved with tree t's axes solve_order[begin, end) (none: begin ==
+/// end, or t < 0). The points' sweeps run with the linear drives' response folded in
+/// (couple_friction_to_drives), those drives then take their law at the new speeds (the speeds
+/// already carry their change), and the axis solve settles bounds and the axes' friction; until
+/// a first sweep after it moves no point.
+void solve_friction_group(Multibody::Impl& m, SimTK::State& s, int group, int t, int begin, int end,
+                          double kick_s) {
+  SimTK::Vector& u = s.updU();
+  const bool with_axes = t >= 0 && begin != end;
+  for (int round = 0; round < kMaxFrictionRounds; ++round) {
+    const int coupled = with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s) : 0;
+    if (!with_axes) uncoupled_friction(m, group);
+    bool moved = false;
+    for (int sweep = 0; sweep < kMaxFrictionSweeps; ++sweep) {
+      if (sweep_contact_friction(m, u, group, kick_s) <= kSlipTolerance_m_s) break;
+      moved = true;
+    }
+    if (!with_axes || (!moved && round > 0)) return;
+    // The folded-in drives at their law for the new speeds, unclamped: the speeds carry the
+    // linear change, and the axis solve below clamps what left its bounds.
+    bool within = coupled == end - begin;  // every solved axis answered linearly
+    for (int l = 0; l < coupled; ++l) {
+      const auto a = static_cast<std::size_t>(
+          m.solve_order[static_cast<std::size_t>(begin + m.friction_linear[l])]);
+      const double rate = axis_dot(m, a, u);
+      for (int j = m.first_row[a]; j >= 0; j = m.next_row[j]) {
+        auto& row = m.rows[static_cast<std::size_t>(j)];
+        row.applied = row.force - row.damping * (rate - row.rate0);
+        within = within && row.applied > row.low && row.applied < row.high;
+      }
+    }
+    // Still within their bounds, the drives are solved with the points: nothing for the axis
+    // solve to change.
+    if (within) return;
+    const auto tree = static_cast<std::size_t>(t);
+    if (!m.rows.empty()) solve_tree_rows(m, u, tree, end - begin, kick_s);
+    if (m.tree_sweeps[tree]) sweep_tree(m, s, tree, begin, end, kick_s);
+  }
+}
+
+}  // namespace
+
 void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
+  const bool friction = prepare_contact_friction(m, s);
   // The axes to solve: those with drive rows, and the tree axes whose friction may stop them.
   m.solve_list.clear();
   std::fill(m.first_row.begin(), m.first_row.end(), -1);
@@ -316,7 +448,7 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       m.tree_sweeps[static_cast<std::size_t>(m.axis_tree[a])] = 1;
       if (m.first_row[a] < 0) m.solve_list.push_back(static_cast<int>(a));
     }
-  if (m.solve_list.empty()) return;
+  if (m.solve_list.empty() && !friction) return;
   update_columns(m, s, m.solve_list);
   SimTK::Vector& u = s.updU();
   // Tree by tree (axis_trees.cpp): 1. the drive rows without bounds, all at once; 2. where a
@@ -326,11 +458,20 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   group_solve_list_by_tree(m);
   for (std::size_t t = 0; t + 1 < m.tree_solve_start.size(); ++t) {
     const int begin = m.tree_solve_start[t], end = m.tree_solve_start[t + 1];
-    if (begin == end) continue;  // (a row's axis is in the solve list)
-    build_tree_delassus(m, begin, end);
-    if (!m.rows.empty()) solve_tree_rows(m, u, t, end - begin, kick_s);
-    if (m.tree_sweeps[t]) sweep_tree(m, s, t, begin, end, kick_s);
+    if (begin != end) {  // (a row's axis is in the solve list)
+      build_tree_delassus(m, begin, end);
+      if (!m.rows.empty()) solve_tree_rows(m, u, t, end - begin, kick_s);
+      if (m.tree_sweeps[t]) sweep_tree(m, s, t, begin, end, kick_s);
+    }
+    // The contact friction on the tree's bodies, with its axes.
+    for (int g = 0; friction && g < m.friction_groups; ++g)
+      if (friction_group_tree(m, g) == static_cast<int>(t))
+        solve_friction_group(m, s, g, static_cast<int>(t), begin, end, kick_s);
   }
+  // The friction on trees without axes.
+  for (int g = 0; friction && g < m.friction_groups; ++g)
+    if (friction_group_tree(m, g) < 0) solve_friction_group(m, s, g, -1, 0, 0, kick_s);
+  if (friction) finish_contact_friction(m, kick_s);
   for (const auto& row : m.rows)
     if (row.component) m.drive_sum[row.axis] += row.applied;
 }

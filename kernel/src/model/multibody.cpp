@@ -114,6 +114,7 @@ void Multibody::reset() {
   clear_columns(*impl_);
   impl_->substep = 0;
   impl_->drive_count = 0;
+  impl_->friction.count = 0;
   impl_->rows.clear();
   std::fill(impl_->explicit_drive.begin(), impl_->explicit_drive.end(), 0.0);
   std::fill(impl_->drive_sum.begin(), impl_->drive_sum.end(), 0.0);
@@ -222,6 +223,15 @@ void for_each_column_number(M& m, F&& f) {
       }
     }
   for (auto* values : {&m.columns_q, &m.column_root_quat, &m.axis_mobility})
+    for (auto& x : *values)
+      f(x);
+  // The contact friction's M^-1 per range of speeds (contact_friction.cpp), kept the same way.
+  for (auto& range : m.friction_ranges) {
+    double v = range.valid;
+    f(v);
+    range.valid = v != 0.0;
+  }
+  for (auto* values : {&m.friction_minv, &m.friction_minv_q, &m.friction_minv_quat})
     for (auto& x : *values)
       f(x);
 }

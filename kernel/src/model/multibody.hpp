@@ -4,6 +4,8 @@
 /// multibody.cpp: the rest of the kernel sees plain arrays of poses, twists and axis values,
 /// and writes plain arrays of applied loads.
 
+#include "model/substep_forces.hpp"
+
 #include <s2sim/component.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
@@ -149,6 +151,15 @@ class Multibody {
   /// The per-body wrenches recomputed from the state at every substep (contact), applied
   /// from now on; the caller writes them before each substep's forces().
   Wrench* use_contact_wrenches();
+  /// Room for `points` contact friction points a substep (at load; stepping allocates nothing).
+  void reserve_contact_friction(std::int32_t points);
+  /// The substep's contact friction points (substep_forces.hpp): written by the contact before
+  /// the substep's kick, solved by solve_axes() together with the axes, which writes each
+  /// point's force.
+  FrictionPoints* contact_friction();
+  /// Whether solve_axes() takes friction points on kernel body `body`: a jointed body of a
+  /// system without loops (the others' friction stays a force law of the contact).
+  bool solves_contact_friction(int body) const;
   /// Per kernel body (0 = world, 0 kg): the smallest mass that a force at the body's centre
   /// of mass meets in the initial configuration, over the three world axes (a free body: its
   /// mass; a wheel: its share of the robot's). Infinite for a body welded to the world.
@@ -183,8 +194,8 @@ class Multibody {
   /// u += h·u' (half a substep on the first one after a reset: leapfrog); loose bodies too.
   void kick();
   /// The axis drives at the kick's end velocity, implicit, (M + h·C)·Δu = h·f within their
-  /// bounds, with the axes' Coulomb friction as a velocity-level brake; loops: velocities
-  /// projected onto the constraints.
+  /// bounds, with the axes' Coulomb friction as a velocity-level brake and the contact friction
+  /// points' Coulomb friction; loops: velocities projected onto the constraints.
   void solve_axes();
   /// q += h·N(q)·u; the time of the substep's end.
   void drift(int substep);
@@ -209,7 +220,8 @@ class Multibody {
   /// Registers the model's state segments (snapshots; docs/scheduling.md, "Snapshots"):
   /// `multibody/time` (ticks, pending half kick), `multibody/q`, `multibody/u`, `multibody/z`,
   /// `multibody/columns` (the M^-1 column cache: validity flags, columns, loop axes' unit
-  /// forces, the q and root quaternions they were computed at, axis mobilities),
+  /// forces, the q and root quaternions they were computed at, axis mobilities; then the
+  /// contact friction's M^-1 per range of speeds, with its validity, q and root quaternion),
   /// `multibody/reactions` (6 per scene joint), then the loose bodies' segments (`loose/…`).
   /// After the layout restored them, call restored(). `prefix` replaces `multibody` in the
   /// names (one part of several, multibody_islands.hpp), and the loose bodies' are then

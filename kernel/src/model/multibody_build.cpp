@@ -379,6 +379,7 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
     m.axis_q[a] = mob.getFirstQIndex(m.initial_state) + m.axis_impl[a].coordinate;
   }
   find_axis_trees(m);
+  find_friction_ranges(m);
   m.qdot.resize(m.initial_state.getNQ());
   m.reactions_at_M.resize(m.matter.getNumBodies());
   build_fast_path(m);

@@ -248,8 +248,52 @@ struct Multibody::Impl {
   std::vector<int> solve_order, tree_solve_start;  // solve_list ordered by tree, each's first
   std::vector<char> tree_changed;
   std::vector<char> tree_sweeps;  // per tree: a bound was hit or an axis has friction (solve_axes)
-  int substep = 0;                // index of the current substep in the tick
-  bool bodies_fresh = false;      // substep_poses/twists hold the current state
+  // Contact friction on jointed bodies (contact_friction.cpp), solved with the axes. Per kernel
+  // body: its tree's speed range [begin, end) (empty: it cannot take friction points) and the
+  // axis tree its axes are solved in (-1: none). Per point of the substep, 2 rows: the
+  // generalized force g of a unit force along each tangent and M^-1·g over the whole speed
+  // vector (zero outside the tree's range), the 2×2 W = g·M^-1·g, the impulses found; and the
+  // points ordered by tree.
+  std::vector<int> friction_u_begin, friction_u_end, friction_axis_tree;
+  std::vector<FrictionPoint> friction_storage;
+  FrictionPoints friction;
+  std::vector<int> friction_group_key;  // per kernel body: its points' group (sort key)
+  // M^-1 over each range of speeds that carries points, kept while the configuration that
+  // shapes M stays within 1e-7 of the one it was computed at and turned with a free root as a
+  // whole (T·M^-1·Tᵀ), as the axis columns are (axis_columns.cpp); ranges of more than
+  // kMaxCachedSpeeds speeds solve each point's columns instead.
+  struct FrictionRange {
+    int u_begin = 0, u_end = 0, q_begin = 0, q_end = 0;
+    int root = -1;                        // its free root (index into roots), turned with; -1: none
+    std::size_t minv = 0, q = 0;          // offsets into friction_minv and friction_minv_q
+    bool cached = false;                  // small enough to keep M^-1
+    bool valid = false, checked = false;  // checked: this substep
+  };
+  std::vector<int> friction_range;  // per kernel body: its range (-1: none)
+  std::vector<FrictionRange> friction_ranges;
+  std::vector<double> friction_minv, friction_minv_q, friction_minv_quat;
+  std::vector<char> friction_q_compared;  // per q: a cache compares it (shapes M, or a quaternion
+                                          // not turned with)
+  int friction_stride = 0;                // the longest speed range: a row's room in the lists
+  std::vector<double> friction_g, friction_column, friction_w, friction_impulse;
+  // The columns and W the sweeps use: the raw ones with the tree's linear drives' implicit
+  // response folded in (implicit_axes.cpp, couple_friction_to_drives), and that solve's
+  // scratch: its axes, √C, the matrix I + κ·S·W·S, a right side.
+  std::vector<double> friction_effective_column, friction_effective_w;
+  std::vector<int> friction_linear;
+  std::vector<double> friction_scale, friction_coupling, friction_rhs;
+  // Blocks: the points of one body next to each other in friction_order, up to 4, solved at
+  // once while they stick. Per order position: the size of the block starting there (0 inside
+  // one), whether its W was factored, and 32 numbers: its factor, then its W.
+  std::vector<int> friction_block_size;
+  std::vector<char> friction_block_factored;
+  std::vector<double> friction_block_w, friction_block_rhs;
+  std::vector<double> friction_full_g, friction_full_column;  // one row over every speed
+  SimTK::Vector friction_scratch;                             // Simbody's M^-1 of one row
+  std::vector<int> friction_order, friction_group_start;
+  int friction_groups = 0;
+  int substep = 0;            // index of the current substep in the tick
+  bool bodies_fresh = false;  // substep_poses/twists hold the current state
   SimTK::Vector unit_force;
   std::vector<double> unit_speed;  // zero but while a tree axis's column is solved (fast path)
   std::vector<Pose> substep_poses;
@@ -349,6 +393,31 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s);
 /// within their bounds, together with the tree axes' Coulomb friction (implicit_axes.cpp);
 /// the drives' mean over the tick is recorded for the axis torque signals.
 void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s);
+
+/// The most points of one body solved as a block (friction_sweeps.cpp; its factor and W take
+/// 8·k² ≤ 32·k numbers of friction_block_w).
+constexpr int kMaxBlockPoints = 4;
+/// Contact friction on jointed bodies (contact_friction.cpp). At load: each body's speed range
+/// and axis tree (after find_axis_trees).
+void find_friction_ranges(Multibody::Impl& m);
+/// Before the axes are solved: the columns and W of this substep's friction points (`s`
+/// realized to Position), ordered and grouped by tree; false: there are none.
+bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s);
+/// One Gauss–Seidel sweep over group `group`'s points at the kick's end speeds
+/// (friction_sweeps.cpp): each point's impulses (or a body's block's, while it sticks) solved
+/// for zero slip within κ times its bounds, the others held. Returns the largest speed change
+/// it made at a point (m/s).
+double sweep_contact_friction(Multibody::Impl& m, SimTK::Vector& u, int group, double kick_s);
+/// Group `group`'s points' columns and W as the sweeps use them, uncoupled: the raw ones,
+/// copied (copy_raw_friction) and their blocks built.
+void copy_raw_friction(Multibody::Impl& m, int group);
+void uncoupled_friction(Multibody::Impl& m, int group);
+/// The W of group `group`'s blocks from the columns the sweeps use, factored.
+void build_friction_blocks(Multibody::Impl& m, int group);
+/// The axis tree of friction group `group` (-1: its tree has no solved axes).
+int friction_group_tree(const Multibody::Impl& m, int group);
+/// The points' forces (impulse / κ) written out.
+void finish_contact_friction(Multibody::Impl& m, double kick_s);
 
 /// A drive row's law at an axis rate: clamp(force − damping·(rate − rate0), low, high).
 inline double drive_law(const Multibody::Impl::DriveRow& r, double rate) {

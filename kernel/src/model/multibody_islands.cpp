@@ -177,6 +177,29 @@ Wrench* MultibodyIslands::use_contact_wrenches() {
   return scene_.contact_wrenches;
 }
 
+void MultibodyIslands::reserve_contact_friction(std::int32_t points) {
+  for (auto& part : parts_)
+    part.multibody->reserve_contact_friction(points);
+  friction_storage_.assign(static_cast<std::size_t>(std::max(0, points)), FrictionPoint{});
+  friction_.points = friction_storage_.data();
+  friction_.count = 0;
+  // A part solves at most its own list's room.
+  friction_.capacity = points;
+  for (const auto& part : parts_)
+    friction_.capacity = std::min(friction_.capacity, part.multibody->contact_friction()->capacity);
+}
+
+FrictionPoints* MultibodyIslands::contact_friction() {
+  if (parts_.size() == 1) return parts_[0].multibody->contact_friction();
+  return &friction_;
+}
+
+bool MultibodyIslands::solves_contact_friction(int body) const {
+  if (body <= 0 || static_cast<std::size_t>(body) >= part_of_body_.size()) return false;
+  const int p = part_of_body_[static_cast<std::size_t>(body)];
+  return p >= 0 && parts_[static_cast<std::size_t>(p)].multibody->solves_contact_friction(body);
+}
+
 std::vector<double> MultibodyIslands::apparent_mass_kg() const {
   std::vector<double> out(static_cast<std::size_t>(body_count_), 0.0);
   for (const auto& part : parts_) {
@@ -410,6 +433,11 @@ void MultibodyIslands::SubstepJob::run_task(int p, int thread) {
 bool MultibodyIslands::step_part(Part& part, int p, int thread, int substep) {
   load_part(part, substep);
   const bool inside = stages_->run(p, *part.multibody, thread == 0, substep);
+  if (!part.is_scene && contact_used_ && !contact_in_parts_) {  // the forces solved, back
+    const FrictionPoints& own = *part.multibody->contact_friction();
+    for (std::int32_t i = 0; i < own.count; ++i)
+      friction_.points[own.points[i].scene_index].force_N = own.points[i].force_N;
+  }
   // For the next substep's contact (its realize runs here, in parallel); split forces read
   // each part's own (placed by the stages' callback), and current_bodies() copies on demand.
   if (contact_used_ && !split_forces_) copy_bodies(part);
@@ -486,9 +514,20 @@ void MultibodyIslands::load_part(Part& part, int substep) {
     }
     *mb.axis_drive_count() = count;
   }
-  if (contact_used_ && !contact_in_parts_)
+  if (contact_used_ && !contact_in_parts_) {
     for (int b : part.plan.bodies)
       part.contact_wrenches[b] = contact_wrenches_[static_cast<std::size_t>(b)];
+    // The scene's friction points on the part's bodies, each remembering its entry.
+    FrictionPoints& own = *mb.contact_friction();
+    own.count = 0;
+    const int p = static_cast<int>(&part - parts_.data());
+    for (std::int32_t i = 0; i < friction_.count; ++i) {
+      const FrictionPoint& point = friction_.points[i];
+      if (part_of_body_[static_cast<std::size_t>(point.body)] != p) continue;
+      own.points[own.count] = point;
+      own.points[own.count++].scene_index = i;
+    }
+  }
 }
 
 void MultibodyIslands::publish_tick(Part& part) {

@@ -69,6 +69,11 @@ class MultibodyIslands {
   const Wrench* joint_reactions() const;
   bool joint_is_loop(int joint) const;
   Wrench* use_contact_wrenches();
+  /// Multibody's contact friction points, scene-wide (with several parts, each part solves the
+  /// points on its own bodies; with one, the part's own list).
+  void reserve_contact_friction(std::int32_t points);
+  FrictionPoints* contact_friction();
+  bool solves_contact_friction(int body) const;
   std::vector<double> apparent_mass_kg() const;
   std::vector<Multibody::Mobility> contact_mobility() const;
   void reset();
@@ -237,6 +242,8 @@ class MultibodyIslands {
   SceneArrays scene_{};
   // The scene-wide arrays' storage when several parts share them.
   std::vector<Wrench> wrenches_, contact_wrenches_, reactions_;
+  std::vector<FrictionPoint> friction_storage_;  // several parts: the scene-wide friction points
+  FrictionPoints friction_;
   std::vector<double> axis_forces_, axis_friction_, drive_applied_;
   std::vector<AxisDrive> drives_;
   std::int32_t drive_count_ = 0;

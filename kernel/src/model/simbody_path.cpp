@@ -77,6 +77,27 @@ class SimbodyPath final : public Dynamics {
     m.matter.multiplyByMInv(s, g, m.minv_column[a]);
   }
 
+  void point_force(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
+                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
+                   double* g) const override {
+    m.unit_body_forces.setToZero();
+    const SimTK::Vec3 arm = point - m.matter.getMobilizedBody(body).getBodyOriginLocation(s);
+    m.unit_body_forces[body] = SimTK::SpatialVec(SimTK::cross(arm, direction), direction);
+    m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, m.unit_force);
+    for (int k = u_begin; k < u_end; ++k)
+      g[k] = m.unit_force[k];
+  }
+
+  void solve_speeds(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex,
+                    int u_begin, int u_end, const double* g, double* x) const override {
+    m.unit_force = 0.0;
+    for (int k = u_begin; k < u_end; ++k)
+      m.unit_force[k] = g[k];
+    m.matter.multiplyByMInv(s, m.unit_force, m.friction_scratch);
+    for (int k = u_begin; k < u_end; ++k)
+      x[k] = m.friction_scratch[k];
+  }
+
   void qdot(Multibody::Impl& m) const override {
     const SimTK::State& s = m.current;
     m.matter.multiplyByN(s, false, s.getU(), m.qdot);

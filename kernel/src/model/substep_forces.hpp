@@ -10,12 +10,41 @@
 
 namespace s2sim::model {
 
+/// A contact point on a jointed body whose friction the multibody solves with its axes at the
+/// kick's end (implicit, docs/models/contact.md, "Friction on jointed bodies"): the point's
+/// slip across the normal is brought to zero while the friction stays within its bounds, and
+/// where it cannot, the point slides at the bound. The other side is a static surface.
+struct FrictionPoint {
+  std::int32_t body = 0;       ///< kernel body (one whose multibody solves_contact_friction())
+  Vec3 point_m;                ///< world
+  Vec3 direction[2];           ///< unit tangents, orthogonal to each other and to the normal
+  double limit_N[2] = {0, 0};  ///< μ·N along each (isotropic: the circle's radius, limit_N[0])
+  bool isotropic = true;       ///< the Coulomb circle; else each direction on its own (a pyramid)
+  Vec3 surface_velocity_m_s;   ///< of the static side's material at the point (a belt): the slip
+                               ///< is measured against it
+  std::int32_t report = -1;    ///< the writer's own index of the point (its contact list)
+  std::int32_t scene_index = -1;  ///< multibody islands: the entry of the scene-wide list
+  Vec3 force_N;  ///< out: the friction the solve applied to the body over the kick (world)
+};
+
+/// Room for a substep's friction points, written by the contact, solved by the multibody.
+struct FrictionPoints {
+  FrictionPoint* points = nullptr;
+  std::int32_t count = 0;
+  std::int32_t capacity = 0;
+};
+
 class SubstepForces {
  public:
   virtual ~SubstepForces() = default;
   /// `poses`, `twists` per kernel body (0 = world); writes `wrenches` (about each body origin,
-  /// world frame) for every body, zero where nothing acts. Must not allocate.
-  virtual void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) = 0;
+  /// world frame) for every body, zero where nothing acts. With `friction`, the points whose
+  /// friction the multibody solves go there instead of into the wrenches. Must not allocate.
+  virtual void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches,
+                       FrictionPoints* friction = nullptr) = 0;
+  /// After the substep computed whole by compute() was solved (its friction points' forces
+  /// known), on the calling thread.
+  virtual void end_substep() {}
 
   // --- Part by part (MultibodyIslands): each part computes the loads on its own bodies on its
   // own thread, where they are used, when no load couples two parts. The results must be those
@@ -42,7 +71,8 @@ class SubstepForces {
   /// The loads on part `part`'s bodies into `wrenches` (per kernel body; only the part's own
   /// bodies are written and read), from `poses`/`twists` (only the part's bodies are read).
   virtual void compute_part(int part, const Pose* poses, const Twist* twists, double step_s,
-                            Wrench* wrenches) {
+                            Wrench* wrenches, FrictionPoints* friction = nullptr) {
+    (void)friction;
     (void)part;
     (void)poses;
     (void)twists;
@@ -51,8 +81,9 @@ class SubstepForces {
   }
   /// After every compute_part() of a substep, on the calling thread.
   virtual void end_parts() {}
-  /// After a part's substep, on its thread: prepares the next substep from the part's new
-  /// poses (read as compute_part reads them).
+  /// After a part's substep, on its thread: takes the forces its friction points were solved
+  /// with, and prepares the next substep from the part's new poses (read as compute_part reads
+  /// them).
   virtual void place_part(int part, const Pose* poses, const Twist* twists, double step_s) {
     (void)part;
     (void)poses;

@@ -534,6 +534,14 @@ void TreeDynamics::generalized_forces(const double* body_loads, double* f) {
   }
 }
 
+void TreeDynamics::solve_tree_of(int body, const double* g, double* x, int& u_begin,
+                                 int& u_end) const {
+  const Tree& t = trees_[static_cast<std::size_t>(tree_of_body_[static_cast<std::size_t>(body)])];
+  u_begin = t.u_begin;
+  u_end = t.u_end;
+  substitute(t, g + t.u_begin, x + t.u_begin);
+}
+
 void TreeDynamics::solve(const double* g, double* x) const {
   for (const Tree& t : trees_) {
     bool zero = true;

@@ -68,6 +68,9 @@ class TreeDynamics {
   Vec3 frame_origin(int body) const;
   /// x = M^-1·g with the mass matrix of the last accelerations() (its configuration).
   void solve(const double* g, double* x) const;
+  /// The same within the tree that holds `body` alone (g and x over every speed; only that
+  /// tree's are read and written): its speed range into [u_begin, u_end).
+  void solve_tree_of(int body, const double* g, double* x, int& u_begin, int& u_end) const;
   /// f = Jᵀ·loads: the generalized forces of body loads (six numbers per body as in
   /// accelerations(), Ground's first); after kinematics().
   void generalized_forces(const double* body_loads, double* f);

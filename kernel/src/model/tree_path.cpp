@@ -138,6 +138,32 @@ class TreePath final : public Dynamics {
     m.tree->solve(g.getContiguousScalarData(), m.minv_column[a].updContiguousScalarData());
   }
 
+  void point_force(Multibody::Impl& m, const SimTK::State&, SimTK::MobilizedBodyIndex body,
+                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
+                   double* g) const override {
+    // g_k = d·(the point's velocity per unit speed k), over the body's chain of mobilizers.
+    const TreeDynamics& tree = *m.tree;
+    std::fill(g + u_begin, g + u_end, 0.0);
+    const Vec3 p{point[0], point[1], point[2]}, d{direction[0], direction[1], direction[2]};
+    for (int i = body; i > 0; i = tree.parent(i)) {
+      const Vec3 arm = p - tree.pose(i).position;
+      for (int k = tree.first_speed(i); k < tree.first_speed(i) + tree.speed_count(i); ++k) {
+        const Twist& h = tree.column(k);
+        g[k] = dot(d, h.linear_m_s + cross(h.angular_rad_s, arm));
+      }
+    }
+  }
+
+  void solve_speeds(Multibody::Impl& m, const SimTK::State&, SimTK::MobilizedBodyIndex body,
+                    int u_begin, int u_end, const double* g, double* x) const override {
+    // The body's own tree; the rest of the range (every speed, when the axes are one block)
+    // is zero, as g is there.
+    int begin = 0, end = 0;
+    m.tree->solve_tree_of(body, g, x, begin, end);
+    std::fill(x + u_begin, x + std::max(u_begin, begin), 0.0);
+    std::fill(x + std::min(u_end, end), x + u_end, 0.0);
+  }
+
   void qdot(Multibody::Impl& m) const override {
     const SimTK::State& s = m.current;
     calc_qdot(m, s.getU().getContiguousScalarData(), s.getQ().getContiguousScalarData(),

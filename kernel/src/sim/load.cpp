@@ -165,6 +165,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.contacts =
       std::make_unique<contact::ContactWorld>(*m.shapes, m.scene, m.multibody->apparent_mass_kg());
   m.contacts->set_mobility(m.multibody->contact_mobility());
+  // Friction on jointed bodies is solved with the axes (docs/models/contact.md).
+  m.multibody->reserve_contact_friction(m.contacts->point_capacity());
+  std::vector<char> solved_friction(m.poses.size(), 0);
+  for (std::size_t b = 1; b < solved_friction.size(); ++b)
+    solved_friction[b] = m.multibody->solves_contact_friction(static_cast<int>(b));
+  m.contacts->set_solved_friction(solved_friction);
   for (const auto& [body, input] : m.belt_speed_inputs)
     m.contacts->set_belt_speed_input(body, input);
   m.multibody->use_contact_wrenches();     // written by contact at every substep (sim/step.cpp)

@@ -43,7 +43,7 @@ void collide(model::MultibodyIslands& mb, model::SubstepForces* contact, StagePr
   const Pose* poses = nullptr;
   const Twist* twists = nullptr;
   mb.current_bodies(poses, twists);
-  contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+  contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches(), mb.contact_friction());
 }
 
 }  // namespace
@@ -100,7 +100,8 @@ class PartStages final : public model::MultibodyIslands::PartStages {
     if (contact_in_parts_) {
       StageTimer timer(profile, PipelineStage::collide);
       mb.current_bodies(poses, twists);
-      contact_->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+      contact_->compute_part(part, poses, twists, mb.substep_s(), mb.use_contact_wrenches(),
+                             mb.contact_friction());
     }
     multibody_substep(mb, substep, profile);
     if (contact_) {  // placed here, on the part's thread, for the next substep's contact
@@ -166,6 +167,8 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
       if (!contact_in_parts) collide(mb, contact, profile);
       stages.set_contact_in_parts(contact_in_parts);
       mb.run_substep(k, stages, contact_in_parts, hooks, start_ran);
+      // The friction the axes' solve found, into the contact list.
+      if (contact && !contact_in_parts) contact->end_substep();
       if (contact_in_parts) {
         StageTimer timer(profile, PipelineStage::collide);
         contact->end_parts();

@@ -73,7 +73,7 @@ const std::map<std::string, const char*>& exercised_by() {
       {"multibody/reactions", "jointforce"},
       {"loose/position", "pile"},
       {"loose/velocity", "pile"},
-      {"contact/memory", "nxt"},
+      {"contact/memory", "pile"},
       {"contact/points", "nxt"},
       {"components/state", "nxt"},
       {"inputs", "nxt"},

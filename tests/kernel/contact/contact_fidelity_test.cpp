@@ -1,6 +1,6 @@
 // Contact fidelity (docs/models/contact.md, "Friction" and "Overlap recovery"): a tyre held to
 // its robot by static friction, gentle recovery from overlaps, no force spikes. At 1 ms
-// without substeps, on small hand-built scenes. The tests still DISABLED_ state targets the
+// without substeps, on small hand-built scenes. The tests still  state targets the
 // contact law does not meet yet (the doc gives their numbers).
 #include "contact/contact_world.hpp"
 #include "contact_runner.hpp"
@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -73,7 +74,7 @@ void apply_axle_torques(Runner& run, double torque_Nm) {
     run.mb.applied_axis_forces()[a] = torque_Nm;
 }
 
-TEST(ContactFidelity, DISABLED_RollingUnderTorqueBelowTheFrictionLimitFollowsRigidRolling) {
+TEST(ContactFidelity, RollingUnderTorqueBelowTheFrictionLimitFollowsRigidRolling) {
   // 0.02 N·m per axle: 1.0 m/s², a friction of 0.35 N per tyre under 3.4 N of load (mu = 1).
   const double torque = 0.02, h = 1e-3;
   Runner run(Rover::build(1.0));
@@ -99,7 +100,7 @@ TEST(ContactFidelity, DISABLED_RollingUnderTorqueBelowTheFrictionLimitFollowsRig
   EXPECT_LT(worst_slip, 1e-3) << "a tyre slipped at " << worst_slip << " m/s";
 }
 
-TEST(ContactFidelity, DISABLED_A50HzTorqueSwingsTheWheelAsRigidRollingDoes) {
+TEST(ContactFidelity, A50HzTorqueSwingsTheWheelAsRigidRollingDoes) {
   const double torque = 0.02, frequency = 50, h = 1e-3;
   Runner run(Rover::build(1.0));
   run.step(500);
@@ -259,16 +260,28 @@ Standing stand(double sink_m) {
   return out;
 }
 
-TEST(ContactFidelity, DISABLED_AWheeledLeggedRobotStandsWithoutForceSpikesOrHops) {
-  for (double sink : {0.0, 0.005}) {
-    const Standing r = stand(sink);
-    const std::string at = "_sink_" + std::to_string(sink);
-    RecordProperty("peak_total_contact_force_N" + at, std::to_string(r.peak_N));
-    RecordProperty("highest_tread_m" + at, std::to_string(r.highest_tread_m));
-    EXPECT_LT(r.peak_N, 3 * r.weight_N)
-        << "weight " << r.weight_N << " N, set " << sink << " m into the floor";
-    EXPECT_LT(r.highest_tread_m, 1e-3) << "a wheel left the floor, set " << sink << " m into it";
-  }
+void expect_standing(double sink_m, const std::string& at) {
+  const Standing r = stand(sink_m);
+  ::testing::Test::RecordProperty("peak_total_contact_force_N" + at, std::to_string(r.peak_N));
+  ::testing::Test::RecordProperty("highest_tread_m" + at, std::to_string(r.highest_tread_m));
+  std::printf("  set %.3f m into the floor: peak %.1f N (weight %.1f N), highest tread %.5f m\n",
+              sink_m, r.peak_N, r.weight_N, r.highest_tread_m);
+  EXPECT_LT(r.peak_N, 3 * r.weight_N)
+      << "weight " << r.weight_N << " N, set " << sink_m << " m into the floor";
+  EXPECT_LT(r.highest_tread_m, 1e-3) << "a wheel left the floor, set " << sink_m << " m into it";
+}
+
+TEST(ContactFidelity, AWheeledLeggedRobotStandsWithoutForceSpikesOrHops) {
+  expect_standing(0.0, "_on_the_floor");
+}
+
+// Set 5 mm into the floor, a jointed body has no bounded recovery (the jointless bodies' holds
+// carry their loads, stop_graph.hpp): its springs throw it, 4 315 N at once against the 88 N
+// bound, and its tyres rise 26 mm. Bounding the springs of jointed points as the jointless
+// ones' (tried: 636 N, 0.85 mm) changes how every jointed body lands. Disabled until a jointed
+// body's overlap is corrected at position level.
+TEST(ContactFidelity, DISABLED_AWheeledLeggedRobotSetIntoTheFloorStandsWithoutForceSpikes) {
+  expect_standing(0.005, "_5_mm_into_the_floor");
 }
 
 }  // namespace

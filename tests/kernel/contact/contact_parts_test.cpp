@@ -19,7 +19,9 @@ struct SideBySide final : model::SubstepForces {
   SideBySide(ContactWorld& whole_world, ContactWorld& by_parts, int body_count)
       : whole(whole_world), parts(by_parts), split_wrenches(static_cast<std::size_t>(body_count)) {}
 
-  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches) override {
+  void compute(const Pose* poses, const Twist* twists, double step_s, Wrench* wrenches,
+               model::FrictionPoints* friction = nullptr) override {
+    (void)friction;  // both worlds compare the force law's friction
     whole.compute(poses, twists, step_s, wrenches);
     // Placed by the parts after the first substep, as the island-parallel step does.
     if (parts.begin_parts(substeps > 0, poses, twists, step_s)) {

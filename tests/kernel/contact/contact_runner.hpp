@@ -7,13 +7,20 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace s2sim::test {
 
 struct ContactRunner : Runner {
   explicit ContactRunner(const scene::Scene& s, double dt = 1e-3, int substeps = 1)
       : Runner(s, dt, substeps), table(s), contacts(table, s, mb.apparent_mass_kg()) {
-    contacts.set_mobility(mb.contact_mobility());  // as the simulation does (sim/load.cpp)
+    // As the simulation does (sim/load.cpp).
+    contacts.set_mobility(mb.contact_mobility());
+    mb.reserve_contact_friction(contacts.point_capacity());
+    std::vector<char> solved(static_cast<std::size_t>(mb.body_count()), 0);
+    for (std::size_t b = 1; b < solved.size(); ++b)
+      solved[b] = mb.solves_contact_friction(static_cast<int>(b));
+    contacts.set_solved_friction(solved);
     contact = &contacts;
     mb.use_contact_wrenches();
   }

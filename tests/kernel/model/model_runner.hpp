@@ -16,9 +16,11 @@ inline void physics_tick(model::Multibody& mb, model::SubstepForces* contact) {
       const Pose* poses = nullptr;
       const Twist* twists = nullptr;
       mb.current_bodies(poses, twists);
-      contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches());
+      contact->compute(poses, twists, mb.substep_s(), mb.use_contact_wrenches(),
+                       mb.contact_friction());
     }
     sim::multibody_substep(mb, k);
+    if (contact) contact->end_substep();
   }
 }
 
