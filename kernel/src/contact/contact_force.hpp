@@ -61,6 +61,11 @@ struct ForceLawSettings {
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
   double erp = 0.4;                    ///< the project's ERP, k_s = erp / (softness · reference)
   double bristle_ratio = 0.5;          ///< tangential / normal stiffness
+  /// A jointed body's point on a static surface whose tangential effective mass is below this
+  /// fraction of its normal one (a tyre's rim, light along its roll) has its friction solved
+  /// with the axes (model/substep_forces.hpp); where the two are comparable (a foot, a box's
+  /// corner) the bristle is about as stiff as the normal spring and this law holds the point.
+  double solved_friction_mass_ratio = 0.5;
 };
 
 /// What persists for one contact point between steps.

@@ -576,11 +576,13 @@ void ContactWorld::add_point(Lane* part_lane, const Found& f, const Pose* poses,
   // info_). Its memory carries its approach speed to the impact's second half.
   PointRole role = PointRole::contact;
   const double last_hold_N = state.held_force_N;
-  // A jointed body on a static surface: its friction is solved with the axes (when there is
-  // room in the substep's list), else the force law's.
+  // A jointed body on a static surface, light across the normal: its friction is solved with
+  // the axes (when there is room in the substep's list), else the force law's.
   model::FrictionPoints* friction = part_lane ? part_lane->friction : friction_;
   const bool solve_friction = friction && body_b == 0 && friction->count < friction->capacity &&
-                              (material.mu1 > 0 || material.mu2 > 0) && !solved_friction_.empty() &&
+                              (material.mu1 > 0 || material.mu2 > 0) &&
+                              kin.tangent_mass_kg < law_.solved_friction_mass_ratio * kin.mass_kg &&
+                              !solved_friction_.empty() &&
                               solved_friction_[static_cast<std::size_t>(body_a)];
   double friction_load_N = -1;
   const Vec3 force = contact_force(p, material, kin, law_, !known, state, role,

@@ -238,8 +238,8 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction_w.assign(4 * n, 0.0);
   m.friction_block_size.assign(n, 0);
   m.friction_block_factored.assign(n, 0);
-  m.friction_block_w.assign(32 * n, 0.0);
-  m.friction_block_rhs.assign(6 * kMaxBlockPoints, 0.0);
+  m.friction_block_w.assign(64 * n, 0.0);  // kBlockRoom (friction_sweeps.cpp)
+  m.friction_block_rhs.assign(6 * kMaxBlockPoints + 4 * kMaxBlockPoints * kMaxBlockPoints, 0.0);
   m.friction_effective_column.assign(2 * n * stride, 0.0);
   m.friction_effective_w.assign(4 * n, 0.0);
   const std::size_t most_axes = m.rows_axes.size();  // the largest tree's (axis_trees.cpp)
@@ -283,11 +283,10 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
       m.friction_group_start[static_cast<std::size_t>(m.friction_groups++)] = n;
   }
   m.friction_group_start[static_cast<std::size_t>(m.friction_groups)] = count;
-  // Blocks: runs of one body's points within a group (a tyre's two tread points).
+  // Blocks: runs of a group's points (a robot's tread points).
   for (int n = 0; n < count;) {
     int k = 1;
-    while (n + k < count && k < kMaxBlockPoints &&
-           points[order[n + k]].body == points[order[n]].body && key(order[n + k]) == key(order[n]))
+    while (n + k < count && k < kMaxBlockPoints && key(order[n + k]) == key(order[n]))
       ++k;
     m.friction_block_size[static_cast<std::size_t>(n)] = k;
     for (int q = 1; q < k; ++q)

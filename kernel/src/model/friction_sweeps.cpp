@@ -11,6 +11,12 @@
 namespace s2sim::model {
 namespace {
 
+/// Numbers of friction_block_w per order position: a block of k points keeps its W and the
+/// factor of W + ε·I there, 8·k² ≤ 64·k.
+constexpr std::size_t kBlockRoom = 64;
+/// ε of a block's solve, relative to its largest entry (solve_members).
+constexpr double kBlockRegularisation = 1e-6;
+
 /// Point i's slip along its two tangents at the speeds x, against its surface.
 void point_slip(const Multibody::Impl& m, const double* x, int i, double* v) {
   const auto stride = static_cast<std::size_t>(m.friction_stride);
@@ -48,6 +54,7 @@ double solve_point(Multibody::Impl& m, double* x, int i, double kick_s) {
     double* lambda = &m.friction_impulse[2 * static_cast<std::size_t>(i)];
     double v[2];
     point_slip(m, x, i, v);
+    m.friction_sweep_slip = std::max(m.friction_sweep_slip, std::abs(v[0]) + std::abs(v[1]));
     double next[2] = {lambda[0], lambda[1]};
     const double det = w[0] * w[3] - w[1] * w[2];
     if (p.isotropic && w[0] > 0 && w[3] > 0 && det > 1e-9 * w[0] * w[3]) {
@@ -131,38 +138,71 @@ bool within_bounds(const Multibody::Impl& m, int i, double l0, double l1, double
   return std::abs(l0) <= b0 && std::abs(l1) <= b1;
 }
 
-/// The block of `k` points at order positions [n, n + k) of one body solved at once when its
-/// points all stick (the points of one body nearly repeat each other, a tyre's two tread
-/// points, and Gauss–Seidel converges on them slowly); false, changing nothing, when one of
-/// them would slide or the block's W cannot be factored. `change`: the largest slip change.
-bool solve_block(Multibody::Impl& m, double* x, int n, int k, double kick_s, double& change) {
+/// The points `members` (bit q: order position n + q) of the block at [n, n + k) solved at
+/// once, the others held: λ = −(W + ε·I)⁻¹·v₀ over them, W regularised by 1e-6 of its largest
+/// entry (the corners of a box on the floor are 8 rows on 3 motions, W singular: this takes
+/// the smallest impulses that hold it, its load spread over the corners, and leaves a slip of
+/// 1e-6 of the impulses' speed change). False, changing nothing, when some would leave their
+/// bounds: their bits in `outside`. `change`: the largest slip change.
+bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members, double kick_s,
+                   double& change, unsigned& outside) {
   const auto dim = static_cast<std::size_t>(2 * k);
-  const double* L = m.friction_block_w.data() + 32 * static_cast<std::size_t>(n);
-  if (!m.friction_block_factored[static_cast<std::size_t>(n)]) return false;
-  double* v = m.friction_block_rhs.data();
+  const double* W = m.friction_block_w.data() + kBlockRoom * static_cast<std::size_t>(n);
   const int* order = m.friction_order.data() + n;
+  std::size_t index[2 * kMaxBlockPoints];  // the members' rows in W
+  std::size_t size = 0;
   for (int q = 0; q < k; ++q)
-    point_slip(m, x, order[q], v + 2 * q);
-  // v₀ = v − W·λ: the slip without the block's impulses (W from the raw rows: W·λ is what the
-  // impulses changed the slips by, read back as x moved).
-  const double* W = m.friction_block_w.data() + 32 * static_cast<std::size_t>(n) + dim * dim;
-  double* lambda = m.friction_block_rhs.data() + dim;
+    if (members & (1u << q)) {
+      index[size++] = 2 * static_cast<std::size_t>(q);
+      index[size++] = 2 * static_cast<std::size_t>(q) + 1;
+    }
+  double* v = m.friction_block_rhs.data();
+  double* lambda = v + dim;
+  double* next = lambda + dim;
+  double* L = next + dim;
   for (int q = 0; q < k; ++q) {
+    point_slip(m, x, order[q], v + 2 * q);
+    m.friction_sweep_slip =
+        std::max(m.friction_sweep_slip, std::abs(v[2 * q]) + std::abs(v[2 * q + 1]));
     lambda[2 * q] = m.friction_impulse[2 * static_cast<std::size_t>(order[q])];
     lambda[2 * q + 1] = m.friction_impulse[2 * static_cast<std::size_t>(order[q]) + 1];
   }
+  // v₀ = v − W·λ over the members: their slip without their own impulses.
+  double v0[2 * kMaxBlockPoints];
+  for (std::size_t r = 0; r < size; ++r) {
+    v0[r] = v[index[r]];
+    for (std::size_t c = 0; c < size; ++c)
+      v0[r] -= W[index[r] * dim + index[c]] * lambda[index[c]];
+  }
+  outside = 0;
+  const double* factor = L;
+  if (members == (1u << k) - 1) {  // the whole block: its factor, built with W
+    if (!m.friction_block_factored[static_cast<std::size_t>(n)]) return false;
+    factor = W + dim * dim;
+  } else {
+    double largest = 0;
+    for (std::size_t r = 0; r < size; ++r)
+      for (std::size_t c = 0; c < size; ++c) {
+        L[r * size + c] = W[index[r] * dim + index[c]];
+        largest = std::max(largest, std::abs(L[r * size + c]));
+      }
+    if (!(largest > 0)) return false;
+    for (std::size_t r = 0; r < size; ++r)
+      L[r * size + r] += kBlockRegularisation * largest;
+    if (!common::cholesky_factor(L, static_cast<int>(size))) return false;
+  }
+  common::cholesky_substitute(factor, static_cast<int>(size), v0, v0);
   for (std::size_t r = 0; r < dim; ++r)
-    for (std::size_t c = 0; c < dim; ++c)
-      v[r] -= W[r * dim + c] * lambda[c];
-  double* next = lambda + dim;
-  common::cholesky_substitute(L, 2 * k, v, next);
-  for (std::size_t r = 0; r < dim; ++r)
-    next[r] = -next[r];
+    next[r] = lambda[r];
+  for (std::size_t r = 0; r < size; ++r)
+    next[index[r]] = -v0[r];
   for (int q = 0; q < k; ++q)
-    if (!within_bounds(m, order[q], next[2 * q], next[2 * q + 1], kick_s)) return false;
+    if ((members & (1u << q)) && !within_bounds(m, order[q], next[2 * q], next[2 * q + 1], kick_s))
+      outside |= 1u << q;
+  if (outside) return false;
   change = 0;
   for (std::size_t r = 0; r < dim; ++r)
-    lambda[r] = next[r] - lambda[r];  // the changes
+    lambda[r] = next[r] - lambda[r];  // the changes (zero but the members')
   for (std::size_t r = 0; r < dim; ++r) {
     double dv = 0;
     for (std::size_t c = 0; c < dim; ++c)
@@ -170,12 +210,44 @@ bool solve_block(Multibody::Impl& m, double* x, int n, int k, double kick_s, dou
     change = std::max(change, std::abs(dv));
   }
   for (int q = 0; q < k; ++q) {
+    if (!(members & (1u << q))) continue;
     const auto i = static_cast<std::size_t>(order[q]);
     apply_impulse(m, x, order[q], lambda[2 * q], lambda[2 * q + 1]);
     m.friction_impulse[2 * i] = next[2 * q];
     m.friction_impulse[2 * i + 1] = next[2 * q + 1];
   }
   return true;
+}
+
+/// The block of `k` points of one tree at order positions [n, n + k): all at once while they
+/// stick (Gauss–Seidel converges slowly on points that nearly repeat each other, a tyre's two
+/// tread points, and on points the tree ties together, a humanoid's two feet: a loop through
+/// the floor). Those that would leave their bounds slide: each is
+/// solved for itself (Coulomb's law exactly), then the rest at once with them held, or each
+/// for itself if one of those slides too. Returns the largest slip change.
+double solve_block(Multibody::Impl& m, double* x, int n, int k, double kick_s) {
+  const unsigned all = (1u << k) - 1;
+  double change = 0;
+  unsigned outside = 0;
+  if (m.friction_block_factored[static_cast<std::size_t>(n)] &&
+      solve_members(m, x, n, k, all, kick_s, change, outside))
+    return change;
+  if (outside == 0) outside = all;  // W unusable: each point for itself
+  auto each = [&](unsigned points) {
+    for (int q = 0; q < k; ++q)
+      if (points & (1u << q))
+        change = std::max(
+            change, solve_point(m, x, m.friction_order[static_cast<std::size_t>(n + q)], kick_s));
+  };
+  each(outside);
+  const unsigned rest = all & ~outside;
+  if (rest == 0) return change;
+  double rest_change = 0;
+  unsigned sliding = 0;
+  if (solve_members(m, x, n, k, rest, kick_s, rest_change, sliding))
+    return std::max(change, rest_change);
+  each(rest);
+  return change;
 }
 
 }  // namespace
@@ -188,32 +260,33 @@ void build_friction_blocks(Multibody::Impl& m, int group) {
     const int k = m.friction_block_size[static_cast<std::size_t>(n)];
     if (k > 1) {
       const auto dim = static_cast<std::size_t>(2 * k);
-      double* L = m.friction_block_w.data() + 32 * static_cast<std::size_t>(n);
-      double* W = L + dim * dim;
+      double* W = m.friction_block_w.data() + kBlockRoom * static_cast<std::size_t>(n);
+      double* L = W + dim * dim;
       const int* order = m.friction_order.data() + n;
       const auto body = static_cast<std::size_t>(m.friction.points[order[0]].body);
       const int span = m.friction_u_end[body] - m.friction_u_begin[body];
+      const double* g[2 * kMaxBlockPoints];
+      const double* col[2 * kMaxBlockPoints];
+      for (std::size_t r = 0; r < dim; ++r) {
+        const std::size_t row = (2 * static_cast<std::size_t>(order[r / 2]) + r % 2) * stride;
+        g[r] = m.friction_g.data() + row;
+        col[r] = m.friction_effective_column.data() + row;
+      }
+      // Symmetric (W = G·M_eff⁻¹·Gᵀ): the upper triangle, mirrored.
       double largest = 0;
       for (std::size_t r = 0; r < dim; ++r)
-        for (std::size_t c = 0; c < dim; ++c) {
-          const double* g =
-              m.friction_g.data() + (2 * static_cast<std::size_t>(order[r / 2]) + r % 2) * stride;
-          const double* col = m.friction_effective_column.data() +
-                              (2 * static_cast<std::size_t>(order[c / 2]) + c % 2) * stride;
+        for (std::size_t c = r; c < dim; ++c) {
           double sum = 0;
           for (int e = 0; e < span; ++e)
-            sum += g[e] * col[e];
-          W[r * dim + c] = sum;
+            sum += g[r][e] * col[c][e];
+          W[r * dim + c] = W[c * dim + r] = sum;
           largest = std::max(largest, std::abs(sum));
         }
-      // Symmetric to rounding; a whisker on the diagonal for a block whose points repeat
-      // each other exactly (W singular).
+      std::copy_n(W, dim * dim, L);
       for (std::size_t r = 0; r < dim; ++r)
-        for (std::size_t c = 0; c < dim; ++c)
-          L[r * dim + c] =
-              0.5 * (W[r * dim + c] + W[c * dim + r]) + (r == c ? 1e-12 * largest : 0.0);
+        L[r * dim + r] += kBlockRegularisation * largest;
       m.friction_block_factored[static_cast<std::size_t>(n)] =
-          largest > 0 && common::cholesky_factor(L, 2 * k);
+          largest > 0 && common::cholesky_factor(L, static_cast<int>(dim));
     }
     n += std::max(1, k);
   }
@@ -222,18 +295,15 @@ void build_friction_blocks(Multibody::Impl& m, int group) {
 double sweep_contact_friction(Multibody::Impl& m, SimTK::Vector& u, int group, double kick_s) {
   double* x = u.updContiguousScalarData();  // (a State's u is contiguous)
   double largest = 0;
+  m.friction_sweep_slip = 0;
   const int first = m.friction_group_start[static_cast<std::size_t>(group)];
   const int last = m.friction_group_start[static_cast<std::size_t>(group) + 1];
   for (int n = first; n < last;) {
     const int k = std::max(1, m.friction_block_size[static_cast<std::size_t>(n)]);
-    double change = 0;
-    if (k > 1 && solve_block(m, x, n, k, kick_s, change)) {
-      largest = std::max(largest, change);
-    } else {
-      for (int q = n; q < n + k; ++q)
-        largest = std::max(
-            largest, solve_point(m, x, m.friction_order[static_cast<std::size_t>(q)], kick_s));
-    }
+    const double change =
+        k > 1 ? solve_block(m, x, n, k, kick_s)
+              : solve_point(m, x, m.friction_order[static_cast<std::size_t>(n)], kick_s);
+    largest = std::max(largest, change);
     n += k;
   }
   return largest;

@@ -297,12 +297,16 @@ void sweep_tree(Multibody::Impl& m, SimTK::State& s, std::size_t tree, int begin
 
 namespace {
 
-/// Contact friction's sweeps (contact_friction.cpp) at most, and the largest speed change at a
-/// point (m/s) below which they have converged.
+/// Contact friction's sweeps (friction_sweeps.cpp) at most per group and substep, over all
+/// its rounds, and the largest speed change at a point (m/s) below which they have converged.
 constexpr int kMaxFrictionSweeps = 64;
 /// Rounds of the points' sweeps and the tree's axis solve at most (solve_friction_group).
-constexpr int kMaxFrictionRounds = 16;
+constexpr int kMaxFrictionRounds = 8;
 constexpr double kSlipTolerance_m_s = 1e-9;
+/// ... plus this fraction of the largest slip a sweep met: points that slide (a body dragged
+/// over the floor on several corners) converge slowly, and a change of 1e-6 of their speed
+/// is none.
+constexpr double kRelativeSlipTolerance = 1e-6;
 
 /// Folds into friction group `group`'s columns the implicit response of tree t's drives that
 /// answer linearly now (every row within its bounds, no Coulomb friction on the axis): with h
@@ -393,12 +397,14 @@ void solve_friction_group(Multibody::Impl& m, SimTK::State& s, int group, int t,
                           double kick_s) {
   SimTK::Vector& u = s.updU();
   const bool with_axes = t >= 0 && begin != end;
-  for (int round = 0; round < kMaxFrictionRounds; ++round) {
+  int sweeps_left = kMaxFrictionSweeps;  // over all rounds: a bounded cost per substep
+  for (int round = 0; round < kMaxFrictionRounds && sweeps_left > 0; ++round) {
     const int coupled = with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s) : 0;
     if (!with_axes) uncoupled_friction(m, group);
     bool moved = false;
-    for (int sweep = 0; sweep < kMaxFrictionSweeps; ++sweep) {
-      if (sweep_contact_friction(m, u, group, kick_s) <= kSlipTolerance_m_s) break;
+    while (sweeps_left-- > 0) {
+      const double change = sweep_contact_friction(m, u, group, kick_s);
+      if (change <= kSlipTolerance_m_s + kRelativeSlipTolerance * m.friction_sweep_slip) break;
       moved = true;
     }
     if (!with_axes || (!moved && round > 0)) return;

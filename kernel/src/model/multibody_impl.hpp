@@ -282,12 +282,14 @@ struct Multibody::Impl {
   std::vector<double> friction_effective_column, friction_effective_w;
   std::vector<int> friction_linear;
   std::vector<double> friction_scale, friction_coupling, friction_rhs;
-  // Blocks: the points of one body next to each other in friction_order, up to 4, solved at
-  // once while they stick. Per order position: the size of the block starting there (0 inside
-  // one), whether its W was factored, and 32 numbers: its factor, then its W.
+  // Blocks: runs of a group's points in friction_order, up to kMaxBlockPoints, solved at once
+  // while they stick. Per order position: the size of the block starting there (0 inside
+  // one), whether its W was factored, and 64 numbers: its W and that factor; the scratch of its
+  // solve.
   std::vector<int> friction_block_size;
   std::vector<char> friction_block_factored;
   std::vector<double> friction_block_w, friction_block_rhs;
+  double friction_sweep_slip = 0;  // the last sweep's largest slip met (|v₁| + |v₂|, m/s)
   std::vector<double> friction_full_g, friction_full_column;  // one row over every speed
   SimTK::Vector friction_scratch;                             // Simbody's M^-1 of one row
   std::vector<int> friction_order, friction_group_start;
@@ -394,9 +396,8 @@ void prepare_drives(Multibody::Impl& m, const SimTK::State& s);
 /// the drives' mean over the tick is recorded for the axis torque signals.
 void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s);
 
-/// The most points of one body solved as a block (friction_sweeps.cpp; its factor and W take
-/// 8·k² ≤ 32·k numbers of friction_block_w).
-constexpr int kMaxBlockPoints = 4;
+/// The most points of one tree solved as a block (friction_sweeps.cpp).
+constexpr int kMaxBlockPoints = 8;
 /// Contact friction on jointed bodies (contact_friction.cpp). At load: each body's speed range
 /// and axis tree (after find_axis_trees).
 void find_friction_ranges(Multibody::Impl& m);
@@ -406,13 +407,13 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s);
 /// One Gauss–Seidel sweep over group `group`'s points at the kick's end speeds
 /// (friction_sweeps.cpp): each point's impulses (or a body's block's, while it sticks) solved
 /// for zero slip within κ times its bounds, the others held. Returns the largest speed change
-/// it made at a point (m/s).
+/// it made at a point (m/s); friction_sweep_slip, the largest slip it met.
 double sweep_contact_friction(Multibody::Impl& m, SimTK::Vector& u, int group, double kick_s);
 /// Group `group`'s points' columns and W as the sweeps use them, uncoupled: the raw ones,
 /// copied (copy_raw_friction) and their blocks built.
 void copy_raw_friction(Multibody::Impl& m, int group);
 void uncoupled_friction(Multibody::Impl& m, int group);
-/// The W of group `group`'s blocks from the columns the sweeps use, factored.
+/// The W of group `group`'s blocks from the columns the sweeps use.
 void build_friction_blocks(Multibody::Impl& m, int group);
 /// The axis tree of friction group `group` (-1: its tree has no solved axes).
 int friction_group_tree(const Multibody::Impl& m, int group);
