@@ -4,6 +4,7 @@
 # SimTwo projects' control.pas scripts (docs/scripting.md); binutils' addr2line names the line
 # of a script's run-time error. libavcodec (with libavformat and libswscale) writes s2sim-view's
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
+# libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
 set -euo pipefail
 
 packages=(
@@ -19,6 +20,7 @@ packages=(
   python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed
   fpc binutils
   libavcodec-dev libavformat-dev libswscale-dev
+  libsodium-dev
 )
 
 missing=()

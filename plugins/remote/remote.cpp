@@ -9,6 +9,7 @@
 // restoring a snapshot must not roll a client's sequence numbers back. The counters are
 // published signals (kernel memory).
 #define S2SIM_REMOTE_NO_CLIENT
+#include "datagram_key.hpp"
 #include "include/s2sim_remote.h"
 #include "kinds.hpp"
 #include "served_set.hpp"
@@ -40,10 +41,9 @@ class Remote final : public Component {
   // timeout, so the client of an open session is told.
   ~Remote() override {
     if (has_client_ && !end_.empty()) {
-      s2sim_remote_write_header(end_.data(), S2SIM_REMOTE_END, last_sequence_,
-                                static_cast<std::uint32_t>(end_.size() - 16));
+      s2sim_remote_write_header(end_.data(), S2SIM_REMOTE_END, last_sequence_, payload_size(end_));
       s2sim_remote_put_f64(end_.data() + 16, last_time_s_);
-      socket_.send(end_.data(), end_.size(), client_);
+      send(end_, client_);
     }
   }
 
@@ -54,8 +54,15 @@ class Remote final : public Component {
     timeout_s_ = p.number("timeout_s", 0.5, Range::positive());
     wait_s_ = p.number("wait_s", 10.0, Range::positive());
     const std::string address = p.text("address", "127.0.0.1");
-    socket_.bind(address, p.integer_in("port", S2SIM_REMOTE_DEFAULT_PORT, 0, 65535),
-                 p.boolean("allow_remote", false), p.where("address"));
+    const bool allow_remote = p.boolean("allow_remote", false);
+    if (p.has("key_file")) key_.load(p.text("key_file"), p.where("key_file"));
+    if (allow_remote && !key_.present())
+      throw Error(ErrorKind::scene, p.where("allow_remote"),
+                  "allow_remote='1' needs key_file='...' (a shared key of at least " +
+                      std::to_string(DatagramKey::kMinKeyBytes) +
+                      " bytes): without one, anyone on the network could drive the robot");
+    socket_.bind(address, p.integer_in("port", S2SIM_REMOTE_DEFAULT_PORT, 0, 65535), allow_remote,
+                 p.where("address"));
     if (p.has("period_s")) {
       const double period = p.number("period_s", Range::positive());
       ctx.set_schedule(Stage::control, period);
@@ -66,6 +73,7 @@ class Remote final : public Component {
     dropped_ = ctx.declare_signal("dropped", "1");
     stale_ = ctx.declare_signal("stale", "1");
     foreign_ = ctx.declare_signal("foreign", "1");
+    unauthenticated_ = ctx.declare_signal("unauthenticated", "1");
     link_ = ctx.declare_signal("link", "1");
     timeouts_ = ctx.declare_signal("timeouts", "1");
 
@@ -76,15 +84,17 @@ class Remote final : public Component {
         "busy: this link serves another client; try again after it is "
         "silent for " +
         std::to_string(lockstep_ ? wait_s_ : timeout_s_) + " s";
-    busy_.assign(S2SIM_REMOTE_HEADER_SIZE + busy.size(), 0);
+    const std::size_t tag = key_.tag_size();
+    busy_.assign(S2SIM_REMOTE_HEADER_SIZE + busy.size() + tag, 0);
     std::copy(busy.begin(), busy.end(), busy_.begin() + S2SIM_REMOTE_HEADER_SIZE);
-    signals_packet_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 * (1 + served_.signals.size()), 0);
+    signals_packet_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 * (1 + served_.signals.size()) + tag, 0);
     const std::string end = "end: the simulation ended; no more replies will come";
-    end_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 + end.size(), 0);
+    end_.assign(S2SIM_REMOTE_HEADER_SIZE + 8 + end.size() + tag, 0);
     std::copy(end.begin(), end.end(), end_.begin() + S2SIM_REMOTE_HEADER_SIZE + 8);
     build_description(-0.12345678901234567);  // the size check, with a period as long as any
-    const std::size_t largest = std::max({describe_.size(), signals_packet_.size(),
-                                          S2SIM_REMOTE_HEADER_SIZE + 8 * served_.inputs.size()});
+    const std::size_t largest =
+        std::max({describe_.size(), signals_packet_.size(),
+                  S2SIM_REMOTE_HEADER_SIZE + 8 * served_.inputs.size() + tag});
     if (largest > S2SIM_REMOTE_MAX_DATAGRAM)
       throw Error(ErrorKind::scene, p.where("signals"),
                   "the served inputs and signals do not fit in one datagram (" +
@@ -92,10 +102,11 @@ class Remote final : public Component {
                       std::to_string(S2SIM_REMOTE_MAX_DATAGRAM) +
                       "): narrow them with inputs='...' and signals='...' patterns");
     if (p.boolean("announce", true))
-      std::fprintf(stderr, "s2sim remote: %s serves %zu inputs and %zu signals on udp %s:%d (%s)\n",
+      std::fprintf(stderr,
+                   "s2sim remote: %s serves %zu inputs and %zu signals on udp %s:%d (%s%s)\n",
                    std::string(ctx.signal_prefix()).c_str(), served_.inputs.size(),
                    served_.signals.size(), address.c_str(), socket_.port(),
-                   lockstep_ ? "lock-step" : "real-time");
+                   lockstep_ ? "lock-step" : "real-time", key_.present() ? ", keyed" : "");
   }
 
   // At load and at reset, outside the step loop: the one place the description is rebuilt.
@@ -124,7 +135,7 @@ class Remote final : public Component {
       text += "input " + in.name + " " + in.unit + "\n";
     for (const auto& s : served_.signals)
       text += "signal " + s.name + " " + s.unit + "\n";
-    describe_.assign(S2SIM_REMOTE_HEADER_SIZE + text.size(), 0);
+    describe_.assign(S2SIM_REMOTE_HEADER_SIZE + text.size() + key_.tag_size(), 0);
     std::copy(text.begin(), text.end(), describe_.begin() + S2SIM_REMOTE_HEADER_SIZE);
   }
 
@@ -191,16 +202,22 @@ class Remote final : public Component {
 
   Got handle(StepContext& ctx, long size, const sockaddr_in& from, Clock::time_point now) {
     s2sim_remote_header h{};
-    if (static_cast<std::size_t>(size) >= rx_.size() ||  // oversized (cut by the receive)
-        s2sim_remote_read_header(rx_.data(), static_cast<std::size_t>(size), &h) != 0)
+    if (static_cast<std::size_t>(size) >= rx_.size()) return drop(ctx);  // oversized (cut)
+    if (key_.present()) {  // before anything else: an unsigned datagram is nobody's
+      if (!key_.verify(rx_.data(), static_cast<std::size_t>(size))) {
+        count(ctx, unauthenticated_);
+        return drop(ctx);
+      }
+      size -= static_cast<long>(DatagramKey::kTagSize);
+    }
+    if (s2sim_remote_read_header(rx_.data(), static_cast<std::size_t>(size), &h) != 0)
       return drop(ctx);
     const bool request = h.type == S2SIM_REMOTE_HELLO || h.type == S2SIM_REMOTE_INPUTS ||
                          h.type == S2SIM_REMOTE_OBSERVE || h.type == S2SIM_REMOTE_BYE;
     if (request && !may_speak(from, now)) {
       // Another sender while a client holds the session: told so, counted, never applied.
-      s2sim_remote_write_header(busy_.data(), S2SIM_REMOTE_BUSY, h.sequence,
-                                static_cast<std::uint32_t>(busy_.size() - 16));
-      socket_.send(busy_.data(), busy_.size(), from);
+      s2sim_remote_write_header(busy_.data(), S2SIM_REMOTE_BUSY, h.sequence, payload_size(busy_));
+      send(busy_, from);
       count(ctx, foreign_);
       return drop(ctx);
     }
@@ -214,8 +231,8 @@ class Remote final : public Component {
         has_client_ = true;
         last_sequence_ = h.sequence;
         s2sim_remote_write_header(describe_.data(), S2SIM_REMOTE_DESCRIBE, h.sequence,
-                                  static_cast<std::uint32_t>(describe_.size() - 16));
-        socket_.send(describe_.data(), describe_.size(), from);
+                                  payload_size(describe_));
+        send(describe_, from);
         count(ctx, received_);
         return Got::hello;
       case S2SIM_REMOTE_BYE:  // the client leaves: the session is free (the inputs stay)
@@ -226,7 +243,7 @@ class Remote final : public Component {
       case S2SIM_REMOTE_OBSERVE:
         if (h.length != 0) return drop(ctx);
         fill_signals(ctx, h.sequence);
-        socket_.send(signals_packet_.data(), signals_packet_.size(), from);
+        send(signals_packet_, from);
         count(ctx, received_);
         return Got::observe;
       case S2SIM_REMOTE_INPUTS: {
@@ -236,7 +253,7 @@ class Remote final : public Component {
         if (has_client_ && h.sequence <= last_sequence_) {
           if (lockstep_ && h.sequence == last_sequence_ && h.sequence == reply_sequence_) {
             // The client did not get our reply and asks again: answer, do not advance twice.
-            socket_.send(signals_packet_.data(), signals_packet_.size(), from);
+            send(signals_packet_, from);
             return Got::repeat;
           }
           count(ctx, stale_);
@@ -268,15 +285,24 @@ class Remote final : public Component {
 
   void fill_signals(StepContext& ctx, std::uint32_t sequence) {
     unsigned char* out = signals_packet_.data();
-    s2sim_remote_write_header(out, S2SIM_REMOTE_SIGNALS, sequence,
-                              static_cast<std::uint32_t>(signals_packet_.size() - 16));
+    s2sim_remote_write_header(out, S2SIM_REMOTE_SIGNALS, sequence, payload_size(signals_packet_));
     s2sim_remote_put_f64(out + 16, ctx.time_s());
     for (std::size_t i = 0; i < served_.readers.size(); ++i)
       s2sim_remote_put_f64(out + 24 + 8 * i, ctx.signal(served_.readers[i]));
   }
   void send_signals(StepContext& ctx, std::uint32_t sequence) {
     fill_signals(ctx, sequence);
-    socket_.send(signals_packet_.data(), signals_packet_.size(), client_);
+    send(signals_packet_, client_);
+  }
+
+  /// A packet's payload bytes: all but its header and its tag.
+  std::uint32_t payload_size(const std::vector<unsigned char>& packet) const {
+    return static_cast<std::uint32_t>(packet.size() - S2SIM_REMOTE_HEADER_SIZE - key_.tag_size());
+  }
+  /// Sends a packet laid out with room for its tag, signed first when the link has a key.
+  void send(std::vector<unsigned char>& packet, const sockaddr_in& to) {
+    if (key_.present()) key_.seal(packet.data(), packet.size() - DatagramKey::kTagSize);
+    socket_.send(packet.data(), packet.size(), to);
   }
 
   Got drop(StepContext& ctx) {
@@ -289,7 +315,8 @@ class Remote final : public Component {
   UdpSocket socket_;
   bool lockstep_ = false;
   double timeout_s_ = 0.5, wait_s_ = 10.0;
-  SignalHandle port_, received_, dropped_, stale_, foreign_, link_, timeouts_;
+  SignalHandle port_, received_, dropped_, stale_, foreign_, unauthenticated_, link_, timeouts_;
+  DatagramKey key_;
   std::vector<unsigned char> rx_, signals_packet_, describe_;
 
   // The connection (see the file comment).

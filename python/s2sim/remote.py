@@ -26,6 +26,8 @@ raises ``RunEnded`` (a ``RemoteError``), so a loop ``while True: link.step(...)`
         pass
 """
 
+import hashlib
+import hmac
 import socket
 import struct
 
@@ -37,6 +39,25 @@ DEFAULT_PORT = 9808
 MAX_DATAGRAM = 65507
 
 HELLO, DESCRIBE, INPUTS, OBSERVE, SIGNALS, BUSY, BYE, END = 1, 2, 3, 4, 5, 6, 7, 8
+TAG_SIZE = 32  # HMAC-SHA256 after the payload, on a link with a key_file
+MIN_KEY_BYTES = 16
+
+
+def read_key(path):
+    """The key of a key file as the link reads it: its bytes less one trailing newline."""
+    with open(path, "rb") as f:
+        key = f.read()
+    if key.endswith(b"\n"):
+        key = key[:-1]
+    if len(key) < MIN_KEY_BYTES:
+        raise ValueError("the key file '%s' holds %d bytes; a key needs at least %d" %
+                         (path, len(key), MIN_KEY_BYTES))
+    return key
+
+
+def tag(key, data):
+    """The HMAC-SHA256 of ``data`` with ``key``: what a keyed link appends to each datagram."""
+    return hmac.new(key, data, hashlib.sha256).digest()
 
 
 class RemoteError(RuntimeError):
@@ -52,17 +73,24 @@ class RunEnded(RemoteError):
         self.time = time
 
 
-def pack(msg_type, sequence, payload=b""):
-    """One datagram: the header, then the payload bytes."""
-    return HEADER.pack(MAGIC, VERSION, msg_type, sequence & 0xFFFFFFFF, len(payload)) + payload
+def pack(msg_type, sequence, payload=b"", key=None):
+    """One datagram: the header, then the payload bytes (then their tag, with a key)."""
+    datagram = HEADER.pack(MAGIC, VERSION, msg_type, sequence & 0xFFFFFFFF, len(payload)) + payload
+    return datagram + tag(key, datagram) if key else datagram
 
 
 def pack_doubles(values):
     return struct.pack("<%dd" % len(values), *values)
 
 
-def unpack(datagram):
-    """(type, sequence, payload) of a well-formed datagram, else None."""
+def unpack(datagram, key=None):
+    """(type, sequence, payload) of a well-formed datagram (whose tag is right, with a key),
+    else None."""
+    if key:
+        if len(datagram) < TAG_SIZE or not hmac.compare_digest(
+                tag(key, datagram[:-TAG_SIZE]), datagram[-TAG_SIZE:]):
+            return None
+        datagram = datagram[:-TAG_SIZE]
     if len(datagram) < HEADER_SIZE:
         return None
     magic, version, msg_type, sequence, length = HEADER.unpack_from(datagram)
@@ -97,10 +125,13 @@ class Description:
 
 
 class Client:
-    """A UDP client of one ``remote`` controller at ``host``:``port``."""
+    """A UDP client of one ``remote`` controller at ``host``:``port``. ``key`` (bytes, or
+    ``read_key(path)``) signs every request and checks every reply, for a link whose scene
+    sets ``key_file``."""
 
-    def __init__(self, port=DEFAULT_PORT, host="127.0.0.1", timeout=5.0):
+    def __init__(self, port=DEFAULT_PORT, host="127.0.0.1", timeout=5.0, key=None):
         self.address = (host, port)
+        self.key = key
         self.timeout = timeout
         self.sequence = 0
         self.description = None
@@ -122,7 +153,7 @@ class Client:
 
     def _request(self, msg_type, payload=b""):
         self.sequence += 1
-        self.socket.sendto(pack(msg_type, self.sequence, payload), self.address)
+        self.socket.sendto(pack(msg_type, self.sequence, payload, self.key), self.address)
         return self.sequence
 
     def _wait(self, want_type, sequence, timeout):
@@ -133,7 +164,7 @@ class Client:
             except socket.timeout:
                 raise RemoteError("no reply from %s:%d within %.3g s" %
                                   (self.address + (self.socket.gettimeout(),))) from None
-            message = unpack(datagram)
+            message = unpack(datagram, self.key)
             if message is None:
                 continue
             msg_type, seq, payload = message
@@ -186,7 +217,7 @@ class Client:
             except RemoteError:
                 if attempt == retries:
                     raise
-                self.socket.sendto(pack(INPUTS, seq, payload), self.address)
+                self.socket.sendto(pack(INPUTS, seq, payload, self.key), self.address)
 
     def receive(self, timeout=None):
         """Real-time: the newest SIGNALS datagram waiting (or the next one to come)."""
@@ -194,7 +225,7 @@ class Client:
         self.socket.setblocking(False)
         try:  # drain: keep only the newest
             while True:
-                message = unpack(self.socket.recv(MAX_DATAGRAM + 1))
+                message = unpack(self.socket.recv(MAX_DATAGRAM + 1), self.key)
                 if message and message[0] == SIGNALS:
                     payload = message[2]
                 elif message and message[0] == END:

@@ -233,8 +233,10 @@ def test_non_local_address_is_refused_unless_allowed(tmp_path):
     with pytest.raises(s2sim.SceneError) as e:
         s2sim.Simulation(str(tmp_path))
     assert e.value.attribute == "address" and "allow_remote" in e.value.message
-    (tmp_path / "scene.xml").write_text(
-        scene.replace("announce='0'", "announce='0' address='0.0.0.0' allow_remote='1'"))
+    (tmp_path / "link.key").write_bytes(b"a key of at least sixteen bytes")
+    (tmp_path / "scene.xml").write_text(scene.replace(
+        "announce='0'", "announce='0' address='0.0.0.0' allow_remote='1' key_file='%s'" %
+        (tmp_path / "link.key")))
     s2sim.Simulation(str(tmp_path))
 
 
