@@ -244,6 +244,9 @@ void ScriptController::configure(ConfigureContext& ctx) {
 
   // UDP listens from the start, as SimTwo's, when the script names a UDP routine; otherwise
   // it opens nothing (or at a first call the text did not show: udp()).
+  // The scene's `<s2sim><udp>` (loopback and 9808 by default); the environment overrides it.
+  udp_address_ = p.text("udp_address", udp_address_);
+  udp_port_ = static_cast<int>(p.integer("udp_port", udp_port_));
   if (const char* env = std::getenv("S2SIM_UDP_PORT"); env && *env) udp_port_ = std::atoi(env);
   if (const char* env = std::getenv("S2SIM_UDP_ADDRESS"); env && *env) udp_address_ = env;
   std::string why;

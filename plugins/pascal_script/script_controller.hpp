@@ -233,8 +233,8 @@ class ScriptController final : public Component {
   std::vector<int> chart_series_count_;
   std::string hud_;
   UdpPort udp_;
-  std::string udp_address_ = "127.0.0.1";  // S2SIM_UDP_ADDRESS
-  int udp_port_ = 9808;                    // S2SIM_UDP_PORT
+  std::string udp_address_ = "127.0.0.1";  // <s2sim><udp address>, S2SIM_UDP_ADDRESS
+  int udp_port_ = 9808;                    // <s2sim><udp port>, S2SIM_UDP_PORT
   SerialPort serial_;
   ModbusServer modbus_;
   bool warned_unavailable_ = false;

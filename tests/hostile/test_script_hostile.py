@@ -158,6 +158,28 @@ def test_a_script_that_reads_udp_listens_on_loopback_only(run_script):
     assert listens_on(port, proc) == {"127.0.0.1"}
 
 
+def test_the_scene_says_where_the_script_listens(tmp_path):
+    # Before: only S2SIM_UDP_ADDRESS could move the script's socket off loopback, and a scene
+    # could not say it.
+    port = free_udp_port()
+    scene = tmp_path / "scene"
+    shutil.copytree(SCENE, scene)
+    xml = (scene / "scene.xml").read_text()
+    assert "<s2sim>" not in xml
+    (scene / "scene.xml").write_text(xml.replace(
+        "<scene>", "<scene>\n  <s2sim><udp address='127.0.0.2' port='%d'/></s2sim>" % port, 1))
+    script = tmp_path / "control.pas"
+    script.write_text("procedure Control;\nvar s: string;\nbegin\n  s := ReadUDPData;\nend;\n" +
+                      INITIALIZE)
+    env = dict(os.environ, S2SIM_PASCAL_CACHE=str(tmp_path / "cache"))
+    for name in ("S2SIM_UDP_PORT", "S2SIM_UDP_ADDRESS", "S2SIM_COM_PORT"):
+        env.pop(name, None)
+    proc = subprocess.Popen([RUNNER, str(scene), "--script", str(script), "--duration", "1000",
+                             "--quiet", "--no-timing"], env=env, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    assert listens_on(port, proc) == {"127.0.0.2"}
+
+
 def test_a_raise_is_located_on_its_own_line(run_script):
     # Before: a raise on line 8 was reported at line 4, the statement before it.
     text = ("var n: integer;\n"                               # 1

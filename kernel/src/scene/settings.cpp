@@ -5,6 +5,8 @@
 #include "scene/limits.hpp"
 #include "scene/loading.hpp"
 
+#include <arpa/inet.h>
+
 #include <charconv>
 #include <fstream>
 #include <limits>
@@ -151,6 +153,19 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
     } else if (c.name == "walls") {
       s.world_walls = r.boolean(c, "active", s.world_walls);
       positive(c, "distance", s.world_wall_distance_m, 1);
+      any = true;
+    } else if (c.name == "udp") {
+      if (r.has(c, "address")) {
+        const std::string address = r.text(c, "address", "");
+        in_addr parsed{};
+        if (::inet_pton(AF_INET, address.c_str(), &parsed) != 1)
+          r.fail(c, "address", "must be a numeric IPv4 address, got '" + address + "'");
+        s.script_udp_address = address;
+      }
+      const auto port = r.integer(c, "port", s.script_udp_port);
+      if (port < 0 || port > 65535)
+        r.fail(c, "port", "must be an integer from 0 to 65535, got " + std::to_string(port));
+      s.script_udp_port = static_cast<int>(port);
       any = true;
     }
   }

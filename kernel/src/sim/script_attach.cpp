@@ -75,6 +75,8 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   set("file", file.string());
   set("found_by", found_by);
   set("period_s", exact_decimal(scene.settings.control_period_s));
+  set("udp_address", scene.settings.script_udp_address);
+  set("udp_port", std::to_string(scene.settings.script_udp_port));
 
   set("robots", std::to_string(scene.robots.size()));
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {

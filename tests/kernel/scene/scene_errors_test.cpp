@@ -350,6 +350,13 @@ TEST(SceneErrors, S2SimSettingsAreValidated) {
   EXPECT_THAT(e.message(), HasSubstr("must be > 0, got -1"));
   e = load_error(temp_scene("frac", kTwoSolids, "<s2sim><physics substeps='2.5'/></s2sim>"));
   EXPECT_THAT(e.message(), HasSubstr("integer"));
+  e = load_error(temp_scene("udp", kTwoSolids, "<s2sim><udp address='localhost'/></s2sim>"));
+  EXPECT_EQ(e.where().element, "scene/s2sim/udp");
+  EXPECT_EQ(e.where().attribute, "address");
+  EXPECT_THAT(e.message(), HasSubstr("numeric IPv4 address, got 'localhost'"));
+  e = load_error(temp_scene("udp_port", kTwoSolids, "<s2sim><udp port='70000'/></s2sim>"));
+  EXPECT_EQ(e.where().attribute, "port");
+  EXPECT_THAT(e.message(), HasSubstr("from 0 to 65535, got 70000"));
 }
 
 TEST(SceneErrors, WrongRootOfAReferencedFile) {

@@ -551,6 +551,8 @@ TEST(SceneLoader, S2SimSettingsOverrideTheIni) {
   EXPECT_DOUBLE_EQ(st.control_period_s, 0.02);
   EXPECT_DOUBLE_EQ(st.default_friction, 0.8);
   EXPECT_DOUBLE_EQ(st.contact_recovery_speed_m_s, 0.2);
+  EXPECT_EQ(st.script_udp_address, "0.0.0.0");
+  EXPECT_EQ(st.script_udp_port, 9900);
   EXPECT_DOUBLE_EQ(st.erp, 0.3);
   EXPECT_DOUBLE_EQ(st.cfm, 1e-4);
   EXPECT_TRUE(near_vec(st.wind_m_s, {1, -2, 0.5}));
@@ -572,6 +574,8 @@ TEST(SceneLoader, SettingsDefaultsWithoutIni) {
   EXPECT_DOUBLE_EQ(s.settings.control_period_s, 0.04);
   EXPECT_DOUBLE_EQ(s.settings.default_friction, 0.95);
   EXPECT_DOUBLE_EQ(s.settings.contact_recovery_speed_m_s, 0.3);
+  EXPECT_EQ(s.settings.script_udp_address, "127.0.0.1");
+  EXPECT_EQ(s.settings.script_udp_port, 9808);
   EXPECT_EQ(s.settings.substeps, 1);
 }
 

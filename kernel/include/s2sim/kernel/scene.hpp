@@ -343,6 +343,10 @@ struct Settings {
   /// SimTwo's for a SimTwo file (no `<s2sim>` element), S2Sim's once the scene has an
   /// `<s2sim>` element; `<s2sim><control semantics>` says it explicitly.
   ControlSemantics control_semantics = ControlSemantics::simtwo;
+  /// Where a SimTwo script's UDP socket listens (its UDP routines, docs/scripting.md):
+  /// loopback unless `<s2sim><udp address>` says otherwise; SimTwo's port 9808.
+  std::string script_udp_address = "127.0.0.1";
+  int script_udp_port = 9808;
   std::string source;  ///< which file the values came from ("defaults" when none)
 };
 
