@@ -209,11 +209,57 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   }
   for (auto& d : drawables_)
     std::copy(d.item.color, d.item.color + 4, d.scene_color);
+  std::vector<int> thing_of_body(scene.bodies.size() + 1, -1);
+  for (std::size_t t = 0; t < scene.things.size(); ++t)
+    thing_of_body[static_cast<std::size_t>(scene.things[t]) + 1] = static_cast<int>(t);
+  for (std::size_t k = 0; k < scene.runtime_things.size(); ++k)
+    thing_of_body[static_cast<std::size_t>(scene.runtime_things[k]) + 1] =
+        static_cast<int>(scene.things.size() + k);
+  for (auto& d : drawables_)
+    if (d.kind == Drawable::Kind::solid || d.kind == Drawable::Kind::shell)
+      d.thing = thing_of_body[static_cast<std::size_t>(d.body)];
+}
+
+void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
+  const ThingSpec& spec = thing.spec;
+  const Vec3f size = to_f(spec.size_m);
+  switch (spec.shape) {
+    case ThingShape::box:
+      d.item.mesh = box_;
+      d.item.coarse_mesh = -1;
+      d.local = scale_matrix(size);
+      d.box_min = {-0.5f, -0.5f, -0.5f};
+      d.box_max = {0.5f, 0.5f, 0.5f};
+      break;
+    case ThingShape::sphere:
+      d.item.mesh = sphere_;
+      d.item.coarse_mesh = sphere_coarse_;
+      d.local = scale_matrix({size.x, size.x, size.x});
+      d.box_min = {-1, -1, -1};
+      d.box_max = {1, 1, 1};
+      break;
+    case ThingShape::cylinder:
+      d.item.mesh = cylinder_;
+      d.item.coarse_mesh = cylinder_coarse_;
+      d.local = scale_matrix({size.x, size.x, size.z});
+      d.box_min = {-1, -1, -0.5f};
+      d.box_max = {1, 1, 0.5f};
+      break;
+  }
+  for (int k = 0; k < 3; ++k)
+    d.scene_color[k] = static_cast<float>(spec.rgb[k]);
+  d.scene_color[3] = 1;
 }
 
 void SceneDrawables::update(const Simulation& sim) {
   const Annotations& notes = sim.annotations();
+  const std::vector<ThingView>& things = sim.things();
   for (auto& d : drawables_) {
+    if (d.thing >= 0) {
+      const ThingView& thing = things[static_cast<std::size_t>(d.thing)];
+      d.hidden = !thing.present;
+      if (thing.added && thing.present) take_thing_shape(d, thing);
+    }
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
     if (d.kind != Drawable::Kind::solid) continue;
     const Annotations::BodyColor* painted =
@@ -228,6 +274,7 @@ void SceneDrawables::update(const Simulation& sim) {
 const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int selected_body) {
   items_.clear();
   for (const auto& d : drawables_) {
+    if (d.hidden) continue;
     if (d.kind == Drawable::Kind::beam && !beams) continue;
     if (d.kind == Drawable::Kind::joint && !joints) continue;
     items_.push_back(d.item);
@@ -243,7 +290,7 @@ bool SceneDrawables::bounds(const scene::Scene& scene, int robot, Vec3f& lo, Vec
   bool any = false;
   for (const auto& d : drawables_) {
     using K = Drawable::Kind;
-    if (d.kind != K::solid && d.kind != K::shell && d.kind != K::obstacle) continue;
+    if (d.hidden || (d.kind != K::solid && d.kind != K::shell && d.kind != K::obstacle)) continue;
     if (robot >= 0 && (d.body <= 0 || scene.bodies[d.body - 1].robot != robot)) continue;
     for (int corner = 0; corner < 8; ++corner) {
       const Vec3f p = d.item.model.transform_point({corner & 1 ? d.box_max.x : d.box_min.x,
@@ -261,7 +308,7 @@ int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& dis
   int best = -1;
   float best_t = std::numeric_limits<float>::max();
   for (const auto& d : drawables_) {
-    if (d.kind == Drawable::Kind::beam || d.kind == Drawable::Kind::track) continue;
+    if (d.hidden || d.kind == Drawable::Kind::beam || d.kind == Drawable::Kind::track) continue;
     // Slab test in mesh space, where the bounds are an axis-aligned box.
     const Mat4 inv = inverse(d.item.model);
     const Vec3f o = inv.transform_point(origin);

@@ -22,6 +22,8 @@ struct Drawable {
   Vec3f box_max{0.5f, 0.5f, 0.5f};
   DrawItem item;                                 ///< model is rewritten every frame
   float scene_color[4] = {0.5f, 0.5f, 0.5f, 1};  ///< the scene's; a script may repaint a solid
+  int thing = -1;       ///< its body's index in Simulation::things(), -1 for other bodies
+  bool hidden = false;  ///< a deleted thing, or a spare body no thing holds
 };
 
 class SceneDrawables {
@@ -50,6 +52,9 @@ class SceneDrawables {
   const std::vector<Drawable>& drawables() const { return drawables_; }
 
  private:
+  /// A thing added while running takes its primitive, size and colour from its spec.
+  void take_thing_shape(Drawable& d, const ThingView& thing);
+
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame
   int box_ = -1, cylinder_ = -1, sphere_ = -1, cylinder_coarse_ = -1, sphere_coarse_ = -1;

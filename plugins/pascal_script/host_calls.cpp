@@ -502,6 +502,12 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetShellPos:
     case HostFn::GetShellColor:
       return call_bodies(fn, a, n, s);
+    case HostFn::AddThingBox:
+    case HostFn::AddThingSphere:
+    case HostFn::AddThingCylinder:
+    case HostFn::DeleteThing:
+    case HostFn::ClearThings:
+      return call_things(fn, a, n, s);
     case HostFn::ChartSeriesSetCount:
     case HostFn::ChartSeriesSetColor:
     case HostFn::ChartSeriesClear:

@@ -70,6 +70,11 @@
   X(GetThingColor) \
   X(GetObstaclePos) \
   X(AddOBstacleBox) \
+  X(AddThingBox) \
+  X(AddThingSphere) \
+  X(AddThingCylinder) \
+  X(DeleteThing) \
+  X(ClearThings) \
   X(ClearObstacles) \
   X(ChartSeriesSetCount) \
   X(ChartSeriesSetColor) \

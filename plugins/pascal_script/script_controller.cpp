@@ -168,6 +168,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
     th.look = read_look(p, tk);
     things_.push_back(th);
   }
+  things_loaded_ = things_;
   for (std::int64_t o = 0, n = p.integer("obstacles"); o < n; ++o) {
     const std::string ok = "obstacle_" + std::to_string(o) + "_";
     ObstacleRef ob;
@@ -290,6 +291,7 @@ void ScriptController::initialize(StepContext& ctx) {
       restore(sd.look);
       sd.tag.clear();
     }
+  things_ = things_loaded_;  // the kernel's reset removed the things added and put back the rest
   for (auto& th : things_)
     restore(th.look);
   chart_series_count_.assign(kMaxCharts, 0);

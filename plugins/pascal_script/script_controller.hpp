@@ -151,6 +151,8 @@ class ScriptController final : public Component {
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
   /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
+  /// Things added and deleted while running (host_things.cpp).
+  double call_things(HostFn fn, const double* a, int n, const std::string& s);
   /// Springs, friction, controller gains and modes, the energy meter (host_axes.cpp).
   double call_axes(HostFn fn, const double* a, int n, const std::string& s);
   /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).
@@ -191,6 +193,8 @@ class ScriptController final : public Component {
   std::vector<RobotRef> robots_;
   std::vector<SensorRef> sensors_;  // SimTwo's global list
   std::vector<ThingRef> things_;
+  /// The scene's things as loaded: what SimTwo's list holds again at every reset.
+  std::vector<ThingRef> things_loaded_;
   std::vector<ObstacleRef> obstacles_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;

@@ -110,18 +110,19 @@ PYBIND11_MODULE(_s2sim, m) {
                                "A loaded scene ready to step (docs/python.md). Simulation(scene, "
                                "seed=1, physics_step=None, substeps=None, defines={}, "
                                "plugin_path=[], threads=1, simbody_dynamics=False, run_ahead=True, "
-                               "check_dynamics=False).");
+                               "check_dynamics=False, runtime_things=None).");
   bind_state(simulation);
   bind_queries(simulation);
   simulation
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,
-                    const std::vector<std::filesystem::path>&, int, bool, bool, bool>(),
+                    const std::vector<std::filesystem::path>&, int, bool, bool, bool,
+                    std::optional<int>>(),
            py::arg("scene"), py::arg("seed") = 1, py::arg("physics_step") = py::none(),
            py::arg("substeps") = py::none(), py::arg("defines") = std::map<std::string, double>{},
            py::arg("plugin_path") = std::vector<std::filesystem::path>{}, py::arg("threads") = 1,
            py::arg("simbody_dynamics") = false, py::arg("run_ahead") = true,
-           py::arg("check_dynamics") = false)
+           py::arg("check_dynamics") = false, py::arg("runtime_things") = py::none())
       .def("step", &PySimulation::step, py::arg("n") = 1,
            "Advances n ticks (physics steps); the GIL is released meanwhile.")
       .def("run_until", &PySimulation::run_until, py::arg("t"),

@@ -42,8 +42,10 @@ class PySimulation {
                std::optional<double> physics_step_s, std::optional<int> substeps,
                const std::map<std::string, double>& defines,
                const std::vector<std::filesystem::path>& plugin_path, int threads,
-               bool simbody_dynamics, bool run_ahead, bool check_dynamics) {
+               bool simbody_dynamics, bool run_ahead, bool check_dynamics,
+               std::optional<int> runtime_things) {
     SimulationOptions options;
+    options.runtime_things = runtime_things;
     options.seed = seed;
     options.threads = threads;
     options.run_ahead = run_ahead;

@@ -336,7 +336,74 @@ void bind_state(PySimulationClass& cls) {
           py::arg("body"), py::arg("position"), py::arg("rotation") = py::none(),
           "Moves a thing or a robot's root body (by name or index; robots/<robot> is its main "
           "body) to position [m] with rotation (3x3, body to world; None keeps the current "
-          "one), at rest. Time does not change.");
+          "one), at rest. Time does not change.")
+      .def(
+          "add_thing",
+          [](PySimulation& s, const std::string& shape, const py::object& size, double mass,
+             const py::object& position, const py::object& rotation, const py::object& color,
+             const std::string& id) {
+            ThingSpec spec;
+            if (shape == "box") {
+              spec.shape = ThingShape::box;
+            } else if (shape == "sphere") {
+              spec.shape = ThingShape::sphere;
+            } else if (shape == "cylinder") {
+              spec.shape = ThingShape::cylinder;
+            } else {
+              throw Error(
+                  ErrorKind::usage,
+                  "add_thing: shape must be 'box', 'sphere' or 'cylinder', got '" + shape + "'");
+            }
+            const std::vector<double> sizes =
+                real_array(size,
+                           spec.shape == ThingShape::box      ? 3
+                           : spec.shape == ThingShape::sphere ? 1
+                                                              : 2,
+                           "add_thing: size", "size",
+                           [](std::size_t i) { return "size[" + std::to_string(i) + "]"; });
+            if (spec.shape == ThingShape::box)
+              spec.size_m = {sizes[0], sizes[1], sizes[2]};
+            else if (spec.shape == ThingShape::sphere)
+              spec.size_m = {sizes[0], sizes[0], sizes[0]};
+            else
+              spec.size_m = {sizes[0], sizes[0], sizes[1]};
+            spec.mass_kg = mass;
+            spec.pose.position = vec3_of(position, "add_thing: position");
+            if (!rotation.is_none()) spec.pose.rotation = rotation_of(rotation);
+            const Vec3 rgb = vec3_of(color, "add_thing: color");
+            spec.rgb[0] = rgb.x;
+            spec.rgb[1] = rgb.y;
+            spec.rgb[2] = rgb.z;
+            return s.sim().add_thing(spec, id);
+          },
+          py::arg("shape"), py::arg("size"), py::arg("mass") = 1.0,
+          py::arg("position") = std::vector<double>{0, 0, 0}, py::arg("rotation") = py::none(),
+          py::arg("color") = std::vector<double>{0.5, 0.5, 0.5}, py::arg("id") = "",
+          "Adds a free body at rest (SimTwo's AddThingBox/Sphere/Cylinder): shape 'box' (size: "
+          "edges x, y, z), 'sphere' (size: radius) or 'cylinder' (size: radius, length along "
+          "its Z), mass [kg], position [m], rotation (3x3), color (0..1). It takes one of the "
+          "spare bodies (Simulation(runtime_things=N)); returns its body index. A reset removes "
+          "it, a snapshot holds it.")
+      .def(
+          "delete_thing",
+          [](PySimulation& s, const py::object& body) { s.sim().delete_thing(s.body_index(body)); },
+          py::arg("body"),
+          "Removes a thing (by name or index), a scene one or an added one, until a reset.")
+      .def_property_readonly(
+          "things",
+          [](const PySimulation& s) {
+            py::list out;
+            for (const ThingView& v : s.sim().things()) {
+              py::dict d;
+              d["body"] = v.body;
+              d["id"] = v.id;
+              d["added"] = v.added;
+              d["present"] = v.present;
+              out.append(d);
+            }
+            return out;
+          },
+          "The scene's things, then the spare bodies: body index, id, added, present.");
 }
 
 }  // namespace s2sim::python

@@ -252,3 +252,40 @@ def test_set_state_refuses_a_loop_closing_axis_and_changes_nothing():
         sim.set_state(q=np.array(sim.q) + 0.1)  # every axis moved, loop axes among them
     assert any(name in str(error.value) for name in sim.axis_names)
     assert sim.save() == before
+
+
+def test_things_added_and_deleted_while_running():
+    sim = s2sim.Simulation(NXT, runtime_things=2)
+    spare = [t for t in sim.things if t["added"]]
+    assert len(spare) == 2 and not any(t["present"] for t in spare)
+    sim.run_until(0.2)
+    body = sim.add_thing("sphere", [0.05], mass=0.3, position=[1.0, 1.0, 1.0], color=[1, 0, 0],
+                         id="ball")
+    assert body == spare[0]["body"]
+    assert sim.body_names()[body] == "runtime_things/0"
+    assert [t["id"] for t in sim.things if t["present"] and t["added"]] == ["ball"]
+    sim.run_until(0.5)
+    # Free fall from rest for 0.3 s.
+    assert abs(sim.signal("runtime_things/0/z") - (1.0 - 0.5 * 9.81 * 0.3 ** 2)) < 2e-3
+    snap = sim.save()
+    sim.run_until(1.5)
+    assert abs(sim.signal("runtime_things/0/z") - 0.05) < 2e-3  # on the floor
+    landed = sim.signal_values.copy()
+    sim.delete_thing(body)
+    assert not sim.things[-2]["present"]
+    sim.restore(snap)
+    assert sim.things[-2]["present"] and sim.things[-2]["id"] == "ball"
+    sim.run_until(1.5)
+    assert np.array_equal(sim.signal_values, landed)
+    sim.reset()
+    assert not any(t["present"] for t in sim.things if t["added"])
+    with pytest.raises(s2sim.Error, match="shape must be 'box', 'sphere' or 'cylinder'"):
+        sim.add_thing("cone", [0.1])
+    with pytest.raises(s2sim.Error, match="mass must be positive"):
+        sim.add_thing("box", [0.1, 0.1, 0.1], mass=-1)
+    sim.add_thing("box", [0.1, 0.1, 0.1])
+    sim.add_thing("cylinder", [0.05, 0.2])
+    with pytest.raises(s2sim.Error, match="all 2 spare bodies hold things"):
+        sim.add_thing("box", [0.1, 0.1, 0.1])
+    with pytest.raises(s2sim.Error, match="is not a thing"):
+        sim.delete_thing("robots/nxt")

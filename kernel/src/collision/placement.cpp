@@ -24,6 +24,12 @@ Placement::Placement(const ShapeTable& table, double margin)
   }
 }
 
+void Placement::reshaped(const ShapeTable& table, std::int32_t shape) {
+  const auto i = static_cast<std::size_t>(shape);
+  const double reach = norm(table.local_poses()[i].position) + table.shapes()[i].bounding_radius_m;
+  reach2_m2_[i] = reach * reach;
+}
+
 void Placement::update(const ShapeTable& table, const Pose* poses) {
   update(table, poses, nullptr, 0, 0, 0);
 }

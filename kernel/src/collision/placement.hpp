@@ -17,6 +17,8 @@ class Placement {
   /// Places the static shapes; the moving ones wait for `update`. The boxes are exact, or
   /// grown by `margin` on every side (a query's guard against round-off).
   explicit Placement(const ShapeTable& table, double margin = 0);
+  /// Shape `shape` changed its primitive (ShapeTable::reshape): its reach again.
+  void reshaped(const ShapeTable& table, std::int32_t shape);
 
   /// `poses` per kernel body (0 = world).
   void update(const ShapeTable& table, const Pose* poses);

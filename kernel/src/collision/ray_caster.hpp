@@ -39,6 +39,11 @@ class RayCaster {
   RayCaster(const ShapeTable& table, const Pose* poses);
 
   /// The body poses changed: the moving geoms are placed again on the next cast.
+  /// Shape `shape` changed its primitive (ShapeTable::reshape).
+  void reshaped(std::int32_t shape) {
+    placement_.reshaped(table_, shape);
+    invalidate();
+  }
   void invalidate() {
     moving_dirty_ = true;
     fan_active_ = false;

@@ -144,4 +144,14 @@ void ShapeTable::add(const scene::Geom& g, std::int32_t body, bool belt) {
   (body == 0 ? statics_ : moving_).push_back(index);
 }
 
+void ShapeTable::reshape(std::int32_t shape, const scene::Geom& geom) {
+  shape_.at(static_cast<std::size_t>(shape)) = make_shape(geom);
+}
+
+std::int32_t ShapeTable::first_shape_of(std::int32_t body) const {
+  for (std::size_t s = 0; s < body_.size(); ++s)
+    if (body_[s] == body) return static_cast<std::int32_t>(s);
+  return -1;
+}
+
 }  // namespace s2sim::collision

@@ -2,8 +2,9 @@
 /// \file
 /// The one table of the scene's collision geometry, shared by contact and ray casting: every
 /// collision shape (robot solids, shells, tyres, things, static obstacles) as a structure of
-/// arrays, and the static planes (the ground, SimTwo's walls). Built once at load, read-only
-/// afterwards; where the shapes are at a given set of body poses is a `Placement`.
+/// arrays, and the static planes (the ground, SimTwo's walls). Built once at load; afterwards
+/// only a run-time thing's primitive changes (`reshape`). Where the shapes are at a given set
+/// of body poses is a `Placement`.
 ///
 /// Shape order: every body's geoms in body order, then the obstacles (body 0). Contact keys
 /// its memory by these indices, so the order is part of the physics' behaviour.
@@ -23,6 +24,13 @@ class ShapeTable {
   explicit ShapeTable(const scene::Scene& scene);
 
   std::int32_t size() const { return static_cast<std::int32_t>(shape_.size()); }
+
+  /// Gives shape `shape` (on a moving body) the primitive of `geom`, its frame and surface
+  /// kept: what a thing added while running takes (sim/runtime_things.cpp). Whoever caches a
+  /// shape's reach (Placement) must be told.
+  void reshape(std::int32_t shape, const scene::Geom& geom);
+  /// The first shape on kernel body `body` (its own primitive), -1 if it has none.
+  std::int32_t first_shape_of(std::int32_t body) const;
   /// Per shape: geometry, kernel body index (0 = static, in the world frame), shape frame in
   /// the body frame, whether that frame is the body's own, surface, and the material bits
   /// ray hits report (s2sim::material_*).

@@ -97,7 +97,7 @@ void ContactWorld::compute_part(int part, const Pose* poses, const Twist* twists
   lane.found.clear();
   const std::int32_t* body = table_.bodies().data();
   for (const std::int32_t s : lane.moving)
-    if (!fixed_to_world_[body[s]]) plane_points(s, lane.found);
+    if (!planes_skipped_[body[s]]) plane_points(s, lane.found);
   const std::size_t plane_count = lane.found.size();
   if (own_pairs_) {  // its own pairs (begin_parts()), in rank order
     if (!lane.moving.empty())

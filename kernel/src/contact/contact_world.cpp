@@ -96,6 +96,8 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
     }
   }
   std::sort(joined_pairs_.begin(), joined_pairs_.end());
+  parked_.assign(fixed_to_world_.size(), 0);
+  planes_skipped_ = fixed_to_world_;
   jointless_.assign(scene.bodies.size() + 1, 1);
   jointless_[0] = 0;
   for (const auto& j : scene.joints)
@@ -246,8 +248,28 @@ void ContactWorld::inverse_masses(std::int32_t body, const Vec3& point, const Po
   }
 }
 
+void ContactWorld::set_parked(std::int32_t body, bool parked) {
+  const auto b = static_cast<std::size_t>(body);
+  parked_.at(b) = parked ? 1 : 0;
+  planes_skipped_[b] = (fixed_to_world_[b] || parked) ? 1 : 0;
+}
+
+void ContactWorld::set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m,
+                                 const Mat3& inertia, bool gravity) {
+  const auto b = static_cast<std::size_t>(body);
+  double m = mass_kg;
+  if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
+  apparent_mass_kg_.at(b) = m;
+  inverse_apparent_mass_[b] = 1 / m;
+  com_m_[b] = com_m;
+  inverse_inertia_[b] = inverse(inertia);
+  diagonal_inertia_[b] = off_diagonal_zero(inverse_inertia_[b]) ? 1 : 0;
+  falls_m_s2_[b] = jointless_[b] && gravity ? kGravity_m_s2 : 0.0;
+}
+
 bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
   if (body_a == body_b) return true;
+  if (parked_[body_a] || parked_[body_b]) return true;
   if (body_a == 0) return fixed_to_world_[body_b] != 0;
   if (body_b == 0) return fixed_to_world_[body_a] != 0;
   return std::binary_search(joined_pairs_.begin(), joined_pairs_.end(), body_pair(body_a, body_b));
@@ -382,7 +404,7 @@ void ContactWorld::compute(const Pose* poses, const Twist* twists, double step_s
   found_.clear();
   // Moving shapes against the ground and the walls.
   for (const std::int32_t s : table_.moving())
-    if (!fixed_to_world_[body[s]]) plane_points(s, found_);
+    if (!planes_skipped_[body[s]]) plane_points(s, found_);
   const std::size_t plane_count = found_.size();
   pair_points_into_found(false);
   for (Lane& lane : lanes_)

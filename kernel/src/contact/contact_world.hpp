@@ -52,6 +52,15 @@ class ContactWorld final : public model::SubstepForces {
   /// friction goes there, solved with the axes, and their reported force includes it after the
   /// substep.
   void set_solved_friction(const std::vector<char>& solved_per_body);
+  /// Parks or frees kernel body `body` (a thing deleted, or a spare body no thing holds): a
+  /// parked body touches nothing, the ground and the walls included.
+  void set_parked(std::int32_t body, bool parked);
+  /// A free body's new mass properties (a thing added while running): its mass, centre of
+  /// mass (body frame), inertia about it (body axes) and whether it falls.
+  void set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
+                     bool gravity);
+  /// Shape `shape` changed its primitive (collision::ShapeTable::reshape).
+  void reshaped(std::int32_t shape) { placement_.reshaped(table_, shape); }
   /// The most points a substep can hold (room of every per-substep list).
   std::int32_t point_capacity() const { return static_cast<std::int32_t>(reserve_); }
 
@@ -237,6 +246,8 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<double> inverse_apparent_mass_;  // per body, 1 / apparent_mass_kg_
   std::vector<model::Multibody::Mobility> mobility_;  // per body (root 0: none), set_mobility()
   std::vector<char> fixed_to_world_;                  // per body: jointed to the world
+  std::vector<char> parked_;                          // per body: touches nothing (set_parked)
+  std::vector<char> planes_skipped_;                  // per body: fixed to the world or parked
   std::vector<char> jointless_;                       // per body: no joint at all (0: the world)
   std::vector<double> falls_m_s2_;                    // per body: gravity if jointless, else 0
   std::vector<std::uint64_t> joined_pairs_;           // sorted body pairs that never collide

@@ -69,6 +69,15 @@ bool Multibody::place_free_body(int body, const Pose& pose) {
   return true;
 }
 
+bool Multibody::set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
+                               bool gravity) {
+  Impl& m = *impl_;
+  if (body <= 0 || body >= static_cast<int>(m.mobod_of_body.size())) return false;
+  if (m.mobod_of_body[body].isValid()) return false;
+  m.bodies_fresh = false;
+  return m.loose.set_mass_properties(body, mass_kg, com_m, inertia, gravity);
+}
+
 bool Multibody::move_body(int body, const Pose& pose) {
   Impl& m = *impl_;
   if (body <= 0 || body >= static_cast<int>(m.mobod_of_body.size())) return false;

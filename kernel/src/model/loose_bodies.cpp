@@ -30,6 +30,23 @@ void LooseBodies::add(int kernel_index, const scene::Body& body) {
   rotation_.push_back(to_matrix(m.q0));
 }
 
+bool LooseBodies::set_mass_properties(int kernel_index, double mass_kg, const Vec3& com_m,
+                                      const Mat3& inertia, bool gravity) {
+  for (std::size_t i = 0; i < model_.size(); ++i) {
+    Model& m = model_[i];
+    if (m.kernel_index != kernel_index) continue;
+    State& s = state_[i];
+    s.com_m += rotation_[i] * (com_m - m.com_body_m);  // the origin stays put
+    m.mass_kg = mass_kg;
+    m.com_body_m = com_m;
+    m.inertia_body = inertia;
+    m.inverse_inertia_body = inverse(inertia);
+    m.gravity = gravity;
+    return true;
+  }
+  return false;
+}
+
 void LooseBodies::refresh_rotations() {
   for (std::size_t i = 0; i < state_.size(); ++i)
     rotation_[i] = to_matrix(state_[i].q);

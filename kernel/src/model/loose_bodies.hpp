@@ -52,6 +52,11 @@ class LooseBodies {
   bool place(int kernel_index, const Pose& pose);
   /// Puts kernel body `kernel_index` at `pose`, its velocities kept; false if not loose.
   bool move(int kernel_index, const Pose& pose);
+  /// Gives body `kernel_index` new mass properties (a thing added while running): mass, centre
+  /// of mass (body frame; the body origin stays where it is), inertia about it (body axes) and
+  /// whether gravity pulls it. False if not loose.
+  bool set_mass_properties(int kernel_index, double mass_kg, const Vec3& com_m, const Mat3& inertia,
+                           bool gravity);
   /// Sets body `kernel_index`'s velocity (its origin's, world frame); false if not loose.
   bool set_velocity(int kernel_index, const Twist& twist);
 

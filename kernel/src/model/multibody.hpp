@@ -235,6 +235,10 @@ class Multibody {
   /// Returns false, changing nothing, for any other body. The other bodies' leapfrog goes on
   /// undisturbed; the placed body's zero speed is its mid-step speed.
   bool place_free_body(int body, const Pose& pose);
+  /// New mass properties of a loose body (a thing added while running; LooseBodies::
+  /// set_mass_properties). False, changing nothing, for any other body.
+  bool set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
+                      bool gravity);
   /// Moves any body to `pose` as closely as its joint allows, its speeds kept: a loose body
   /// or a robot's root body goes exactly there; a jointed body's mobilizer coordinates are
   /// fitted (a hinge keeps the rotation about its axis), its children following. False for

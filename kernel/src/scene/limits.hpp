@@ -25,6 +25,11 @@ inline constexpr std::int64_t kMaxTrackRepeats = 10000;
 /// Segments of one track arc ((stop − start) / step).
 inline constexpr std::int64_t kMaxArcSegments = 100000;
 
+/// Spare bodies for things added while running: at most this many (`<s2sim><runtime_things>`),
+/// and this many when a scene's script adds things and the scene does not say.
+inline constexpr std::int64_t kMaxRuntimeThings = 4096;
+inline constexpr int kDefaultRuntimeThings = 32;
+
 // Rays of one sensor beam: s2sim::kMaxBeamRays (s2sim/sensor.hpp, shared with the plugins).
 /// A camera's or canvas's width or height in pixels, and a camera's frame decimation.
 inline constexpr int kMaxImageSide_px = 16384;

@@ -167,6 +167,14 @@ void apply_s2sim_settings(const Reader& r, const Element& el, Settings& s) {
         r.fail(c, "port", "must be an integer from 0 to 65535, got " + std::to_string(port));
       s.script_udp_port = static_cast<int>(port);
       any = true;
+    } else if (c.name == "runtime_things") {
+      const auto count = r.integer(c, "count", 0);
+      if (count < 0 || count > limits::kMaxRuntimeThings)
+        r.fail(c, "count",
+               "must be an integer from 0 to " + std::to_string(limits::kMaxRuntimeThings) +
+                   ", got " + std::to_string(count));
+      s.runtime_things = static_cast<int>(count);
+      any = true;
     }
   }
   if (any) s.source += " + scene.xml <s2sim>";

@@ -186,6 +186,8 @@ void Simulation::Impl::sync_local_views() {
     local.view.request_place = &refuse_place;
     local.view.request_move = &refuse_move;
     local.view.request_velocity = &refuse_velocity;
+    local.view.request_add_thing = &refuse_add_thing;
+    local.view.request_delete_thing = &refuse_delete_thing;
     local.view.annotator = &local;
     local.view.annotate = &refuse_annotation;
   };
@@ -220,6 +222,14 @@ void Simulation::Impl::refuse_move(const void* local, std::int32_t, const Pose&)
 }
 void Simulation::Impl::refuse_velocity(const void* local, std::int32_t, const Twist&) {
   refuse(local, "asked to set a body's velocity");
+}
+std::int32_t Simulation::Impl::refuse_add_thing(const void* local, const ThingSpec&, const char*,
+                                                std::size_t) {
+  refuse(local, "asked to add a thing");
+  return -1;
+}
+void Simulation::Impl::refuse_delete_thing(const void* local, std::int32_t) {
+  refuse(local, "asked to delete a thing");
 }
 void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::int32_t,
                                          std::int32_t, const char*, std::size_t, const double*) {
@@ -272,7 +282,8 @@ void Simulation::Impl::run_component_group(sim::ComponentGroup& group, bool call
       }
     }
     // Only the whole scene's components may ask (a local one is refused).
-    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty())
+    if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty() ||
+        !pending_things.empty())
       apply_pending_places();
   }
   for (const int a : group.axes)

@@ -45,6 +45,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
                                       " (this machine's hardware threads), got " +
                                       std::to_string(options.threads));
   m.tick_s = m.scene.settings.physics_step_s;
+  // Spare bodies for things added while running, before anything counts the bodies.
+  const int spare = options.runtime_things.value_or(m.scene.settings.runtime_things);
+  scene::reserve_runtime_things(m.scene, spare >= 0 ? spare
+                                         : m.script_adds_things()
+                                             ? scene::limits::kDefaultRuntimeThings
+                                             : 0);
 
   // The multibody's plan first: the components configure against its axes and may declare
   // axis inertias, which the Simbody system is then built with.
@@ -220,6 +226,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.request_velocity = &Simulation::Impl::request_velocity;
   m.world.annotator = &m;
   m.world.annotate = &Simulation::Impl::annotate;
+  m.init_things();
   m.plan_component_parts();  // with several parts, the local components run in them
   m.declare_state();
   m.reset();

@@ -10,17 +10,19 @@
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
+#include <cctype>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 
 namespace s2sim {
 namespace {
 using sim::exact_decimal;
 }  // namespace
 
-std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
+std::optional<std::filesystem::path> Simulation::Impl::script_path(std::string& found_by) const {
   if (options.script_mode == ScriptMode::off) return std::nullopt;
   std::filesystem::path file;
-  std::string found_by;
   if (options.script_file) {
     file = options.script_file->is_absolute() ? *options.script_file
                                               : scene.folder / *options.script_file;
@@ -34,6 +36,26 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   } else {
     return std::nullopt;
   }
+  return file;
+}
+
+bool Simulation::Impl::script_adds_things() const {
+  std::string found_by;
+  const auto file = script_path(found_by);
+  if (!file) return false;
+  std::ifstream in(*file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Pascal is case-insensitive: AddThingBox, addthingsphere, ADDTHINGCYLINDER...
+  for (char& c : text)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text.find("addthing") != std::string::npos;
+}
+
+std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
+  std::string found_by;
+  const auto script_file = script_path(found_by);
+  if (!script_file) return std::nullopt;
+  const std::filesystem::path& file = *script_file;
 
   scene::Element el;
   el.name = "script";

@@ -86,6 +86,9 @@ std::string Simulation::body_path(int body) const {
                                       std::to_string(m.scene.bodies.size()) + ")");
   if (body == 0) return std::string(sim::kWorldScope);
   const auto& b = m.scene.bodies[static_cast<std::size_t>(body - 1)];
+  const auto& spare = m.scene.runtime_things;
+  if (!spare.empty() && body - 1 >= spare.front())
+    return "runtime_things/" + std::to_string(body - 1 - spare.front());
   return b.robot >= 0 ? sim::solid_path(m.robot_prefix(b.robot), b.id) : sim::thing_path(b.id);
 }
 std::string Simulation::axis_path(std::size_t index) const {
@@ -121,6 +124,9 @@ void Simulation::Impl::register_kernel_signals() {
   }
   for (int b : scene.things)
     add_body(sim::thing_path(scene.bodies[b].id), b + 1);
+  // Spare bodies by number: which thing holds one is known only while running.
+  for (std::size_t k = 0; k < scene.runtime_things.size(); ++k)  // as body_path() names them
+    add_body("runtime_things/" + std::to_string(k), scene.runtime_things[k] + 1);
   // A conveyor belt's surface speed along its +X, settable at run time (spec §4.3).
   // Handed to contact once it exists (it is built after the components, with the multibody).
   for (std::int32_t s = 0; s < shapes->size(); ++s) {

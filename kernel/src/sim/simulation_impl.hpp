@@ -170,6 +170,9 @@ struct Simulation::Impl {
   static void refuse_place(const void* local, std::int32_t, const Pose&);
   static void refuse_move(const void* local, std::int32_t, const Pose&);
   static void refuse_velocity(const void* local, std::int32_t, const Twist&);
+  static std::int32_t refuse_add_thing(const void* local, const ThingSpec&, const char*,
+                                       std::size_t);
+  static void refuse_delete_thing(const void* local, std::int32_t);
   static void refuse_annotation(const void* local, std::int32_t, std::int32_t, std::int32_t,
                                 const char*, std::size_t, const double*);
 
@@ -184,6 +187,24 @@ struct Simulation::Impl {
   static void request_move(const void* impl, std::int32_t body, const Pose& pose);
   static void request_velocity(const void* impl, std::int32_t body, const Twist& twist);
   void apply_pending_places();
+
+  // Things added and deleted while running (runtime_things.cpp): the scene's things, then the
+  // spare bodies, as they stand; the ones whose kernel side a component's request changed in
+  // the current stage (applied with the places); each view's index by kernel body (-1: none).
+  std::vector<ThingView> thing_views;
+  std::vector<std::int32_t> pending_things;
+  std::vector<std::int32_t> thing_of_body;
+  void init_things();
+  void reset_things();
+  int take_spare_thing(const ThingSpec& spec, std::string_view id);
+  void mark_thing_deleted(int body);
+  /// Pushes view `t` into the kernel: shape, mass, gravity, parked; its pose too when `place`.
+  void apply_thing(std::size_t t, bool place);
+  void apply_pending_things();
+  void declare_things_state();
+  static std::int32_t request_add_thing(const void* impl, const ThingSpec& spec, const char* id,
+                                        std::size_t id_size);
+  static void request_delete_thing(const void* impl, std::int32_t body);
   /// "'id'" of a body for messages, or "index N" for one that is not in the scene.
   std::string body_label(int body) const;
 
@@ -236,6 +257,10 @@ struct Simulation::Impl {
   /// (script_attach.cpp): its element carries SimTwo's index tables (robots, solids, axes,
   /// sensors, things), the sheet and the scene constants.
   std::optional<scene::PluginInstance> script_instance() const;
+  /// The script file that runs, when one does, and where its name came from.
+  std::optional<std::filesystem::path> script_path(std::string& found_by) const;
+  /// Whether the script that runs names a routine that adds things (AddThing...).
+  bool script_adds_things() const;
 
   // --- snapshots (snapshot.cpp) ----------------------------------------------------------------
   /// Registers the state segments of the multibody, the contact layer and the buffers above;

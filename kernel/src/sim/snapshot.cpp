@@ -44,6 +44,7 @@ void add_buffer(common::StateLayout& layout, const char* name, std::vector<T>& b
 void Simulation::Impl::declare_state() {
   multibody->declare_state(layout);
   contacts->declare_state(layout);
+  declare_things_state();
   // Written in place: the WorldView points into these buffers.
   add_buffer(layout, "components/state", state);
   add_buffer(layout, "inputs", inputs);

@@ -315,6 +315,8 @@ void Simulation::Impl::apply_pending_places() {
     pending_velocities.clear();
     throw Error(ErrorKind::runtime, message);
   };
+  // Things first, so that a thing added in this stage can be placed or pushed in it too.
+  apply_pending_things();
   auto apply = [&](auto& list, const char* verb, const char* not_finite, const char* refused,
                    auto&& act) {
     for (const auto& [body, value] : list) {
@@ -406,6 +408,7 @@ void Simulation::Impl::reset() {
   annotations.clear();
   multibody->reset();
   contacts->reset();
+  reset_things();
   world.contacts = contacts->contacts();  // empty, for initialize()
   sync_local_views();
   // Copy in place: the WorldView points into these buffers.

@@ -117,6 +117,22 @@ struct FloorPolygon {
   std::vector<double> x_m, y_m;
 };
 
+/// The primitive of a thing added at run time (SimTwo's `AddThingBox`, `AddThingSphere`,
+/// `AddThingCylinder`).
+enum class ThingShape : std::uint8_t { box = 0, sphere = 1, cylinder = 2 };
+
+/// A free body to add while running (`StepContext::request_add_thing`,
+/// `Simulation::add_thing`). Sizes as SimTwo's `GetThingSize` gives them: a box its edges
+/// x, y, z; a sphere its radius in x (y and z ignored); a cylinder its radius in x and its
+/// length in z, its axis along the body's Z. Uniform density; the default surface.
+struct ThingSpec {
+  ThingShape shape = ThingShape::box;
+  Vec3 size_m{0.1, 0.1, 0.1};
+  double mass_kg = 1;
+  Pose pose;                        ///< body frame in the world; added at rest
+  double rgb[3] = {0.5, 0.5, 0.5};  ///< 0..1
+};
+
 /// A velocity-dependent force on an axis for one tick (StepContext::apply_axis_drive):
 /// f(v) = clamp(force − damping·(v − v_tick), min_force, max_force), v_tick the axis velocity
 /// the component read.
@@ -205,6 +221,12 @@ struct WorldView {
   void (*request_velocity)(const void* placer, std::int32_t body, const Twist& twist) = nullptr;
   /// What components show the people watching (`StepContext::log_line`, `set_hud_text`,
   /// `add_trail_point`...); `what` is a `detail::Annotation`.
+  /// Things added and deleted during the tick (`StepContext::request_add_thing`,
+  /// `request_delete_thing`), applied with the re-placements. `request_add_thing` returns the
+  /// body the thing will be; both throw s2sim::Error for a request they refuse.
+  std::int32_t (*request_add_thing)(const void* placer, const ThingSpec& spec, const char* id,
+                                    std::size_t id_size) = nullptr;
+  void (*request_delete_thing)(const void* placer, std::int32_t body) = nullptr;
   const void* annotator = nullptr;
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
@@ -385,6 +407,25 @@ class StepContext {
   /// `SetSolidLinearVel`, `SetSolidAngularVel`); applied after the moves. Does not allocate.
   void request_velocity(BodyHandle b, const Twist& twist) {
     w_->request_velocity(w_->placer, body(b, "request_velocity"), twist);
+  }
+
+  // --- things added and deleted while running ---
+
+  /// Adds a free body (SimTwo's `AddThingBox`...) after this stage, before the physics: one
+  /// of the spare bodies the scene keeps for that (`<s2sim><runtime_things count>`,
+  /// docs/format.md). Returns the body it will be; throws `s2sim::Error` when every spare body
+  /// is in use or the spec is not a valid body (non-finite, mass or a size not positive).
+  BodyHandle request_add_thing(const ThingSpec& spec, std::string_view id) {
+    if (w_->request_add_thing == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_add_thing: not available here");
+    return BodyHandle{w_->request_add_thing(w_->placer, spec, id.data(), id.size())};
+  }
+  /// Removes a thing (a scene thing or one added at run time) after this stage: it no longer
+  /// moves, touches, is hit by rays nor is drawn, until a reset. Throws for another body.
+  void request_delete_thing(BodyHandle b) {
+    if (w_->request_delete_thing == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_delete_thing: not available here");
+    w_->request_delete_thing(w_->placer, body(b, "request_delete_thing"));
   }
 
   // --- what the people watching see (not part of the simulation's state) ---

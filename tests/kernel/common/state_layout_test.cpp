@@ -35,8 +35,20 @@ struct Case {
   const char* name;
   fs::path scene;
   std::vector<std::pair<const char*, double>> inputs;
-  double t0, t1, t2;  // another time, the snapshot's, the replay's end
+  double t0, t1, t2;                     // another time, the snapshot's, the replay's end
+  void (*drive)(Simulation&) = nullptr;  // what is done to it after the load
 };
+
+/// Things added while running: a box dropped on the ball, which is then deleted.
+void add_and_delete_things(Simulation& sim) {
+  ThingSpec box;
+  box.size_m = {0.1, 0.1, 0.1};
+  box.pose.position = {0.02, 0, 0.4};
+  sim.add_thing(box, "crate");
+  box.pose.position = {1, 0, 0.05};
+  sim.add_thing(box, "floor crate");
+  sim.delete_thing(sim.things()[0].body);
+}
 
 const std::vector<Case>& cases() {
   static const std::vector<Case> c = {
@@ -50,6 +62,14 @@ const std::vector<Case>& cases() {
        0.45},
       // Things falling on each other: loose bodies and contact memory.
       {"pile", kSource / "scenes/pile", {}, 0.2, 0.3, 0.45},
+      // Things added and deleted while running.
+      {"runtime",
+       kSource / "tests/kernel/sim/fixtures/runtime_things",
+       {},
+       0.1,
+       0.2,
+       0.45,
+       &add_and_delete_things},
       // Kinematic loops.
       {"default", kSource / "scenes/default", {}, 0.2, 0.3, 0.45},
       // Joint reactions read by jointforce sensors, one of them noisy (random streams).
@@ -80,6 +100,8 @@ const std::map<std::string, const char*>& exercised_by() {
       {"published", "nxt"},
       {"axis_force_applied", "nxt"},
       {"random", "jointforce"},
+      {"things", "runtime"},
+      {"things/ids", "runtime"},
   };
   return m;
 }
@@ -93,16 +115,23 @@ std::unique_ptr<Simulation> load(const Case& c) {
   auto sim = Simulation::load(c.scene, o);
   for (const auto& [name, value] : c.inputs)
     sim->set_input(name, value);
+  if (c.drive) c.drive(*sim);
   return sim;
 }
 
-/// Every signal now, then after every tick up to t2. A run that fails (a corrupted state may
-/// go non-finite) ends its record with a marker.
+/// Every signal and what Simulation::things() says (present, ID), now, then after every tick
+/// up to t2. A run that fails (a corrupted state may go non-finite) ends its record with a
+/// marker.
 std::vector<double> record(Simulation& sim, double t2) {
   std::vector<double> out;
   auto take = [&] {
     for (std::size_t i = 0; i < sim.signal_count(); ++i)
       out.push_back(sim.signal(i));
+    for (const ThingView& t : sim.things()) {
+      out.push_back(t.present ? 1 : 0);
+      for (const char ch : t.id)
+        out.push_back(ch);
+    }
   };
   try {
     take();

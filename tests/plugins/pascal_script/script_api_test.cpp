@@ -162,6 +162,43 @@ TEST_F(ScriptApi, ThingPushedForOneStepGainsImpulseOverMassAndSpinsAsSet) {
   EXPECT_DOUBLE_EQ(sim->signal("sheet/C1"), 0.5);  // the link's mass as loaded
 }
 
+TEST_F(ScriptApi, ThingsAddedAndDeletedByTheScriptKeepSimTwosListAndFallAsFreeFallSays) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("add_things.pas");
+  for (int c = 1; c <= 6; ++c)
+    o.sheet_cells.push_back({1, c, "0"});
+  for (int c = 1; c <= 5; ++c)
+    o.sheet_cells.push_back({2, c, "0"});
+  auto sim = Simulation::load(kScene, o);
+  EXPECT_EQ(sim->scene().runtime_things.size(), 32u) << "the script adds things: the default";
+  auto run = [&] {
+    sim->run_until(1.25);  // calls every 40 ms from 39 ms on
+    EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+    std::vector<double> cells;
+    for (const char* cell : {"A1", "B1", "C1", "D1", "E1", "F1", "A2", "B2", "C2", "E2"})
+      cells.push_back(sim->signal(std::string("sheet/") + cell));
+    return cells;
+  };
+  const std::vector<double> cells = run();
+  EXPECT_EQ(cells[0], 2) << "after the scene's ball and crate";
+  EXPECT_EQ(cells[1], 3);
+  EXPECT_EQ(cells[2], 2);
+  EXPECT_EQ(cells[5], 2) << "a duplicate ID and a negative mass refused";
+  EXPECT_EQ(cells[3], 0) << "DeleteThing returns the index it removed";
+  EXPECT_EQ(cells[4], 1) << "the later things' indices shift down";
+  // Added at rest at 1 m after the call at 39 ms, read 40 ms later: z = 1 - g t^2 / 2.
+  EXPECT_NEAR(cells[6], 1 - 0.5 * 9.81 * 0.04 * 0.04, 1e-3);
+  EXPECT_NEAR(cells[7], 0.05, 2e-3) << "landed on the floor by 1.2 s";
+  EXPECT_EQ(cells[8], 0) << "ClearThings removes every thing";
+  EXPECT_EQ(cells[9], -1) << "an unknown ID";
+  for (const auto& t : sim->things())
+    EXPECT_FALSE(t.present) << t.id;
+  // A reset brings the scene's things back and a second run is the first, bit for bit.
+  sim->reset();
+  EXPECT_TRUE(sim->things()[0].present);
+  EXPECT_EQ(run(), cells);
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;

@@ -347,6 +347,10 @@ struct Settings {
   /// loopback unless `<s2sim><udp address>` says otherwise; SimTwo's port 9808.
   std::string script_udp_address = "127.0.0.1";
   int script_udp_port = 9808;
+  /// Spare bodies kept for things added while running (`<s2sim><runtime_things count>`):
+  /// -1 leaves it to the kernel (limits::kDefaultRuntimeThings when the scene's script adds
+  /// things, none otherwise).
+  int runtime_things = -1;
   std::string source;  ///< which file the values came from ("defaults" when none)
 };
 
@@ -374,6 +378,9 @@ struct Scene {
   std::vector<Robot> robots;
   std::vector<Body> bodies;  ///< robot solids, tyres and things
   std::vector<int> things;   ///< indices into bodies
+  /// Indices into bodies of the spare bodies that things added while running take
+  /// (`reserve_runtime_things`); they are neither in `things` nor in any robot.
+  std::vector<int> runtime_things;
   std::vector<Joint> joints;
   std::vector<Geom> obstacles;  ///< static, poses in world
   std::vector<Sensor> sensors;
@@ -393,6 +400,12 @@ struct LoadOptions {
   /// robots (then S2SIM_MODEL_PATH, ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH).
   std::vector<std::filesystem::path> model_path;
 };
+
+/// Appends `count` spare bodies for things added while running (Scene::runtime_things): each
+/// a free, weightless small sphere, parked apart below the world until a thing takes it.
+void reserve_runtime_things(Scene& scene, int count);
+/// Where spare body `k` waits: out of the world, apart from the others.
+Pose runtime_thing_park_pose(int k);
 
 /// Loads a SimTwo scene: `path` is a scene folder or its `scene.xml`; or a robot file in URDF
 /// (`.urdf`), SDF (`.sdf`) or MJCF (an `.xml` whose root is `<mujoco>`), run on the default

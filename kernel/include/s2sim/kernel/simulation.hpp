@@ -77,6 +77,19 @@ struct SimulationOptions {
   /// are the same either way, bit for bit; false steps the parts tick by tick (for comparing,
   /// or for a local component that keeps state outside its declared state).
   bool run_ahead = true;
+  /// Spare bodies for things added while running (add_thing; docs/format.md, "Things added
+  /// while running"), over the scene's `<s2sim><runtime_things count>`. Unset: the scene's,
+  /// else 32 when the script that runs adds things, else none.
+  std::optional<int> runtime_things;
+};
+
+/// A thing of the scene or one added while running, as it stands (Simulation::things).
+struct ThingView {
+  int body = 0;          ///< kernel body index
+  bool added = false;    ///< a spare body that a thing added while running holds or held
+  bool present = false;  ///< false: deleted, or a spare body no thing holds
+  std::string id;        ///< the scene's ID, or the one given to add_thing
+  ThingSpec spec;        ///< what add_thing was given (an added thing only)
 };
 
 /// A named value with its unit, e.g. `robots/r/axes/left/speed` in `rad/s`.
@@ -276,6 +289,18 @@ class Simulation {
   /// SimTwo's SetRobotPos. Time does not change. Throws s2sim::Error (usage) naming the body
   /// for a body jointed to something else, or for the world.
   void place_body(int body, const Pose& pose);
+
+  /// Adds a free body at `spec.pose`, at rest, on the first spare body (SimTwo's AddThingBox,
+  /// AddThingSphere, AddThingCylinder) and returns its kernel body index. It collides, falls,
+  /// is hit by rays, is drawn and publishes `runtime_things/<k>/…` signals; a snapshot holds it
+  /// and a reset removes it. Throws s2sim::Error (usage) when no spare body is left or the
+  /// spec is not a body (non-finite, a mass or size not positive or beyond 10 km).
+  int add_thing(const ThingSpec& spec, std::string_view id);
+  /// Removes thing `body` (a scene thing or an added one) until a reset: it no longer moves,
+  /// touches, is hit or drawn. Throws s2sim::Error (usage) for a body that is not a thing.
+  void delete_thing(int body);
+  /// The scene's things, then the spare bodies, as they stand now.
+  const std::vector<ThingView>& things() const;
 
   /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
   /// annotations.hpp), since the load or the last reset. Not part of the state.

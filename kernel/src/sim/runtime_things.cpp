@@ -1,0 +1,283 @@
+// Things added and deleted while running (docs/format.md, "Things added while running"): a
+// thing added takes one of the spare bodies reserved at load (scene::reserve_runtime_things),
+// given its primitive, mass and pose; a deleted thing is parked, touching nothing, until a
+// reset. Everything a spare body is lies in the state layout, so snapshots hold it.
+#include "scene/limits.hpp"
+#include "scene/mass.hpp"
+#include "sim/simulation_impl.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace s2sim {
+namespace {
+
+/// Numbers per thing in the `things` segment: present, shape, size x, y, z, mass, r, g, b.
+constexpr std::size_t kThingNumbers = 9;
+
+scene::Geom geom_of(const ThingSpec& spec, const std::string& id) {
+  scene::Geom g;
+  g.id = id;
+  switch (spec.shape) {
+    case ThingShape::box:
+      g.shape.type = scene::ShapeType::box;
+      g.shape.size_m = spec.size_m;
+      break;
+    case ThingShape::sphere:
+      g.shape.type = scene::ShapeType::sphere;
+      g.shape.radius_m = spec.size_m.x;
+      break;
+    case ThingShape::cylinder:
+      g.shape.type = scene::ShapeType::cylinder;
+      g.shape.radius_m = spec.size_m.x;
+      g.shape.length_m = spec.size_m.z;
+      break;
+  }
+  g.visual.color = {spec.rgb[0], spec.rgb[1], spec.rgb[2], 1};
+  return g;
+}
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.9g", v);
+  return text;
+}
+
+/// Throws (usage) naming the thing and the value for a spec that is not a body.
+void check_spec(const ThingSpec& spec, std::string_view id) {
+  const std::string who = "add_thing '" + std::string(id) + "': ";
+  auto size_ok = [](double v) { return v > 0 && v <= scene::limits::kMaxLength_m; };
+  const char* shape = spec.shape == ThingShape::box      ? "box"
+                      : spec.shape == ThingShape::sphere ? "sphere"
+                                                         : "cylinder";
+  if (spec.shape != ThingShape::box && spec.shape != ThingShape::sphere &&
+      spec.shape != ThingShape::cylinder)
+    throw Error(ErrorKind::usage,
+                who + "unknown shape " + std::to_string(static_cast<int>(spec.shape)));
+  const bool sizes_ok =
+      spec.shape == ThingShape::box
+          ? size_ok(spec.size_m.x) && size_ok(spec.size_m.y) && size_ok(spec.size_m.z)
+      : spec.shape == ThingShape::sphere ? size_ok(spec.size_m.x)
+                                         : size_ok(spec.size_m.x) && size_ok(spec.size_m.z);
+  if (!sizes_ok)
+    throw Error(ErrorKind::usage, who + "a " + shape + "'s size must be positive and at most " +
+                                      number(scene::limits::kMaxLength_m) + " m, got " +
+                                      number(spec.size_m.x) + ", " + number(spec.size_m.y) + ", " +
+                                      number(spec.size_m.z));
+  if (!(spec.mass_kg > 0) || !std::isfinite(spec.mass_kg))
+    throw Error(ErrorKind::usage, who + "mass must be positive, got " + number(spec.mass_kg));
+  const Pose& p = spec.pose;
+  double sum = p.position.x + p.position.y + p.position.z;
+  double worst = 0;  // |R·Rᵀ − I|
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      sum += p.rotation.m[i][j];
+      double dot = 0;
+      for (int k = 0; k < 3; ++k)
+        dot += p.rotation.m[i][k] * p.rotation.m[j][k];
+      worst = std::max(worst, std::abs(dot - (i == j ? 1.0 : 0.0)));
+    }
+  if (!std::isfinite(sum)) throw Error(ErrorKind::usage, who + "the pose is not finite");
+  if (worst > 1e-6) throw Error(ErrorKind::usage, who + "the rotation is not orthonormal");
+  for (double c : spec.rgb)
+    if (!(c >= 0 && c <= 1))
+      throw Error(ErrorKind::usage,
+                  who + "colour components must be from 0 to 1, got " + number(c));
+}
+
+}  // namespace
+
+void Simulation::Impl::init_things() {
+  thing_views.clear();
+  for (int b : scene.things)
+    thing_views.push_back({b + 1, false, true, scene.bodies[static_cast<std::size_t>(b)].id, {}});
+  for (int b : scene.runtime_things)
+    thing_views.push_back({b + 1, true, false, std::string(), {}});
+  thing_of_body.assign(poses.size(), -1);
+  for (std::size_t t = 0; t < thing_views.size(); ++t)
+    thing_of_body[static_cast<std::size_t>(thing_views[t].body)] = static_cast<std::int32_t>(t);
+  // Room for every request of a stage: one add or delete per thing, twice.
+  pending_things.reserve(2 * thing_views.size());
+  for (std::size_t t = 0; t < thing_views.size(); ++t)
+    if (thing_views[t].added) apply_thing(t, false);
+  world.request_add_thing = &Simulation::Impl::request_add_thing;
+  world.request_delete_thing = &Simulation::Impl::request_delete_thing;
+}
+
+void Simulation::Impl::reset_things() {
+  pending_things.clear();
+  for (std::size_t t = 0; t < thing_views.size(); ++t) {
+    ThingView& v = thing_views[t];
+    const bool changed = v.present != !v.added || (v.added && !v.id.empty());
+    v.present = !v.added;
+    if (v.added) {
+      v.id.clear();
+      v.spec = ThingSpec{};
+    }
+    if (changed) apply_thing(t, false);  // the multibody's reset put it back at its load pose
+  }
+}
+
+void Simulation::Impl::apply_thing(std::size_t t, bool place) {
+  const ThingView& v = thing_views[t];
+  const int body = v.body;
+  const scene::Body& loaded = scene.bodies[static_cast<std::size_t>(body - 1)];
+  // The spare bodies are counted after the scene's things in the park order.
+  const int park_slot = static_cast<int>(t < scene.things.size() ? scene.runtime_things.size() + t
+                                                                 : t - scene.things.size());
+  if (v.added) {
+    const std::int32_t shape = shapes->first_shape_of(body);
+    const scene::Geom g = v.present ? geom_of(v.spec, v.id) : loaded.geoms[0];
+    shapes->reshape(shape, g);
+    contacts->reshaped(shape);
+    ray_caster->reshaped(shape);
+    const double mass = v.present ? v.spec.mass_kg : loaded.mass_kg;
+    const Mat3 inertia = v.present ? scene::uniform_inertia(g.shape, mass) : loaded.inertia_kg_m2;
+    multibody->set_loose_mass(body, mass, {}, inertia, v.present);
+    contacts->set_free_body(body, mass, {}, inertia, v.present);
+  } else {
+    // A scene thing: its own mass properties; weightless while deleted, so that it stays put.
+    const bool gravity = v.present && loaded.gravity;
+    multibody->set_loose_mass(body, loaded.mass_kg, loaded.com_m, loaded.inertia_kg_m2, gravity);
+    contacts->set_free_body(body, loaded.mass_kg, loaded.com_m, loaded.inertia_kg_m2, gravity);
+  }
+  contacts->set_parked(body, !v.present);
+  if (place)
+    multibody->place_free_body(body,
+                               v.present ? v.spec.pose : scene::runtime_thing_park_pose(park_slot));
+}
+
+int Simulation::Impl::take_spare_thing(const ThingSpec& spec, std::string_view id) {
+  check_spec(spec, id);
+  for (std::size_t t = scene.things.size(); t < thing_views.size(); ++t) {
+    ThingView& v = thing_views[t];
+    if (v.present) continue;
+    v.present = true;
+    v.id = std::string(id);
+    v.spec = spec;
+    pending_things.push_back(static_cast<std::int32_t>(t));
+    return v.body;
+  }
+  throw Error(ErrorKind::usage,
+              "add_thing '" + std::string(id) + "': all " +
+                  std::to_string(scene.runtime_things.size()) +
+                  " spare bodies hold things; raise <s2sim><runtime_things count> in the scene "
+                  "(docs/format.md, \"Things added while running\")");
+}
+
+void Simulation::Impl::mark_thing_deleted(int body) {
+  const std::int32_t t = body > 0 && body < static_cast<int>(thing_of_body.size())
+                             ? thing_of_body[static_cast<std::size_t>(body)]
+                             : -1;
+  if (t < 0)
+    throw Error(ErrorKind::usage,
+                "delete_thing: body " + body_label(body) + " is not a thing of the scene");
+  ThingView& v = thing_views[static_cast<std::size_t>(t)];
+  const scene::Body& loaded = scene.bodies[static_cast<std::size_t>(body - 1)];
+  // Only a loose thing leaves the world (setting its present mass properties says whether).
+  if (!v.added && !multibody->set_loose_mass(body, loaded.mass_kg, loaded.com_m,
+                                             loaded.inertia_kg_m2, v.present && loaded.gravity))
+    throw Error(ErrorKind::usage, "delete_thing: thing " + body_label(body) +
+                                      " is jointed to something and cannot be deleted");
+  if (!v.present) return;
+  v.present = false;
+  pending_things.push_back(t);
+}
+
+void Simulation::Impl::apply_pending_things() {
+  for (const std::int32_t t : pending_things)
+    apply_thing(static_cast<std::size_t>(t), true);
+  pending_things.clear();
+}
+
+std::int32_t Simulation::Impl::request_add_thing(const void* impl, const ThingSpec& spec,
+                                                 const char* id, std::size_t id_size) {
+  auto& m = *static_cast<Simulation::Impl*>(const_cast<void*>(impl));
+  return m.take_spare_thing(spec, std::string_view(id, id_size));
+}
+
+void Simulation::Impl::request_delete_thing(const void* impl, std::int32_t body) {
+  auto& m = *static_cast<Simulation::Impl*>(const_cast<void*>(impl));
+  m.mark_thing_deleted(body);
+}
+
+void Simulation::Impl::declare_things_state() {
+  if (scene.runtime_things.empty() && scene.things.empty()) return;
+  layout.add(
+      "things", kThingNumbers * thing_views.size(),
+      [this](double* out) {
+        for (const ThingView& v : thing_views) {
+          const double numbers[kThingNumbers] = {
+              v.present ? 1.0 : 0.0, static_cast<double>(v.spec.shape),
+              v.spec.size_m.x,       v.spec.size_m.y,
+              v.spec.size_m.z,       v.spec.mass_kg,
+              v.spec.rgb[0],         v.spec.rgb[1],
+              v.spec.rgb[2]};
+          std::copy(numbers, numbers + kThingNumbers, out);
+          out += kThingNumbers;
+        }
+      },
+      [this](const double* in, std::size_t) {
+        for (std::size_t t = 0; t < thing_views.size(); ++t, in += kThingNumbers) {
+          ThingView& v = thing_views[t];
+          v.present = in[0] != 0;
+          v.spec.shape = static_cast<ThingShape>(static_cast<int>(in[1]));
+          v.spec.size_m = {in[2], in[3], in[4]};
+          v.spec.mass_kg = in[5];
+          std::copy(in + 6, in + 9, v.spec.rgb);
+          apply_thing(t, false);  // the poses are the multibody's segments
+        }
+      });
+  // The added things' IDs: per spare body its length, then its characters.
+  auto ids_size = [this] {
+    std::size_t n = 0;
+    for (std::size_t t = scene.things.size(); t < thing_views.size(); ++t)
+      n += 1 + thing_views[t].id.size();
+    return n;
+  };
+  if (scene.runtime_things.empty()) return;
+  layout.add_variable(
+      "things/ids", 1, ids_size,
+      [this](double* out) {
+        for (std::size_t t = scene.things.size(); t < thing_views.size(); ++t) {
+          const std::string& id = thing_views[t].id;
+          *out++ = static_cast<double>(id.size());
+          for (const char c : id)
+            *out++ = static_cast<double>(static_cast<unsigned char>(c));
+        }
+      },
+      [this](const double* in, std::size_t count) {
+        const double* end = in + count;
+        for (std::size_t t = scene.things.size(); t < thing_views.size(); ++t) {
+          std::string& id = thing_views[t].id;
+          id.clear();
+          if (in == end) continue;  // a shorter segment: the rest have none
+          const auto n = static_cast<std::size_t>(*in++);
+          for (std::size_t k = 0; k < n && in < end; ++k)
+            id.push_back(static_cast<char>(static_cast<int>(*in++)));
+        }
+      });
+}
+
+int Simulation::add_thing(const ThingSpec& spec, std::string_view id) {
+  Impl& m = *impl_;
+  const int body = m.take_spare_thing(spec, id);
+  m.apply_pending_things();
+  m.refresh();
+  m.changed();
+  return body;
+}
+
+void Simulation::delete_thing(int body) {
+  Impl& m = *impl_;
+  m.mark_thing_deleted(body);
+  m.apply_pending_things();
+  m.refresh();
+  m.changed();
+}
+
+const std::vector<ThingView>& Simulation::things() const {
+  return impl_->thing_views;
+}
+
+}  // namespace s2sim

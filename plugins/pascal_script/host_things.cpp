@@ -1,0 +1,88 @@
+// Things added and deleted while running (simtwo-script-api.md §3.4; docs/scripting.md): SimTwo
+// keeps one list of things, the scene's then the added ones in the order they came, and a
+// deletion shifts the later indices down. The kernel holds the bodies
+// (StepContext::request_add_thing); this list is the script's view of them.
+#include "script_controller.hpp"
+
+namespace s2sim::pascal {
+namespace {
+
+/// Delphi's TColor ($00BBGGRR) as 0..1 components.
+void color_of(double rgb24, double* rgb) {
+  const auto c = static_cast<std::uint32_t>(static_cast<std::int64_t>(rgb24));
+  for (int k = 0; k < 3; ++k)
+    rgb[k] = static_cast<double>((c >> (8 * k)) & 0xFFu) / 255.0;
+}
+
+}  // namespace
+
+double ScriptController::call_things(HostFn fn, const double* a, int n, const std::string& s) {
+  StepContext& ctx = *ctx_;
+  auto need = [&](int count) { require_arguments(fn, n, count); };
+  auto index_of = [&](const std::string& id) {
+    for (std::size_t i = 0; i < things_.size(); ++i)
+      if (things_[i].id == id) return static_cast<int>(i);
+    return -1;
+  };
+  auto remove = [&](int t) {
+    ctx.request_delete_thing(things_[static_cast<std::size_t>(t)].body);
+    things_.erase(things_.begin() + t);
+  };
+  switch (fn) {
+    case HostFn::AddThingBox:
+    case HostFn::AddThingSphere:
+    case HostFn::AddThingCylinder: {
+      // Box: mass, x, y, z, sx, sy, sz, rgb; sphere: mass, x, y, z, r, rgb; cylinder: mass,
+      // x, y, z, r, length, rgb.
+      const int sizes = fn == HostFn::AddThingBox ? 3 : fn == HostFn::AddThingSphere ? 1 : 2;
+      need(4 + sizes + 1);
+      for (int k = 0; k < 4 + sizes; ++k)
+        if (!std::isfinite(a[k]))
+          fail(std::string(fn == HostFn::AddThingBox      ? "AddThingBox"
+                           : fn == HostFn::AddThingSphere ? "AddThingSphere"
+                                                          : "AddThingCylinder") +
+               ": argument " + std::to_string(k + 2) + " is " + number_text(a[k]));
+      if (index_of(s) >= 0) fail("AddThing Error - Duplicate ID: " + s);
+      ThingSpec spec;
+      spec.mass_kg = a[0];
+      spec.pose.position = {a[1], a[2], a[3]};
+      if (fn == HostFn::AddThingBox) {
+        spec.shape = ThingShape::box;
+        spec.size_m = {a[4], a[5], a[6]};
+      } else if (fn == HostFn::AddThingSphere) {
+        spec.shape = ThingShape::sphere;
+        spec.size_m = {a[4], a[4], a[4]};
+      } else {
+        spec.shape = ThingShape::cylinder;
+        spec.size_m = {a[4], a[4], a[5]};
+      }
+      color_of(a[4 + sizes], spec.rgb);
+      ThingRef th;
+      th.id = s;
+      try {
+        th.body = ctx.request_add_thing(spec, s);
+      } catch (const Error& e) {
+        fail(e.message());
+      }
+      for (int k = 0; k < 3; ++k)
+        th.look.rgba[k] = th.look.rgba_loaded[k] = spec.rgb[k];
+      th.look.rgba[3] = th.look.rgba_loaded[3] = 1;
+      th.look.size = spec.size_m;  // SimTwo's GetSize: box edges; r, r, l; r, r, r
+      things_.push_back(th);
+      return static_cast<double>(things_.size() - 1);
+    }
+    case HostFn::DeleteThing: {
+      const int t = index_of(s);
+      if (t >= 0) remove(t);
+      return t;
+    }
+    case HostFn::ClearThings:
+      while (!things_.empty())
+        remove(static_cast<int>(things_.size()) - 1);
+      return 0;
+    default:
+      fail("invalid host call");
+  }
+}
+
+}  // namespace s2sim::pascal
