@@ -86,10 +86,11 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       }
     }
   };
-  auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind) {
+  auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind, int index) {
     Drawable d;
     d.kind = kind;
     d.body = body;
+    d.index = index;
     set_color(d.item, g.visual.color);
     if (!g.visual.texture.empty()) {
       std::string error;
@@ -145,10 +146,10 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
         scene.bodies[b].visuals.empty() ? scene.bodies[b].geoms : scene.bodies[b].visuals;
     for (std::size_t k = 0; k < drawn.size(); ++k)
       add_geom(drawn[k], static_cast<int>(b) + 1,
-               k == 0 ? Drawable::Kind::solid : Drawable::Kind::shell);
+               k == 0 ? Drawable::Kind::solid : Drawable::Kind::shell, static_cast<int>(k));
   }
-  for (const auto& g : scene.obstacles)
-    add_geom(g, 0, Drawable::Kind::obstacle);
+  for (std::size_t o = 0; o < scene.obstacles.size(); ++o)
+    add_geom(scene.obstacles[o], 0, Drawable::Kind::obstacle, static_cast<int>(o));
 
   for (const auto& t : scene.tracks) {
     Drawable d;
@@ -176,6 +177,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     if (s.beam.length_m <= 0) continue;
     Drawable d;
     d.kind = Drawable::Kind::beam;
+    d.index = static_cast<int>(&s - scene.sensors.data());
     d.body = s.body >= 0 ? s.body + 1 : 0;
     // A thin translucent slab along the sensor's +X, as wide as the beam at its far end.
     const auto length = static_cast<float>(s.beam.length_m);
@@ -261,13 +263,23 @@ void SceneDrawables::update(const Simulation& sim) {
       if (thing.added && thing.present) take_thing_shape(d, thing);
     }
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
-    if (d.kind != Drawable::Kind::solid) continue;
-    const Annotations::BodyColor* painted =
-        notes.body_colors.empty() ? nullptr : notes.body_color(d.body);
+    // A run-time colour: a solid's, a shell's or an obstacle's, a sensor beam's (its alpha).
+    const double* painted = nullptr;
+    if (d.kind == Drawable::Kind::solid && !notes.body_colors.empty()) {
+      if (const auto* c = notes.body_color(d.body)) painted = c->rgb;
+    } else if ((d.kind == Drawable::Kind::shell || d.kind == Drawable::Kind::obstacle) &&
+               !notes.shape_colors.empty()) {
+      if (const auto* c = notes.shape_color(d.body, d.index)) painted = c->rgb;
+    } else if (d.kind == Drawable::Kind::beam && !notes.sensor_colors.empty()) {
+      if (const auto* c = notes.sensor_color(d.index)) painted = c->rgb;
+    }
+    if (d.kind != Drawable::Kind::solid && d.kind != Drawable::Kind::shell &&
+        d.kind != Drawable::Kind::obstacle && d.kind != Drawable::Kind::beam)
+      continue;
     for (int k = 0; k < 4; ++k)
-      d.item.color[k] = painted && k < 3 ? static_cast<float>(painted->rgb[k])
-                        : painted        ? 1.0f
-                                         : d.scene_color[k];
+      d.item.color[k] = painted && k < 3                            ? static_cast<float>(painted[k])
+                        : painted && d.kind != Drawable::Kind::beam ? 1.0f
+                                                                    : d.scene_color[k];
   }
 }
 

@@ -22,6 +22,7 @@ struct Drawable {
   Vec3f box_max{0.5f, 0.5f, 0.5f};
   DrawItem item;                                 ///< model is rewritten every frame
   float scene_color[4] = {0.5f, 0.5f, 0.5f, 1};  ///< the scene's; a script may repaint a solid
+  int index = 0;        ///< a geom's index in its body (0: the solid), an obstacle's, a sensor's
   int thing = -1;       ///< its body's index in Simulation::things(), -1 for other bodies
   bool hidden = false;  ///< a deleted thing, or a spare body no thing holds
 };

@@ -185,6 +185,37 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
         numbers_.push_back(std::round(v * 255));
       return 0;
     }
+    case HostFn::SetShellColor: {  // bytes 0..255, opaque
+      need(5);
+      RobotRef& rb = robot(a[0]);
+      if (a[1] < 0 || a[1] >= static_cast<double>(rb.shells.size())) fail(index_error(a[1]));
+      RobotRef::Shell& shell = rb.shells[static_cast<std::size_t>(a[1])];
+      for (int k = 0; k < 3; ++k)
+        shell.rgba[k] = a[2 + k] / 255;
+      shell.rgba[3] = 1;
+      ctx.set_shape_color(shell.body, shell.geom, a[2] / 255, a[3] / 255, a[4] / 255);
+      return 0;
+    }
+    case HostFn::SetObstacleColor: {
+      need(4);
+      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
+      ObstacleRef& ob = obstacles_[static_cast<std::size_t>(a[0])];
+      for (int k = 0; k < 3; ++k)
+        ob.rgba[k] = a[1 + k] / 255;
+      ob.rgba[3] = 1;
+      ctx.set_shape_color(BodyHandle{0}, static_cast<int>(a[0]), a[1] / 255, a[2] / 255,
+                          a[3] / 255);
+      return 0;
+    }
+    case HostFn::SetSensorColor: {
+      need(5);
+      const RobotRef& rb = robot(a[0]);
+      if (a[1] < 0 || a[1] >= static_cast<double>(rb.sensors.size())) fail(index_error(a[1]));
+      const SensorRef& sensor =
+          sensors_[static_cast<std::size_t>(rb.sensors[static_cast<std::size_t>(a[1])])];
+      ctx.set_sensor_color(sensor.prefix, a[2] / 255, a[3] / 255, a[4] / 255);
+      return 0;
+    }
     case HostFn::SetBeltSpeed: {  // the belt's surface speed along its +X, the input belt_speed
       need(3);
       const SolidRef& sd = solid(a[0], a[1]);

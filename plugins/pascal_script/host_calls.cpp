@@ -501,6 +501,9 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetBeltSpeed:
     case HostFn::GetShellPos:
     case HostFn::GetShellColor:
+    case HostFn::SetShellColor:
+    case HostFn::SetObstacleColor:
+    case HostFn::SetSensorColor:
       return call_bodies(fn, a, n, s);
     case HostFn::AddThingBox:
     case HostFn::AddThingSphere:

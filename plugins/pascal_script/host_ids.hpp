@@ -70,6 +70,9 @@
   X(GetThingColor) \
   X(GetObstaclePos) \
   X(AddOBstacleBox) \
+  X(SetShellColor) \
+  X(SetObstacleColor) \
+  X(SetSensorColor) \
   X(AddThingBox) \
   X(AddThingSphere) \
   X(AddThingCylinder) \

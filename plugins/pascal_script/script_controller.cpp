@@ -71,6 +71,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
       const std::string sk = k + "shell_" + std::to_string(i) + "_";
       RobotRef::Shell shell;
       shell.body = ctx.body(p.text(sk + "body"));
+      shell.geom = static_cast<int>(p.integer(sk + "geom"));
       shell.position = {p.number(sk + "x"), p.number(sk + "y"), p.number(sk + "z")};
       const char* rgba[] = {"r", "g", "b", "a"};
       for (int c = 0; c < 4; ++c)

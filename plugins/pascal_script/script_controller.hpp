@@ -110,6 +110,7 @@ struct RobotRef {
   std::vector<std::string> shell_tags;
   struct Shell {
     BodyHandle body;
+    int geom = 1;   // its index in the body's geoms (0 is the solid's own)
     Vec3 position;  // in the body frame
     double rgba[4] = {0, 0, 0, 0};
   };

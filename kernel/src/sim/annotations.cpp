@@ -30,8 +30,22 @@ const Annotations::BodyColor* Annotations::body_color(int body) const {
   return nullptr;
 }
 
+const Annotations::ShapeColor* Annotations::shape_color(int body, int geom) const {
+  for (const ShapeColor& c : shape_colors)
+    if (c.body == body && c.geom == geom) return &c;
+  return nullptr;
+}
+
+const Annotations::SensorColor* Annotations::sensor_color(int sensor) const {
+  for (const SensorColor& c : sensor_colors)
+    if (c.sensor == sensor) return &c;
+  return nullptr;
+}
+
 void Annotations::clear() {
   body_colors.clear();
+  shape_colors.clear();
+  sensor_colors.clear();
   lines.clear();
   next_sequence = 0;
   huds.clear();
@@ -50,6 +64,24 @@ T* find_or_add(std::vector<T>& list, const std::string& source, int id, bool add
   if (!add || list.size() >= Annotations::kMaxTrailsOrSeries) return nullptr;
   list.push_back(T{source, id, {}});
   return &list.back();
+}
+
+/// 0..1 from a component's number; NaN becomes 0.
+double unit_interval(double v) {
+  return v >= 0 ? (v <= 1 ? v : 1.0) : 0.0;
+}
+
+/// Sets the colour of `list`'s entry that `same` picks, made when absent; false when unchanged.
+template <class T, class Same>
+bool paint(std::vector<T>& list, T entry, Same same) {
+  for (T& old : list)
+    if (same(old)) {
+      if (std::equal(entry.rgb, entry.rgb + 3, old.rgb)) return false;
+      old = entry;
+      return true;
+    }
+  list.push_back(entry);
+  return true;
 }
 
 /// `text` as kept: at most Annotations::kMaxTextBytes, cut at a character boundary (UTF-8), with
@@ -123,6 +155,36 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
         auto& slot = a.body_colors[static_cast<std::size_t>(old - a.body_colors.data())];
         slot = c;
       }
+      break;
+    }
+    case detail::Annotation::shape_color: {
+      if (values == nullptr || id < 0 || id >= static_cast<std::int32_t>(m.poses.size())) return;
+      const double geom = values[0];
+      const std::size_t geoms = id == 0
+                                    ? m.scene.obstacles.size()
+                                    : m.scene.bodies[static_cast<std::size_t>(id - 1)].geoms.size();
+      if (!(geom >= 0 && geom < static_cast<double>(geoms))) return;
+      Annotations::ShapeColor c{id, static_cast<int>(geom), {}};
+      for (int k = 0; k < 3; ++k)
+        c.rgb[k] = unit_interval(values[1 + k]);
+      if (!paint(a.shape_colors, c, [&](const Annotations::ShapeColor& o) {
+            return o.body == c.body && o.geom == c.geom;
+          }))
+        return;
+      break;
+    }
+    case detail::Annotation::sensor_color: {
+      if (values == nullptr) return;
+      int sensor = -1;
+      for (const sim::ComponentSlot& slot : m.components)
+        if (slot.sensor >= 0 && slot.prefix == body) sensor = slot.sensor;
+      if (sensor < 0) return;
+      Annotations::SensorColor c{sensor, {}};
+      for (int k = 0; k < 3; ++k)
+        c.rgb[k] = unit_interval(values[k]);
+      if (!paint(a.sensor_colors, c,
+                 [&](const Annotations::SensorColor& o) { return o.sensor == c.sensor; }))
+        return;
       break;
     }
     default:

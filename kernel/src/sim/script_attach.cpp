@@ -4,6 +4,7 @@
 //   file, found_by, robots, things, obstacles, global_sensors, cells, constants
 //   robot_<R>_id, _main (body path), _origin_x/y/z, _offset_x/y/z, _yaw, _solids, _axes, _sensors
 //   robot_<R>_solid_<i>_id / _body, robot_<R>_axis_<i> (axis path, '' for Fixed/Ball),
+//   robot_<R>_shell_<i>_body / _geom (its index in the body's geoms) / _x / _y / _z / _r...,
 //   robot_<R>_axis_<i>_joint, robot_<R>_sensor_<i>_id / _kind / _prefix
 //   thing_<T>_id / _body / _r / _g / _b / _a, obstacle_<T>_id / _x / _y / _z
 //   global_sensor_<i>_id / _kind / _prefix, cell_<k>_r / _c / _text, constant_<k>_name / _value
@@ -133,6 +134,7 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       const scene::Geom& g = b.geoms[static_cast<std::size_t>(geom)];
       const std::string sk = k + "shell_" + std::to_string(i) + "_";
       set(sk + "body", sim::solid_path(rp, b.id));
+      set(sk + "geom", std::to_string(geom));
       set(sk + "x", exact_decimal(g.pose.position.x));
       set(sk + "y", exact_decimal(g.pose.position.y));
       set(sk + "z", exact_decimal(g.pose.position.z));

@@ -588,7 +588,7 @@ procedure StopSolidFire(R, I: integer); begin NotYetAvailable('StopSolidFire'); 
 procedure StartSolidFire(R, I: integer); begin NotYetAvailable('StartSolidFire'); end;
 
 procedure SetGlobalSensorVin(i: integer; Vin: byte); begin HostCall(hSetGlobalSensorVin, [i, Vin]); end;
-procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetSensorColor'); end;
+procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte); begin HostCall(hSetSensorColor, [R, i, Red, Green, Blue]); end;
 
 procedure SetThingColor(T, c: integer; Red, Green, Blue: byte); begin HostCall(hSetThingColor, [T, c, Red, Green, Blue]); end;
 function GetThingRotMat(T: integer): Matrix; begin result := HostMatrix(hGetThingRotMat, [T]); end;
@@ -620,7 +620,7 @@ procedure SetThingAngularVel(T: integer; x, y, z: double); begin HostCall(hSetTh
 function GetThingAngularVel(T: integer): TPoint3D; begin result := HostPoint(hGetThingAngularVel, [T]); end;
 
 function GetShellPos(R, i: integer): TPoint3D; begin result := HostPoint(hGetShellPos, [R, i]); end;
-procedure SetShellColor(R, i: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetShellColor'); end;
+procedure SetShellColor(R, i: integer; Red, Green, Blue: byte); begin HostCall(hSetShellColor, [R, i, Red, Green, Blue]); end;
 function GetShellColor(R, i: integer): TRGBAColor;
 var M: Matrix;
 begin
@@ -631,7 +631,7 @@ begin
 end;
 
 function GetObstacleIndex(ID: string): integer; begin result := Round(HostCallS(hGetObstacleIndex, [], ID)); end;
-procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin NotYetAvailable('SetObstacleColor'); end;
+procedure SetObstacleColor(I: integer; Red, Green, Blue: byte); begin HostCall(hSetObstacleColor, [I, Red, Green, Blue]); end;
 function GetObstacleColor(I: integer): TRGBAColor;
 var M: Matrix;
 begin
@@ -656,9 +656,9 @@ procedure SetAxisStateRef(R, i: integer; aState: TAxisState);
 begin SetAxisPosRef(R, i, aState.pos); SetAxisSpeedRef(R, i, aState.vel); end;
 function GetAxisPosRefDeg(R, i: integer): double; begin result := Deg(GetAxisPosRef(R, i)); end;
 function GetAxisSpeedRefDeg(R, i: integer): double; begin result := Deg(GetAxisSpeedRef(R, i)); end;
-function GetAxisMotorSpeed(R, i: integer): double; begin NotYetAvailable('GetAxisMotorSpeed'); end;
-function GetAxisMotorPos(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPos'); end;
-function GetAxisMotorPosDeg(R, i: integer): double; begin NotYetAvailable('GetAxisMotorPosDeg'); end;
+function GetAxisMotorSpeed(R, i: integer): double; begin result := GetAxisSpeed(R, i); end;
+function GetAxisMotorPos(R, i: integer): double; begin result := GetAxisPos(R, i); end;
+function GetAxisMotorPosDeg(R, i: integer): double; begin result := Deg(GetAxisPos(R, i)); end;
 function GetAxisEnergy(R, i: integer): double; begin result := HostCall(hGetAxisEnergy, [R, i]); end;
 procedure ResetAxisEnergy(R, i: integer); begin HostCall(hResetAxisEnergy, [R, i]); end;
 procedure SetMotorControllerPars(R, i: integer; nKi, nKd, nKp, nKf: double);

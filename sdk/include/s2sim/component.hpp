@@ -243,6 +243,10 @@ enum class Annotation : std::int32_t {
   xy_point = 4,     ///< id: series, values: x, y
   clear_xy = 5,     ///< id: series
   body_color = 6,   ///< id: body, values: red, green, blue in 0..1
+  /// id: body (0: the scene's obstacles), values: its geom's index (the obstacle's), red,
+  /// green, blue in 0..1
+  shape_color = 7,
+  sensor_color = 8,  ///< text: the sensor's signal prefix, values: red, green, blue in 0..1
 };
 
 #if defined(__GNUC__)
@@ -459,6 +463,20 @@ class StepContext {
   void set_body_color(BodyHandle b, double red, double green, double blue) {
     const double rgb[3] = {red, green, blue};
     annotate(detail::Annotation::body_color, body(b, "set_body_color"), {}, rgb);
+  }
+
+  /// Paints one geom of a body (SimTwo's `SetShellColor`: `geom` 1 is its first shell, 0 its
+  /// own primitive) or, on body 0, the scene's obstacle `geom` (`SetObstacleColor`), until
+  /// painted again or a reset.
+  void set_shape_color(BodyHandle b, int geom, double red, double green, double blue) {
+    const double values[4] = {static_cast<double>(geom), red, green, blue};
+    annotate(detail::Annotation::shape_color, body(b, "set_shape_color"), {}, values);
+  }
+  /// Paints a scene sensor, named by its signal prefix (`robots/<robot>/sensors/<id>`; SimTwo's
+  /// `SetSensorColor`), until painted again or a reset.
+  void set_sensor_color(std::string_view sensor, double red, double green, double blue) {
+    const double rgb[3] = {red, green, blue};
+    annotate(detail::Annotation::sensor_color, 0, sensor, rgb);
   }
 
   // --- inputs and signals ---

@@ -199,6 +199,34 @@ TEST_F(ScriptApi, ThingsAddedAndDeletedByTheScriptKeepSimTwosListAndFallAsFreeFa
   EXPECT_EQ(run(), cells);
 }
 
+TEST_F(ScriptApi, ShellObstacleAndSensorColoursReachTheViewerAndReadBack) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("paint.pas");
+  o.sheet_cells = {{1, 1, "0"}, {1, 2, "0"}, {1, 3, "1"}};
+  auto sim = Simulation::load(kScene, o);
+  sim->run_until(0.05);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_EQ(sim->signal("sheet/A1"), 51);
+  EXPECT_EQ(sim->signal("sheet/B1"), 255);
+  EXPECT_EQ(sim->signal("sheet/C1"), 0) << "the motor turns with the axis";
+  const s2sim::Annotations& notes = sim->annotations();
+  ASSERT_EQ(notes.shape_colors.size(), 2u);
+  const auto& shells = sim->scene().robots[0].shells;
+  ASSERT_FALSE(shells.empty());
+  const auto* shell = notes.shape_color(shells[0].first + 1, shells[0].second);
+  ASSERT_NE(shell, nullptr);
+  EXPECT_DOUBLE_EQ(shell->rgb[0], 1);
+  EXPECT_DOUBLE_EQ(shell->rgb[2], 0.2);
+  const auto* obstacle = notes.shape_color(0, 0);
+  ASSERT_NE(obstacle, nullptr);
+  EXPECT_DOUBLE_EQ(obstacle->rgb[1], 1);
+  ASSERT_EQ(notes.sensor_colors.size(), 1u);
+  EXPECT_DOUBLE_EQ(notes.sensor_colors[0].rgb[2], 1);
+  EXPECT_EQ(sim->scene().sensors[static_cast<std::size_t>(notes.sensor_colors[0].sensor)].robot, 0);
+  sim->reset();
+  EXPECT_TRUE(sim->annotations().shape_colors.empty()) << "a reset restores the scene's colours";
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;

@@ -57,6 +57,23 @@ struct Annotations {
     double rgb[3] = {0, 0, 0};  ///< 0..1
   };
   std::vector<BodyColor> body_colors;
+  /// Geoms painted at run time (StepContext::set_shape_color): a body's geom (1: its first
+  /// shell), or on body 0 the scene's obstacle `geom`; one entry per geom.
+  struct ShapeColor {
+    int body = 0;
+    int geom = 0;
+    double rgb[3] = {0, 0, 0};
+  };
+  std::vector<ShapeColor> shape_colors;
+  const ShapeColor* shape_color(int body, int geom) const;
+  /// Scene sensors painted at run time (StepContext::set_sensor_color), by index in
+  /// scene::Scene::sensors.
+  struct SensorColor {
+    int sensor = 0;
+    double rgb[3] = {0, 0, 0};
+  };
+  std::vector<SensorColor> sensor_colors;
+  const SensorColor* sensor_color(int sensor) const;
   /// The run-time colour of `body`, or null when it keeps the scene's.
   const BodyColor* body_color(int body) const;
   /// Incremented whenever anything changes (a viewer redraws or copies only then).
