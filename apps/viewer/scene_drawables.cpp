@@ -261,6 +261,8 @@ void SceneDrawables::update(const Simulation& sim) {
       const ThingView& thing = things[static_cast<std::size_t>(d.thing)];
       d.hidden = !thing.present;
       if (thing.added && thing.present) take_thing_shape(d, thing);
+    } else if (d.kind == Drawable::Kind::obstacle) {
+      d.hidden = !sim.obstacle_present(d.index);
     }
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
     // A run-time colour: a solid's, a shell's or an obstacle's, a sensor beam's (its alpha).

@@ -198,13 +198,14 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
     }
     case HostFn::SetObstacleColor: {
       need(4);
-      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      ObstacleRef& ob = obstacles_[static_cast<std::size_t>(a[0])];
+      ObstacleRef& ob = obstacle(a[0]);
       for (int k = 0; k < 3; ++k)
         ob.rgba[k] = a[1 + k] / 255;
       ob.rgba[3] = 1;
-      ctx.set_shape_color(BodyHandle{0}, static_cast<int>(a[0]), a[1] / 255, a[2] / 255,
-                          a[3] / 255);
+      if (ob.scene_index >= 0)
+        ctx.set_shape_color(BodyHandle{0}, ob.scene_index, a[1] / 255, a[2] / 255, a[3] / 255);
+      else
+        ctx.set_body_color(ob.body, a[1] / 255, a[2] / 255, a[3] / 255);
       return 0;
     }
     case HostFn::SetSensorColor: {
@@ -239,17 +240,17 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
     case HostFn::GetObstacleColor:
     case HostFn::GetObstacleRotMat: {
       need(1);
-      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      const ObstacleRef& ob = obstacles_[static_cast<std::size_t>(a[0])];
+      const ObstacleRef& ob = obstacle(a[0]);
       numbers_.clear();
       if (fn == HostFn::GetObstacleColor) {
         for (double v : ob.rgba)
           numbers_.push_back(std::round(v * 255));
         return 0;
       }
+      const Mat3& rotation = ob.scene_index >= 0 ? ob.rotation : pose_of(ob.body).rotation;
       for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c)
-          numbers_.push_back(ob.rotation.m[r][c]);
+          numbers_.push_back(rotation.m[r][c]);
       return 3 * 65536 + 3;
     }
     case HostFn::SetShellTag: {
@@ -287,10 +288,11 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
         numbers_.push_back(std::round(v * 255));
       return 0;
     }
-    case HostFn::GetObstaclePos:
+    case HostFn::GetObstaclePos: {
       need(1);
-      if (a[0] < 0 || a[0] >= static_cast<double>(obstacles_.size())) fail(index_error(a[0]));
-      return point(obstacles_[static_cast<std::size_t>(a[0])].position);
+      const ObstacleRef& ob = obstacle(a[0]);
+      return point(ob.scene_index >= 0 ? ob.position : pose_of(ob.body).position);
+    }
     case HostFn::GetSolidAngularVel:
       need(2);
       return point(ctx.body_twist(solid(a[0], a[1]).body).angular_rad_s);

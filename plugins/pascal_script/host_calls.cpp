@@ -69,6 +69,11 @@ SensorRef& ScriptController::robot_sensor(double r, double i) {
     fail(index_error(i));
   return sensors_[static_cast<std::size_t>(rb.sensors[static_cast<std::size_t>(i)])];
 }
+ObstacleRef& ScriptController::obstacle(double t) {
+  if (t < 0 || t >= static_cast<double>(obstacles_.size())) fail(index_error(t));
+  return obstacles_[static_cast<std::size_t>(t)];
+}
+
 ThingRef& ScriptController::thing(double t) {
   if (t < 0 || t >= static_cast<double>(things_.size())) fail(index_error(t));
   return things_[static_cast<std::size_t>(t)];
@@ -470,8 +475,6 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetThingPos:
     case HostFn::GetThingColor:
     case HostFn::GetObstaclePos:
-    case HostFn::AddOBstacleBox:
-    case HostFn::ClearObstacles:
     case HostFn::GetSolidAngularVel:
     case HostFn::GetSolidMass:
     case HostFn::SetSolidForce:
@@ -505,6 +508,11 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::SetObstacleColor:
     case HostFn::SetSensorColor:
       return call_bodies(fn, a, n, s);
+    case HostFn::AddOBstacleBox:
+    case HostFn::ClearObstacles:
+    case HostFn::DeleteObstacle:
+    case HostFn::SetObstaclePos:
+    case HostFn::SetObstacleRotationMat:
     case HostFn::AddThingBox:
     case HostFn::AddThingSphere:
     case HostFn::AddThingCylinder:

@@ -73,6 +73,9 @@
   X(SetShellColor) \
   X(SetObstacleColor) \
   X(SetSensorColor) \
+  X(DeleteObstacle) \
+  X(SetObstaclePos) \
+  X(SetObstacleRotationMat) \
   X(AddThingBox) \
   X(AddThingSphere) \
   X(AddThingCylinder) \

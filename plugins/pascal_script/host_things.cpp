@@ -1,7 +1,8 @@
-// Things added and deleted while running (simtwo-script-api.md §3.4; docs/scripting.md): SimTwo
-// keeps one list of things, the scene's then the added ones in the order they came, and a
-// deletion shifts the later indices down. The kernel holds the bodies
-// (StepContext::request_add_thing); this list is the script's view of them.
+// Things and obstacles added and deleted while running (simtwo-script-api.md §3.4;
+// docs/scripting.md): SimTwo keeps one list of each, the scene's then the added ones in the
+// order they came, and a deletion shifts the later indices down. The kernel holds the bodies
+// (StepContext::request_add_thing: an added obstacle is a fixed one); these lists are the
+// script's view of them.
 #include "script_controller.hpp"
 
 namespace s2sim::pascal {
@@ -27,6 +28,14 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
   auto remove = [&](int t) {
     ctx.request_delete_thing(things_[static_cast<std::size_t>(t)].body);
     things_.erase(things_.begin() + t);
+  };
+  auto remove_obstacle = [&](std::size_t i) {
+    const ObstacleRef& ob = obstacles_[i];
+    if (ob.scene_index >= 0)
+      ctx.request_delete_obstacle(ob.scene_index);
+    else
+      ctx.request_delete_thing(ob.body);
+    obstacles_.erase(obstacles_.begin() + static_cast<std::ptrdiff_t>(i));
   };
   switch (fn) {
     case HostFn::AddThingBox:
@@ -80,6 +89,83 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
       while (!things_.empty())
         remove(static_cast<int>(things_.size()) - 1);
       return 0;
+    case HostFn::AddOBstacleBox: {  // x, y, z, sx, sy, sz, rgb: an axis-aligned static box
+      need(7);
+      for (int k = 0; k < 6; ++k)
+        if (!std::isfinite(a[k]))
+          fail("AddOBstacleBox: argument " + std::to_string(k + 2) + " is " + number_text(a[k]));
+      for (const ObstacleRef& ob : obstacles_)
+        if (ob.id == s) fail("AddObstacle Error - Duplicate ID: " + s);
+      ThingSpec spec;
+      spec.shape = ThingShape::box;
+      spec.fixed = true;
+      spec.pose.position = {a[0], a[1], a[2]};
+      spec.size_m = {a[3], a[4], a[5]};
+      color_of(a[6], spec.rgb);
+      ObstacleRef ob;
+      ob.id = s;
+      try {
+        ob.body = ctx.request_add_thing(spec, s);
+      } catch (const Error& e) {
+        fail(e.message());
+      }
+      ob.position = spec.pose.position;
+      for (int k = 0; k < 3; ++k)
+        ob.rgba[k] = spec.rgb[k];
+      ob.rgba[3] = 1;
+      obstacles_.push_back(ob);
+      return static_cast<double>(obstacles_.size() - 1);
+    }
+    case HostFn::DeleteObstacle: {
+      for (std::size_t i = 0; i < obstacles_.size(); ++i)
+        if (obstacles_[i].id == s) {
+          remove_obstacle(i);
+          return static_cast<double>(i);
+        }
+      return -1;
+    }
+    case HostFn::ClearObstacles:
+      while (!obstacles_.empty())
+        remove_obstacle(obstacles_.size() - 1);
+      return 0;
+    case HostFn::SetObstaclePos:
+    case HostFn::SetObstacleRotationMat: {
+      const char* name = fn == HostFn::SetObstaclePos ? "SetObstaclePos" : "SetObstacleRotationMat";
+      need(fn == HostFn::SetObstaclePos ? 4 : 3);
+      ObstacleRef& ob = obstacle(a[0]);
+      if (ob.scene_index >= 0)
+        fail(std::string(name) + ": obstacle '" + ob.id +
+             "' is the scene's, static since the load; obstacles added with AddOBstacleBox move");
+      Pose pose = ctx.body_pose(ob.body);
+      if (fn == HostFn::SetObstaclePos) {
+        for (int k = 1; k < 4; ++k)
+          if (!std::isfinite(a[k]))
+            fail(std::string(name) + ": argument " + std::to_string(k + 1) + " is " +
+                 number_text(a[k]));
+        pose.position = {a[1], a[2], a[3]};
+      } else {
+        if (a[1] < 3 || a[2] < 3 || n < 3 + static_cast<int>(a[1] * a[2]))
+          fail(std::string("Invalid (row,col) value: ") + name + " needs a 3x3 matrix");
+        const int cols = static_cast<int>(a[2]);
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) {
+            const double v = a[3 + r * cols + c];
+            if (!std::isfinite(v)) fail(std::string(name) + ": the matrix holds " + number_text(v));
+            pose.rotation.m[r][c] = v;
+          }
+        const auto& m = pose.rotation.m;
+        const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+        if (det < 0.1)
+          fail(std::string(name) + ": the matrix is not a rotation (determinant " +
+               number_text(det) + ")");
+      }
+      ctx.request_place(ob.body, pose);
+      ob.position = pose.position;
+      ob.rotation = pose.rotation;
+      return 0;
+    }
     default:
       fail("invalid host call");
   }

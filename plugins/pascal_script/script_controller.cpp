@@ -181,8 +181,10 @@ void ScriptController::configure(ConfigureContext& ctx) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c)
         ob.rotation.m[r][c] = p.number(ok + "rot_" + std::to_string(r) + std::to_string(c));
+    ob.scene_index = static_cast<int>(o);
     obstacles_.push_back(ob);
   }
+  obstacles_loaded_ = obstacles_;
   for (std::int64_t i = 0, n = p.integer("constants"); i < n; ++i)
     constants_.emplace_back(p.text("constant_" + std::to_string(i) + "_name"),
                             p.number("constant_" + std::to_string(i) + "_value"));
@@ -293,6 +295,7 @@ void ScriptController::initialize(StepContext& ctx) {
       sd.tag.clear();
     }
   things_ = things_loaded_;  // the kernel's reset removed the things added and put back the rest
+  obstacles_ = obstacles_loaded_;
   for (auto& th : things_)
     restore(th.look);
   chart_series_count_.assign(kMaxCharts, 0);

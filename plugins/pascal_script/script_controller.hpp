@@ -125,9 +125,11 @@ struct ThingRef {
 
 struct ObstacleRef {
   std::string id;
-  Vec3 position;
+  Vec3 position;  // a scene obstacle's; an added one's is its body's
   Mat3 rotation;
   double rgba[4] = {0, 0, 0, 0};
+  int scene_index = -1;  // in the scene's obstacles; -1 for one added while running
+  BodyHandle body;       // the spare body an added obstacle holds
 };
 
 /// Rotation about world Z.
@@ -152,7 +154,7 @@ class ScriptController final : public Component {
   double call(HostFn fn, const double* a, int n, const std::string& s, const std::string& s2);
   /// The robots', solids', things' and obstacles' functions (host_bodies.cpp).
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
-  /// Things added and deleted while running (host_things.cpp).
+  /// Things and obstacles added and deleted while running (host_things.cpp).
   double call_things(HostFn fn, const double* a, int n, const std::string& s);
   /// Springs, friction, controller gains and modes, the energy meter (host_axes.cpp).
   double call_axes(HostFn fn, const double* a, int n, const std::string& s);
@@ -160,6 +162,8 @@ class ScriptController final : public Component {
   double call_annotations(HostFn fn, const double* a, int n);
   /// A script error naming `fn` when it got fewer than `want` arguments.
   void require_arguments(HostFn fn, int have, int want);
+  /// The obstacle of index `t`, or a script error.
+  ObstacleRef& obstacle(double t);
   [[noreturn]] void fail(const std::string& message);
   [[noreturn]] void not_provided(HostFn fn, const char* why);
   RobotRef& robot(double r);
@@ -196,6 +200,7 @@ class ScriptController final : public Component {
   std::vector<ThingRef> things_;
   /// The scene's things as loaded: what SimTwo's list holds again at every reset.
   std::vector<ThingRef> things_loaded_;
+  std::vector<ObstacleRef> obstacles_loaded_;
   std::vector<ObstacleRef> obstacles_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;

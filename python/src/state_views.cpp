@@ -341,7 +341,7 @@ void bind_state(PySimulationClass& cls) {
           "add_thing",
           [](PySimulation& s, const std::string& shape, const py::object& size, double mass,
              const py::object& position, const py::object& rotation, const py::object& color,
-             const std::string& id) {
+             const std::string& id, bool fixed) {
             ThingSpec spec;
             if (shape == "box") {
               spec.shape = ThingShape::box;
@@ -374,14 +374,17 @@ void bind_state(PySimulationClass& cls) {
             spec.rgb[0] = rgb.x;
             spec.rgb[1] = rgb.y;
             spec.rgb[2] = rgb.z;
+            spec.fixed = fixed;
             return s.sim().add_thing(spec, id);
           },
           py::arg("shape"), py::arg("size"), py::arg("mass") = 1.0,
           py::arg("position") = std::vector<double>{0, 0, 0}, py::arg("rotation") = py::none(),
           py::arg("color") = std::vector<double>{0.5, 0.5, 0.5}, py::arg("id") = "",
+          py::arg("fixed") = false,
           "Adds a free body at rest (SimTwo's AddThingBox/Sphere/Cylinder): shape 'box' (size: "
           "edges x, y, z), 'sphere' (size: radius) or 'cylinder' (size: radius, length along "
-          "its Z), mass [kg], position [m], rotation (3x3), color (0..1). It takes one of the "
+          "its Z), mass [kg], position [m], rotation (3x3), color (0..1); fixed=True holds it "
+          "where it is put, as an obstacle. It takes one of the "
           "spare bodies (Simulation(runtime_things=N)); returns its body index. A reset removes "
           "it, a snapshot holds it.")
       .def(
@@ -389,6 +392,15 @@ void bind_state(PySimulationClass& cls) {
           [](PySimulation& s, const py::object& body) { s.sim().delete_thing(s.body_index(body)); },
           py::arg("body"),
           "Removes a thing (by name or index), a scene one or an added one, until a reset.")
+      .def(
+          "delete_obstacle", [](PySimulation& s, int index) { s.sim().delete_obstacle(index); },
+          py::arg("index"),
+          "Removes the scene's obstacle `index` (scene order) until a reset: it touches nothing "
+          "and rays pass.")
+      .def(
+          "obstacle_present",
+          [](const PySimulation& s, int index) { return s.sim().obstacle_present(index); },
+          py::arg("index"))
       .def_property_readonly(
           "things",
           [](const PySimulation& s) {

@@ -289,3 +289,17 @@ def test_things_added_and_deleted_while_running():
         sim.add_thing("box", [0.1, 0.1, 0.1])
     with pytest.raises(s2sim.Error, match="is not a thing"):
         sim.delete_thing("robots/nxt")
+
+
+def test_a_fixed_thing_is_an_obstacle_and_scene_obstacles_can_be_deleted():
+    sim = s2sim.Simulation(NXT, runtime_things=2)
+    shelf = sim.add_thing("box", [0.4, 0.4, 0.02], position=[2.0, 2.0, 0.5], fixed=True, id="shelf")
+    sim.add_thing("box", [0.1, 0.1, 0.1], mass=0.5, position=[2.0, 2.0, 0.8], id="parcel")
+    sim.run_until(1.0)
+    assert sim.signal("runtime_things/0/z") == 0.5
+    assert abs(sim.signal("runtime_things/1/z") - 0.56) < 2e-3
+    sim.delete_thing(shelf)
+    sim.run_until(2.0)
+    assert abs(sim.signal("runtime_things/1/z") - 0.05) < 2e-3
+    with pytest.raises(s2sim.Error, match="no obstacle 0"):
+        sim.delete_obstacle(0)  # nxt has none

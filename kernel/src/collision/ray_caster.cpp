@@ -54,7 +54,8 @@ RayCaster::RayCaster(const ShapeTable& table, const Pose* poses)
       moving_(table.moving().data()),
       n_static_(table.statics().size()),
       n_moving_(table.moving().size()),
-      placement_(table, kPad) {
+      placement_(table, kPad),
+      parked_shape_(static_cast<std::size_t>(table.size()), 0) {
   const Aabb* boxes = placement_.boxes();
   std::vector<Aabb> static_boxes;
   for (std::size_t k = 0; k < n_static_; ++k) {
@@ -124,6 +125,7 @@ void RayCaster::update_moving() {
 
 bool RayCaster::test_shape(std::int32_t s, const Vec3& o, const Vec3& d, double t_max,
                            RayHit& best) const {
+  if (parked_shape_[static_cast<std::size_t>(s)]) return false;
   const Pose& world = placement_.world()[s];
   const Shape& shape = table_.shapes()[static_cast<std::size_t>(s)];
   const Mat3 rt = world.rotation.transposed();

@@ -39,6 +39,10 @@ class RayCaster {
   RayCaster(const ShapeTable& table, const Pose* poses);
 
   /// The body poses changed: the moving geoms are placed again on the next cast.
+  /// Takes shape `shape` (a deleted scene obstacle) out of every cast, or puts it back.
+  void set_shape_parked(std::int32_t shape, bool parked) {
+    parked_shape_.at(static_cast<std::size_t>(shape)) = parked ? 1 : 0;
+  }
   /// Shape `shape` changed its primitive (ShapeTable::reshape).
   void reshaped(std::int32_t shape) {
     placement_.reshaped(table_, shape);
@@ -103,6 +107,7 @@ class RayCaster {
   // The shapes at this tick's poses, their boxes padded, by table index.
   Placement placement_;
   bool moving_dirty_ = true;
+  std::vector<char> parked_shape_;  ///< per shape: left out of every cast
 
   // Static obstacles: packed boxes (lo.x, hi.x, lo.y, hi.y, lo.z, hi.z), the grid and its
   // mailbox (the last cast that tested each static shape).

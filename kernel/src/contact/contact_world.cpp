@@ -98,6 +98,8 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   std::sort(joined_pairs_.begin(), joined_pairs_.end());
   parked_.assign(fixed_to_world_.size(), 0);
   planes_skipped_ = fixed_to_world_;
+  held_.assign(fixed_to_world_.size(), 0);
+  parked_shape_.assign(static_cast<std::size_t>(table_.size()), 0);
   jointless_.assign(scene.bodies.size() + 1, 1);
   jointless_[0] = 0;
   for (const auto& j : scene.joints)
@@ -255,21 +257,25 @@ void ContactWorld::set_parked(std::int32_t body, bool parked) {
 }
 
 void ContactWorld::set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m,
-                                 const Mat3& inertia, bool gravity) {
+                                 const Mat3& inertia, bool gravity, bool fixed) {
   const auto b = static_cast<std::size_t>(body);
-  double m = mass_kg;
+  double m = fixed ? kMaxApparentMass : mass_kg;
   if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
   apparent_mass_kg_.at(b) = m;
   inverse_apparent_mass_[b] = 1 / m;
   com_m_[b] = com_m;
-  inverse_inertia_[b] = inverse(inertia);
+  inverse_inertia_[b] = fixed ? Mat3{} : inverse(inertia);
   diagonal_inertia_[b] = off_diagonal_zero(inverse_inertia_[b]) ? 1 : 0;
-  falls_m_s2_[b] = jointless_[b] && gravity ? kGravity_m_s2 : 0.0;
+  falls_m_s2_[b] = jointless_[b] && gravity && !fixed ? kGravity_m_s2 : 0.0;
+  // Held in place, it meets the world's shapes as a body jointed to the world does: never.
+  held_[b] = fixed ? 1 : 0;
+  fixed_to_world_[b] = fixed ? 1 : 0;
+  planes_skipped_[b] = (fixed || parked_[b]) ? 1 : 0;
 }
 
 bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {
   if (body_a == body_b) return true;
-  if (parked_[body_a] || parked_[body_b]) return true;
+  if (parked_[body_a] || parked_[body_b] || (held_[body_a] && held_[body_b])) return true;
   if (body_a == 0) return fixed_to_world_[body_b] != 0;
   if (body_b == 0) return fixed_to_world_[body_a] != 0;
   return std::binary_search(joined_pairs_.begin(), joined_pairs_.end(), body_pair(body_a, body_b));
@@ -309,8 +315,9 @@ bool ContactWorld::pair_points_into(collision::ContactQuery& query,
                                     std::vector<Found>& out, bool within_lanes) {
   const std::int32_t* body = table_.bodies().data();
   collision::ContactPoint points[collision::kMaxPointsPerPair];
+  const char* parked_shape = parked_shape_.data();
   for (const auto& [i, j] : pairs) {
-    if (excluded(body[i], body[j])) continue;
+    if (excluded(body[i], body[j]) || parked_shape[i] || parked_shape[j]) continue;
     // Shape a must move: a static shape is always b.
     const bool swap = body[i] == 0;
     const std::int32_t ia = swap ? j : i, ib = swap ? i : j;

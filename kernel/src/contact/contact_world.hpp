@@ -56,9 +56,15 @@ class ContactWorld final : public model::SubstepForces {
   /// parked body touches nothing, the ground and the walls included.
   void set_parked(std::int32_t body, bool parked);
   /// A free body's new mass properties (a thing added while running): its mass, centre of
-  /// mass (body frame), inertia about it (body axes) and whether it falls.
+  /// mass (body frame), inertia about it (body axes), whether it falls, and whether it is held
+  /// where it is (an obstacle added while running: it yields to nothing, and meets neither
+  /// the world's shapes nor another such body).
   void set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
-                     bool gravity);
+                     bool gravity, bool fixed = false);
+  /// Takes static shape `shape` (a scene obstacle) out of contact, or puts it back.
+  void set_shape_parked(std::int32_t shape, bool parked) {
+    parked_shape_.at(static_cast<std::size_t>(shape)) = parked ? 1 : 0;
+  }
   /// Shape `shape` changed its primitive (collision::ShapeTable::reshape).
   void reshaped(std::int32_t shape) { placement_.reshaped(table_, shape); }
   /// The most points a substep can hold (room of every per-substep list).
@@ -248,6 +254,8 @@ class ContactWorld final : public model::SubstepForces {
   std::vector<char> fixed_to_world_;                  // per body: jointed to the world
   std::vector<char> parked_;                          // per body: touches nothing (set_parked)
   std::vector<char> planes_skipped_;                  // per body: fixed to the world or parked
+  std::vector<char> held_;                            // per body: held where it is (fixed)
+  std::vector<char> parked_shape_;                    // per shape: a deleted scene obstacle
   std::vector<char> jointless_;                       // per body: no joint at all (0: the world)
   std::vector<double> falls_m_s2_;                    // per body: gravity if jointless, else 0
   std::vector<std::uint64_t> joined_pairs_;           // sorted body pairs that never collide

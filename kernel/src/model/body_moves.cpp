@@ -70,12 +70,12 @@ bool Multibody::place_free_body(int body, const Pose& pose) {
 }
 
 bool Multibody::set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
-                               bool gravity) {
+                               bool gravity, bool fixed) {
   Impl& m = *impl_;
   if (body <= 0 || body >= static_cast<int>(m.mobod_of_body.size())) return false;
   if (m.mobod_of_body[body].isValid()) return false;
   m.bodies_fresh = false;
-  return m.loose.set_mass_properties(body, mass_kg, com_m, inertia, gravity);
+  return m.loose.set_mass_properties(body, mass_kg, com_m, inertia, gravity, fixed);
 }
 
 bool Multibody::move_body(int body, const Pose& pose) {

@@ -31,7 +31,7 @@ void LooseBodies::add(int kernel_index, const scene::Body& body) {
 }
 
 bool LooseBodies::set_mass_properties(int kernel_index, double mass_kg, const Vec3& com_m,
-                                      const Mat3& inertia, bool gravity) {
+                                      const Mat3& inertia, bool gravity, bool fixed) {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     Model& m = model_[i];
     if (m.kernel_index != kernel_index) continue;
@@ -42,6 +42,8 @@ bool LooseBodies::set_mass_properties(int kernel_index, double mass_kg, const Ve
     m.inertia_body = inertia;
     m.inverse_inertia_body = inverse(inertia);
     m.gravity = gravity;
+    m.fixed = fixed;
+    if (fixed) s.com_velocity_m_s = s.angular_velocity_rad_s = Vec3{};
     return true;
   }
   return false;
@@ -61,6 +63,7 @@ void LooseBodies::reset() {
 void LooseBodies::kick(const Wrench* wrenches, const Wrench* extra, double kick_s) {
   for (std::size_t i = 0; i < model_.size(); ++i) {
     const Model& m = model_[i];
+    if (m.fixed) continue;
     State& s = state_[i];
     Wrench w = wrenches[m.kernel_index];
     if (extra) {

@@ -53,10 +53,11 @@ class LooseBodies {
   /// Puts kernel body `kernel_index` at `pose`, its velocities kept; false if not loose.
   bool move(int kernel_index, const Pose& pose);
   /// Gives body `kernel_index` new mass properties (a thing added while running): mass, centre
-  /// of mass (body frame; the body origin stays where it is), inertia about it (body axes) and
-  /// whether gravity pulls it. False if not loose.
+  /// of mass (body frame; the body origin stays where it is), inertia about it (body axes),
+  /// whether gravity pulls it and whether it is held where it is (no load moves it, and it is
+  /// at rest). False if not loose.
   bool set_mass_properties(int kernel_index, double mass_kg, const Vec3& com_m, const Mat3& inertia,
-                           bool gravity);
+                           bool gravity, bool fixed);
   /// Sets body `kernel_index`'s velocity (its origin's, world frame); false if not loose.
   bool set_velocity(int kernel_index, const Twist& twist);
 
@@ -72,6 +73,7 @@ class LooseBodies {
     Vec3 com_body_m;
     Mat3 inertia_body, inverse_inertia_body;  // about the COM, body axes
     bool gravity;
+    bool fixed = false;  // held where it is placed (an obstacle added while running)
     Vec3 com0_m;
     Quat q0;
   };

@@ -238,7 +238,7 @@ class Multibody {
   /// New mass properties of a loose body (a thing added while running; LooseBodies::
   /// set_mass_properties). False, changing nothing, for any other body.
   bool set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
-                      bool gravity);
+                      bool gravity, bool fixed = false);
   /// Moves any body to `pose` as closely as its joint allows, its speeds kept: a loose body
   /// or a robot's root body goes exactly there; a jointed body's mobilizer coordinates are
   /// fitted (a hinge keeps the rotation about its axis), its children following. False for

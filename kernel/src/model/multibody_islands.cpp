@@ -350,10 +350,10 @@ bool MultibodyIslands::place_free_body(int body, const Pose& pose) {
   return parts_[static_cast<std::size_t>(owner(body))].multibody->place_free_body(body, pose);
 }
 bool MultibodyIslands::set_loose_mass(int body, double mass_kg, const Vec3& com_m,
-                                      const Mat3& inertia, bool gravity) {
+                                      const Mat3& inertia, bool gravity, bool fixed) {
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_loose_mass(
-      body, mass_kg, com_m, inertia, gravity);
+      body, mass_kg, com_m, inertia, gravity, fixed);
 }
 bool MultibodyIslands::move_body(int body, const Pose& pose) {
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;

@@ -96,7 +96,7 @@ class MultibodyIslands {
   void restored();
   bool place_free_body(int body, const Pose& pose);
   bool set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
-                      bool gravity);
+                      bool gravity, bool fixed = false);
   bool move_body(int body, const Pose& pose);
   bool set_body_velocity(int body, const Twist& twist);
   bool set_axis_state(std::size_t axis, double position, double velocity);

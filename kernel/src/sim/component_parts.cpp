@@ -188,6 +188,7 @@ void Simulation::Impl::sync_local_views() {
     local.view.request_velocity = &refuse_velocity;
     local.view.request_add_thing = &refuse_add_thing;
     local.view.request_delete_thing = &refuse_delete_thing;
+    local.view.request_delete_obstacle = &refuse_delete_obstacle;
     local.view.annotator = &local;
     local.view.annotate = &refuse_annotation;
   };
@@ -230,6 +231,9 @@ std::int32_t Simulation::Impl::refuse_add_thing(const void* local, const ThingSp
 }
 void Simulation::Impl::refuse_delete_thing(const void* local, std::int32_t) {
   refuse(local, "asked to delete a thing");
+}
+void Simulation::Impl::refuse_delete_obstacle(const void* local, std::int32_t) {
+  refuse(local, "asked to delete an obstacle");
 }
 void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::int32_t,
                                          std::int32_t, const char*, std::size_t, const double*) {
@@ -283,7 +287,7 @@ void Simulation::Impl::run_component_group(sim::ComponentGroup& group, bool call
     }
     // Only the whole scene's components may ask (a local one is refused).
     if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty() ||
-        !pending_things.empty())
+        !pending_things.empty() || !pending_obstacles.empty())
       apply_pending_places();
   }
   for (const int a : group.axes)

@@ -12,8 +12,9 @@
 namespace s2sim {
 namespace {
 
-/// Numbers per thing in the `things` segment: present, shape, size x, y, z, mass, r, g, b.
-constexpr std::size_t kThingNumbers = 9;
+/// Numbers per thing in the `things` segment: present, shape, size x, y, z, mass, r, g, b,
+/// fixed.
+constexpr std::size_t kThingNumbers = 10;
 
 scene::Geom geom_of(const ThingSpec& spec, const std::string& id) {
   scene::Geom g;
@@ -102,10 +103,19 @@ void Simulation::Impl::init_things() {
     if (thing_views[t].added) apply_thing(t, false);
   world.request_add_thing = &Simulation::Impl::request_add_thing;
   world.request_delete_thing = &Simulation::Impl::request_delete_thing;
+  obstacle_present.assign(scene.obstacles.size(), 1);
+  pending_obstacles.reserve(2 * obstacle_present.size());
+  world.request_delete_obstacle = &Simulation::Impl::request_delete_obstacle;
 }
 
 void Simulation::Impl::reset_things() {
   pending_things.clear();
+  pending_obstacles.clear();
+  for (std::size_t o = 0; o < obstacle_present.size(); ++o)
+    if (!obstacle_present[o]) {
+      obstacle_present[o] = 1;
+      apply_obstacle(o);
+    }
   for (std::size_t t = 0; t < thing_views.size(); ++t) {
     ThingView& v = thing_views[t];
     const bool changed = v.present != !v.added || (v.added && !v.id.empty());
@@ -133,8 +143,9 @@ void Simulation::Impl::apply_thing(std::size_t t, bool place) {
     ray_caster->reshaped(shape);
     const double mass = v.present ? v.spec.mass_kg : loaded.mass_kg;
     const Mat3 inertia = v.present ? scene::uniform_inertia(g.shape, mass) : loaded.inertia_kg_m2;
-    multibody->set_loose_mass(body, mass, {}, inertia, v.present);
-    contacts->set_free_body(body, mass, {}, inertia, v.present);
+    const bool fixed = v.present && v.spec.fixed;
+    multibody->set_loose_mass(body, mass, {}, inertia, v.present && !fixed, fixed);
+    contacts->set_free_body(body, mass, {}, inertia, v.present && !fixed, fixed);
   } else {
     // A scene thing: its own mass properties; weightless while deleted, so that it stays put.
     const bool gravity = v.present && loaded.gravity;
@@ -188,6 +199,9 @@ void Simulation::Impl::apply_pending_things() {
   for (const std::int32_t t : pending_things)
     apply_thing(static_cast<std::size_t>(t), true);
   pending_things.clear();
+  for (const std::int32_t o : pending_obstacles)
+    apply_obstacle(static_cast<std::size_t>(o));
+  pending_obstacles.clear();
 }
 
 std::int32_t Simulation::Impl::request_add_thing(const void* impl, const ThingSpec& spec,
@@ -202,6 +216,19 @@ void Simulation::Impl::request_delete_thing(const void* impl, std::int32_t body)
 }
 
 void Simulation::Impl::declare_things_state() {
+  if (!obstacle_present.empty())
+    layout.add(
+        "obstacles", obstacle_present.size(),
+        [this](double* out) {
+          for (const char present : obstacle_present)
+            *out++ = present ? 1.0 : 0.0;
+        },
+        [this](const double* in, std::size_t) {
+          for (std::size_t o = 0; o < obstacle_present.size(); ++o) {
+            obstacle_present[o] = in[o] != 0 ? 1 : 0;
+            apply_obstacle(o);
+          }
+        });
   if (scene.runtime_things.empty() && scene.things.empty()) return;
   layout.add(
       "things", kThingNumbers * thing_views.size(),
@@ -212,7 +239,7 @@ void Simulation::Impl::declare_things_state() {
               v.spec.size_m.x,       v.spec.size_m.y,
               v.spec.size_m.z,       v.spec.mass_kg,
               v.spec.rgb[0],         v.spec.rgb[1],
-              v.spec.rgb[2]};
+              v.spec.rgb[2],         v.spec.fixed ? 1.0 : 0.0};
           std::copy(numbers, numbers + kThingNumbers, out);
           out += kThingNumbers;
         }
@@ -225,6 +252,7 @@ void Simulation::Impl::declare_things_state() {
           v.spec.size_m = {in[2], in[3], in[4]};
           v.spec.mass_kg = in[5];
           std::copy(in + 6, in + 9, v.spec.rgb);
+          v.spec.fixed = in[9] != 0;
           apply_thing(t, false);  // the poses are the multibody's segments
         }
       });
@@ -257,6 +285,40 @@ void Simulation::Impl::declare_things_state() {
             id.push_back(static_cast<char>(static_cast<int>(*in++)));
         }
       });
+}
+
+void Simulation::Impl::apply_obstacle(std::size_t o) {
+  const std::int32_t shape = shapes->statics()[o];
+  contacts->set_shape_parked(shape, !obstacle_present[o]);
+  ray_caster->set_shape_parked(shape, !obstacle_present[o]);
+}
+
+void Simulation::Impl::mark_obstacle_deleted(int index) {
+  if (index < 0 || index >= static_cast<int>(obstacle_present.size()))
+    throw Error(ErrorKind::usage, "delete_obstacle: no obstacle " + std::to_string(index) +
+                                      " (the scene has " + std::to_string(obstacle_present.size()) +
+                                      ")");
+  if (!obstacle_present[static_cast<std::size_t>(index)]) return;
+  obstacle_present[static_cast<std::size_t>(index)] = 0;
+  pending_obstacles.push_back(index);
+}
+
+void Simulation::Impl::request_delete_obstacle(const void* impl, std::int32_t obstacle) {
+  auto& m = *static_cast<Simulation::Impl*>(const_cast<void*>(impl));
+  m.mark_obstacle_deleted(obstacle);
+}
+
+void Simulation::delete_obstacle(int index) {
+  Impl& m = *impl_;
+  m.mark_obstacle_deleted(index);
+  m.apply_pending_things();
+  m.changed();
+}
+
+bool Simulation::obstacle_present(int index) const {
+  const auto& present = impl_->obstacle_present;
+  return index >= 0 && index < static_cast<int>(present.size()) &&
+         present[static_cast<std::size_t>(index)] != 0;
 }
 
 int Simulation::add_thing(const ThingSpec& spec, std::string_view id) {

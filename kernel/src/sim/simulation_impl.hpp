@@ -173,6 +173,7 @@ struct Simulation::Impl {
   static std::int32_t refuse_add_thing(const void* local, const ThingSpec&, const char*,
                                        std::size_t);
   static void refuse_delete_thing(const void* local, std::int32_t);
+  static void refuse_delete_obstacle(const void* local, std::int32_t);
   static void refuse_annotation(const void* local, std::int32_t, std::int32_t, std::int32_t,
                                 const char*, std::size_t, const double*);
 
@@ -202,6 +203,12 @@ struct Simulation::Impl {
   void apply_thing(std::size_t t, bool place);
   void apply_pending_things();
   void declare_things_state();
+  // The scene's obstacles: which are present (a deleted one touches and shows nothing).
+  std::vector<char> obstacle_present;
+  std::vector<std::int32_t> pending_obstacles;
+  void mark_obstacle_deleted(int index);
+  void apply_obstacle(std::size_t o);
+  static void request_delete_obstacle(const void* impl, std::int32_t obstacle);
   static std::int32_t request_add_thing(const void* impl, const ThingSpec& spec, const char* id,
                                         std::size_t id_size);
   static void request_delete_thing(const void* impl, std::int32_t body);

@@ -640,10 +640,10 @@ begin
   result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
   result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
 end;
-procedure SetObstaclePos(T: integer; x, y, z: double); begin NotYetAvailable('SetObstaclePos'); end;
+procedure SetObstaclePos(T: integer; x, y, z: double); begin HostCall(hSetObstaclePos, [T, x, y, z]); end;
 function GetObstacleRotMat(T: integer): Matrix; begin result := HostMatrix(hGetObstacleRotMat, [T]); end;
-procedure SetObstacleRotationMat(T: integer; Rot: Matrix); begin NotYetAvailable('SetObstacleRotationMat'); end;
-function DeleteObstacle(ID: string): integer; begin NotYetAvailable('DeleteObstacle'); result := -1; end;
+procedure SetObstacleRotationMat(T: integer; Rot: Matrix); begin CallMatrix(hSetObstacleRotationMat, [T], Rot); end;
+function DeleteObstacle(ID: string): integer; begin result := Round(HostCallS(hDeleteObstacle, [], ID)); end;
 
 function GetAxisUIPower(R, i: integer): double; begin result := HostCall(hGetAxisUIPower, [R, i]); end;
 function GetAxisTWPower(R, i: integer): double; begin result := GetAxisTorque(R, i) * GetAxisSpeed(R, i); end;

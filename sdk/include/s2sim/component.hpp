@@ -131,6 +131,9 @@ struct ThingSpec {
   double mass_kg = 1;
   Pose pose;                        ///< body frame in the world; added at rest
   double rgb[3] = {0.5, 0.5, 0.5};  ///< 0..1
+  /// Held where it is put, like a scene obstacle (SimTwo's `AddOBstacleBox`): it does not
+  /// fall nor yield, and is moved only by placing it.
+  bool fixed = false;
 };
 
 /// A velocity-dependent force on an axis for one tick (StepContext::apply_axis_drive):
@@ -227,6 +230,7 @@ struct WorldView {
   std::int32_t (*request_add_thing)(const void* placer, const ThingSpec& spec, const char* id,
                                     std::size_t id_size) = nullptr;
   void (*request_delete_thing)(const void* placer, std::int32_t body) = nullptr;
+  void (*request_delete_obstacle)(const void* placer, std::int32_t obstacle) = nullptr;
   const void* annotator = nullptr;
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
@@ -430,6 +434,13 @@ class StepContext {
     if (w_->request_delete_thing == nullptr)
       throw Error(ErrorKind::runtime, "StepContext::request_delete_thing: not available here");
     w_->request_delete_thing(w_->placer, body(b, "request_delete_thing"));
+  }
+  /// Removes the scene's obstacle `index` (in the scene's order; SimTwo's `DeleteObstacle`)
+  /// after this stage, until a reset. Throws for an index out of range.
+  void request_delete_obstacle(int index) {
+    if (w_->request_delete_obstacle == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_delete_obstacle: not available here");
+    w_->request_delete_obstacle(w_->placer, index);
   }
 
   // --- what the people watching see (not part of the simulation's state) ---

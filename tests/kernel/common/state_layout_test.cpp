@@ -39,7 +39,8 @@ struct Case {
   void (*drive)(Simulation&) = nullptr;  // what is done to it after the load
 };
 
-/// Things added while running: a box dropped on the ball, which is then deleted.
+/// Things added while running: a box dropped on the ball, which is then deleted, one on the
+/// floor and one on the scene's obstacle.
 void add_and_delete_things(Simulation& sim) {
   ThingSpec box;
   box.size_m = {0.1, 0.1, 0.1};
@@ -47,6 +48,8 @@ void add_and_delete_things(Simulation& sim) {
   sim.add_thing(box, "crate");
   box.pose.position = {1, 0, 0.05};
   sim.add_thing(box, "floor crate");
+  box.pose.position = {3, 0, 0.6};
+  sim.add_thing(box, "crate on the platform");  // the scene's obstacle holds it
   sim.delete_thing(sim.things()[0].body);
 }
 
@@ -102,6 +105,7 @@ const std::map<std::string, const char*>& exercised_by() {
       {"random", "jointforce"},
       {"things", "runtime"},
       {"things/ids", "runtime"},
+      {"obstacles", "runtime"},
   };
   return m;
 }

@@ -172,6 +172,45 @@ TEST(RuntimeThings, TwoRunsGiveTheSameSignalsBitForBit) {
   EXPECT_EQ(run(), run());
 }
 
+TEST(RuntimeThings, ADeletedSceneObstacleLetsGoOfWhatLiesOnItAndRaysPassThrough) {
+  auto sim = load();
+  const int box = sim->add_thing(box_at(3, 0, 0.6), "crate");
+  sim->run_until(0.5);
+  EXPECT_NEAR(sim->body_pose(box).position.z, 0.55, 2e-3) << "on the platform";
+  const RayHit before = sim->cast_ray({3, 0.4, 0.2}, {0, -1, 0}, 2);
+  ASSERT_TRUE(before.hit);
+  EXPECT_NEAR(before.distance_m, 0.15, 1e-9);
+  const Simulation::Snapshot snap = sim->save();
+  sim->delete_obstacle(0);
+  EXPECT_FALSE(sim->obstacle_present(0));
+  EXPECT_FALSE(sim->cast_ray({3, 0.4, 0.2}, {0, -1, 0}, 2).hit);
+  sim->run_until(1.5);
+  EXPECT_NEAR(sim->body_pose(box).position.z, 0.05, 2e-3) << "fallen to the floor";
+  sim->restore(snap);
+  EXPECT_TRUE(sim->obstacle_present(0));
+  sim->run_until(1.5);
+  EXPECT_NEAR(sim->body_pose(box).position.z, 0.55, 2e-3) << "the snapshot's platform holds it";
+  EXPECT_THROW(sim->delete_obstacle(1), Error);
+}
+
+TEST(RuntimeThings, AFixedThingHoldsWhatFallsOnItAndMovesOnlyWhenPlaced) {
+  auto sim = load();
+  ThingSpec shelf = box_at(-2, 0, 0.5);
+  shelf.size_m = {0.4, 0.4, 0.02};
+  shelf.fixed = true;
+  const int fixed = sim->add_thing(shelf, "shelf");
+  const int box = sim->add_thing(box_at(-2, 0, 0.8), "crate");
+  sim->run_until(1.0);
+  EXPECT_EQ(sim->body_pose(fixed).position.z, 0.5) << "it does not fall nor yield";
+  EXPECT_NEAR(sim->body_pose(box).position.z, 0.51 + 0.05, 2e-3);
+  Pose lower = sim->body_pose(fixed);
+  lower.position.z = 0.3;
+  sim->place_body(fixed, lower);
+  sim->run_until(2.0);
+  EXPECT_EQ(sim->body_pose(fixed).position.z, 0.3);
+  EXPECT_NEAR(sim->body_pose(box).position.z, 0.31 + 0.05, 2e-3);
+}
+
 TEST(RuntimeThings, BadRequestsAreRefusedNamingTheThingAndTheValue) {
   auto sim = load(1);
   auto message = [&](const ThingSpec& spec) {

@@ -227,6 +227,27 @@ TEST_F(ScriptApi, ShellObstacleAndSensorColoursReachTheViewerAndReadBack) {
   EXPECT_TRUE(sim->annotations().shape_colors.empty()) << "a reset restores the scene's colours";
 }
 
+TEST_F(ScriptApi, ObstaclesAddedMovedAndDeletedByTheScriptHoldAndReleaseWhatLiesOnThem) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("add_obstacles.pas");
+  for (int c = 1; c <= 6; ++c)
+    o.sheet_cells.push_back({1, c, "0"});
+  o.sheet_cells.push_back({2, 1, "0"});
+  auto sim = Simulation::load(kScene, o);
+  sim->run_until(2.45);  // calls every 40 ms from 39 ms on
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_EQ(sim->signal("sheet/A1"), 1) << "after the scene's wall";
+  EXPECT_NEAR(sim->signal("sheet/B1"), 0.51 + 0.05, 2e-3) << "the parcel rests on the shelf";
+  EXPECT_NEAR(sim->signal("sheet/C1"), 0.3, 1e-12) << "the shelf moved down";
+  EXPECT_NEAR(sim->signal("sheet/D1"), 0.31 + 0.05, 2e-3) << "and the parcel followed it";
+  EXPECT_EQ(sim->signal("sheet/E1"), 1);
+  EXPECT_NEAR(sim->signal("sheet/F1"), 0.05, 2e-3) << "deleted, it let the parcel fall";
+  EXPECT_EQ(sim->signal("sheet/A2"), -1) << "ClearObstacles removed the scene's wall too";
+  EXPECT_FALSE(sim->obstacle_present(0));
+  sim->reset();
+  EXPECT_TRUE(sim->obstacle_present(0));
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;

@@ -301,6 +301,11 @@ class Simulation {
   void delete_thing(int body);
   /// The scene's things, then the spare bodies, as they stand now.
   const std::vector<ThingView>& things() const;
+  /// Removes the scene's obstacle `index` (scene order; SimTwo's DeleteObstacle) until a
+  /// reset: it touches nothing, is hit by no ray and is not drawn; a snapshot holds it. Throws
+  /// s2sim::Error (usage) for an index out of range.
+  void delete_obstacle(int index);
+  bool obstacle_present(int index) const;
 
   /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
   /// annotations.hpp), since the load or the last reset. Not part of the state.
