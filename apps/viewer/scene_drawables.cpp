@@ -136,7 +136,11 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       }
     }
     d.local = to_mat4(g.pose);
+    d.frame = d.local;
+    d.primitive = true;
+    d.shape = g.shape.type;
     primitive(d, g.shape);
+    d.loaded_local = d.local;
     drawables_.push_back(d);
   };
 
@@ -263,6 +267,18 @@ void SceneDrawables::update(const Simulation& sim) {
       if (thing.added && thing.present) take_thing_shape(d, thing);
     } else if (d.kind == Drawable::Kind::obstacle) {
       d.hidden = !sim.obstacle_present(d.index);
+    }
+    const bool scene_solid = d.kind == Drawable::Kind::solid && d.primitive &&
+                             (d.thing < 0 || !things[static_cast<std::size_t>(d.thing)].added);
+    if (scene_solid) {
+      if (const std::optional<Vec3> size = sim.resized(d.body)) {
+        const Vec3f s = to_f(*size);
+        d.local = d.frame * (d.shape == scene::ShapeType::sphere     ? scale_matrix({s.x, s.x, s.x})
+                             : d.shape == scene::ShapeType::cylinder ? scale_matrix({s.x, s.x, s.z})
+                                                                     : scale_matrix(s));
+      } else {
+        d.local = d.loaded_local;
+      }
     }
     d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
     // A run-time colour: a solid's, a shell's or an obstacle's, a sensor beam's (its alpha).

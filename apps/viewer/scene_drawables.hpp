@@ -22,8 +22,13 @@ struct Drawable {
   Vec3f box_max{0.5f, 0.5f, 0.5f};
   DrawItem item;                                 ///< model is rewritten every frame
   float scene_color[4] = {0.5f, 0.5f, 0.5f, 1};  ///< the scene's; a script may repaint a solid
-  int index = 0;        ///< a geom's index in its body (0: the solid), an obstacle's, a sensor's
-  int thing = -1;       ///< its body's index in Simulation::things(), -1 for other bodies
+  int index = 0;   ///< a geom's index in its body (0: the solid), an obstacle's, a sensor's
+  int thing = -1;  ///< its body's index in Simulation::things(), -1 for other bodies
+  /// A primitive's frame in its body (`local` without the scale) and kind, for a resize while
+  /// running (Simulation::resized); meshes keep theirs.
+  bool primitive = false;
+  scene::ShapeType shape = scene::ShapeType::box;
+  Mat4 frame, loaded_local;
   bool hidden = false;  ///< a deleted thing, or a spare body no thing holds
 };
 

@@ -508,6 +508,10 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::SetObstacleColor:
     case HostFn::SetSensorColor:
       return call_bodies(fn, a, n, s);
+    case HostFn::SetSolidSize:
+    case HostFn::SetThingSize:
+    case HostFn::SetSolidSurfaceFriction:
+    case HostFn::SetThingSurfaceMu:
     case HostFn::AddOBstacleBox:
     case HostFn::ClearObstacles:
     case HostFn::DeleteObstacle:

@@ -76,6 +76,10 @@
   X(DeleteObstacle) \
   X(SetObstaclePos) \
   X(SetObstacleRotationMat) \
+  X(SetSolidSize) \
+  X(SetThingSize) \
+  X(SetSolidSurfaceFriction) \
+  X(SetThingSurfaceMu) \
   X(AddThingBox) \
   X(AddThingSphere) \
   X(AddThingCylinder) \

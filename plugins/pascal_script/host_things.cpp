@@ -77,6 +77,9 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
         th.look.rgba[k] = th.look.rgba_loaded[k] = spec.rgb[k];
       th.look.rgba[3] = th.look.rgba_loaded[3] = 1;
       th.look.size = spec.size_m;  // SimTwo's GetSize: box edges; r, r, l; r, r, r
+      th.look.round = spec.shape == ThingShape::cylinder ? 1
+                      : spec.shape == ThingShape::sphere ? 2
+                                                         : 0;
       things_.push_back(th);
       return static_cast<double>(things_.size() - 1);
     }
@@ -89,6 +92,39 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
       while (!things_.empty())
         remove(static_cast<int>(things_.size()) - 1);
       return 0;
+    case HostFn::SetSolidSize:
+    case HostFn::SetThingSize: {  // SimTwo's GetSize convention; the mass stays
+      const bool solid_size = fn == HostFn::SetSolidSize;
+      need(solid_size ? 5 : 4);
+      const int first = solid_size ? 2 : 1;
+      Look& look = solid_size ? solid(a[0], a[1]).look : thing(a[0]).look;
+      const BodyHandle b = solid_size ? solid(a[0], a[1]).body : thing(a[0]).body;
+      const Vec3 size{a[first], a[first + 1], a[first + 2]};
+      try {
+        ctx.request_resize(b, size);
+      } catch (const Error& e) {
+        fail(std::string(solid_size ? "SetSolidSize: " : "SetThingSize: ") + e.message());
+      }
+      // As GetSize reads it back: a cylinder r, r, l; a sphere r, r, r.
+      look.size = look.round == 2   ? Vec3{size.x, size.x, size.x}
+                  : look.round == 1 ? Vec3{size.x, size.x, size.z}
+                                    : size;
+      return 0;
+    }
+    case HostFn::SetSolidSurfaceFriction:
+    case HostFn::SetThingSurfaceMu: {
+      const bool solid_surface = fn == HostFn::SetSolidSurfaceFriction;
+      need(solid_surface ? 4 : 3);
+      const int first = solid_surface ? 2 : 1;
+      const BodyHandle b = solid_surface ? solid(a[0], a[1]).body : thing(a[0]).body;
+      try {
+        ctx.request_surface(b, a[first], a[first + 1]);
+      } catch (const Error& e) {
+        fail(std::string(solid_surface ? "SetSolidSurfaceFriction: " : "SetThingSurfaceMu: ") +
+             e.message());
+      }
+      return 0;
+    }
     case HostFn::AddOBstacleBox: {  // x, y, z, sx, sy, sz, rgb: an axis-aligned static box
       need(7);
       for (int k = 0; k < 6; ++k)

@@ -28,6 +28,8 @@ Look read_look(const Params& p, const std::string& k) {
     look.rgba_loaded[c] = look.rgba[c] = p.number(k + rgba[c]);
   look.size = {p.number(k + "size_x"), p.number(k + "size_y"), p.number(k + "size_z")};
   look.com = {p.number(k + "com_x"), p.number(k + "com_y"), p.number(k + "com_z")};
+  const std::string shape = p.text(k + "shape", "box");
+  look.round = shape == "cylinder" ? 1 : shape == "sphere" ? 2 : 0;
   return look;
 }
 }  // namespace

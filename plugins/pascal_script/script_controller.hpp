@@ -87,6 +87,7 @@ struct Look {
   double rgba[4] = {0, 0, 0, 0};  // as the script last set it (a reset restores the loaded)
   Vec3 size;                      // SimTwo's GetSize: box edges; cylinder r, r, l; sphere r, r, r
   Vec3 com;                       // centre of mass in the body frame
+  int round = 0;                  // its primitive: 0 a box (or hull), 1 a cylinder, 2 a sphere
 };
 
 struct SolidRef {

@@ -398,6 +398,22 @@ void bind_state(PySimulationClass& cls) {
           "Removes the scene's obstacle `index` (scene order) until a reset: it touches nothing "
           "and rays pass.")
       .def(
+          "resize_body",
+          [](PySimulation& s, const py::object& body, const py::object& size) {
+            s.sim().resize_body(s.body_index(body), vec3_of(size, "resize_body: size"));
+          },
+          py::arg("body"), py::arg("size"),
+          "Resizes a body's own primitive (a box: edges; a cylinder: radius, _, length; a "
+          "sphere: radius, _, _), its mass as loaded, until a reset.")
+      .def(
+          "set_body_surface",
+          [](PySimulation& s, const py::object& body, double mu, double mu2) {
+            s.sim().set_body_surface(s.body_index(body), mu, mu2);
+          },
+          py::arg("body"), py::arg("mu"), py::arg("mu2") = -1.0,
+          "Sets the friction of a body's own primitive (mu < 0: the scene's default) until a "
+          "reset.")
+      .def(
           "obstacle_present",
           [](const PySimulation& s, int index) { return s.sim().obstacle_present(index); },
           py::arg("index"))

@@ -303,3 +303,17 @@ def test_a_fixed_thing_is_an_obstacle_and_scene_obstacles_can_be_deleted():
     assert abs(sim.signal("runtime_things/1/z") - 0.05) < 2e-3
     with pytest.raises(s2sim.Error, match="no obstacle 0"):
         sim.delete_obstacle(0)  # nxt has none
+
+
+def test_a_body_resized_and_its_surface_set_while_running():
+    sim = s2sim.Simulation(NXT, runtime_things=1)
+    box = sim.add_thing("box", [0.1, 0.1, 0.1], position=[2.0, 2.0, 0.05])
+    sim.run_until(0.5)
+    sim.resize_body(box, [0.1, 0.1, 0.3])
+    sim.set_body_surface(box, 0.5)
+    sim.run_until(1.5)
+    assert abs(sim.signal("runtime_things/0/z") - 0.15) < 2e-3
+    with pytest.raises(s2sim.Error, match="sizes must be positive"):
+        sim.resize_body(box, [0.1, 0.0, 0.1])
+    with pytest.raises(s2sim.Error, match="must be finite"):
+        sim.set_body_surface(box, float("nan"))

@@ -29,6 +29,10 @@ class ShapeTable {
   /// kept: what a thing added while running takes (sim/runtime_things.cpp). Whoever caches a
   /// shape's reach (Placement) must be told.
   void reshape(std::int32_t shape, const scene::Geom& geom);
+  /// Gives shape `shape` a surface (a script's SetSolidSurfaceFriction); contact must be told.
+  void set_surface(std::int32_t shape, const Surface& surface) {
+    surface_.at(static_cast<std::size_t>(shape)) = surface;
+  }
   /// The first shape on kernel body `body` (its own primitive), -1 if it has none.
   std::int32_t first_shape_of(std::int32_t body) const;
   /// Per shape: geometry, kernel body index (0 = static, in the world frame), shape frame in

@@ -145,7 +145,17 @@ void ContactWorld::group_islands(const scene::Scene& scene) {
   });
 }
 
+void ContactWorld::surface_changed(std::int32_t shape) {
+  const Surface& surface = table_.surfaces().at(static_cast<std::size_t>(shape));
+  restitution_beta_[static_cast<std::size_t>(shape)] =
+      surface.restitution > 0 ? restitution_beta(surface.restitution) : 0.0;
+  tabulate_materials();
+}
+
 void ContactWorld::tabulate_materials() {
+  material_of_.clear();
+  pair_materials_.clear();
+  material_count_ = 0;
   const auto& surfaces = table_.surfaces();
   std::vector<std::size_t> first_shape;  // per material, the first shape that has it
   for (std::size_t s = 0; s < surfaces.size(); ++s) {

@@ -67,6 +67,9 @@ class ContactWorld final : public model::SubstepForces {
   }
   /// Shape `shape` changed its primitive (collision::ShapeTable::reshape).
   void reshaped(std::int32_t shape) { placement_.reshaped(table_, shape); }
+  /// Shape `shape` changed its surface (collision::ShapeTable::set_surface): its restitution
+  /// and the table of surface pairs again (allocates).
+  void surface_changed(std::int32_t shape);
   /// The most points a substep can hold (room of every per-substep list).
   std::int32_t point_capacity() const { return static_cast<std::int32_t>(reserve_); }
 

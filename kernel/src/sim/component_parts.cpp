@@ -189,6 +189,8 @@ void Simulation::Impl::sync_local_views() {
     local.view.request_add_thing = &refuse_add_thing;
     local.view.request_delete_thing = &refuse_delete_thing;
     local.view.request_delete_obstacle = &refuse_delete_obstacle;
+    local.view.request_resize = &refuse_resize;
+    local.view.request_surface = &refuse_surface;
     local.view.annotator = &local;
     local.view.annotate = &refuse_annotation;
   };
@@ -234,6 +236,12 @@ void Simulation::Impl::refuse_delete_thing(const void* local, std::int32_t) {
 }
 void Simulation::Impl::refuse_delete_obstacle(const void* local, std::int32_t) {
   refuse(local, "asked to delete an obstacle");
+}
+void Simulation::Impl::refuse_resize(const void* local, std::int32_t, const Vec3&) {
+  refuse(local, "asked to resize a body");
+}
+void Simulation::Impl::refuse_surface(const void* local, std::int32_t, double, double) {
+  refuse(local, "asked to set a body's surface");
 }
 void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::int32_t,
                                          std::int32_t, const char*, std::size_t, const double*) {
@@ -287,7 +295,7 @@ void Simulation::Impl::run_component_group(sim::ComponentGroup& group, bool call
     }
     // Only the whole scene's components may ask (a local one is refused).
     if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty() ||
-        !pending_things.empty() || !pending_obstacles.empty())
+        !pending_things.empty() || !pending_obstacles.empty() || !pending_shapes.empty())
       apply_pending_places();
   }
   for (const int a : group.axes)

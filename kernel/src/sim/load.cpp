@@ -227,6 +227,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.annotator = &m;
   m.world.annotate = &Simulation::Impl::annotate;
   m.init_things();
+  m.init_body_shapes();
   m.plan_component_parts();  // with several parts, the local components run in them
   m.declare_state();
   m.reset();

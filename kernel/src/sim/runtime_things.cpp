@@ -166,6 +166,11 @@ int Simulation::Impl::take_spare_thing(const ThingSpec& spec, std::string_view i
     v.present = true;
     v.id = std::string(id);
     v.spec = spec;
+    // A surface a former holder was given is not the new thing's.
+    if (body_shapes[static_cast<std::size_t>(v.body)].surfaced) {
+      body_shapes[static_cast<std::size_t>(v.body)] = BodyShape{};
+      apply_body_shape(v.body);
+    }
     pending_things.push_back(static_cast<std::int32_t>(t));
     return v.body;
   }

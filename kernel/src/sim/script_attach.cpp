@@ -88,6 +88,11 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
           break;
       }
     }
+    const bool has = !b.geoms.empty();
+    const scene::ShapeType type = has ? b.geoms[0].shape.type : scene::ShapeType::box;
+    set(k + "shape", type == scene::ShapeType::cylinder ? "cylinder"
+                     : type == scene::ShapeType::sphere ? "sphere"
+                                                        : "box");
     set(k + "size_x", exact_decimal(size.x));
     set(k + "size_y", exact_decimal(size.y));
     set(k + "size_z", exact_decimal(size.z));

@@ -174,6 +174,8 @@ struct Simulation::Impl {
                                        std::size_t);
   static void refuse_delete_thing(const void* local, std::int32_t);
   static void refuse_delete_obstacle(const void* local, std::int32_t);
+  static void refuse_resize(const void* local, std::int32_t, const Vec3&);
+  static void refuse_surface(const void* local, std::int32_t, double, double);
   static void refuse_annotation(const void* local, std::int32_t, std::int32_t, std::int32_t,
                                 const char*, std::size_t, const double*);
 
@@ -203,6 +205,34 @@ struct Simulation::Impl {
   void apply_thing(std::size_t t, bool place);
   void apply_pending_things();
   void declare_things_state();
+  // Bodies' primitives resized and surfaces set while running (body_shapes.cpp), per kernel
+  // body; the scene's surfaces of their own primitives; requests of the current stage.
+  struct BodyShape {
+    bool resized = false;
+    Vec3 size_m;
+    bool surfaced = false;
+    double mu = 0, mu2 = 0;
+  };
+  std::vector<BodyShape> body_shapes;
+  std::vector<collision::Surface> loaded_surfaces;
+  struct PendingShape {
+    std::int32_t body = 0;
+    bool resize = false;
+    Vec3 values;  // a size, or mu, mu2
+  };
+  std::vector<PendingShape> pending_shapes;
+  std::int32_t own_shape(int body, const char* call) const;
+  void check_resize(int body, const Vec3& size_m) const;
+  void check_surface(int body, double mu, double mu2) const;
+  void resize_body(int body, const Vec3& size_m);
+  void set_body_surface(int body, double mu, double mu2);
+  void apply_body_shape(int body);
+  void apply_pending_shapes();
+  void init_body_shapes();
+  void reset_body_shapes();
+  void declare_body_shapes_state();
+  static void request_resize(const void* impl, std::int32_t body, const Vec3& size_m);
+  static void request_surface(const void* impl, std::int32_t body, double mu, double mu2);
   // The scene's obstacles: which are present (a deleted one touches and shows nothing).
   std::vector<char> obstacle_present;
   std::vector<std::int32_t> pending_obstacles;

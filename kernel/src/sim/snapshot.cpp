@@ -45,6 +45,7 @@ void Simulation::Impl::declare_state() {
   multibody->declare_state(layout);
   contacts->declare_state(layout);
   declare_things_state();
+  declare_body_shapes_state();
   // Written in place: the WorldView points into these buffers.
   add_buffer(layout, "components/state", state);
   add_buffer(layout, "inputs", inputs);

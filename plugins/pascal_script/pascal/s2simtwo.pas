@@ -574,10 +574,10 @@ begin
   result.Red := Round(M.data[0]); result.Green := Round(M.data[1]);
   result.Blue := Round(M.data[2]); result.alpha := Round(M.data[3]);
 end;
-procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double); begin NotYetAvailable('SetSolidSurfaceFriction'); end;
+procedure SetSolidSurfaceFriction(R, i: integer; mu, mu2: double); begin HostCall(hSetSolidSurfaceFriction, [R, i, mu, mu2]); end;
 procedure SetSolidForce(R, i: integer; Fx, Fy, Fz: double); begin HostCall(hSetSolidForce, [R, i, Fx, Fy, Fz]); end;
 function GetSolidSize(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidSize, [R, i]); end;
-procedure SetSolidSize(R, i: integer; x, y, z: double); begin NotYetAvailable('SetSolidSize'); end;
+procedure SetSolidSize(R, i: integer; x, y, z: double); begin HostCall(hSetSolidSize, [R, i, x, y, z]); end;
 
 
 procedure SetFireScale(x, y, z: double); begin NotYetAvailable('SetFireScale'); end;
@@ -595,7 +595,7 @@ function GetThingRotMat(T: integer): Matrix; begin result := HostMatrix(hGetThin
 procedure SetThingRotationMat(T: integer; Rot: Matrix); begin CallMatrix(hSetThingRotationMat, [T], Rot); end;
 function GetThingAgularVelMat(T: integer): Matrix; begin result := PointColumn(GetThingAngularVel(T)); end;
 function GetThingSize(T: integer): TPoint3D; begin result := HostPoint(hGetThingSize, [T]); end;
-procedure SetThingSize(T: integer; x, y, z: double); begin NotYetAvailable('SetThingSize'); end;
+procedure SetThingSize(T: integer; x, y, z: double); begin HostCall(hSetThingSize, [T, x, y, z]); end;
 function AddThingBox(ID: string; mass, posx, posY, posZ, sizeX, sizeY, sizeZ: double; rgb24: integer): integer;
 begin result := Round(HostCallS(hAddThingBox, [mass, posx, posY, posZ, sizeX, sizeY, sizeZ, rgb24], ID)); end;
 function AddThingSphere(ID: string; mass, posX, posY, posZ, radius: double; rgb24: integer): integer;
@@ -612,7 +612,7 @@ begin HostCall(hSetThingForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
 procedure SetThingRelForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingRelForce, [T, Fx, Fy, Fz]); end;
 procedure SetThingRelForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
 begin HostCall(hSetThingRelForceAtRelPos, [T, Fx, Fy, Fz, Px, Py, Pz]); end;
-procedure SetThingSurfaceMu(T: integer; mu, mu2: double); begin NotYetAvailable('SetThingSurfaceMu'); end;
+procedure SetThingSurfaceMu(T: integer; mu, mu2: double); begin HostCall(hSetThingSurfaceMu, [T, mu, mu2]); end;
 function GetThingSpeed(T: integer): TPoint3D; begin result := HostPoint(hGetThingSpeed, [T]); end;
 procedure SetThingSpeed(T: integer; vx, vy, vz: double); begin HostCall(hSetThingSpeed, [T, vx, vy, vz]); end;
 procedure SetThingLinearVel(T: integer; x, y, z: double); begin HostCall(hSetThingLinearVel, [T, x, y, z]); end;

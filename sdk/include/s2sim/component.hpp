@@ -231,6 +231,8 @@ struct WorldView {
                                     std::size_t id_size) = nullptr;
   void (*request_delete_thing)(const void* placer, std::int32_t body) = nullptr;
   void (*request_delete_obstacle)(const void* placer, std::int32_t obstacle) = nullptr;
+  void (*request_resize)(const void* placer, std::int32_t body, const Vec3& size_m) = nullptr;
+  void (*request_surface)(const void* placer, std::int32_t body, double mu, double mu2) = nullptr;
   const void* annotator = nullptr;
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
@@ -441,6 +443,21 @@ class StepContext {
     if (w_->request_delete_obstacle == nullptr)
       throw Error(ErrorKind::runtime, "StepContext::request_delete_obstacle: not available here");
     w_->request_delete_obstacle(w_->placer, index);
+  }
+  /// Resizes a body's own primitive after this stage (SimTwo's `SetSolidSize`: a box its edges,
+  /// a cylinder radius x and length z, a sphere radius x), its mass as loaded. Throws for a
+  /// size that is not one.
+  void request_resize(BodyHandle b, const Vec3& size_m) {
+    if (w_->request_resize == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_resize: not available here");
+    w_->request_resize(w_->placer, body(b, "request_resize"), size_m);
+  }
+  /// Sets the friction of a body's own primitive after this stage (`SetSolidSurfaceFriction`):
+  /// mu >= 0 explicit, mu < 0 the scene's default; mu2 across an anisotropic surface.
+  void request_surface(BodyHandle b, double mu, double mu2) {
+    if (w_->request_surface == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_surface: not available here");
+    w_->request_surface(w_->placer, body(b, "request_surface"), mu, mu2);
   }
 
   // --- what the people watching see (not part of the simulation's state) ---

@@ -39,18 +39,21 @@ struct Case {
   void (*drive)(Simulation&) = nullptr;  // what is done to it after the load
 };
 
-/// Things added while running: a box dropped on the ball, which is then deleted, one on the
-/// floor and one on the scene's obstacle.
+/// Things added while running: a box dropped on the ball, which is then grown, one on the
+/// floor, deleted, and one on the scene's obstacle.
 void add_and_delete_things(Simulation& sim) {
   ThingSpec box;
   box.size_m = {0.1, 0.1, 0.1};
   box.pose.position = {0.02, 0, 0.4};
   sim.add_thing(box, "crate");
   box.pose.position = {1, 0, 0.05};
-  sim.add_thing(box, "floor crate");
+  const int floor_crate = sim.add_thing(box, "floor crate");
   box.pose.position = {3, 0, 0.6};
   sim.add_thing(box, "crate on the platform");  // the scene's obstacle holds it
-  sim.delete_thing(sim.things()[0].body);
+  sim.delete_thing(floor_crate);
+  // The ball grown under the first box.
+  sim.resize_body(sim.things()[0].body, {0.08, 0.08, 0.08});
+  sim.set_body_surface(sim.things()[0].body, 0.3, -1);
 }
 
 const std::vector<Case>& cases() {
@@ -106,6 +109,7 @@ const std::map<std::string, const char*>& exercised_by() {
       {"things", "runtime"},
       {"things/ids", "runtime"},
       {"obstacles", "runtime"},
+      {"shapes", "runtime"},
   };
   return m;
 }

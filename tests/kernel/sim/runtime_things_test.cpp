@@ -211,6 +211,60 @@ TEST(RuntimeThings, AFixedThingHoldsWhatFallsOnItAndMovesOnlyWhenPlaced) {
   EXPECT_NEAR(sim->body_pose(box).position.z, 0.31 + 0.05, 2e-3);
 }
 
+TEST(RuntimeThings, AResizedBodyCollidesWithItsNewSizeItsMassAsLoaded) {
+  auto sim = load();
+  const int ball = sim->things()[0].body;
+  const double mass = 0.2;
+  sim->run_until(0.3);
+  EXPECT_NEAR(sim->body_pose(ball).position.z, 0.05, 1e-3);
+  const Simulation::Snapshot snap = sim->save();
+  sim->resize_body(ball, {0.1, 0.1, 0.1});
+  EXPECT_EQ(*sim->resized(ball), (Vec3{0.1, 0.1, 0.1}));
+  sim->run_until(1.5);
+  EXPECT_NEAR(sim->body_pose(ball).position.z, 0.1, 2e-3) << "it rests on its new radius";
+  const double weight = mass * kGravity_m_s2;
+  EXPECT_NEAR(sim->signal(sim->signal_index("things/ball/contact_force")), weight, 0.02 * weight)
+      << "its weight is the loaded mass's";
+  const RayHit hit = sim->cast_ray({0, 0, 1}, {0, 0, -1}, 2);
+  EXPECT_NEAR(hit.distance_m, 1 - 0.2, 2e-3) << "rays meet the new size";
+  sim->restore(snap);
+  EXPECT_FALSE(sim->resized(ball));
+  sim->run_until(1.5);
+  EXPECT_NEAR(sim->body_pose(ball).position.z, 0.05, 1e-3) << "the snapshot's size";
+  sim->resize_body(ball, {0.1, 0.1, 0.1});
+  sim->reset();
+  EXPECT_FALSE(sim->resized(ball));
+  EXPECT_THROW(sim->resize_body(ball, {-1, 1, 1}), Error);
+  EXPECT_THROW(sim->resize_body(0, {1, 1, 1}), Error);
+}
+
+TEST(RuntimeThings, ASurfaceSetWhileRunningLetsABoxSlideDownTheRampItHeldTo) {
+  auto sim = load();
+  const double angle = 20 * kPi / 180;  // tan = 0.36, below the default 0.95
+  ThingSpec ramp = box_at(-3, 0, 0.5);
+  ramp.size_m = {1, 0.6, 0.02};
+  ramp.fixed = true;
+  ramp.pose.rotation = Mat3{
+      {{std::cos(angle), 0, std::sin(angle)}, {0, 1, 0}, {-std::sin(angle), 0, std::cos(angle)}}};
+  const int fixed = sim->add_thing(ramp, "ramp");
+  ThingSpec crate = box_at(-3, 0, 0.6);
+  crate.pose.rotation = ramp.pose.rotation;
+  const int box = sim->add_thing(crate, "crate");
+  sim->run_until(1.0);
+  const Vec3 held = sim->body_pose(box).position;
+  sim->run_until(1.5);
+  EXPECT_LT(norm(sim->body_pose(box).position - held), 2e-3) << "static friction holds it";
+  sim->set_body_surface(box, 0.1, -1);
+  sim->set_body_surface(fixed, 0.1, -1);
+  const double t0 = sim->time_s();
+  sim->run_until(t0 + 0.3);
+  // Sliding from rest: s = a t^2 / 2 with a = g (sin - mu cos).
+  const double a = kGravity_m_s2 * (std::sin(angle) - 0.1 * std::cos(angle));
+  EXPECT_NEAR(norm(sim->body_pose(box).position - held), 0.5 * a * 0.09, 0.1 * 0.5 * a * 0.09);
+  sim->reset();
+  EXPECT_FALSE(sim->things()[1].present);
+}
+
 TEST(RuntimeThings, BadRequestsAreRefusedNamingTheThingAndTheValue) {
   auto sim = load(1);
   auto message = [&](const ThingSpec& spec) {

@@ -248,6 +248,22 @@ TEST_F(ScriptApi, ObstaclesAddedMovedAndDeletedByTheScriptHoldAndReleaseWhatLies
   EXPECT_TRUE(sim->obstacle_present(0));
 }
 
+TEST_F(ScriptApi, SizesAndSurfacesSetByTheScriptTakeEffectAndReadBack) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("resize.pas");
+  o.sheet_cells = {{1, 1, "0"}, {1, 2, "0"}, {1, 3, "0"}};
+  auto sim = Simulation::load(kScene, o);
+  sim->run_until(1.05);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/A1"), 0.1);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/B1"), 0.3);
+  EXPECT_NEAR(sim->signal("sheet/C1"), 0.1, 2e-3) << "the grown ball rests on its new radius";
+  const int ball = sim->things()[0].body;
+  EXPECT_EQ(*sim->resized(ball), (s2sim::Vec3{0.1, 0.1, 0.1}));
+  sim->reset();
+  EXPECT_FALSE(sim->resized(ball));
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;

@@ -306,6 +306,19 @@ class Simulation {
   /// s2sim::Error (usage) for an index out of range.
   void delete_obstacle(int index);
   bool obstacle_present(int index) const;
+  /// Resizes body `body`'s own primitive (SimTwo's SetSolidSize, SetThingSize: a box its edges,
+  /// a cylinder radius x and length z, a sphere radius x): collision, rays and the viewer take
+  /// it; the mass and inertia stay as loaded (an added thing's inertia follows its new size).
+  /// A snapshot holds it, a reset restores the scene's. Throws s2sim::Error (usage) for a body
+  /// without a primitive, a mesh's hull, or a size not positive or beyond 10 km.
+  void resize_body(int body, const Vec3& size_m);
+  /// Sets the friction of body `body`'s own primitive (SetSolidSurfaceFriction,
+  /// SetThingSurfaceMu): mu >= 0 an explicit coefficient, mu < 0 the scene's default; mu2 the
+  /// cross coefficient of a surface that is anisotropic in the scene. Snapshot and reset as
+  /// resize_body.
+  void set_body_surface(int body, double mu, double mu2);
+  /// The size resize_body gave body `body`, if any.
+  std::optional<Vec3> resized(int body) const;
 
   /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
   /// annotations.hpp), since the load or the last reset. Not part of the state.
