@@ -59,33 +59,6 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   std::map<std::pair<std::filesystem::path, double>, std::pair<int, std::pair<Vec3f, Vec3f>>>
       loaded_meshes;
 
-  auto primitive = [&](Drawable& d, const scene::Shape& s) {
-    switch (s.type) {
-      case scene::ShapeType::box:
-      case scene::ShapeType::convex:  // a hull without its mesh: drawn as its bounding box
-        d.item.mesh = box_;
-        d.local = d.local * scale_matrix(to_f(s.size_m));
-        break;
-      case scene::ShapeType::cylinder: {
-        d.item.mesh = cylinder_;
-        d.item.coarse_mesh = cylinder_coarse_;
-        const auto r = static_cast<float>(s.radius_m);
-        d.local = d.local * scale_matrix({r, r, static_cast<float>(s.length_m)});
-        d.box_min = {-1, -1, -0.5f};
-        d.box_max = {1, 1, 0.5f};
-        break;
-      }
-      case scene::ShapeType::sphere: {
-        d.item.mesh = sphere_;
-        d.item.coarse_mesh = sphere_coarse_;
-        const auto r = static_cast<float>(s.radius_m);
-        d.local = d.local * scale_matrix({r, r, r});
-        d.box_min = {-1, -1, -1};
-        d.box_max = {1, 1, 1};
-        break;
-      }
-    }
-  };
   auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind, int index) {
     Drawable d;
     d.kind = kind;
@@ -139,7 +112,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     d.frame = d.local;
     d.primitive = true;
     d.shape = g.shape.type;
-    primitive(d, g.shape);
+    take_primitive(d, g.shape);
     d.loaded_local = d.local;
     drawables_.push_back(d);
   };
@@ -226,32 +199,75 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       d.thing = thing_of_body[static_cast<std::size_t>(d.body)];
 }
 
-void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
-  const ThingSpec& spec = thing.spec;
-  const Vec3f size = to_f(spec.size_m);
-  switch (spec.shape) {
-    case ThingShape::box:
+void SceneDrawables::place_fire(const Simulation& sim) {
+  const Annotations::Fire& fire = sim.annotations().fire;
+  burning_ = fire.burning;
+  if (!burning_) return;
+  const Pose on = fire.body > 0 ? sim.body_pose(fire.body) : Pose{};
+  const Vec3 base = on.position + on.rotation * fire.position_m;
+  // Three unlit, translucent blobs stacked upwards, from orange to yellow, flickering.
+  const float sizes[kFlames] = {0.06f, 0.045f, 0.03f};
+  const float heights[kFlames] = {0.05f, 0.11f, 0.16f};
+  const float colors[kFlames][4] = {
+      {1, 0.35f, 0.05f, 0.75f}, {1, 0.6f, 0.1f, 0.6f}, {1, 0.9f, 0.35f, 0.5f}};
+  const Vec3f scale = to_f(fire.scale);
+  const double t = sim.time_s();
+  for (int k = 0; k < kFlames; ++k) {
+    const float flicker = 1 + 0.15f * static_cast<float>(std::sin(37 * t + 2.1 * k));
+    DrawItem& item = flames_[k];
+    item.mesh = sphere_;
+    item.coarse_mesh = sphere_coarse_;
+    item.lit = false;
+    item.casts_shadow = false;
+    std::copy(colors[k], colors[k] + 4, item.color);
+    const float r = sizes[k] * flicker;
+    item.model = translation(to_f(base) + Vec3f{0, 0, heights[k] * scale.z}) *
+                 scale_matrix({r * scale.x, r * scale.y, 1.4f * r * scale.z});
+  }
+}
+
+void SceneDrawables::take_primitive(Drawable& d, const scene::Shape& s) const {
+  d.item.coarse_mesh = -1;
+  d.box_min = {-0.5f, -0.5f, -0.5f};
+  d.box_max = {0.5f, 0.5f, 0.5f};
+  switch (s.type) {
+    case scene::ShapeType::box:
+    case scene::ShapeType::convex:  // a hull without its mesh: drawn as its bounding box
       d.item.mesh = box_;
-      d.item.coarse_mesh = -1;
-      d.local = scale_matrix(size);
-      d.box_min = {-0.5f, -0.5f, -0.5f};
-      d.box_max = {0.5f, 0.5f, 0.5f};
+      d.local = d.local * scale_matrix(to_f(s.size_m));
       break;
-    case ThingShape::sphere:
-      d.item.mesh = sphere_;
-      d.item.coarse_mesh = sphere_coarse_;
-      d.local = scale_matrix({size.x, size.x, size.x});
-      d.box_min = {-1, -1, -1};
-      d.box_max = {1, 1, 1};
-      break;
-    case ThingShape::cylinder:
+    case scene::ShapeType::cylinder: {
       d.item.mesh = cylinder_;
       d.item.coarse_mesh = cylinder_coarse_;
-      d.local = scale_matrix({size.x, size.x, size.z});
+      const auto r = static_cast<float>(s.radius_m);
+      d.local = d.local * scale_matrix({r, r, static_cast<float>(s.length_m)});
       d.box_min = {-1, -1, -0.5f};
       d.box_max = {1, 1, 0.5f};
       break;
+    }
+    case scene::ShapeType::sphere: {
+      d.item.mesh = sphere_;
+      d.item.coarse_mesh = sphere_coarse_;
+      const auto r = static_cast<float>(s.radius_m);
+      d.local = d.local * scale_matrix({r, r, r});
+      d.box_min = {-1, -1, -1};
+      d.box_max = {1, 1, 1};
+      break;
+    }
   }
+}
+
+void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
+  const ThingSpec& spec = thing.spec;
+  scene::Shape shape;
+  shape.type = spec.shape == ThingShape::box      ? scene::ShapeType::box
+               : spec.shape == ThingShape::sphere ? scene::ShapeType::sphere
+                                                  : scene::ShapeType::cylinder;
+  shape.size_m = spec.size_m;
+  shape.radius_m = spec.size_m.x;
+  shape.length_m = spec.size_m.z;
+  d.local = Mat4{};
+  take_primitive(d, shape);
   for (int k = 0; k < 3; ++k)
     d.scene_color[k] = static_cast<float>(spec.rgb[k]);
   d.scene_color[3] = 1;
@@ -259,6 +275,7 @@ void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
 
 void SceneDrawables::update(const Simulation& sim) {
   const Annotations& notes = sim.annotations();
+  place_fire(sim);
   const std::vector<ThingView>& things = sim.things();
   for (auto& d : drawables_) {
     if (d.thing >= 0) {
@@ -311,6 +328,7 @@ const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int 
     items_.back().highlighted =
         selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
   }
+  if (burning_) items_.insert(items_.end(), flames_, flames_ + kFlames);
   return items_;
 }
 

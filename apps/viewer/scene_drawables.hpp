@@ -58,8 +58,16 @@ class SceneDrawables {
   const std::vector<Drawable>& drawables() const { return drawables_; }
 
  private:
+  /// `d`'s mesh and bounds for primitive `s`, its scale appended to `d.local`.
+  void take_primitive(Drawable& d, const scene::Shape& s) const;
   /// A thing added while running takes its primitive, size and colour from its spec.
   void take_thing_shape(Drawable& d, const ThingView& thing);
+
+  /// The fire effect's flames (Annotations::fire), placed by update(); empty while out.
+  void place_fire(const Simulation& sim);
+  static constexpr int kFlames = 3;
+  DrawItem flames_[kFlames];
+  bool burning_ = false;
 
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame

@@ -80,6 +80,7 @@
   X(SetThingSize) \
   X(SetSolidSurfaceFriction) \
   X(SetThingSurfaceMu) \
+  X(Fire) \
   X(AddThingBox) \
   X(AddThingSphere) \
   X(AddThingCylinder) \

@@ -92,6 +92,29 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
       while (!things_.empty())
         remove(static_cast<int>(things_.size()) - 1);
       return 0;
+    case HostFn::Fire: {  // 0 scale, 1 position, 2 start, 3 stop, 4 start on a solid, 5 stop it
+      need(1);
+      const int op = static_cast<int>(a[0]);
+      if (op == 0 || op == 1) {
+        need(4);
+        for (int k = 1; k < 4; ++k)
+          if (!std::isfinite(a[k]))
+            fail(std::string(op == 0 ? "SetFireScale" : "SetFirePosition") + ": argument " +
+                 std::to_string(k) + " is " + number_text(a[k]));
+        (op == 0 ? fire_.scale : fire_.position_m) = {a[1], a[2], a[3]};
+      } else if (op == 2 || op == 3) {
+        fire_.burning = op == 2;
+      } else {
+        need(3);
+        const SolidRef& sd = solid(a[1], a[2]);
+        fire_.burning = op == 4;
+        fire_.on = op == 4 ? sd.body : BodyHandle{0};  // stopped, the fire leaves the solid
+      }
+      // On a solid it burns at the solid's origin; else where SetFirePosition put it.
+      ctx.set_fire(fire_.burning, fire_.on, fire_.on.index > 0 ? Vec3{} : fire_.position_m,
+                   fire_.scale);
+      return 0;
+    }
     case HostFn::SetSolidSize:
     case HostFn::SetThingSize: {  // SimTwo's GetSize convention; the mass stays
       const bool solid_size = fn == HostFn::SetSolidSize;

@@ -298,6 +298,7 @@ void ScriptController::initialize(StepContext& ctx) {
     }
   things_ = things_loaded_;  // the kernel's reset removed the things added and put back the rest
   obstacles_ = obstacles_loaded_;
+  fire_ = Fire{};  // the kernel's reset put it out
   for (auto& th : things_)
     restore(th.look);
   chart_series_count_.assign(kMaxCharts, 0);

@@ -202,6 +202,12 @@ class ScriptController final : public Component {
   /// The scene's things as loaded: what SimTwo's list holds again at every reset.
   std::vector<ThingRef> things_loaded_;
   std::vector<ObstacleRef> obstacles_loaded_;
+  /// SimTwo's one fire effect: where it burns (a solid, or the world at fire_position_), how big.
+  struct Fire {
+    bool burning = false;
+    BodyHandle on{0};
+    Vec3 position_m, scale{1, 1, 1};
+  } fire_;
   std::vector<ObstacleRef> obstacles_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;

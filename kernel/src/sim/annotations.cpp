@@ -3,6 +3,7 @@
 #include "sim/simulation_impl.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string_view>
 
 namespace s2sim {
@@ -46,6 +47,7 @@ void Annotations::clear() {
   body_colors.clear();
   shape_colors.clear();
   sensor_colors.clear();
+  fire = Fire{};
   lines.clear();
   next_sequence = 0;
   huds.clear();
@@ -171,6 +173,14 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
             return o.body == c.body && o.geom == c.geom;
           }))
         return;
+      break;
+    }
+    case detail::Annotation::fire: {
+      if (values == nullptr || id < 0 || id >= static_cast<std::int32_t>(m.poses.size())) return;
+      for (int k = 1; k < 7; ++k)
+        if (!std::isfinite(values[k])) return;
+      a.fire = {
+          values[0] != 0, id, {values[1], values[2], values[3]}, {values[4], values[5], values[6]}};
       break;
     }
     case detail::Annotation::sensor_color: {

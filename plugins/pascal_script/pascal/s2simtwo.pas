@@ -580,12 +580,12 @@ function GetSolidSize(R, i: integer): TPoint3D; begin result := HostPoint(hGetSo
 procedure SetSolidSize(R, i: integer; x, y, z: double); begin HostCall(hSetSolidSize, [R, i, x, y, z]); end;
 
 
-procedure SetFireScale(x, y, z: double); begin NotYetAvailable('SetFireScale'); end;
-procedure SetFirePosition(x, y, z: double); begin NotYetAvailable('SetFirePosition'); end;
-procedure StartFire; begin NotYetAvailable('StartFire'); end;
-procedure StopFire; begin NotYetAvailable('StopFire'); end;
-procedure StopSolidFire(R, I: integer); begin NotYetAvailable('StopSolidFire'); end;
-procedure StartSolidFire(R, I: integer); begin NotYetAvailable('StartSolidFire'); end;
+procedure SetFireScale(x, y, z: double); begin HostCall(hFire, [0, x, y, z]); end;
+procedure SetFirePosition(x, y, z: double); begin HostCall(hFire, [1, x, y, z]); end;
+procedure StartFire; begin HostCall(hFire, [2]); end;
+procedure StopFire; begin HostCall(hFire, [3]); end;
+procedure StopSolidFire(R, I: integer); begin HostCall(hFire, [5, R, I]); end;
+procedure StartSolidFire(R, I: integer); begin HostCall(hFire, [4, R, I]); end;
 
 procedure SetGlobalSensorVin(i: integer; Vin: byte); begin HostCall(hSetGlobalSensorVin, [i, Vin]); end;
 procedure SetSensorColor(R, i: integer; Red, Green, Blue: byte); begin HostCall(hSetSensorColor, [R, i, Red, Green, Blue]); end;

@@ -253,6 +253,9 @@ enum class Annotation : std::int32_t {
   /// green, blue in 0..1
   shape_color = 7,
   sensor_color = 8,  ///< text: the sensor's signal prefix, values: red, green, blue in 0..1
+  /// id: the body it burns on (0: the world), values: burning (0 or 1), position x, y, z (in
+  /// that body's frame), scale x, y, z
+  fire = 9,
 };
 
 #if defined(__GNUC__)
@@ -505,6 +508,16 @@ class StepContext {
   void set_sensor_color(std::string_view sensor, double red, double green, double blue) {
     const double rgb[3] = {red, green, blue};
     annotate(detail::Annotation::sensor_color, 0, sensor, rgb);
+  }
+
+  /// The scene's fire effect (SimTwo's `StartFire`, `SetFirePosition`, `SetFireScale`,
+  /// `StartSolidFire`): flames drawn at `position_m` in body `on`'s frame (the world's for body
+  /// 0), `scale` times their size, while `burning`. One fire per simulation; a reset puts it
+  /// out.
+  void set_fire(bool burning, BodyHandle on, const Vec3& position_m, const Vec3& scale) {
+    const double values[7] = {
+        burning ? 1.0 : 0.0, position_m.x, position_m.y, position_m.z, scale.x, scale.y, scale.z};
+    annotate(detail::Annotation::fire, body(on, "set_fire"), {}, values);
   }
 
   // --- inputs and signals ---

@@ -264,6 +264,26 @@ TEST_F(ScriptApi, SizesAndSurfacesSetByTheScriptTakeEffectAndReadBack) {
   EXPECT_FALSE(sim->resized(ball));
 }
 
+TEST_F(ScriptApi, TheFireEffectBurnsWhereTheScriptPutsItAndGoesOut) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("fire.pas"));
+  sim->run_until(0.05);  // the first call, at 39 ms
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const s2sim::Annotations::Fire& fire = sim->annotations().fire;
+  EXPECT_TRUE(fire.burning);
+  EXPECT_EQ(fire.body, 0);
+  EXPECT_EQ(fire.position_m.x, 1);
+  EXPECT_EQ(fire.position_m.y, 0.5);
+  EXPECT_EQ(fire.scale.z, 3);
+  sim->run_until(0.13);  // the third
+  EXPECT_TRUE(sim->annotations().fire.burning);
+  EXPECT_GT(sim->annotations().fire.body, 0) << "on the arm's link";
+  sim->run_until(0.21);  // the fifth
+  EXPECT_FALSE(sim->annotations().fire.burning);
+  sim->reset();
+  EXPECT_FALSE(sim->annotations().fire.burning);
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;

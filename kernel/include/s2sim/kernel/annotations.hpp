@@ -73,6 +73,14 @@ struct Annotations {
     double rgb[3] = {0, 0, 0};
   };
   std::vector<SensorColor> sensor_colors;
+  /// The fire effect (StepContext::set_fire): flames at `position_m` in body `body`'s frame.
+  struct Fire {
+    bool burning = false;
+    int body = 0;
+    Vec3 position_m;
+    Vec3 scale{1, 1, 1};
+  };
+  Fire fire;
   const SensorColor* sensor_color(int sensor) const;
   /// The run-time colour of `body`, or null when it keeps the scene's.
   const BodyColor* body_color(int body) const;
