@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <thread>
 
 namespace s2sim {
 namespace {
@@ -263,6 +264,27 @@ TEST(RuntimeThings, ASurfaceSetWhileRunningLetsABoxSlideDownTheRampItHeldTo) {
   EXPECT_NEAR(norm(sim->body_pose(box).position - held), 0.5 * a * 0.09, 0.1 * 0.5 * a * 0.09);
   sim->reset();
   EXPECT_FALSE(sim->things()[1].present);
+}
+
+TEST(RuntimeThings, PartsRunningInParallelGiveTheSerialRunBitForBit) {
+  if (std::thread::hardware_concurrency() < 2) GTEST_SKIP() << "one hardware thread";
+  auto run = [](int threads) {
+    SimulationOptions o;
+    o.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
+    o.threads = threads;
+    o.runtime_things = 4;
+    auto sim = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_16", o);
+    sim->run_until(0.2);
+    const int box = sim->add_thing(box_at(0.3, 0, 0.5), "crate");
+    ThingSpec ball = box_at(1, 1, 0.3);
+    ball.shape = ThingShape::sphere;
+    sim->add_thing(ball, "ball");
+    sim->run_until(0.6);
+    sim->delete_thing(box);
+    sim->run_until(1.0);
+    return sim->signal_values();
+  };
+  EXPECT_EQ(run(1), run(2));
 }
 
 TEST(RuntimeThings, BadRequestsAreRefusedNamingTheThingAndTheValue) {
