@@ -4,10 +4,10 @@
 // inertia stay as loaded (SimTwo's rule); contact takes the new friction. A snapshot holds
 // both (segment `shapes`), a reset restores the scene's.
 #include "scene/limits.hpp"
+#include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 namespace s2sim {
 namespace {
@@ -15,11 +15,7 @@ namespace {
 /// Numbers per body in the `shapes` segment: resized, size x, y, z, surfaced, mu, mu2.
 constexpr std::size_t kShapeNumbers = 7;
 
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", v);
-  return text;
-}
+using sim::short_decimal;
 
 }  // namespace
 
@@ -127,10 +123,11 @@ void Simulation::Impl::check_resize(int body, const Vec3& size_m) const {
     throw Error(ErrorKind::usage, "resize_body: body " + body_label(body) +
                                       " is a mesh's hull, which keeps its size");
   if (!valid)
-    throw Error(ErrorKind::usage,
-                "resize_body: body " + body_label(body) + ": sizes must be positive and at most " +
-                    number(scene::limits::kMaxLength_m) + " m, got " + number(size_m.x) + ", " +
-                    number(size_m.y) + ", " + number(size_m.z));
+    throw Error(ErrorKind::usage, "resize_body: body " + body_label(body) +
+                                      ": sizes must be positive and at most " +
+                                      short_decimal(scene::limits::kMaxLength_m) + " m, got " +
+                                      short_decimal(size_m.x) + ", " + short_decimal(size_m.y) +
+                                      ", " + short_decimal(size_m.z));
 }
 
 void Simulation::Impl::resize_body(int body, const Vec3& size_m) {
@@ -154,8 +151,8 @@ void Simulation::Impl::check_surface(int body, double mu, double mu2) const {
   own_shape(body, "set_body_surface");
   if (!std::isfinite(mu) || !std::isfinite(mu2))
     throw Error(ErrorKind::usage, "set_body_surface: body " + body_label(body) +
-                                      ": mu and mu2 must be finite, got " + number(mu) + ", " +
-                                      number(mu2));
+                                      ": mu and mu2 must be finite, got " + short_decimal(mu) +
+                                      ", " + short_decimal(mu2));
 }
 
 void Simulation::Impl::set_body_surface(int body, double mu, double mu2) {

@@ -58,6 +58,12 @@ bool glob_match(std::string_view pattern, std::string_view text) {
   return p == pattern.size();
 }
 
+std::string short_decimal(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
 std::string exact_decimal(double v) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", v);

@@ -50,5 +50,7 @@ bool glob_match(std::string_view pattern, std::string_view text);
 /// A double as exact decimal text ("%.17g": it reads back bit for bit through the expression
 /// parser), for attributes the kernel writes into a component's element.
 std::string exact_decimal(double v);
+/// A double in 9 significant digits ("%.9g"), for messages.
+std::string short_decimal(double v);
 
 }  // namespace s2sim::sim

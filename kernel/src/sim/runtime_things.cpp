@@ -4,10 +4,10 @@
 // reset. Everything a spare body is lies in the state layout, so snapshots hold it.
 #include "scene/limits.hpp"
 #include "scene/mass.hpp"
+#include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
 #include <cmath>
-#include <cstdio>
 
 namespace s2sim {
 namespace {
@@ -38,11 +38,7 @@ scene::Geom geom_of(const ThingSpec& spec, const std::string& id) {
   return g;
 }
 
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.9g", v);
-  return text;
-}
+using sim::short_decimal;
 
 /// Throws (usage) naming the thing and the value for a spec that is not a body.
 void check_spec(const ThingSpec& spec, std::string_view id) {
@@ -62,11 +58,13 @@ void check_spec(const ThingSpec& spec, std::string_view id) {
                                          : size_ok(spec.size_m.x) && size_ok(spec.size_m.z);
   if (!sizes_ok)
     throw Error(ErrorKind::usage, who + "a " + shape + "'s size must be positive and at most " +
-                                      number(scene::limits::kMaxLength_m) + " m, got " +
-                                      number(spec.size_m.x) + ", " + number(spec.size_m.y) + ", " +
-                                      number(spec.size_m.z));
+                                      short_decimal(scene::limits::kMaxLength_m) + " m, got " +
+                                      short_decimal(spec.size_m.x) + ", " +
+                                      short_decimal(spec.size_m.y) + ", " +
+                                      short_decimal(spec.size_m.z));
   if (!(spec.mass_kg > 0) || !std::isfinite(spec.mass_kg))
-    throw Error(ErrorKind::usage, who + "mass must be positive, got " + number(spec.mass_kg));
+    throw Error(ErrorKind::usage,
+                who + "mass must be positive, got " + short_decimal(spec.mass_kg));
   const Pose& p = spec.pose;
   double sum = p.position.x + p.position.y + p.position.z;
   double worst = 0;  // |R·Rᵀ − I|
@@ -83,7 +81,7 @@ void check_spec(const ThingSpec& spec, std::string_view id) {
   for (double c : spec.rgb)
     if (!(c >= 0 && c <= 1))
       throw Error(ErrorKind::usage,
-                  who + "colour components must be from 0 to 1, got " + number(c));
+                  who + "colour components must be from 0 to 1, got " + short_decimal(c));
 }
 
 }  // namespace
@@ -189,10 +187,7 @@ void Simulation::Impl::mark_thing_deleted(int body) {
     throw Error(ErrorKind::usage,
                 "delete_thing: body " + body_label(body) + " is not a thing of the scene");
   ThingView& v = thing_views[static_cast<std::size_t>(t)];
-  const scene::Body& loaded = scene.bodies[static_cast<std::size_t>(body - 1)];
-  // Only a loose thing leaves the world (setting its present mass properties says whether).
-  if (!v.added && !multibody->set_loose_mass(body, loaded.mass_kg, loaded.com_m,
-                                             loaded.inertia_kg_m2, v.present && loaded.gravity))
+  if (!v.added && !multibody->is_loose(body))
     throw Error(ErrorKind::usage, "delete_thing: thing " + body_label(body) +
                                       " is jointed to something and cannot be deleted");
   if (!v.present) return;
