@@ -168,8 +168,9 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       Vec3 sum{0, 0, 0};
       double mass = 0;
       for (const SolidRef& sd : robot(a[0]).solids) {
-        sum = sum + sd.mass_kg * (pose_of(sd.body) * sd.look.com);
-        mass += sd.mass_kg;
+        const double m = ctx.body_mass_kg(sd.body);
+        sum = sum + m * (pose_of(sd.body) * sd.look.com);
+        mass += m;
       }
       return point(mass > 0 ? (1 / mass) * sum : sum);
     }
@@ -298,7 +299,7 @@ double ScriptController::call_bodies(HostFn fn, const double* a, int n, const st
       return point(ctx.body_twist(solid(a[0], a[1]).body).angular_rad_s);
     case HostFn::GetSolidMass:
       need(2);
-      return solid(a[0], a[1]).mass_kg;
+      return ctx.body_mass_kg(solid(a[0], a[1]).body);
     case HostFn::SetSolidForce: {
       // For this tick, at the body frame origin (ODE's force of the next step, at the centre
       // of mass: the same point without massive shells).

@@ -509,6 +509,7 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::SetSensorColor:
       return call_bodies(fn, a, n, s);
     case HostFn::Fire:
+    case HostFn::SetSolidMass:
     case HostFn::SetSolidSize:
     case HostFn::SetThingSize:
     case HostFn::SetSolidSurfaceFriction:

@@ -77,6 +77,7 @@
   X(SetObstaclePos) \
   X(SetObstacleRotationMat) \
   X(SetSolidSize) \
+  X(SetSolidMass) \
   X(SetThingSize) \
   X(SetSolidSurfaceFriction) \
   X(SetThingSurfaceMu) \

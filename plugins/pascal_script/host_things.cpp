@@ -115,6 +115,15 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
                    fire_.scale);
       return 0;
     }
+    case HostFn::SetSolidMass: {  // SimTwo's: the inertia scales with the mass
+      need(3);
+      try {
+        ctx.request_mass(solid(a[0], a[1]).body, a[2]);
+      } catch (const Error& e) {
+        fail(std::string("SetSolidMass: ") + e.message());
+      }
+      return 0;
+    }
     case HostFn::SetSolidSize:
     case HostFn::SetThingSize: {  // SimTwo's GetSize convention; the mass stays
       const bool solid_size = fn == HostFn::SetSolidSize;

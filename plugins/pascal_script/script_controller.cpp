@@ -58,8 +58,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
     for (std::int64_t i = 0, n = p.integer(k + "solids"); i < n; ++i) {
       const std::string sk = k + "solid_" + std::to_string(i) + "_";
       const BodyHandle body = ctx.body(p.text(sk + "body"));
-      robot.solids.push_back(
-          {p.text(sk + "id"), body, ctx.body_mass_kg(body), read_look(p, sk), {}, {}});
+      robot.solids.push_back({p.text(sk + "id"), body, read_look(p, sk), {}, {}});
       robot.solids.back().belt.index = -1;
       if (p.boolean(sk + "belt", false)) {
         try {

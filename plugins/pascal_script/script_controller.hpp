@@ -93,7 +93,6 @@ struct Look {
 struct SolidRef {
   std::string id;
   BodyHandle body;
-  double mass_kg = 0;  // as loaded (GetSolidMass)
   Look look;
   std::string tag;     // SetSolidTag's
   InputHandle belt{};  // a conveyor belt's surface speed (index -1 for other solids)

@@ -57,28 +57,6 @@ std::vector<std::filesystem::path> default_plugin_path() {
   return out;
 }
 
-namespace {
-
-py::array_t<double> vec3(const Vec3& v) {
-  py::array_t<double> a(3);
-  auto w = a.mutable_unchecked<1>();
-  w(0) = v.x;
-  w(1) = v.y;
-  w(2) = v.z;
-  return a;
-}
-
-py::array_t<double> mat3(const Mat3& m) {
-  py::array_t<double> a({3, 3});
-  auto w = a.mutable_unchecked<2>();
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      w(r, c) = m.m[r][c];
-  return a;
-}
-
-}  // namespace
-
 }  // namespace s2sim::python
 
 PYBIND11_MODULE(_s2sim, m) {

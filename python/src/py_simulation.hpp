@@ -24,6 +24,25 @@
 
 namespace s2sim::python {
 
+/// A vector and a 3×3 matrix as new NumPy arrays.
+inline pybind11::array_t<double> vec3(const Vec3& v) {
+  pybind11::array_t<double> a(3);
+  auto w = a.mutable_unchecked<1>();
+  w(0) = v.x;
+  w(1) = v.y;
+  w(2) = v.z;
+  return a;
+}
+
+inline pybind11::array_t<double> mat3(const Mat3& m) {
+  pybind11::array_t<double> a({3, 3});
+  auto w = a.mutable_unchecked<2>();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      w(r, c) = m.m[r][c];
+  return a;
+}
+
 /// The search path of a Simulation given no plugin_path (module.cpp).
 std::vector<std::filesystem::path> default_plugin_path();
 

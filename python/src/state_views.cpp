@@ -96,18 +96,22 @@ Vec3 vec3_of(const py::handle& given, const std::string& what) {
   return {v[0], v[1], v[2]};
 }
 
-Mat3 rotation_of(const py::handle& given) {
+Mat3 matrix_of(const py::handle& given, const std::string& what) {
   py::array array = py::array::ensure(given);
   if (!array || array.ndim() != 2 || array.shape(0) != 3 || array.shape(1) != 3)
-    throw Error(ErrorKind::usage, "place_body: rotation must be a 3x3 matrix, got " +
-                                      py::repr(given).cast<std::string>());
+    throw Error(ErrorKind::usage,
+                what + " must be a 3x3 matrix, got " + py::repr(given).cast<std::string>());
   Mat3 r;
   py::list rows = array.attr("tolist")();
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j)
-      r.m[i][j] =
-          real_value(rows[i].cast<py::list>()[j],
-                     "place_body: rotation[" + std::to_string(i) + "][" + std::to_string(j) + "]");
+      r.m[i][j] = real_value(rows[i].cast<py::list>()[j],
+                             what + "[" + std::to_string(i) + "][" + std::to_string(j) + "]");
+  return r;
+}
+
+Mat3 rotation_of(const py::handle& given) {
+  const Mat3 r = matrix_of(given, "place_body: rotation");
   double worst = 0;  // |R·Rᵀ − I|
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
@@ -405,6 +409,36 @@ void bind_state(PySimulationClass& cls) {
           py::arg("body"), py::arg("size"),
           "Resizes a body's own primitive (a box: edges; a cylinder: radius, _, length; a "
           "sphere: radius, _, _), its mass as loaded, until a reset.")
+      .def(
+          "set_body_mass",
+          [](PySimulation& s, const py::object& body, double mass, const py::object& com,
+             const py::object& inertia) {
+            const int b = s.body_index(body);
+            Simulation::MassProperties m = s.sim().body_mass(b).with_mass(mass);
+            if (!inertia.is_none()) m.inertia_kg_m2 = matrix_of(inertia, "set_body_mass: inertia");
+            if (!com.is_none()) m.com_m = vec3_of(com, "set_body_mass: com");
+            s.sim().set_body_mass(b, m);
+          },
+          py::arg("body"), py::arg("mass"), py::arg("com") = py::none(),
+          py::arg("inertia") = py::none(),
+          "Gives a body (by name or index) a new mass [kg] while running (SimTwo's "
+          "SetSolidMass), with its centre of mass com (body frame, m) and its inertia about it "
+          "(3x3, body axes, kg·m²) if given; without an inertia it scales with the mass, "
+          "without com the centre stays. A jointed body's dynamics follow. A reset restores "
+          "the scene's, a snapshot holds it.")
+      .def(
+          "body_mass",
+          [](const PySimulation& s, const py::object& body) {
+            const Simulation::MassProperties m = s.sim().body_mass(s.body_index(body));
+            py::dict d;
+            d["mass"] = m.mass_kg;
+            d["com"] = vec3(m.com_m);
+            d["inertia"] = mat3(m.inertia_kg_m2);
+            return d;
+          },
+          py::arg("body"),
+          "A body's mass properties as they stand: {'mass': kg, 'com': body frame (m), "
+          "'inertia': about the centre of mass, body axes (kg·m²)}.")
       .def(
           "set_body_surface",
           [](PySimulation& s, const py::object& body, double mu, double mu2) {

@@ -317,3 +317,37 @@ def test_a_body_resized_and_its_surface_set_while_running():
         sim.resize_body(box, [0.1, 0.0, 0.1])
     with pytest.raises(s2sim.Error, match="must be finite"):
         sim.set_body_surface(box, float("nan"))
+
+
+PENDULUM = os.path.join(SOURCE, "tests", "kernel", "sim", "fixtures", "pendulum_mass")
+BOB = "robots/pendulum/solids/bob"
+
+
+def swing_period(sim, swings=2):
+    """Mean period from the times the hinge's rate crosses zero upwards."""
+    crossings, last, last_t = [], sim.u[0], sim.time
+    while len(crossings) < swings + 1 and sim.time < 20:
+        sim.step()
+        now, t = sim.u[0], sim.time
+        if last < 0 <= now:
+            crossings.append(last_t + (t - last_t) * (-last) / (now - last))
+        last, last_t = now, t
+    return (crossings[-1] - crossings[0]) / (len(crossings) - 1)
+
+
+def test_a_body_mass_set_while_running_moves_its_pendulum_as_its_length_says():
+    sim = s2sim.Simulation(PENDULUM)
+    loaded = sim.body_mass(BOB)
+    assert loaded["mass"] == 1.0 and np.all(loaded["com"] == 0)
+    before = swing_period(sim)
+    sim.set_body_mass(BOB, 2.0)  # SimTwo's rule: the inertia doubles too
+    assert np.allclose(sim.body_mass(BOB)["inertia"], 2 * loaded["inertia"])
+    assert abs(swing_period(sim) - before) < 1e-4 * before
+    # The centre of mass halfway up to the hinge: a quarter of the length, √½ of the period.
+    up = 0.25 * np.array([-np.sin(0.1), 0.0, np.cos(0.1)])
+    sim.set_body_mass(BOB, 2.0, com=up)
+    assert abs(swing_period(sim, 3) / before - np.sqrt(0.5)) < 4e-3
+    with pytest.raises(s2sim.Error, match="A \\+ B >= C"):
+        sim.set_body_mass(BOB, 1.0, inertia=np.diag([1.0, 1.0, 3.0]))
+    sim.reset()
+    assert sim.body_mass(BOB)["mass"] == 1.0

@@ -60,6 +60,12 @@ std::uint64_t body_pair(std::int32_t a, std::int32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | static_cast<std::uint32_t>(b);
 }
 
+/// A body's apparent mass as contact takes it: welded to the world (infinite), unknown or
+/// beyond the bound, the bound.
+double bounded_apparent_mass(double m) {
+  return m > 0 && std::isfinite(m) && m <= kMaxApparentMass ? m : kMaxApparentMass;
+}
+
 }  // namespace
 
 ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Scene& scene,
@@ -109,7 +115,7 @@ ContactWorld::ContactWorld(const collision::ShapeTable& shapes, const scene::Sce
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
     if (jointless_[i + 1] && scene.bodies[i].gravity) falls_m_s2_[i + 1] = kGravity_m_s2;
   for (double& m : apparent_mass_kg_)
-    if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
+    m = bounded_apparent_mass(m);
   for (const double m : apparent_mass_kg_)
     inverse_apparent_mass_.push_back(1 / m);
   tabulate_materials();
@@ -269,8 +275,7 @@ void ContactWorld::set_parked(std::int32_t body, bool parked) {
 void ContactWorld::set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m,
                                  const Mat3& inertia, bool gravity, bool fixed) {
   const auto b = static_cast<std::size_t>(body);
-  double m = fixed ? kMaxApparentMass : mass_kg;
-  if (!(m > 0) || !std::isfinite(m) || m > kMaxApparentMass) m = kMaxApparentMass;
+  const double m = bounded_apparent_mass(fixed ? kMaxApparentMass : mass_kg);
   apparent_mass_kg_.at(b) = m;
   inverse_apparent_mass_[b] = 1 / m;
   com_m_[b] = com_m;
@@ -281,6 +286,17 @@ void ContactWorld::set_free_body(std::int32_t body, double mass_kg, const Vec3& 
   held_[b] = fixed ? 1 : 0;
   fixed_to_world_[b] = fixed ? 1 : 0;
   planes_skipped_[b] = (fixed || parked_[b]) ? 1 : 0;
+}
+
+void ContactWorld::set_jointed_body(std::int32_t body, double apparent_mass_kg, const Vec3& com_m,
+                                    const Mat3& inertia) {
+  const auto b = static_cast<std::size_t>(body);
+  const double m = bounded_apparent_mass(apparent_mass_kg);
+  apparent_mass_kg_.at(b) = m;
+  inverse_apparent_mass_[b] = 1 / m;
+  com_m_[b] = com_m;
+  inverse_inertia_[b] = inverse(inertia);
+  diagonal_inertia_[b] = off_diagonal_zero(inverse_inertia_[b]) ? 1 : 0;
 }
 
 bool ContactWorld::excluded(std::int32_t body_a, std::int32_t body_b) const {

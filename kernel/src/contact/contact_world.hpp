@@ -61,6 +61,11 @@ class ContactWorld final : public model::SubstepForces {
   /// the world's shapes nor another such body).
   void set_free_body(std::int32_t body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
                      bool gravity, bool fixed = false);
+  /// A jointed body's new mass properties (its mass changed while running): the mass a push
+  /// at it meets (model::Multibody::apparent_mass_kg), its centre of mass (body frame) and
+  /// inertia about it (body axes). Its tree's mobility comes again through set_mobility.
+  void set_jointed_body(std::int32_t body, double apparent_mass_kg, const Vec3& com_m,
+                        const Mat3& inertia);
   /// Takes static shape `shape` (a scene obstacle) out of contact, or puts it back.
   void set_shape_parked(std::int32_t shape, bool parked) {
     parked_shape_.at(static_cast<std::size_t>(shape)) = parked ? 1 : 0;

@@ -110,6 +110,23 @@ double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x)
   return sum;
 }
 
+bool turning_keeps_mass(const Multibody::Impl& m, SimTK::MobilizedBodyIndex i,
+                        const SimTK::State& s) {
+  const auto& mob = m.matter.getMobilizedBody(i);
+  const SimTK::Transform& X_BM = mob.getOutboardFrame(s);
+  const SimTK::Vec3 axis = X_BM.R().z();
+  const SimTK::MassProperties& mp = mob.getBodyMassProperties(s);
+  const SimTK::Vec3 offset = mp.getMassCenter() - X_BM.p();
+  const double scale = 1 + offset.norm();
+  if (SimTK::cross(offset, axis).norm() > 1e-12 * scale) return false;
+  const SimTK::Mat33 I(mp.calcCentralInertia().asSymMat33());
+  const double along = ~axis * (I * axis);
+  const double across = 0.5 * (I.trace() - along);
+  const SimTK::Mat33 aa = axis * ~axis;
+  const SimTK::Mat33 symmetric = along * aa + across * (SimTK::Mat33(1) - aa);
+  return (I - symmetric).norm() <= 1e-9 * (1e-300 + std::abs(I.trace()));
+}
+
 void find_mass_matrix_coordinates(Multibody::Impl& m) {
   const SimTK::State& s = m.initial_state;
   m.q_shapes_mass.assign(static_cast<std::size_t>(s.getNQ()), 1);
@@ -134,18 +151,7 @@ void find_mass_matrix_coordinates(Multibody::Impl& m) {
     // A pin whose child is a leaf with its mass centre on the axis and an inertia symmetric
     // about it (a wheel, a rotor): turning it leaves the mass distribution unchanged.
     if (!SimTK::MobilizedBody::Pin::isInstanceOf(mob) || has_children[i]) continue;
-    const SimTK::Transform& X_BM = mob.getOutboardFrame(s);
-    const SimTK::Vec3 axis = X_BM.R().z();
-    const SimTK::MassProperties& mp = mob.getBodyMassProperties(s);
-    const SimTK::Vec3 offset = mp.getMassCenter() - X_BM.p();
-    const double scale = 1 + offset.norm();
-    if (SimTK::cross(offset, axis).norm() > 1e-12 * scale) continue;
-    const SimTK::Mat33 I(mp.calcCentralInertia().asSymMat33());
-    const double along = ~axis * (I * axis);
-    const double across = 0.5 * (I.trace() - along);
-    const SimTK::Mat33 aa = axis * ~axis;
-    const SimTK::Mat33 symmetric = along * aa + across * (SimTK::Mat33(1) - aa);
-    if ((I - symmetric).norm() <= 1e-9 * (1e-300 + std::abs(I.trace()))) m.q_shapes_mass[q0] = 0;
+    if (turning_keeps_mass(m, i, s)) m.q_shapes_mass[q0] = 0;
   }
   // Each tree axis's root, when that root is free.
   for (std::size_t a = 0; a < m.axes.size(); ++a) {

@@ -41,13 +41,7 @@ std::unique_ptr<TreeDynamics> tree_of(const Multibody::Impl& m) {
     b.X_BM = pose_of(mob.getDefaultOutboardFrame());
     b.q0 = mob.getFirstQIndex(s);
     b.u0 = mob.getFirstUIndex(s);
-    const SimTK::MassProperties& mp = mob.getBodyMassProperties(s);
-    b.mass_kg = mp.getMass();
-    b.com_B = from_simtk(mp.getMassCenter());
-    const SimTK::Mat33 I = mp.calcCentralInertia().toMat33();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        b.central_inertia_B.m[r][c] = I(r, c);
+    central_mass_of(mob.getBodyMassProperties(s), b.mass_kg, b.com_B, b.central_inertia_B);
     bodies.push_back(b);
   }
   try {

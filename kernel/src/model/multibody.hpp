@@ -239,6 +239,11 @@ class Multibody {
   /// set_mass_properties). False, changing nothing, for any other body.
   bool set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
                       bool gravity, bool fixed = false);
+  /// New mass properties of a body moved by a joint or a robot's free root: mass, centre of
+  /// mass (body frame) and inertia about it (body axes); the inertia its joint's motors add
+  /// stays. The dynamics, the weights, the stops and the caches follow; the coordinates and
+  /// speeds are kept. False, changing nothing, for a loose body or an unknown index.
+  bool set_jointed_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia);
   /// Moves any body to `pose` as closely as its joint allows, its speeds kept: a loose body
   /// or a robot's root body goes exactly there; a jointed body's mobilizer coordinates are
   /// fitted (a hinge keeps the rotation about its axis), its children following. False for

@@ -143,8 +143,12 @@ void add_tree_bodies(Multibody::Impl& m, Build& b) {
     try {
       const Mat3& I = sb.inertia_kg_m2;
       SimTK::Inertia inertia_com(I.m[0][0], I.m[1][1], I.m[2][2], I.m[0][1], I.m[0][2], I.m[1][2]);
-      if (e.joint >= 0)
-        inertia_com += axis_disks(scene.joints[e.joint], sb, &b.joint_inertia[2 * e.joint]);
+      if (e.joint >= 0) {
+        const SimTK::Inertia disks =
+            axis_disks(scene.joints[e.joint], sb, &b.joint_inertia[2 * e.joint]);
+        inertia_com += disks;
+        m.joint_disk_inertia[kernel_index(e.child)] = disks;
+      }
       const SimTK::Vec3 com = to_simtk(sb.com_m);
       SimTK::Body::Rigid body(SimTK::MassProperties(
           sb.mass_kg, com, inertia_com.shiftFromMassCenter(-com, sb.mass_kg)));
@@ -268,42 +272,15 @@ void add_stops(Multibody::Impl& m, const scene::Scene& scene) {
   }
 }
 
-/// A stop's stiffness from its axis's effective (articulated) inertia so that it rings at
-/// omega·h = 0.2, far inside the integrator's stability limit, critically damped.
-void tune_stops(Multibody::Impl& m, const SimTK::State& state, double omega) {
-  SimTK::Matrix M_inv;
-  m.matter.calcMInv(state, M_inv);
-  for (auto& stop : m.stops) {
-    const AxisImpl& ax = m.axis_impl[stop.axis];
-    double inertia;
-    if (!m.axes[stop.axis].loop) {
-      const int u = m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(state) + ax.coordinate;
-      inertia = 1.0 / M_inv(u, u);
-    } else {
-      // A loop axis: body1's mass (slider) or inertia about the axis (hinge), a fair bound.
-      const auto& mp = m.mobod(ax.body1).getBodyMassProperties(state);
-      const SimTK::Vec3 axis_B1 = ~m.mobod(ax.body1).getBodyRotation(state) *
-                                  (m.mobod(ax.body2).getBodyRotation(state) * ax.axis_in_body2);
-      inertia =
-          m.axes[stop.axis].linear ? mp.getMass() : SimTK::dot(axis_B1, mp.getInertia() * axis_B1);
-    }
-    stop.stiffness = inertia * omega * omega;
-    stop.damping = 2.0 * inertia * omega;
-  }
-}
-
 /// The initial state: free roots at their poses, stops tuned, realized to Velocity.
 void build_initial_state(Multibody::Impl& m, const Build& b, double tick_s, int substeps) {
   try {
     m.system.realizeTopology();
-    SimTK::State state = m.system.getDefaultState();
-    // Without constraints the loads bypass Simbody's force subsystem (realize_accelerations).
-    if (m.matter.getNumConstraints() == 0)
-      m.forces.setForceIsDisabled(state, m.applied_loads_force, true);
+    SimTK::State state = default_state(m);
     for (int body : b.free_bodies)
       m.mobod(kernel_index(body)).setQToFitTransform(state, pose_of(b.scene, body));
     m.system.realize(state, SimTK::Stage::Position);
-    if (!m.stops.empty()) tune_stops(m, state, 0.2 * substeps / tick_s);
+    if (!m.stops.empty()) tune_stops(m, state, kStopRinging * substeps / tick_s);
     m.system.realize(state, SimTK::Stage::Velocity);
     m.initial_state = state;
   } catch (const std::exception& ex) {
@@ -492,6 +469,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   const int n_bodies = static_cast<int>(scene.bodies.size());
   const auto n_joints = scene.joints.size();
   m.mobod_of_body.assign(n_bodies + 1, SimTK::MobilizedBodyIndex());
+  m.joint_disk_inertia.assign(n_bodies + 1, SimTK::Inertia(0));
   m.mobod_of_body[0] = SimTK::GroundIndex;
   m.initial_pose.assign(n_bodies + 1, Pose{});
   m.body_names.assign(n_bodies + 1, "the world");
@@ -538,6 +516,38 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   prepare_stepping(m, drive_slots > 0 ? static_cast<std::size_t>(drive_slots) : 4 * m.axes.size());
   select_dynamics(m);
   reset();
+}
+
+SimTK::State default_state(Multibody::Impl& m) {
+  SimTK::State state = m.system.getDefaultState();
+  // Without constraints the loads bypass Simbody's force subsystem (realize_accelerations).
+  if (m.matter.getNumConstraints() == 0)
+    m.forces.setForceIsDisabled(state, m.applied_loads_force, true);
+  return state;
+}
+
+// A stop's stiffness from its axis's effective (articulated) inertia so that it rings at
+// omega·h = 0.2, far inside the integrator's stability limit, critically damped.
+void tune_stops(Multibody::Impl& m, const SimTK::State& state, double omega) {
+  SimTK::Matrix M_inv;
+  m.matter.calcMInv(state, M_inv);
+  for (auto& stop : m.stops) {
+    const AxisImpl& ax = m.axis_impl[stop.axis];
+    double inertia;
+    if (!m.axes[stop.axis].loop) {
+      const int u = m.matter.getMobilizedBody(ax.mobod).getFirstUIndex(state) + ax.coordinate;
+      inertia = 1.0 / M_inv(u, u);
+    } else {
+      // A loop axis: body1's mass (slider) or inertia about the axis (hinge), a fair bound.
+      const auto& mp = m.mobod(ax.body1).getBodyMassProperties(state);
+      const SimTK::Vec3 axis_B1 = ~m.mobod(ax.body1).getBodyRotation(state) *
+                                  (m.mobod(ax.body2).getBodyRotation(state) * ax.axis_in_body2);
+      inertia =
+          m.axes[stop.axis].linear ? mp.getMass() : SimTK::dot(axis_B1, mp.getInertia() * axis_B1);
+    }
+    stop.stiffness = inertia * omega * omega;
+    stop.damping = 2.0 * inertia * omega;
+  }
 }
 
 }  // namespace s2sim::model

@@ -47,6 +47,17 @@ inline Mat3 from_simtk(const SimTK::Rotation& r) {
 inline SimTK::Transform to_simtk(const Pose& p) {
   return SimTK::Transform(to_simtk(p.rotation), to_simtk(p.position));
 }
+/// A Simbody body's mass properties as the tree dynamics holds them: mass, centre of mass
+/// and the inertia about it, body frame.
+inline void central_mass_of(const SimTK::MassProperties& mp, double& mass_kg, Vec3& com_B,
+                            Mat3& central_inertia_B) {
+  mass_kg = mp.getMass();
+  com_B = from_simtk(mp.getMassCenter());
+  const SimTK::Mat33 I = mp.calcCentralInertia().toMat33();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c)
+      central_inertia_B.m[r][c] = I(r, c);
+}
 
 /// v[i] through raw storage where it is contiguous (a State's q and u are): Vector's element
 /// access is a non-inline call into SimTKcommon.
@@ -62,6 +73,9 @@ constexpr double kGravity = kGravity_m_s2;
 constexpr double kLoopTolerance = 1e-10;
 constexpr double kLoopOvershoot = 0.1;  // a projection aims at kLoopTolerance·kLoopOvershoot
 constexpr int kLoopIterations = 20;
+/// A joint stop rings at ω·h = this (h the substep), far inside the integrator's stability
+/// limit.
+constexpr double kStopRinging = 0.2;
 
 /// How an axis's value is realised.
 struct AxisImpl {
@@ -96,6 +110,9 @@ struct Multibody::Impl {
     SimTK::Vec3 com_m;  // body frame
   };
   std::vector<Weight> weights;
+  // Per kernel body, the inertia its joint's motors add about its centre of mass (axis_disks,
+  // multibody_build.cpp): kept when the body's own mass properties change while running.
+  std::vector<SimTK::Inertia> joint_disk_inertia;
   std::vector<SimTK::MobilizedBodyIndex> mobod_of_body;  // kernel body -> mobod (invalid: loose)
   // The kernel bodies this system moves with a mobilizer, ascending, with their mobods: what
   // the per-substep loops walk. A part of the island-parallel step holds the scene's kernel
@@ -385,6 +402,15 @@ double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x)
 /// Marks the coordinates M does not depend on (a root's translation, a symmetric wheel's
 /// angle): columns stay valid while only those change. After the initial state is built.
 void find_mass_matrix_coordinates(Multibody::Impl& m);
+/// Whether turning pin mobilizer `i` (no children) leaves the mass distribution unchanged: its
+/// centre of mass on the axis, its inertia symmetric about it (a wheel, a rotor).
+bool turning_keeps_mass(const Multibody::Impl& m, SimTK::MobilizedBodyIndex i,
+                        const SimTK::State& s);
+/// The system's default state (after realizeTopology) with the kernel's instance settings.
+SimTK::State default_state(Multibody::Impl& m);
+/// The joint stops' stiffness and damping from their axes' effective inertia in `state`, so
+/// that each rings at `omega` (rad/s), critically damped.
+void tune_stops(Multibody::Impl& m, const SimTK::State& state, double omega);
 /// Forgets every column (reset).
 void clear_columns(Multibody::Impl& m);
 

@@ -355,6 +355,12 @@ bool MultibodyIslands::set_loose_mass(int body, double mass_kg, const Vec3& com_
   return parts_[static_cast<std::size_t>(owner(body))].multibody->set_loose_mass(
       body, mass_kg, com_m, inertia, gravity, fixed);
 }
+bool MultibodyIslands::set_jointed_mass(int body, double mass_kg, const Vec3& com_m,
+                                        const Mat3& inertia) {
+  bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
+  return parts_[static_cast<std::size_t>(owner(body))].multibody->set_jointed_mass(body, mass_kg,
+                                                                                   com_m, inertia);
+}
 bool MultibodyIslands::move_body(int body, const Pose& pose) {
   bodies_fresh_ = read_fresh_ = untouched_ = published_ = false;
   return parts_[static_cast<std::size_t>(owner(body))].multibody->move_body(body, pose);

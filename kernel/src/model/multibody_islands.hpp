@@ -97,6 +97,7 @@ class MultibodyIslands {
   bool place_free_body(int body, const Pose& pose);
   bool set_loose_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia,
                       bool gravity, bool fixed = false);
+  bool set_jointed_mass(int body, double mass_kg, const Vec3& com_m, const Mat3& inertia);
   /// Whether kernel body `body` is integrated as a loose body (it has no joint).
   bool is_loose(int body) const {
     return body > 0 && body < static_cast<int>(loose_.size()) &&

@@ -165,6 +165,14 @@ TreeDynamics::TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu) 
   composite_.assign(n, Composite{});
 }
 
+void TreeDynamics::set_mass(int body, double mass_kg, const Vec3& com_B,
+                            const Mat3& central_inertia_B) {
+  Body& b = bodies_.at(static_cast<std::size_t>(body));
+  b.mass_kg = mass_kg;
+  b.com_B = com_B;
+  b.central_inertia_B = central_inertia_B;
+}
+
 void TreeDynamics::kinematics(const double* q, const double* u) {
   const bool same_q = kinematics_valid_ && std::equal(q, q + nq_, last_q_.begin());
   if (same_q && std::equal(u, u + nu_, last_u_.begin())) return;

@@ -40,6 +40,9 @@ class TreeDynamics {
 
   /// Builds the model from the bodies (Ground excluded) and the state's sizes.
   TreeDynamics(const std::vector<BodySpec>& bodies, int nq, int nu);
+  /// New mass properties of a body (index as Simbody's, not Ground): what the next
+  /// accelerations() takes.
+  void set_mass(int body, double mass_kg, const Vec3& com_B, const Mat3& central_inertia_B);
 
   /// Poses and velocities of every body for the coordinates q and speeds u (Simbody's
   /// Position and Velocity stages); nothing to do when q and u are those of the last call,

@@ -32,63 +32,12 @@ Mat3 transpose(const Mat3& a) {
   return t;
 }
 
-/// Eigenvalues of a symmetric 3×3 matrix, ascending (the trigonometric closed form).
-std::array<double, 3> symmetric_eigenvalues(const Mat3& a) {
-  const double p1 = a.m[0][1] * a.m[0][1] + a.m[0][2] * a.m[0][2] + a.m[1][2] * a.m[1][2];
-  const double q = (a.m[0][0] + a.m[1][1] + a.m[2][2]) / 3;
-  std::array<double, 3> e{};
-  if (p1 == 0) {
-    e = {a.m[0][0], a.m[1][1], a.m[2][2]};
-    std::sort(e.begin(), e.end());
-    return e;
-  }
-  const double p2 = (a.m[0][0] - q) * (a.m[0][0] - q) + (a.m[1][1] - q) * (a.m[1][1] - q) +
-                    (a.m[2][2] - q) * (a.m[2][2] - q) + 2 * p1;
-  const double p = std::sqrt(p2 / 6);
-  Mat3 b;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      b.m[i][j] = (a.m[i][j] - (i == j ? q : 0)) / p;
-  const double det = b.m[0][0] * (b.m[1][1] * b.m[2][2] - b.m[1][2] * b.m[2][1]) -
-                     b.m[0][1] * (b.m[1][0] * b.m[2][2] - b.m[1][2] * b.m[2][0]) +
-                     b.m[0][2] * (b.m[1][0] * b.m[2][1] - b.m[1][1] * b.m[2][0]);
-  const double r = std::clamp(det / 2, -1.0, 1.0);
-  const double phi = std::acos(r) / 3;
-  const double e1 = q + 2 * p * std::cos(phi);
-  const double e3 = q + 2 * p * std::cos(phi + 2 * kPi / 3);
-  e = {e3, 3 * q - e1 - e3, e1};
-  return e;
-}
-
-std::string inertia_text(const Mat3& i) {
-  return "ixx " + format_number(i.m[0][0]) + ", iyy " + format_number(i.m[1][1]) + ", izz " +
-         format_number(i.m[2][2]) + ", ixy " + format_number(i.m[0][1]) + ", ixz " +
-         format_number(i.m[0][2]) + ", iyz " + format_number(i.m[1][2]);
-}
-
-/// MuJoCo's rule: a mass >= 0, finite, and an inertia whose principal moments are >= 0 and
-/// satisfy the triangle inequality (A + B >= C), each within a relative 1e-9.
+/// MuJoCo's rule (scene::inertia_problem).
 void check_inertial(const ImportedLink& link) {
-  auto fail = [&](const std::string& why) {
+  const std::string why = inertia_problem(link.mass_kg, link.inertia_kg_m2);
+  if (!why.empty())
     throw Error(ErrorKind::scene, link.inertia_where,
                 "link '" + link.name + "': non-physical inertial: " + why);
-  };
-  if (!std::isfinite(link.mass_kg) || link.mass_kg < 0)
-    fail("mass must be >= 0, got " + format_number(link.mass_kg));
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      if (!std::isfinite(link.inertia_kg_m2.m[i][j]))
-        fail("inertia values must be finite (" + inertia_text(link.inertia_kg_m2) + ")");
-  const auto e = symmetric_eigenvalues(link.inertia_kg_m2);
-  const double scale = std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-300});
-  const double tol = 1e-9 * scale;
-  if (e[0] < -tol)
-    fail("a principal moment is negative (" + format_number(e[0]) + " kg·m²; " +
-         inertia_text(link.inertia_kg_m2) + ")");
-  if (e[0] + e[1] < e[2] - tol)
-    fail("the principal moments " + format_number(e[0]) + ", " + format_number(e[1]) + ", " +
-         format_number(e[2]) + " kg·m² violate A + B >= C (" + inertia_text(link.inertia_kg_m2) +
-         ")");
 }
 
 const char* type_name(ImportedJointType t) {

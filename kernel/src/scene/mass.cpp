@@ -1,9 +1,50 @@
 /// \file
-/// Uniform primitive inertias and parallel-axis combination.
+/// Uniform primitive inertias, parallel-axis combination and the rule for physical inertias.
 
 #include "scene/mass.hpp"
 
+#include "scene/attributes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
 namespace s2sim::scene {
+
+// Eigenvalues of a symmetric 3×3 matrix, ascending (the trigonometric closed form).
+std::array<double, 3> symmetric_eigenvalues(const Mat3& a) {
+  const double p1 = a.m[0][1] * a.m[0][1] + a.m[0][2] * a.m[0][2] + a.m[1][2] * a.m[1][2];
+  const double q = (a.m[0][0] + a.m[1][1] + a.m[2][2]) / 3;
+  std::array<double, 3> e{};
+  if (p1 == 0) {
+    e = {a.m[0][0], a.m[1][1], a.m[2][2]};
+    std::sort(e.begin(), e.end());
+    return e;
+  }
+  const double p2 = (a.m[0][0] - q) * (a.m[0][0] - q) + (a.m[1][1] - q) * (a.m[1][1] - q) +
+                    (a.m[2][2] - q) * (a.m[2][2] - q) + 2 * p1;
+  const double p = std::sqrt(p2 / 6);
+  Mat3 b;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      b.m[i][j] = (a.m[i][j] - (i == j ? q : 0)) / p;
+  const double det = b.m[0][0] * (b.m[1][1] * b.m[2][2] - b.m[1][2] * b.m[2][1]) -
+                     b.m[0][1] * (b.m[1][0] * b.m[2][2] - b.m[1][2] * b.m[2][0]) +
+                     b.m[0][2] * (b.m[1][0] * b.m[2][1] - b.m[1][1] * b.m[2][0]);
+  const double r = std::clamp(det / 2, -1.0, 1.0);
+  const double phi = std::acos(r) / 3;
+  const double e1 = q + 2 * p * std::cos(phi);
+  const double e3 = q + 2 * p * std::cos(phi + 2 * kPi / 3);
+  e = {e3, 3 * q - e1 - e3, e1};
+  return e;
+}
+
+std::string inertia_text(const Mat3& i) {
+  return "ixx " + format_number(i.m[0][0]) + ", iyy " + format_number(i.m[1][1]) + ", izz " +
+         format_number(i.m[2][2]) + ", ixy " + format_number(i.m[0][1]) + ", ixz " +
+         format_number(i.m[0][2]) + ", iyz " + format_number(i.m[1][2]);
+}
+
 namespace {
 
 Mat3 diagonal(double a, double b, double c) {
@@ -60,6 +101,31 @@ void add_rigid_part(Body& body, double mp, const Vec3& cp, const Mat3& ip) {
                            add(ip, point_inertia(mp, cp - c)));
   body.mass_kg = m;
   body.com_m = c;
+}
+
+std::string inertia_problem(double mass_kg, const Mat3& inertia) {
+  if (!std::isfinite(mass_kg) || mass_kg < 0)
+    return "mass must be >= 0, got " + format_number(mass_kg);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      if (!std::isfinite(inertia.m[i][j]))
+        return "inertia values must be finite (" + inertia_text(inertia) + ")";
+  const auto e = symmetric_eigenvalues(inertia);
+  const double scale = std::max({std::abs(e[0]), std::abs(e[1]), std::abs(e[2]), 1e-300});
+  const double tol = 1e-9 * scale;
+  for (int i = 0; i < 3; ++i)
+    for (int j = i + 1; j < 3; ++j)
+      if (std::abs(inertia.m[i][j] - inertia.m[j][i]) > tol)
+        return "the inertia is not symmetric (" + inertia_text(inertia) + ", but entry " +
+               std::to_string(j) + "," + std::to_string(i) + " is " +
+               format_number(inertia.m[j][i]) + ")";
+  if (e[0] < -tol)
+    return "a principal moment is negative (" + format_number(e[0]) + " kg·m²; " +
+           inertia_text(inertia) + ")";
+  if (e[0] + e[1] < e[2] - tol)
+    return "the principal moments " + format_number(e[0]) + ", " + format_number(e[1]) + ", " +
+           format_number(e[2]) + " kg·m² violate A + B >= C (" + inertia_text(inertia) + ")";
+  return {};
 }
 
 }  // namespace s2sim::scene

@@ -4,6 +4,9 @@
 
 #include <s2sim/kernel/scene.hpp>
 
+#include <array>
+#include <string>
+
 namespace s2sim::scene {
 
 /// Inertia of a uniform primitive of mass `mass_kg` about its centre, in its own axes
@@ -16,5 +19,16 @@ Mat3 uniform_inertia(const Shape& shape, double mass_kg);
 /// theorem.
 void add_rigid_part(Body& body, double part_mass_kg, const Vec3& part_com_m,
                     const Mat3& part_inertia_kg_m2);
+
+/// Eigenvalues of a symmetric 3×3 matrix, ascending.
+std::array<double, 3> symmetric_eigenvalues(const Mat3& a);
+
+/// "ixx 1, iyy 2, ...": an inertia's six numbers for messages.
+std::string inertia_text(const Mat3& inertia);
+
+/// What makes a mass and an inertia about the centre of mass non-physical, empty if nothing
+/// does (MuJoCo's rule): a mass >= 0 and finite, an inertia finite, symmetric, with principal
+/// moments >= 0 that satisfy the triangle inequality (A + B >= C), each within a relative 1e-9.
+std::string inertia_problem(double mass_kg, const Mat3& inertia);
 
 }  // namespace s2sim::scene

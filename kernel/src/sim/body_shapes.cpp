@@ -58,7 +58,7 @@ void Simulation::Impl::apply_body_shape(int body) {
 
 void Simulation::Impl::init_body_shapes() {
   body_shapes.assign(poses.size(), BodyShape{});
-  pending_shapes.reserve(2 * poses.size());
+  pending_body_changes.reserve(3 * poses.size());  // a resize, a surface, a mass
   world.request_resize = &Simulation::Impl::request_resize;
   world.request_surface = &Simulation::Impl::request_surface;
   loaded_surfaces.assign(poses.size(), collision::Surface{});
@@ -164,21 +164,28 @@ void Simulation::Impl::set_body_surface(int body, double mu, double mu2) {
   apply_body_shape(body);
 }
 
-void Simulation::Impl::apply_pending_shapes() {
-  for (const PendingShape& p : pending_shapes) {
-    if (p.resize)
-      resize_body(p.body, p.values);
-    else
-      set_body_surface(p.body, p.values.x, p.values.y);
+void Simulation::Impl::apply_pending_body_changes() {
+  for (const PendingBodyChange& p : pending_body_changes) {
+    switch (p.kind) {
+      case PendingBodyChange::Kind::resize:
+        resize_body(p.body, p.values);
+        break;
+      case PendingBodyChange::Kind::surface:
+        set_body_surface(p.body, p.values.x, p.values.y);
+        break;
+      case PendingBodyChange::Kind::mass:
+        set_body_mass(p.body, {p.mass_kg, p.values, p.inertia_kg_m2});
+        break;
+    }
   }
-  pending_shapes.clear();
+  pending_body_changes.clear();
 }
 
 void Simulation::Impl::request_resize(const void* impl, std::int32_t body, const Vec3& size_m) {
   auto& m = *static_cast<Simulation::Impl*>(const_cast<void*>(impl));
   m.check_resize(body, size_m);  // refused to the component that asked
-  if (m.pending_shapes.size() < m.pending_shapes.capacity())
-    m.pending_shapes.push_back({body, true, size_m});
+  if (m.pending_body_changes.size() < m.pending_body_changes.capacity())
+    m.pending_body_changes.push_back({PendingBodyChange::Kind::resize, body, size_m, 0, {}});
   else
     m.resize_body(body, size_m);  // more requests than bodies in one stage: at once
 }
@@ -186,8 +193,8 @@ void Simulation::Impl::request_resize(const void* impl, std::int32_t body, const
 void Simulation::Impl::request_surface(const void* impl, std::int32_t body, double mu, double mu2) {
   auto& m = *static_cast<Simulation::Impl*>(const_cast<void*>(impl));
   m.check_surface(body, mu, mu2);
-  if (m.pending_shapes.size() < m.pending_shapes.capacity())
-    m.pending_shapes.push_back({body, false, {mu, mu2, 0}});
+  if (m.pending_body_changes.size() < m.pending_body_changes.capacity())
+    m.pending_body_changes.push_back({PendingBodyChange::Kind::surface, body, {mu, mu2, 0}, 0, {}});
   else
     m.set_body_surface(body, mu, mu2);
 }

@@ -191,6 +191,7 @@ void Simulation::Impl::sync_local_views() {
     local.view.request_delete_obstacle = &refuse_delete_obstacle;
     local.view.request_resize = &refuse_resize;
     local.view.request_surface = &refuse_surface;
+    local.view.request_mass = &refuse_mass;
     local.view.annotator = &local;
     local.view.annotate = &refuse_annotation;
   };
@@ -242,6 +243,10 @@ void Simulation::Impl::refuse_resize(const void* local, std::int32_t, const Vec3
 }
 void Simulation::Impl::refuse_surface(const void* local, std::int32_t, double, double) {
   refuse(local, "asked to set a body's surface");
+}
+void Simulation::Impl::refuse_mass(const void* local, std::int32_t, double, const Vec3*,
+                                   const Mat3*) {
+  refuse(local, "asked to set a body's mass");
 }
 void Simulation::Impl::refuse_annotation(const void* local, std::int32_t, std::int32_t,
                                          std::int32_t, const char*, std::size_t, const double*) {
@@ -295,7 +300,7 @@ void Simulation::Impl::run_component_group(sim::ComponentGroup& group, bool call
     }
     // Only the whole scene's components may ask (a local one is refused).
     if (!pending_places.empty() || !pending_moves.empty() || !pending_velocities.empty() ||
-        !pending_things.empty() || !pending_obstacles.empty() || !pending_shapes.empty())
+        !pending_things.empty() || !pending_obstacles.empty() || !pending_body_changes.empty())
       apply_pending_places();
   }
   for (const int a : group.axes)

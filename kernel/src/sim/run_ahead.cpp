@@ -51,7 +51,7 @@ std::int64_t Simulation::Impl::step_ahead(std::int64_t ticks) {
   // Only the parts' own work may happen between the ticks: their components, their physics.
   if (component_parts.parts.empty() || !pending_places.empty() || !pending_moves.empty() ||
       !pending_velocities.empty() || !pending_things.empty() || !pending_obstacles.empty() ||
-      !pending_shapes.empty() || !sim::fence_parts(*multibody, contacts.get()))
+      !pending_body_changes.empty() || !sim::fence_parts(*multibody, contacts.get()))
     return 0;
   ahead_checkpoint.clear();  // keeps its capacity: after the first stretches, no allocation
   layout.save(ahead_checkpoint);

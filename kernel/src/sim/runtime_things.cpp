@@ -139,21 +139,39 @@ void Simulation::Impl::apply_thing(std::size_t t, bool place) {
     shapes->reshape(shape, g);
     contacts->reshaped(shape);
     ray_caster->reshaped(shape);
-    const double mass = v.present ? v.spec.mass_kg : loaded.mass_kg;
-    const Mat3 inertia = v.present ? scene::uniform_inertia(g.shape, mass) : loaded.inertia_kg_m2;
-    const bool fixed = v.present && v.spec.fixed;
-    multibody->set_loose_mass(body, mass, {}, inertia, v.present && !fixed, fixed);
-    contacts->set_free_body(body, mass, {}, inertia, v.present && !fixed, fixed);
-  } else {
-    // A scene thing: its own mass properties; weightless while deleted, so that it stays put.
-    const bool gravity = v.present && loaded.gravity;
-    multibody->set_loose_mass(body, loaded.mass_kg, loaded.com_m, loaded.inertia_kg_m2, gravity);
-    contacts->set_free_body(body, loaded.mass_kg, loaded.com_m, loaded.inertia_kg_m2, gravity);
   }
+  apply_body_mass(body);
   contacts->set_parked(body, !v.present);
   if (place)
     multibody->place_free_body(body,
                                v.present ? v.spec.pose : scene::runtime_thing_park_pose(park_slot));
+}
+
+Simulation::MassProperties Simulation::Impl::base_mass(int body) const {
+  const scene::Body& loaded = scene.bodies[static_cast<std::size_t>(body - 1)];
+  const std::int32_t t = thing_of_body[static_cast<std::size_t>(body)];
+  if (t < 0 || !thing_views[static_cast<std::size_t>(t)].added)
+    return {loaded.mass_kg, loaded.com_m, loaded.inertia_kg_m2};
+  // An added thing: a uniform solid of its spec, its centre at its origin; a spare at rest
+  // weighs what it was loaded with.
+  const ThingView& v = thing_views[static_cast<std::size_t>(t)];
+  if (!v.present) return {loaded.mass_kg, {}, loaded.inertia_kg_m2};
+  return {v.spec.mass_kg, {}, scene::uniform_inertia(geom_of(v.spec, v.id).shape, v.spec.mass_kg)};
+}
+
+void Simulation::Impl::apply_loose_mass(int body, const MassProperties& mass) {
+  const scene::Body& loaded = scene.bodies[static_cast<std::size_t>(body - 1)];
+  const std::int32_t t = thing_of_body[static_cast<std::size_t>(body)];
+  bool gravity = loaded.gravity, fixed = false;
+  if (t >= 0) {
+    const ThingView& v = thing_views[static_cast<std::size_t>(t)];
+    // An added thing falls unless held; a scene thing is weightless while deleted, so that it
+    // stays put.
+    fixed = v.added && v.present && v.spec.fixed;
+    gravity = v.present && !fixed && (v.added || loaded.gravity);
+  }
+  multibody->set_loose_mass(body, mass.mass_kg, mass.com_m, mass.inertia_kg_m2, gravity, fixed);
+  contacts->set_free_body(body, mass.mass_kg, mass.com_m, mass.inertia_kg_m2, gravity, fixed);
 }
 
 int Simulation::Impl::take_spare_thing(const ThingSpec& spec, std::string_view id) {
@@ -164,6 +182,7 @@ int Simulation::Impl::take_spare_thing(const ThingSpec& spec, std::string_view i
     v.present = true;
     v.id = std::string(id);
     v.spec = spec;
+    body_masses[static_cast<std::size_t>(v.body)] = BodyMass{};  // nor a mass it was given
     // A surface a former holder was given is not the new thing's.
     if (body_shapes[static_cast<std::size_t>(v.body)].surfaced) {
       body_shapes[static_cast<std::size_t>(v.body)] = BodyShape{};

@@ -175,6 +175,7 @@ struct Simulation::Impl {
   static void refuse_delete_thing(const void* local, std::int32_t);
   static void refuse_delete_obstacle(const void* local, std::int32_t);
   static void refuse_resize(const void* local, std::int32_t, const Vec3&);
+  static void refuse_mass(const void* local, std::int32_t, double, const Vec3*, const Mat3*);
   static void refuse_surface(const void* local, std::int32_t, double, double);
   static void refuse_annotation(const void* local, std::int32_t, std::int32_t, std::int32_t,
                                 const char*, std::size_t, const double*);
@@ -215,24 +216,51 @@ struct Simulation::Impl {
   };
   std::vector<BodyShape> body_shapes;
   std::vector<collision::Surface> loaded_surfaces;
-  struct PendingShape {
+  struct PendingBodyChange {
+    enum class Kind { resize, surface, mass } kind = Kind::resize;
     std::int32_t body = 0;
-    bool resize = false;
-    Vec3 values;  // a size, or mu, mu2
+    Vec3 values;  // a size; mu, mu2; or the centre of mass
+    double mass_kg = 0;
+    Mat3 inertia_kg_m2;
   };
-  std::vector<PendingShape> pending_shapes;
+  std::vector<PendingBodyChange> pending_body_changes;
   std::int32_t own_shape(int body, const char* call) const;
   void check_resize(int body, const Vec3& size_m) const;
   void check_surface(int body, double mu, double mu2) const;
   void resize_body(int body, const Vec3& size_m);
   void set_body_surface(int body, double mu, double mu2);
   void apply_body_shape(int body);
-  void apply_pending_shapes();
+  void apply_pending_body_changes();
   void init_body_shapes();
   void reset_body_shapes();
   void declare_body_shapes_state();
   static void request_resize(const void* impl, std::int32_t body, const Vec3& size_m);
   static void request_surface(const void* impl, std::int32_t body, double mu, double mu2);
+  // Bodies' mass properties set while running (body_masses.cpp), per kernel body.
+  struct BodyMass {
+    bool changed = false;
+    Simulation::MassProperties mass;
+  };
+  std::vector<BodyMass> body_masses;
+  std::vector<double> body_mass_kg;  // per kernel body, the mass now (WorldView::body_mass_kg)
+  /// What body `body` weighs without a change of its own: a present added thing its spec's
+  /// (a uniform solid), any other body the scene's.
+  Simulation::MassProperties base_mass(int body) const;
+  Simulation::MassProperties mass_of(int body) const;
+  /// Throws for a body that is not one, and for mass properties (when given) that are not
+  /// physical.
+  void check_mass(int body, const Simulation::MassProperties* mass, const char* call) const;
+  void set_body_mass(int body, const Simulation::MassProperties& mass);
+  /// Pushes body `body`'s mass properties into the multibody model and contact.
+  void apply_body_mass(int body);
+  /// The same for a loose body (runtime_things.cpp): whether it falls or is held follows from
+  /// its thing's state.
+  void apply_loose_mass(int body, const Simulation::MassProperties& mass);
+  void init_body_masses();
+  void reset_body_masses();
+  void declare_body_masses_state();
+  static void request_mass(const void* impl, std::int32_t body, double mass_kg, const Vec3* com_m,
+                           const Mat3* inertia_kg_m2);
   // The scene's obstacles: which are present (a deleted one touches and shows nothing).
   std::vector<char> obstacle_present;
   std::vector<std::int32_t> pending_obstacles;

@@ -46,6 +46,7 @@ void Simulation::Impl::declare_state() {
   contacts->declare_state(layout);
   declare_things_state();
   declare_body_shapes_state();
+  declare_body_masses_state();
   // Written in place: the WorldView points into these buffers.
   add_buffer(layout, "components/state", state);
   add_buffer(layout, "inputs", inputs);

@@ -317,7 +317,7 @@ void Simulation::Impl::apply_pending_places() {
   };
   // Things first, so that a thing added in this stage can be placed or pushed in it too.
   apply_pending_things();
-  apply_pending_shapes();
+  apply_pending_body_changes();
   auto apply = [&](auto& list, const char* verb, const char* not_finite, const char* refused,
                    auto&& act) {
     for (const auto& [body, value] : list) {
@@ -411,7 +411,8 @@ void Simulation::Impl::reset() {
   contacts->reset();
   reset_things();
   reset_body_shapes();
-  pending_shapes.clear();
+  reset_body_masses();
+  pending_body_changes.clear();
   world.contacts = contacts->contacts();  // empty, for initialize()
   sync_local_views();
   // Copy in place: the WorldView points into these buffers.

@@ -561,7 +561,7 @@ function GetSolidAgularVelMat(R, i: integer): Matrix; begin result := PointColum
 function GetSolidVx(R, i: integer): double; begin result := GetSolidLinearVel(R, i).x; end;
 function GetSolidVy(R, i: integer): double; begin result := GetSolidLinearVel(R, i).y; end;
 function GetSolidVz(R, i: integer): double; begin result := GetSolidLinearVel(R, i).z; end;
-procedure SetSolidMass(R, i: integer; nmass: double); begin NotYetAvailable('SetSolidMass'); end;
+procedure SetSolidMass(R, i: integer; nmass: double); begin HostCall(hSetSolidMass, [R, i, nmass]); end;
 function GetSolidMass(R, i: integer): double; begin result := HostCall(hGetSolidMass, [R, i]); end;
 function GetSolidCenterOfMass(R, i: integer): TPoint3D; begin result := HostPoint(hGetSolidCenterOfMass, [R, i]); end;
 function GetSolidTag(R, i: integer): string; begin HostCall(hGetSolidTag, [R, i]); result := HostText; end;

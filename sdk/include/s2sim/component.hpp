@@ -173,9 +173,10 @@ struct WorldView {
 
   // Bodies, `body_count` of each (the world at index 0).
   std::int32_t body_count = 0;
-  const Pose* body_pose = nullptr;    ///< body frame in world
-  const Twist* body_twist = nullptr;  ///< world frame
-  Wrench* body_wrench = nullptr;      ///< accumulated for the coming tick
+  const Pose* body_pose = nullptr;       ///< body frame in world
+  const Twist* body_twist = nullptr;     ///< world frame
+  Wrench* body_wrench = nullptr;         ///< accumulated for the coming tick
+  const double* body_mass_kg = nullptr;  ///< as it stands (a mass set while running counts)
 
   // Axes, `axis_count` of each.
   std::int32_t axis_count = 0;
@@ -233,6 +234,9 @@ struct WorldView {
   void (*request_delete_obstacle)(const void* placer, std::int32_t obstacle) = nullptr;
   void (*request_resize)(const void* placer, std::int32_t body, const Vec3& size_m) = nullptr;
   void (*request_surface)(const void* placer, std::int32_t body, double mu, double mu2) = nullptr;
+  /// `com_m` and `inertia_kg_m2` may be null: kept, and scaled with the mass.
+  void (*request_mass)(const void* placer, std::int32_t body, double mass_kg, const Vec3* com_m,
+                       const Mat3* inertia_kg_m2) = nullptr;
   const void* annotator = nullptr;
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
@@ -319,6 +323,8 @@ class StepContext {
   const Pose& body_pose(BodyHandle b) const { return w_->body_pose[body(b, "body_pose")]; }
   /// Velocity of a body (world frame) at the start of the tick.
   const Twist& body_twist(BodyHandle b) const { return w_->body_twist[body(b, "body_twist")]; }
+  /// Mass of a body, kg, as it stands (0 for the world; `request_mass` changes it).
+  double body_mass_kg(BodyHandle b) const { return w_->body_mass_kg[body(b, "body_mass_kg")]; }
   /// Applies `force_N` (world frame) at `point_m` (world frame) for the coming tick.
   void apply_force(BodyHandle b, const Vec3& force_N, const Vec3& point_m) {
     const std::int32_t i = body(b, "apply_force");
@@ -461,6 +467,25 @@ class StepContext {
     if (w_->request_surface == nullptr)
       throw Error(ErrorKind::runtime, "StepContext::request_surface: not available here");
     w_->request_surface(w_->placer, body(b, "request_surface"), mu, mu2);
+  }
+
+  /// Gives a body a new mass after this stage (SimTwo's `SetSolidMass`): its inertia scaled by
+  /// the mass's ratio, its centre of mass kept; a snapshot holds it, a reset restores the
+  /// scene's. Throws for a mass that is not positive or beyond 1e9 kg.
+  void request_mass(BodyHandle b, double mass_kg) {
+    if (w_->request_mass == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_mass: not available here");
+    w_->request_mass(w_->placer, body(b, "request_mass"), mass_kg, nullptr, nullptr);
+  }
+  /// The same with its centre of mass (body frame) and its inertia about it (body axes); throws
+  /// for an inertia that is not physical (not symmetric, a negative principal moment, or
+  /// moments that violate A + B >= C).
+  void request_mass_properties(BodyHandle b, double mass_kg, const Vec3& com_m,
+                               const Mat3& inertia_kg_m2) {
+    if (w_->request_mass == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::request_mass_properties: not available here");
+    w_->request_mass(w_->placer, body(b, "request_mass_properties"), mass_kg, &com_m,
+                     &inertia_kg_m2);
   }
 
   // --- what the people watching see (not part of the simulation's state) ---
@@ -607,7 +632,8 @@ class ConfigureContext {
   virtual int body_count() const = 0;
   /// The scene ID of a body as written (a solid, tyre or thing ID); empty for the world.
   virtual std::string body_id(BodyHandle b) const = 0;
-  /// Mass of a body, kg (0 for the world).
+  /// Mass of a body as loaded, kg (0 for the world); StepContext::body_mass_kg reads it as it
+  /// stands while running.
   virtual double body_mass_kg(BodyHandle b) const = 0;
 
   // --- axes ---

@@ -5,15 +5,15 @@
 /// its own, or whose SDK minor version is newer than the kernel's.
 
 #define S2SIM_SDK_VERSION_MAJOR 0
-#define S2SIM_SDK_VERSION_MINOR 13
+#define S2SIM_SDK_VERSION_MINOR 14
 #define S2SIM_SDK_VERSION_PATCH 0
 
 /// Bumped whenever a type that crosses the plugin boundary changes layout: the descriptor, the
 /// kind entry, a virtual table (`Component`, `ConfigureContext`, `Params`), a type passed
 /// through them (`SensorSpec`...), or `s2sim::detail::WorldView`.
-#define S2SIM_PLUGIN_ABI_VERSION 9
+#define S2SIM_PLUGIN_ABI_VERSION 10
 
 namespace s2sim {
 /// The SDK version as a "major.minor.patch" string.
-inline constexpr const char* kSdkVersionString = "0.13.0";
+inline constexpr const char* kSdkVersionString = "0.14.0";
 }  // namespace s2sim

@@ -56,6 +56,19 @@ void add_and_delete_things(Simulation& sim) {
   sim.set_body_surface(sim.things()[0].body, 0.3, -1);
 }
 
+/// A jointed body's and a thing's mass set while running: the arm grows heavier, its centre of
+/// mass moved out.
+void change_masses(Simulation& sim) {
+  const auto& bodies = sim.scene().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].id == "arm") {
+      Simulation::MassProperties m = sim.body_mass(static_cast<int>(b + 1));
+      m.mass_kg *= 2;
+      m.com_m.x += 0.02;
+      sim.set_body_mass(static_cast<int>(b + 1), m);
+    }
+}
+
 const std::vector<Case>& cases() {
   static const std::vector<Case> c = {
       // Driving: wheels on the floor (contact memory and points), motors (components' state),
@@ -84,7 +97,8 @@ const std::vector<Case>& cases() {
        {{"robots/rig/axes/spin/ref_torque", 0.5}},
        0.05,
        0.1,
-       0.2},
+       0.2,
+       &change_masses},
   };
   return c;
 }
@@ -110,6 +124,7 @@ const std::map<std::string, const char*>& exercised_by() {
       {"things/ids", "runtime"},
       {"obstacles", "runtime"},
       {"shapes", "runtime"},
+      {"masses", "jointforce"},
   };
   return m;
 }

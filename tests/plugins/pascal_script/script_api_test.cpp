@@ -264,6 +264,25 @@ TEST_F(ScriptApi, SizesAndSurfacesSetByTheScriptTakeEffectAndReadBack) {
   EXPECT_FALSE(sim->resized(ball));
 }
 
+TEST_F(ScriptApi, AMassSetByTheScriptTakesEffectAndReadsBack) {
+  SKIP_WITHOUT_FPC;
+  SimulationOptions o = with("mass.pas");
+  o.sheet_cells = {{1, 1, "0"}, {1, 2, "0"}, {1, 3, "0"}};
+  auto sim =
+      Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/pendulum_mass", o);
+  sim->run_until(0.2);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/A1"), 1.0);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/B1"), 2.5);
+  EXPECT_DOUBLE_EQ(sim->signal("sheet/C1"), 1.0) << "a negative mass raises in the script";
+  const int bob = 1;
+  const Simulation::MassProperties m = sim->body_mass(bob);
+  EXPECT_EQ(m.mass_kg, 2.5);
+  EXPECT_NEAR(m.inertia_kg_m2.m[1][1], 2.5 * 0.4 * 0.02 * 0.02, 1e-15) << "scaled with the mass";
+  sim->reset();
+  EXPECT_EQ(sim->body_mass(bob).mass_kg, 1.0);
+}
+
 TEST_F(ScriptApi, TheFireEffectBurnsWhereTheScriptPutsItAndGoesOut) {
   SKIP_WITHOUT_FPC;
   auto sim = Simulation::load(kScene, with("fire.pas"));

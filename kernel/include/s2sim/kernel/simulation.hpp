@@ -319,6 +319,29 @@ class Simulation {
   void set_body_surface(int body, double mu, double mu2);
   /// The size resize_body gave body `body`, if any.
   std::optional<Vec3> resized(int body) const;
+  /// A body's mass properties: its mass, its centre of mass (body frame) and its inertia
+  /// about that centre (body axes).
+  struct MassProperties {
+    double mass_kg = 0;
+    Vec3 com_m;
+    Mat3 inertia_kg_m2;
+    /// SimTwo's rule for a new mass alone: these with the inertia scaled by the mass's ratio,
+    /// the centre of mass kept.
+    MassProperties with_mass(double new_mass_kg) const;
+  };
+  /// Gives body `body` new mass properties while running (SimTwo's SetSolidMass, with the
+  /// centre of mass and the inertia too): a jointed body's dynamics, its robot's weight, its
+  /// joint stops and what contact meets follow, its coordinates and speeds kept (a jointed
+  /// body costs the multibody model a rebuild, about a millisecond). A snapshot holds it, a
+  /// reset restores the scene's. Throws s2sim::Error (usage) for the world or an unknown
+  /// body, a mass not positive or beyond 1e9 kg, a centre of mass not finite, or an inertia
+  /// that is not symmetric, positive and within the triangle inequality.
+  void set_body_mass(int body, const MassProperties& mass);
+  /// The same with the mass alone, SimTwo's rule: the inertia scaled by the mass's ratio, the
+  /// centre of mass kept.
+  void set_body_mass(int body, double mass_kg);
+  /// Body `body`'s mass properties as they stand now.
+  MassProperties body_mass(int body) const;
 
   /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
   /// annotations.hpp), since the load or the last reset. Not part of the state.
