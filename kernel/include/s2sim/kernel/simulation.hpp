@@ -332,7 +332,8 @@ class Simulation {
   /// Gives body `body` new mass properties while running (SimTwo's SetSolidMass, with the
   /// centre of mass and the inertia too): a jointed body's dynamics, its robot's weight, its
   /// joint stops and what contact meets follow, its coordinates and speeds kept (a jointed
-  /// body costs the multibody model a rebuild, about a millisecond). A snapshot holds it, a
+  /// body costs the multibody model a rebuild: 0.4 ms for a pendulum, 1 ms for the humanoid
+  /// and 7 ms for 16 robots, measured while a build ran). A snapshot holds it, a
   /// reset restores the scene's. Throws s2sim::Error (usage) for the world or an unknown
   /// body, a mass not positive or beyond 1e9 kg, a centre of mass not finite, or an inertia
   /// that is not symmetric, positive and within the triangle inequality.
