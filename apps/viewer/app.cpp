@@ -216,6 +216,12 @@ class App {
         state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
                            fixed_pacing);
       }
+      {
+        std::vector<std::string> mesh_warnings;
+        drawables_.take_meshes(*state_.sim, renderer_, mesh_warnings);
+        for (const auto& w : mesh_warnings)
+          state_.log_message("warning: " + w);
+      }
       drawables_.update(*state_.sim);
       record_trails(state_);
       collect_published_lines(state_);

@@ -56,8 +56,8 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     cylinder_coarse_ = renderer.upload(unit_cylinder(12));
     sphere_coarse_ = renderer.upload(unit_sphere(6, 12));
   }
-  std::map<std::pair<std::filesystem::path, double>, std::pair<int, std::pair<Vec3f, Vec3f>>>
-      loaded_meshes;
+  mesh_cache_.clear();
+  meshes_version_ = 0;
 
   auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind, int index) {
     Drawable d;
@@ -73,37 +73,13 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     }
     const scene::Mesh& mesh = g.visual.mesh;
     if (!mesh.file.empty()) {
-      const auto key = std::make_pair(mesh.file, mesh.scale);
-      auto it = loaded_meshes.find(key);
-      if (it == loaded_meshes.end()) {
-        try {
-          const MeshData data = load_mesh_file(mesh.file, mesh.scale);
-          Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-          for (const auto& v : data.vertices) {
-            lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
-                  std::min(lo.z, v.position[2])};
-            hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
-                  std::max(hi.z, v.position[2])};
-          }
-          it = loaded_meshes
-                   .emplace(key, std::make_pair(renderer.upload(data), std::make_pair(lo, hi)))
-                   .first;
-        } catch (const Error& e) {
-          warnings.push_back(e.what());
-          it = loaded_meshes.emplace(key, std::make_pair(-1, std::make_pair(Vec3f{}, Vec3f{})))
-                   .first;
-        }
-      }
-      if (it->second.first >= 0) {
+      const LoadedMesh loaded = load_mesh(renderer, mesh.file, mesh.scale, warnings);
+      if (loaded.mesh >= 0) {
         // The mesh replaces the primitive on screen; its offset is in the body frame.
         Pose rotation_only = g.pose;
         rotation_only.position = {};
         d.local = translation(to_f(g.pose.position + mesh.offset_m)) * to_mat4(rotation_only);
-        d.item.mesh = it->second.first;
-        d.box_min = it->second.second.first;
-        d.box_max = it->second.second.second;
-        d.item.two_sided = true;
-        d.item.casts_shadow = mesh.shadow;
+        take_mesh(d, loaded, mesh.shadow, renderer, mesh.shadow_file, mesh.scale, warnings);
         drawables_.push_back(d);
         return;
       }
@@ -199,6 +175,76 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
       d.thing = thing_of_body[static_cast<std::size_t>(d.body)];
 }
 
+SceneDrawables::LoadedMesh SceneDrawables::load_mesh(Renderer& renderer,
+                                                     const std::filesystem::path& file,
+                                                     double scale,
+                                                     std::vector<std::string>& warnings) {
+  const auto key = std::make_pair(file, scale);
+  if (auto it = mesh_cache_.find(key); it != mesh_cache_.end()) return it->second;
+  LoadedMesh loaded;
+  try {
+    const MeshData data = load_mesh_file(file, scale);
+    Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
+    for (const auto& v : data.vertices) {
+      lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
+            std::min(lo.z, v.position[2])};
+      hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
+            std::max(hi.z, v.position[2])};
+    }
+    loaded = {renderer.upload(data), lo, hi};
+  } catch (const Error& e) {
+    warnings.push_back(e.what());  // once per file: the failure is cached too
+  }
+  mesh_cache_.emplace(key, loaded);
+  return loaded;
+}
+
+void SceneDrawables::take_mesh(Drawable& d, const LoadedMesh& loaded, bool casts_shadow,
+                               Renderer& renderer, const std::filesystem::path& shadow_file,
+                               double scale, std::vector<std::string>& warnings) {
+  d.item.mesh = loaded.mesh;
+  // A coarser mesh of the same thing casts the shadow and stands in when small on screen.
+  d.item.coarse_mesh =
+      shadow_file.empty() ? -1 : load_mesh(renderer, shadow_file, scale, warnings).mesh;
+  d.box_min = loaded.lo;
+  d.box_max = loaded.hi;
+  d.item.two_sided = true;
+  d.item.casts_shadow = casts_shadow;
+}
+
+void SceneDrawables::take_meshes(const Simulation& sim, Renderer& renderer,
+                                 std::vector<std::string>& warnings) {
+  const Annotations& notes = sim.annotations();
+  if (notes.version == meshes_version_) return;
+  meshes_version_ = notes.version;
+  for (auto& d : drawables_) {
+    if (d.kind != Drawable::Kind::solid) continue;
+    const Annotations::BodyMesh* wanted = notes.body_mesh(d.body);
+    const LoadedMesh loaded =
+        wanted ? load_mesh(renderer, wanted->file, wanted->scale, warnings) : LoadedMesh{};
+    if (loaded.mesh < 0) {
+      if (d.run_time_mesh) {  // back to what the scene drew
+        d.item = d.scene_item;
+        d.box_min = d.scene_box_min;
+        d.box_max = d.scene_box_max;
+        d.local = d.scene_local;
+        d.run_time_mesh = false;
+      }
+      continue;
+    }
+    if (!d.run_time_mesh) {
+      d.scene_item = d.item;
+      d.scene_box_min = d.box_min;
+      d.scene_box_max = d.box_max;
+      d.scene_local = d.local;
+      d.run_time_mesh = true;
+    }
+    d.local = d.frame;
+    take_mesh(d, loaded, wanted->casts_shadow, renderer, wanted->shadow_file, wanted->scale,
+              warnings);
+  }
+}
+
 void SceneDrawables::place_fire(const Simulation& sim) {
   const Annotations::Fire& fire = sim.annotations().fire;
   burning_ = fire.burning;
@@ -259,6 +305,10 @@ void SceneDrawables::take_primitive(Drawable& d, const scene::Shape& s) const {
 
 void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
   const ThingSpec& spec = thing.spec;
+  for (int k = 0; k < 3; ++k)
+    d.scene_color[k] = static_cast<float>(spec.rgb[k]);
+  d.scene_color[3] = 1;
+  if (d.run_time_mesh) return;  // drawn as its mesh, in the thing's colour
   scene::Shape shape;
   shape.type = spec.shape == ThingShape::box      ? scene::ShapeType::box
                : spec.shape == ThingShape::sphere ? scene::ShapeType::sphere
@@ -268,9 +318,6 @@ void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
   shape.length_m = spec.size_m.z;
   d.local = Mat4{};
   take_primitive(d, shape);
-  for (int k = 0; k < 3; ++k)
-    d.scene_color[k] = static_cast<float>(spec.rgb[k]);
-  d.scene_color[3] = 1;
 }
 
 void SceneDrawables::update(const Simulation& sim) {
@@ -285,7 +332,7 @@ void SceneDrawables::update(const Simulation& sim) {
     } else if (d.kind == Drawable::Kind::obstacle) {
       d.hidden = !sim.obstacle_present(d.index);
     }
-    const bool scene_solid = d.kind == Drawable::Kind::solid && d.primitive &&
+    const bool scene_solid = d.kind == Drawable::Kind::solid && d.primitive && !d.run_time_mesh &&
                              (d.thing < 0 || !things[static_cast<std::size_t>(d.thing)].added);
     if (scene_solid) {
       if (const std::optional<Vec3> size = sim.resized(d.body)) {

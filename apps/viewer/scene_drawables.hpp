@@ -8,7 +8,11 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <cstdint>
+#include <filesystem>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace s2sim::viewer {
@@ -30,6 +34,12 @@ struct Drawable {
   scene::ShapeType shape = scene::ShapeType::box;
   Mat4 frame, loaded_local;
   bool hidden = false;  ///< a deleted thing, or a spare body no thing holds
+  /// Drawn as a mesh a component chose while running (Annotations::body_meshes); the scene's
+  /// picture kept to go back to.
+  bool run_time_mesh = false;
+  DrawItem scene_item;
+  Vec3f scene_box_min, scene_box_max;
+  Mat4 scene_local;
 };
 
 class SceneDrawables {
@@ -38,6 +48,11 @@ class SceneDrawables {
   /// or unreadable mesh and texture files are reported in `warnings` and drawn as the
   /// primitive (or untextured).
   void build(const scene::Scene& scene, Renderer& renderer, std::vector<std::string>& warnings);
+
+  /// Draws solids as the meshes components chose while running (StepContext::set_body_mesh)
+  /// and back as the scene's when they are forgotten; reads a file once. Only when the
+  /// annotations changed. Files it cannot read are reported in `warnings`.
+  void take_meshes(const Simulation& sim, Renderer& renderer, std::vector<std::string>& warnings);
 
   /// Updates every item's model matrix from the simulation's body poses, and each solid's
   /// colour from the run-time colours (`Annotations::body_colors`). No allocation.
@@ -62,6 +77,20 @@ class SceneDrawables {
   void take_primitive(Drawable& d, const scene::Shape& s) const;
   /// A thing added while running takes its primitive, size and colour from its spec.
   void take_thing_shape(Drawable& d, const ThingView& thing);
+
+  struct LoadedMesh {
+    int mesh = -1;  ///< from Renderer::upload; -1: the file could not be read
+    Vec3f lo, hi;   ///< bounds of its vertices
+  };
+  /// `file`'s mesh at `scale`, read and uploaded once per scene.
+  LoadedMesh load_mesh(Renderer& renderer, const std::filesystem::path& file, double scale,
+                       std::vector<std::string>& warnings);
+  /// `d` drawn as `loaded` (its `shadow_file`, when named, for the shadow and small on screen).
+  void take_mesh(Drawable& d, const LoadedMesh& loaded, bool casts_shadow, Renderer& renderer,
+                 const std::filesystem::path& shadow_file, double scale,
+                 std::vector<std::string>& warnings);
+  std::map<std::pair<std::filesystem::path, double>, LoadedMesh> mesh_cache_;
+  std::uint64_t meshes_version_ = 0;
 
   /// The fire effect's flames (Annotations::fire), placed by update(); empty while out.
   void place_fire(const Simulation& sim);

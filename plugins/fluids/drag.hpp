@@ -45,7 +45,8 @@ class Drag final : public Component {
       cd_ = Vec3{1, 1, 1} * p.number("cd", 0.0, nn);
       area_ = per_axis(p, "area", 0.0, nn);
       density_ = kSimTwoAirDensity;
-      mass_ = p.number("mass", ctx.body_mass_kg(body_), Range::positive());
+      loaded_mass_kg_ = ctx.body_mass_kg(body_);
+      mass_ = p.number("mass", loaded_mass_kg_, Range::positive());
       center_ = Vec3{p.number("com_x", 0.0), p.number("com_y", 0.0), p.number("com_z", 0.0)};
       auto& I = inertia_.m;
       I[0][0] = p.number("ixx", 0.0, nn);
@@ -116,20 +117,23 @@ class Drag final : public Component {
     // ODE scales the velocity after the step, v ← (1 − s)·(v + h·a) when |v + h·a|² > 1e-4:
     // as a force over the step, −m·s·(v/h + g) with the gravity this body feels (other loads
     // are not known here, so they are left out of both the factor and the threshold).
+    // A mass set while running (SetSolidMass) scales the mass and inertia damped, as ODE's
+    // velocity scaling does; exactly 1 otherwise.
+    const double scale = loaded_mass_kg_ > 0 ? ctx.body_mass_kg(body_) / loaded_mass_kg_ : 1.0;
     const double h = ctx.tick_s();
     Vec3 after = v_com;
     if (gravity_) after.z -= kGravity_m_s2 * h;
-    if (dot(after, after) > kSimTwoDampingThreshold) force -= after * (mass_ * stokes_ / h);
+    if (dot(after, after) > kSimTwoDampingThreshold) force -= after * (mass_ * scale * stokes_ / h);
     const Vec3& w = twist.angular_rad_s;
     if (dot(w, w) > kSimTwoDampingThreshold) {
       const Mat3 inertia_world = pose.rotation * inertia_ * pose.rotation.transposed();
-      torque -= (inertia_world * w) * (roll_ / h);
+      torque -= (inertia_world * w) * (roll_ * scale / h);
     }
   }
 
   BodyHandle body_;
   bool simtwo_ = false, gravity_ = true;
-  double density_ = 0, stokes_ = 0, roll_ = 0, mass_ = 0;
+  double density_ = 0, stokes_ = 0, roll_ = 0, mass_ = 0, loaded_mass_kg_ = 1;
   Vec3 cd_, area_, quadratic_, linear_, angular_, angular_quadratic_, center_;
   Mat3 inertia_;
   InputHandle wind_x_, wind_y_, wind_z_;

@@ -136,6 +136,7 @@ begin
   result := 0;
   Time := now_s;
   try
+    S2SimTakeUDPData;
     if which = 0 then Initialize else Control;
     S2SimPublishHUD;
   except

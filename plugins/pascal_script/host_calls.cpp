@@ -525,6 +525,8 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::DeleteThing:
     case HostFn::ClearThings:
       return call_things(fn, a, n, s);
+    case HostFn::MeshThing:
+      return mesh_thing(a, n, s, s2);
     case HostFn::ChartSeriesSetCount:
     case HostFn::ChartSeriesSetColor:
     case HostFn::ChartSeriesClear:
@@ -555,8 +557,8 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       need(1);
       udp().send(s, static_cast<int>(a[0]), s2);
       return 0;
-    case HostFn::ReadUDPData:
-      text_result_ = udp().receive();
+    case HostFn::UDPDataArrived:  // before each run of the script and in ReadUDPData
+      text_result_ = udp_.opened() ? udp_.receive() : std::string();
       return 0;
     case HostFn::WriteComPort:
       serial_.write(s);

@@ -87,6 +87,7 @@
   X(AddThingCylinder) \
   X(DeleteThing) \
   X(ClearThings) \
+  X(MeshThing) \
   X(ClearObstacles) \
   X(ChartSeriesSetCount) \
   X(ChartSeriesSetColor) \
@@ -95,7 +96,7 @@
   X(AddTrailNode) \
   X(ClearTrail) \
   X(WriteUDPData) \
-  X(ReadUDPData) \
+  X(UDPDataArrived) \
   X(WriteComPort) \
   X(ReadComPort) \
   X(HUDText) \

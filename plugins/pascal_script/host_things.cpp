@@ -5,6 +5,10 @@
 // script's view of them.
 #include "script_controller.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
 namespace s2sim::pascal {
 namespace {
 
@@ -237,6 +241,31 @@ double ScriptController::call_things(HostFn fn, const double* a, int n, const st
     default:
       fail("invalid host call");
   }
+}
+
+double ScriptController::mesh_thing(const double* a, int n, const std::string& id,
+                                    const std::string& files) {
+  require_arguments(HostFn::MeshThing, n, 2);
+  const auto it =
+      std::find_if(things_.begin(), things_.end(), [&](const ThingRef& t) { return t.id == id; });
+  if (it == things_.end()) {  // SimTwo does nothing either; said, not silent
+    ctx_->log_line("MeshThing: no thing '" + id + "'; nothing changed");
+    return 0;
+  }
+  if (!(a[0] > 0 && std::isfinite(a[0])))
+    fail("MeshThing('" + id + "'): MeshScale must be finite and > 0, got " + number_text(a[0]));
+  const std::size_t nul = files.find('\0');
+  const std::string file = files.substr(0, nul);
+  const std::string shadow = nul == std::string::npos ? std::string() : files.substr(nul + 1);
+  auto need_file = [&](const std::string& f) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(f, ec))
+      fail("MeshThing('" + id + "'): cannot find the mesh file '" + f + "'");
+  };
+  need_file(file);
+  if (!shadow.empty()) need_file(shadow);
+  ctx_->set_body_mesh(it->body, file, a[0], a[1] != 0, shadow);
+  return 0;
 }
 
 }  // namespace s2sim::pascal

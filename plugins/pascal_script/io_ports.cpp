@@ -59,7 +59,8 @@ void UdpPort::send(const std::string& ip, int port, const std::string& data) {
 
 namespace {
 constexpr std::size_t kMaxPackets = 4096;
-}
+constexpr std::size_t kMaxStreamBytes = std::size_t{16} << 20;
+}  // namespace
 
 void UdpPort::poll() {
   if (fd_ < 0 || bound_port_ == 0) return;
@@ -69,15 +70,15 @@ void UdpPort::poll() {
     if (n < 0) break;
     packets_.emplace_back(buf, static_cast<std::size_t>(n));
     if (packets_.size() > kMaxPackets) packets_.pop_front();  // a script that never reads
+    stream_.append(buf, static_cast<std::size_t>(n));
+    if (stream_.size() > kMaxStreamBytes) stream_.erase(0, stream_.size() - kMaxStreamBytes);
   }
 }
 
 std::string UdpPort::receive() {
   poll();
   std::string all;
-  for (const auto& p : packets_)
-    all += p;
-  packets_.clear();
+  all.swap(stream_);
   return all;
 }
 

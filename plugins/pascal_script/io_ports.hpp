@@ -3,10 +3,10 @@
 /// The script's UDP socket and serial port (simtwo-script-api.md §3.7). UDP: one socket,
 /// opened at the script's first UDP call (a script that never uses UDP opens nothing), bound to
 /// the listening port (SimTwo's 9808 by default, S2SIM_UDP_PORT to change it) on loopback
-/// unless S2SIM_UDP_ADDRESS names another address; a datagram per WriteUDPData, ReadUDPData
-/// drains everything received. Serial: the tty or pseudo-terminal
-/// named by S2SIM_COM_PORT, raw 8N1; without one the port is closed, as in SimTwo: writes do
-/// nothing and reads return ''.
+/// unless S2SIM_UDP_ADDRESS names another address; a datagram per WriteUDPData; the bytes received
+/// go both to a stream (ReadUDPData, UDPDataRead) and to a list of datagrams (ReadUDPPacket).
+/// Serial: the tty or pseudo-terminal named by S2SIM_COM_PORT, raw 8N1; without one the port is
+/// closed, as in SimTwo: writes do nothing and reads return ''.
 
 #include <deque>
 #include <string>
@@ -21,7 +21,8 @@ class UdpPort {
   bool open(const std::string& address, int port, std::string& error);
   bool opened() const { return opened_; }
   void send(const std::string& ip, int port, const std::string& data);
-  /// All bytes received and not yet read, datagrams concatenated.
+  /// The bytes received since the last call, datagrams concatenated (at most the last 16 MiB).
+  /// SimTwo keeps them apart from its list of datagrams: taking them leaves receive_packet's.
   std::string receive();
   /// The oldest datagram not yet read ('' when none).
   std::string receive_packet();
@@ -36,7 +37,8 @@ class UdpPort {
   int fd_ = -1;
   int other_fd_ = -1;  // sends to other machines when fd_ listens on loopback only
   int bound_port_ = 0;
-  std::deque<std::string> packets_;  // received, not yet read by the script
+  std::deque<std::string> packets_;  // received, not yet read by ReadUDPPacket
+  std::string stream_;               // received, not yet taken by receive()
 };
 
 class SerialPort {

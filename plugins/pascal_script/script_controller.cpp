@@ -18,7 +18,8 @@ namespace {
 bool uses_udp(const std::filesystem::path& script) {
   std::ifstream in(script, std::ios::binary);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return mentions_any(text, {"readudpdata", "writeudpdata", "readudppacket", "getudppacketcount"});
+  return mentions_any(
+      text, {"readudpdata", "writeudpdata", "readudppacket", "getudppacketcount", "udpdataread"});
 }
 
 Look read_look(const Params& p, const std::string& k) {

@@ -156,6 +156,8 @@ class ScriptController final : public Component {
   double call_bodies(HostFn fn, const double* a, int n, const std::string& s);
   /// Things and obstacles added and deleted while running (host_things.cpp).
   double call_things(HostFn fn, const double* a, int n, const std::string& s);
+  /// MeshThing: `files` is the mesh file, a NUL, the shadow mesh file.
+  double mesh_thing(const double* a, int n, const std::string& id, const std::string& files);
   /// Springs, friction, controller gains and modes, the energy meter (host_axes.cpp).
   double call_axes(HostFn fn, const double* a, int n, const std::string& s);
   /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).

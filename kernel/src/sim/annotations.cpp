@@ -43,8 +43,27 @@ const Annotations::SensorColor* Annotations::sensor_color(int sensor) const {
   return nullptr;
 }
 
+const Annotations::BodyMesh* Annotations::body_mesh(int body) const {
+  for (const BodyMesh& m : body_meshes)
+    if (m.body == body) return &m;
+  return nullptr;
+}
+
+void Annotations::forget_body(int body) {
+  const auto before = body_colors.size() + shape_colors.size() + body_meshes.size();
+  const auto on_body = [body](const auto& entry) { return entry.body == body; };
+  body_colors.erase(std::remove_if(body_colors.begin(), body_colors.end(), on_body),
+                    body_colors.end());
+  shape_colors.erase(std::remove_if(shape_colors.begin(), shape_colors.end(), on_body),
+                     shape_colors.end());
+  body_meshes.erase(std::remove_if(body_meshes.begin(), body_meshes.end(), on_body),
+                    body_meshes.end());
+  if (body_colors.size() + shape_colors.size() + body_meshes.size() != before) ++version;
+}
+
 void Annotations::clear() {
   body_colors.clear();
+  body_meshes.clear();
   shape_colors.clear();
   sensor_colors.clear();
   fire = Fire{};
@@ -181,6 +200,30 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
         if (!std::isfinite(values[k])) return;
       a.fire = {
           values[0] != 0, id, {values[1], values[2], values[3]}, {values[4], values[5], values[6]}};
+      break;
+    }
+    case detail::Annotation::body_mesh: {
+      if (values == nullptr || id <= 0 || id >= static_cast<std::int32_t>(m.poses.size())) return;
+      const std::size_t nul = body.find('\0');
+      const std::string_view file = body.substr(0, nul);
+      const std::string_view shadow =
+          nul == std::string_view::npos ? std::string_view{} : body.substr(nul + 1);
+      if (file.empty() || !(values[0] > 0 && std::isfinite(values[0]))) return;
+      const auto absolute = [&](std::string_view name) {
+        const std::filesystem::path p(name);
+        return name.empty() || p.is_absolute() ? p : m.scene.folder / p;
+      };
+      Annotations::BodyMesh mesh{id, absolute(file), absolute(shadow), values[0], values[1] != 0};
+      const auto same = [&](const Annotations::BodyMesh& o) { return o.body == id; };
+      auto it = std::find_if(a.body_meshes.begin(), a.body_meshes.end(), same);
+      if (it == a.body_meshes.end()) {
+        a.body_meshes.push_back(std::move(mesh));
+      } else {
+        if (it->file == mesh.file && it->shadow_file == mesh.shadow_file &&
+            it->scale == mesh.scale && it->casts_shadow == mesh.casts_shadow)
+          return;
+        *it = std::move(mesh);
+      }
       break;
     }
     case detail::Annotation::sensor_color: {

@@ -183,6 +183,7 @@ int Simulation::Impl::take_spare_thing(const ThingSpec& spec, std::string_view i
     v.id = std::string(id);
     v.spec = spec;
     body_masses[static_cast<std::size_t>(v.body)] = BodyMass{};  // nor a mass it was given
+    annotations.forget_body(v.body);                             // nor its colours and mesh
     // A surface a former holder was given is not the new thing's.
     if (body_shapes[static_cast<std::size_t>(v.body)].surfaced) {
       body_shapes[static_cast<std::size_t>(v.body)] = BodyShape{};

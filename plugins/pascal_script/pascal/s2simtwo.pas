@@ -41,7 +41,7 @@ type
 var
   Time: double;
   HUDStrings: TStringList;
-  UDPDataRead: TMemoryStream;  { declared; S2Sim does not fill it (docs/scripting.md) }
+  UDPDataRead: TMemoryStream;  { SimTwo's: the bytes received that ReadUDPData has not taken }
   Host: THostTable;
 
 { --- host functions (S2Sim's implementation: plugins/pascal_script/host_api.cpp) --- }
@@ -250,6 +250,7 @@ procedure Msave(M: Matrix; const fname: string);
 
 { Called by the wrapper: the HUD text after each call. }
 procedure S2SimPublishHUD;
+procedure S2SimTakeUDPData;
 
 type
   { The RTL's Halt would end S2Sim itself, with the script's code and without its outputs.
@@ -536,7 +537,23 @@ procedure AddTrailNode(T: integer; x, y, z: double); begin HostCall(hAddTrailNod
 procedure ClearTrail(T: integer); begin HostCall(hClearTrail, [T]); end;
 
 procedure WriteUDPData(ToIP: string; ToPort: integer; s: string); begin HostCallS2(hWriteUDPData, [ToPort], ToIP, s); end;
-function ReadUDPData: string; begin HostCall(hReadUDPData, []); result := HostText; end;
+{ SimTwo appends what arrives to UDPDataRead where it stands, and ReadUDPData takes it all:
+  one stream, whatever the script does to it between the two. }
+procedure S2SimTakeUDPData;
+var s: string;
+begin
+  HostCall(hUDPDataArrived, []);
+  s := HostText;
+  if s <> '' then UDPDataRead.WriteBuffer(s[1], Length(s));
+end;
+function ReadUDPData: string;
+begin
+  S2SimTakeUDPData;
+  SetLength(result, UDPDataRead.Size);
+  UDPDataRead.Position := 0;
+  if UDPDataRead.Size > 0 then UDPDataRead.ReadBuffer(result[1], UDPDataRead.Size);
+  UDPDataRead.Clear;
+end;
 procedure WriteComPort(s: string); begin HostCallS(hWriteComPort, [], s); end;
 function ReadComPort: string; begin HostCall(hReadComPort, []); result := HostText; end;
 
@@ -603,8 +620,6 @@ begin result := Round(HostCallS(hAddThingSphere, [mass, posX, posY, posZ, radius
 function AddThingCylinder(ID: string; mass, posx, posY, posZ, radius, len: double; rgb24: integer): integer;
 begin result := Round(HostCallS(hAddThingCylinder, [mass, posx, posY, posZ, radius, len, rgb24], ID)); end;
 function DeleteThing(ID: string): integer; begin result := Round(HostCallS(hDeleteThing, [], ID)); end;
-procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
-begin NotYetAvailable('MeshThing'); end;
 procedure ClearThings; begin HostCall(hClearThings, []); end;
 procedure SetThingForce(T: integer; Fx, Fy, Fz: double); begin HostCall(hSetThingForce, [T, Fx, Fy, Fz]); end;
 procedure SetThingForceAtRelPos(T: integer; Fx, Fy, Fz, Px, Py, Pz: double);
@@ -714,6 +729,15 @@ begin
 end;
 function Mload(const fname: string): Matrix; begin result := s2simtwo_matrix.Mload(InScriptFolder(fname)); end;
 procedure Msave(M: Matrix; const fname: string); begin s2simtwo_matrix.Msave(M, InScriptFolder(fname)); end;
+
+procedure MeshThing(ID, MeshFile, MeshShadowFile: string; MeshScale: double; MeshCastsShadows: boolean);
+var mesh, shadow: string;
+begin
+  mesh := ''; shadow := '';
+  if MeshFile <> '' then mesh := InScriptFolder(MeshFile);
+  if MeshShadowFile <> '' then shadow := InScriptFolder(MeshShadowFile);
+  HostCallS2(hMeshThing, [MeshScale, Ord(MeshCastsShadows)], ID, mesh + #0 + shadow);
+end;
 
 procedure S2SimPublishHUD;
 begin

@@ -260,6 +260,9 @@ enum class Annotation : std::int32_t {
   /// id: the body it burns on (0: the world), values: burning (0 or 1), position x, y, z (in
   /// that body's frame), scale x, y, z
   fire = 9,
+  /// id: body, text: the mesh file, a NUL, the shadow mesh file (may be empty), values:
+  /// scale, casts shadows (0 or 1)
+  body_mesh = 10,
 };
 
 #if defined(__GNUC__)
@@ -543,6 +546,26 @@ class StepContext {
     const double values[7] = {
         burning ? 1.0 : 0.0, position_m.x, position_m.y, position_m.z, scale.x, scale.y, scale.z};
     annotate(detail::Annotation::fire, body(on, "set_fire"), {}, values);
+  }
+
+  /// Draws a body's solid as the triangle mesh in `file` (STL, OBJ, 3DS, PLY... as scenes'
+  /// `<mesh>`), its vertices times `scale` in the body frame, in the solid's colour, instead of
+  /// its primitive (SimTwo's `MeshThing`); `shadow_file`, when not empty, is a coarser mesh
+  /// drawn for its shadow and when it is small on screen. Only the picture changes: collision,
+  /// mass and rays keep the primitive. Until set again, the body is taken by another thing
+  /// added while running, or a reset. The viewer reads the files: one it cannot read is a
+  /// warning in its Log and the primitive stays. Copies the names, so it may allocate. Throws
+  /// for an empty file name or a scale that is not finite and positive.
+  void set_body_mesh(BodyHandle b, std::string_view file, double scale, bool casts_shadow,
+                     std::string_view shadow_file = {}) {
+    if (file.empty() || !(scale > 0 && scale < std::numeric_limits<double>::infinity()))
+      throw Error(ErrorKind::usage,
+                  "StepContext::set_body_mesh: needs a file name and a finite scale > 0");
+    std::string text(file);
+    text += '\0';
+    text.append(shadow_file.data(), shadow_file.size());
+    const double values[2] = {scale, casts_shadow ? 1.0 : 0.0};
+    annotate(detail::Annotation::body_mesh, body(b, "set_body_mesh"), text, values);
   }
 
   // --- inputs and signals ---

@@ -60,6 +60,20 @@ class ViewerScript : public Viewer {
     a.insert(a.end(), b.begin(), b.end());
     return a;
   }
+  /// The cart-pole under `script` at `until_s`, screenshot without the UI to `name`.png; no
+  /// warning on the way.
+  Image cartpole_at(const std::string& script, double until_s, const std::string& name) {
+    const fs::path png = dir_ / (name + ".png");
+    const Result r =
+        view((kSource / "scenes/cartpole").string(),
+             {"--script-file", script, "--do", "speed 0", "--do",
+              "run-until " + std::to_string(until_s), "--hide-ui", "--screenshot", png.string()});
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+    const Image image = read_png(png);
+    EXPECT_GT(image.width, 0) << name;
+    return image;
+  }
   /// Where a picture for docs/ goes.
   fs::path picture(const std::string& file) {
     const char* docs = std::getenv("S2SIM_DOC_IMAGES");
@@ -374,14 +388,7 @@ TEST_F(ViewerScript, SetSolidColorPaintsTheSolidInTheWorldView) {
   const std::string script =
       (kSource / "tests/plugins/pascal_script/fixtures/teleport.pas").string();
   auto count = [&](double until_s, const std::string& name) {
-    const fs::path png = dir_ / (name + ".png");
-    const Result r =
-        view((kSource / "scenes/cartpole").string(),
-             {"--script-file", script, "--do", "speed 0", "--do",
-              "run-until " + std::to_string(until_s), "--hide-ui", "--screenshot", png.string()});
-    EXPECT_EQ(r.status, 0) << r.err;
-    const Image image = read_png(png);
-    EXPECT_GT(image.width, 0) << name;
+    const Image image = cartpole_at(script, until_s, name);
     int painted = 0, scene_colour = 0;
     for (int y = 0; y < image.height; ++y)
       for (int x = 0; x < image.width; ++x) {
@@ -399,6 +406,25 @@ TEST_F(ViewerScript, SetSolidColorPaintsTheSolidInTheWorldView) {
   EXPECT_GT(scene_before, 1000);
   EXPECT_GT(painted_after, 1000);
   EXPECT_LT(scene_after, 50);
+}
+
+// MeshThing: the viewer draws the thing as the mesh file from the call on, in its colour.
+TEST_F(ViewerScript, MeshThingDrawsTheThingAsItsMeshFile) {
+  const std::string script = (kFixtures / "mesh_thing.pas").string();
+  auto green = [&](double until_s, const std::string& name) {
+    const Image image = cartpole_at(script, until_s, name);
+    int count = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const unsigned char* p = image.at(x, y);
+        if (p[1] > 60 && p[1] > 2 * p[0] && p[1] > 2 * p[2]) ++count;
+      }
+    return count;
+  };
+  const int box = green(0.3, "box");
+  const int mesh = green(0.7, "mesh");
+  EXPECT_GT(box, 20) << "the 6 cm box is drawn";
+  EXPECT_GT(mesh, 10 * box) << "the 0.4 m cube replaces it";
 }
 
 // The new options' bad values are usage errors (exit 4) naming the option.

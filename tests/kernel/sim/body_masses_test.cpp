@@ -164,6 +164,25 @@ TEST(BodyMasses, SnapshotsResetsAndTwoRunsBringTheMassesBackExactly) {
   EXPECT_EQ(swing(*sim, 1.0), loaded);
 }
 
+// SimTwo's damping scales the velocity by (1 - stokes) each step whatever the mass, so the
+// terminal speed (1 - s)·g·h/s does not change when the mass does: the drag follows the mass.
+TEST(BodyMasses, SimTwosDampingFollowsAMassSetWhileRunning) {
+  SimulationOptions o;
+  o.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
+  const fs::path scene = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/sim/fixtures/falling_drag";
+  auto changed = Simulation::load(scene, o), kept = Simulation::load(scene, o);
+  const int ball = 1;
+  const double stokes = 0.01, h = 0.001;
+  const double terminal = (1 - stokes) * kGravity * h / stokes;
+  changed->run_until(1.0);
+  EXPECT_NEAR(-changed->body_twist(ball).linear_m_s.z, terminal, 0.03 * terminal);
+  changed->set_body_mass(ball, 2.0);
+  changed->run_until(2.0);
+  kept->run_until(2.0);
+  const double speed = -kept->body_twist(ball).linear_m_s.z;
+  EXPECT_NEAR(-changed->body_twist(ball).linear_m_s.z, speed, 1e-9 * speed);
+}
+
 TEST(BodyMasses, BadMassesAreRefusedNamingTheBody) {
   auto sim = load();
   const int b = bob(*sim);

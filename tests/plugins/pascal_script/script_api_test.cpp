@@ -303,6 +303,15 @@ TEST_F(ScriptApi, TheFireEffectBurnsWhereTheScriptPutsItAndGoesOut) {
   EXPECT_FALSE(sim->annotations().fire.burning);
 }
 
+/// Every datagram waiting on `client`, in order.
+std::vector<std::string> received(int client) {
+  std::vector<std::string> got;
+  char buf[2048];
+  for (ssize_t n; (n = ::recv(client, buf, sizeof buf, 0)) > 0;)
+    got.emplace_back(buf, static_cast<std::size_t>(n));
+  return got;
+}
+
 TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
   SKIP_WITHOUT_FPC;
   int client_port = 0;
@@ -317,10 +326,7 @@ TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
                        sizeof to),
               static_cast<ssize_t>(text.size()));
   sim->run_until(0.05);
-  std::vector<std::string> replies;
-  char buf[2048];
-  for (ssize_t n; (n = ::recv(client, buf, sizeof buf, 0)) > 0;)
-    replies.emplace_back(buf, static_cast<std::size_t>(n));
+  const std::vector<std::string> replies = received(client);
   ::close(client);
   EXPECT_EQ(replies, (std::vector<std::string>{"count 3", "one", "two\n", "three", "after 0"}));
   EXPECT_EQ(sim->signal("controllers/script/error"), 0);
@@ -333,6 +339,83 @@ TEST_F(ScriptApi, DelTrailNodeRemovesTheOldestNodeAndPacketsAreReadOneByOne) {
       EXPECT_EQ(trail.points_m.back().x, 3);
     }
   EXPECT_TRUE(found);
+}
+
+// One stream of bytes as in SimTwo: UDPDataRead holds what arrived, ReadUDPData takes the
+// same bytes and empties it, and the datagrams ReadUDPPacket reads are kept apart.
+TEST_F(ScriptApi, UdpDataReadHoldsTheBytesReceivedUntilReadUdpDataTakesThem) {
+  SKIP_WITHOUT_FPC;
+  int client_port = 0;
+  const int client = loopback_socket(client_port);
+  ASSERT_GE(client, 0);
+  SimulationOptions o = with("udp_stream.pas");
+  o.sheet_cells = {{1, 1, std::to_string(client_port)}};
+  auto sim = Simulation::load(kScene, o);
+  const sockaddr_in to = loopback(script_port_);
+  auto send = [&](const std::string& text) {
+    ASSERT_EQ(::sendto(client, text.data(), text.size(), 0, reinterpret_cast<const sockaddr*>(&to),
+                       sizeof to),
+              static_cast<ssize_t>(text.size()));
+  };
+  auto replies = [&] { return received(client); };
+  for (const std::string text : {"one", "two\n", "three"})
+    send(text);
+  sim->run_until(0.09);  // two calls: the second finds nothing
+  EXPECT_EQ(replies(), (std::vector<std::string>{"size 12", "stream onetwo\nthree",
+                                                 "read onetwo\nthree", "after 0 packets 3"}));
+  send("four");
+  sim->run_until(0.13);
+  EXPECT_EQ(replies(),
+            (std::vector<std::string>{"size 4", "stream four", "read four", "after 0 packets 4"}));
+  ::close(client);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+}
+
+// MeshThing changes the picture only (Annotations::body_meshes, which the viewer draws): the
+// file is resolved against the script's folder, the spare body's next thing forgets the mesh,
+// a reset forgets them all, and bad input is a script error naming it.
+TEST_F(ScriptApi, MeshThingDrawsAThingAsAMeshFileUntilItsBodyTakesAnotherThing) {
+  SKIP_WITHOUT_FPC;
+  auto sim = Simulation::load(kScene, with("mesh_thing.pas"));
+  auto body_of = [&](const std::string& id) {
+    for (const auto& t : sim->things())
+      if (t.id == id && t.present) return t.body;
+    return -1;
+  };
+  sim->run_until(0.05);
+  EXPECT_EQ(sim->signal("controllers/script/error"), 0);
+  const fs::path obj = fs::absolute(fs::path(S2SIM_PASCAL_FIXTURES) / "crate.obj");
+  const int crate = body_of("crate"), b1 = body_of("b1");
+  ASSERT_GT(crate, 0);
+  ASSERT_GT(b1, 0);
+  const s2sim::Annotations& notes = sim->annotations();
+  ASSERT_EQ(notes.body_meshes.size(), 2u);
+  const auto* on_crate = notes.body_mesh(crate);
+  ASSERT_NE(on_crate, nullptr);
+  EXPECT_EQ(fs::weakly_canonical(on_crate->file), fs::weakly_canonical(obj));
+  EXPECT_EQ(on_crate->scale, 2);
+  EXPECT_FALSE(on_crate->casts_shadow);
+  EXPECT_TRUE(on_crate->shadow_file.empty());
+  const auto* on_b1 = notes.body_mesh(b1);
+  ASSERT_NE(on_b1, nullptr);
+  EXPECT_EQ(fs::weakly_canonical(on_b1->shadow_file), fs::weakly_canonical(obj));
+  EXPECT_TRUE(on_b1->casts_shadow);
+  EXPECT_EQ(lines_starting(*sim, "MeshThing: no thing 'nothing'").size(), 1u);
+
+  sim->run_until(0.09);
+  EXPECT_EQ(body_of("b2"), b1) << "the spare body the deleted thing left";
+  EXPECT_EQ(sim->annotations().body_mesh(b1), nullptr) << "b2 is drawn as its own box";
+  EXPECT_NE(sim->annotations().body_mesh(crate), nullptr);
+  const auto caught = lines_starting(*sim, "caught ");
+  ASSERT_EQ(caught.size(), 2u);
+  EXPECT_NE(caught[0].find("MeshThing('b2'): cannot find the mesh file"), std::string::npos)
+      << caught[0];
+  EXPECT_NE(caught[0].find("missing.stl"), std::string::npos) << caught[0];
+  EXPECT_NE(caught[1].find("MeshScale must be finite and > 0, got 0"), std::string::npos)
+      << caught[1];
+
+  sim->reset();
+  EXPECT_TRUE(sim->annotations().body_meshes.empty());
 }
 
 /// A free TCP port on loopback (bound and released).

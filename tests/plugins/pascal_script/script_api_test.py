@@ -32,6 +32,8 @@ def main(bin_dir, cache):
     work = tempfile.mkdtemp(prefix="s2sim-script-api-")
     try:
         script = os.path.join(work, "all_routines.pas")
+        with open(os.path.join(work, "thing.obj"), "w") as mesh:  # MeshThing's, beside the script
+            mesh.write("v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
         made = subprocess.run([sys.executable, GENERATOR, "script", script])
         if made.returncode != 0:
             return made.returncode  # 77: the list is absent

@@ -1,16 +1,18 @@
 #pragma once
 /// \file
 /// What components publish for the people watching a simulation (SDK 0.9:
-/// `StepContext::log_line`, `set_hud_text`, `add_trail_point`, `add_xy_point`): log lines, HUD
-/// texts, trails and XY series. The viewer draws them (s2sim-run does not read them). They
-/// are not part of the simulation's state: a reset forgets them and a snapshot does not hold
-/// them. Every list is bounded, so a component publishing every tick cannot exhaust memory.
+/// `StepContext::log_line`, `set_hud_text`, `add_trail_point`, `add_xy_point`, and the colours,
+/// meshes and fire of later versions): log lines, HUD texts, trails, XY series and how bodies look.
+/// The viewer draws them (s2sim-run does not read them). They are not part of the simulation's
+/// state: a reset forgets them and a snapshot does not hold them. Every list is bounded, so a
+/// component publishing every tick cannot exhaust memory.
 
 #include <s2sim/math.hpp>
 
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,6 +83,18 @@ struct Annotations {
     Vec3 scale{1, 1, 1};
   };
   Fire fire;
+  /// Solids drawn as a mesh file (StepContext::set_body_mesh), one entry per body.
+  struct BodyMesh {
+    int body = 0;
+    std::filesystem::path file;         ///< absolute (a relative one is the scene folder's)
+    std::filesystem::path shadow_file;  ///< empty: the mesh itself casts the shadow
+    double scale = 1;
+    bool casts_shadow = true;
+  };
+  std::vector<BodyMesh> body_meshes;
+  const BodyMesh* body_mesh(int body) const;
+  /// Forgets what was painted on or drawn for `body` (a spare body taken by a new thing).
+  void forget_body(int body);
   const SensorColor* sensor_color(int sensor) const;
   /// The run-time colour of `body`, or null when it keeps the scene's.
   const BodyColor* body_color(int body) const;
