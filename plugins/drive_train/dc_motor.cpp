@@ -62,20 +62,25 @@ void DcMotor::configure(ConfigureContext& ctx) {
   ref_voltage_ = ctx.declare_input_at(at + "ref_voltage", "V", 0.0);
   // What SimTwo's SetMotorActive and SetMotorPars change at run time (and the viewer's
   // inputs, --set, a remote client): read every tick, validated where they are used.
-  active_in_ = ctx.declare_input_at(at + "motor_active", "1", active_ ? 1.0 : 0.0);
-  simple_in_ = ctx.declare_input_at(at + "motor_simple", "1", simple_ ? 1.0 : 0.0);
+  active_in_ =
+      ctx.declare_input_at(at + "motor_active", "1", active_ ? 1.0 : 0.0, Range::unit_interval());
+  simple_in_ =
+      ctx.declare_input_at(at + "motor_simple", "1", simple_ ? 1.0 : 0.0, Range::unit_interval());
   ri_in_ = ctx.declare_input_at(at + "motor_ri", "ohm", R_);
   li_in_ = ctx.declare_input_at(at + "motor_li", "H", L_);
   ki_in_ = ctx.declare_input_at(at + "motor_ki", linear ? "N/A" : "N*m/A", K_);
-  vmax_in_ = ctx.declare_input_at(at + "motor_vmax", "V", vmax_);
+  vmax_in_ = ctx.declare_input_at(at + "motor_vmax", "V", vmax_, Range::non_negative());
   imax_in_ = ctx.declare_input_at(at + "motor_imax", "A", imax_);
   gear_in_ = ctx.declare_input_at(at + "gear_ratio", "1", N_);
   // SimTwo's SetAxisSpring and SetFrictionDef: the scene's spring and friction are the initial
   // values (the zero position in rad or m, as the script gives it).
-  spring_k_in_ = ctx.declare_input_at(at + "spring_k", linear ? "N/m" : "N*m/rad", spring_k_);
+  spring_k_in_ = ctx.declare_input_at(at + "spring_k", linear ? "N/m" : "N*m/rad", spring_k_,
+                                      Range::non_negative());
   spring_zero_in_ = ctx.declare_input_at(at + "spring_zeropos", linear ? "m" : "rad", zero_pos_);
-  friction_bv_in_ = ctx.declare_input_at(at + "friction_bv", linear ? "N*s/m" : "N*m*s/rad", bv_);
-  friction_fc_in_ = ctx.declare_input_at(at + "friction_fc", torque_unit, fc_);
+  friction_bv_in_ = ctx.declare_input_at(at + "friction_bv", linear ? "N*s/m" : "N*m*s/rad", bv_,
+                                         Range::non_negative());
+  friction_fc_in_ =
+      ctx.declare_input_at(at + "friction_fc", torque_unit, fc_, Range::non_negative());
   prefix_ = at;
   voltage_ = ctx.declare_signal_at(at + "voltage", "V");
   current_ = ctx.declare_signal_at(at + "current", "A");

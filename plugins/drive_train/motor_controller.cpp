@@ -66,15 +66,18 @@ void MotorController::configure(ConfigureContext& ctx) {
   ref_voltage_ = ctx.declare_input_at(at + "ref_voltage", "V", 0.0);
   ref_speed_ = ctx.declare_input_at(at + "ref_speed", linear ? "m/s" : "rad/s", 0.0);
   ref_pos_ = ctx.declare_input_at(at + "ref_pos", linear ? "m" : "rad", 0.0);
-  active_ = ctx.declare_input_at(at + "controller_active", "1", active ? 1.0 : 0.0);
-  motor_active_ = ctx.declare_input_at(at + "motor_active", "1", motor_active ? 1.0 : 0.0);
+  active_ = ctx.declare_input_at(at + "controller_active", "1", active ? 1.0 : 0.0,
+                                 Range::unit_interval());
+  motor_active_ = ctx.declare_input_at(at + "motor_active", "1", motor_active ? 1.0 : 0.0,
+                                       Range::unit_interval());
   const char* error_unit =
       mode_ == Mode::pid_speed ? (linear ? "m/s" : "rad/s") : (linear ? "m" : "rad");
   kp_in_ = ctx.declare_input_at(at + "controller_kp", "1", kp_);
   ki_in_ = ctx.declare_input_at(at + "controller_ki", "1", ki_);
   kd_in_ = ctx.declare_input_at(at + "controller_kd", "1", kd_);
   kf_in_ = ctx.declare_input_at(at + "controller_kf", "1", kf_);
-  mode_in_ = ctx.declare_input_at(at + "controller_mode", "1", static_cast<double>(mode_));
+  mode_in_ = ctx.declare_input_at(at + "controller_mode", "1", static_cast<double>(mode_),
+                                  {0.0, static_cast<double>(Mode::state)});
   prefix_ = at;
   error_ = ctx.declare_signal_at(at + "control_error", error_unit);
   state_ = ctx.declare_state("pid", kSize, 0.0);

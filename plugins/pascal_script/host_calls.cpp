@@ -111,7 +111,13 @@ double ScriptController::host_call(void* host, std::int32_t fn, const double* ar
         text ? std::string(text, static_cast<std::size_t>(text_len)) : std::string(),
         text2 ? std::string(text2, static_cast<std::size_t>(text2_len)) : std::string());
   } catch (const Error& e) {
-    self->pending_error_ = e.message();
+    // Errors the host raises name the routine; one from the kernel (an input out of its range)
+    // gets it put in front.
+    const std::string routine =
+        fn >= 0 && fn < static_cast<int>(HostFn::count) ? kHostFnNames[fn] : std::string();
+    self->pending_error_ = routine.empty() || e.message().rfind(routine, 0) == 0
+                               ? e.message()
+                               : routine + ": " + e.message();
   } catch (const std::exception& e) {
     self->pending_error_ = e.what();
   }

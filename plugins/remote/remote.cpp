@@ -248,8 +248,10 @@ class Remote final : public Component {
         return Got::observe;
       case S2SIM_REMOTE_INPUTS: {
         if (h.length != 8 * served_.inputs.size()) return drop(ctx);
-        for (std::size_t i = 0; i < served_.inputs.size(); ++i)
-          if (!std::isfinite(s2sim_remote_get_f64(rx_.data() + 16 + 8 * i))) return drop(ctx);
+        for (std::size_t i = 0; i < served_.inputs.size(); ++i)  // NaN is outside every range
+          if (!ctx.input_accepts(served_.input_handles[i],
+                                 s2sim_remote_get_f64(rx_.data() + 16 + 8 * i)))
+            return drop(ctx);
         if (has_client_ && h.sequence <= last_sequence_) {
           if (lockstep_ && h.sequence == last_sequence_ && h.sequence == reply_sequence_) {
             // The client did not get our reply and asks again: answer, do not advance twice.

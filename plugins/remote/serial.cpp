@@ -192,6 +192,8 @@ class Serial final : public Component {
       ++at;
     if (*at != '\0') return false;  // more numbers than inputs, or garbage
     for (std::size_t i = 0; i < values_.size(); ++i)
+      if (!ctx.input_accepts(served_.input_handles[i], values_[i])) return false;
+    for (std::size_t i = 0; i < values_.size(); ++i)
       ctx.set_input(served_.input_handles[i], values_[i]);
     inputs_seen_ = true;
     last_inputs_ = now;

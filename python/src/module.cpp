@@ -155,7 +155,9 @@ PYBIND11_MODULE(_s2sim, m) {
           [](PySimulation& s, const std::string& name, double value) {
             s.sim().set_input(name, value);
           },
-          py::arg("name"), py::arg("value"), "Sets an input; it holds until set again.")
+          py::arg("name"), py::arg("value"),
+          "Sets an input; it holds until set again. A value outside the input's valid range "
+          "(docs/plugins.md, \"Input ranges\") raises UsageError naming it.")
       .def(
           "input",
           [](PySimulation& s, const std::string& name) {

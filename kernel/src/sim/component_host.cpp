@@ -130,13 +130,14 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.add_signal(n, std::string(unit), sim::Source::published, index);
     return SignalHandle{index};
   }
-  InputHandle declare_input(std::string_view name, std::string_view unit, double initial) override {
-    return declare_input_at(sim::field_path(slot().prefix, name), unit, initial);
+  InputHandle declare_input(std::string_view name, std::string_view unit, double initial,
+                            const Range& valid) override {
+    return declare_input_at(sim::field_path(slot().prefix, name), unit, initial, valid);
   }
-  InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
-                               double initial) override {
+  InputHandle declare_input_at(std::string_view full_name, std::string_view unit, double initial,
+                               const Range& valid) override {
     const std::int32_t input =
-        sim_.add_input(std::string(full_name), std::string(unit), initial, slot().where);
+        sim_.add_input(std::string(full_name), std::string(unit), initial, slot().where, valid);
     slot().footprint.inputs.push_back(input);
     return InputHandle{input};
   }

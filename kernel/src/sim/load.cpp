@@ -206,6 +206,12 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.axis_drive_count = m.multibody->axis_drive_count();
   m.world.axis_drive_capacity = m.multibody->axis_drive_capacity();
   m.world.inputs = m.inputs.data();
+  m.input_names.clear();
+  for (const SignalInfo& info : m.input_infos)
+    m.input_names.push_back(info.name.c_str());
+  m.world.input_min = m.input_min.data();
+  m.world.input_max = m.input_max.data();
+  m.world.input_names = m.input_names.data();
   m.world.signals = m.published.data();
   m.world.state = m.state.data();
   m.world.random_state = m.random.data();

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string_view>
 
 namespace s2sim {
 
@@ -43,25 +45,74 @@ std::size_t Simulation::Impl::add_signal(std::string name, std::string unit, sim
   return signal_infos.size() - 1;
 }
 
-/// Declares an input or joins an existing one (units must agree).
+namespace {
+
+/// The sanity bound of an input of `unit` that its component leaves unbounded: magnitudes no
+/// honest scene reaches, so that a value such as 1e30 N from a remote peer or a script's bug
+/// is refused rather than applied. Inputs of other units only have to be finite.
+double unit_bound(std::string_view unit) {
+  struct Bound {
+    std::string_view unit;
+    double magnitude;
+  };
+  static constexpr Bound kBounds[] = {
+      {"V", 1e5},    {"A", 1e5},        {"N", 1e8},      {"N*m", 1e8},
+      {"m/s", 1e6},  {"rad/s", 1e6},    {"m", 1e9},      {"rad", 1e9},
+      {"ohm", 1e9},  {"H", 1e6},        {"N/A", 1e6},    {"N*m/A", 1e6},
+      {"N/m", 1e12}, {"N*m/rad", 1e12}, {"N*s/m", 1e12}, {"N*m*s/rad", 1e12},
+  };
+  for (const Bound& b : kBounds)
+    if (b.unit == unit) return b.magnitude;
+  return std::numeric_limits<double>::max();
+}
+
+std::string range_text(double min, double max) {
+  return "[" + sim::short_decimal(min) + ", " + sim::short_decimal(max) + "]";
+}
+
+}  // namespace
+
 std::int32_t Simulation::Impl::add_input(const std::string& name, const std::string& unit,
-                                         double initial, const Location& where) {
+                                         double initial, const Location& where,
+                                         const Range& valid) {
+  // Bounds included: an exclusive one becomes the next double inside.
+  const double bound = unit_bound(unit);
+  double min = std::isinf(valid.min) ? -bound : valid.min;
+  double max = std::isinf(valid.max) ? bound : valid.max;
+  if (valid.min_exclusive) min = std::nextafter(min, max);
+  if (valid.max_exclusive) max = std::nextafter(max, min);
+  std::size_t index = inputs.size();
   if (auto it = input_by_name.find(name); it != input_by_name.end()) {
-    if (input_infos[it->second].unit != unit)
+    index = it->second;
+    if (input_infos[index].unit != unit)
       throw Error(ErrorKind::plugin, where,
                   "input '" + name + "' is declared with unit '" + unit +
-                      "' but already exists with unit '" + input_infos[it->second].unit + "'");
-    return static_cast<std::int32_t>(it->second);
+                      "' but already exists with unit '" + input_infos[index].unit + "'");
+    min = std::max(min, input_min[index]);
+    max = std::min(max, input_max[index]);
   }
-  const auto index = static_cast<std::int32_t>(inputs.size());
-  input_by_name.emplace(name, inputs.size());
+  if (!(min <= max))
+    throw Error(ErrorKind::plugin, where,
+                "input '" + name + "': its ranges leave no value " + range_text(min, max));
+  if (!(initial >= min && initial <= max))
+    throw Error(ErrorKind::plugin, where,
+                "input '" + name + "': the initial value " + sim::short_decimal(initial) +
+                    " is outside its range " + range_text(min, max));
+  if (index < inputs.size()) {
+    input_min[index] = min;
+    input_max[index] = max;
+    return static_cast<std::int32_t>(index);
+  }
+  input_by_name.emplace(name, index);
   input_infos.push_back({name, unit});
   inputs.push_back(initial);
   inputs_initial.push_back(initial);
+  input_min.push_back(min);
+  input_max.push_back(max);
   S2SIM_ASSERT(input_infos.size() == inputs.size() && inputs_initial.size() == inputs.size(),
                "input names, values and initial values out of step");
-  add_signal(name, unit, sim::Source::input, index);
-  return index;
+  add_signal(name, unit, sim::Source::input, static_cast<std::int32_t>(index));
+  return static_cast<std::int32_t>(index);
 }
 
 std::string Simulation::Impl::robot_prefix(int robot) const {
@@ -263,9 +314,14 @@ std::size_t Simulation::input_index(std::string_view name) const {
   throw Error(ErrorKind::usage, common::unknown_name_message("input", name, names));
 }
 void Simulation::set_input(std::size_t index, double value) {
-  if (!std::isfinite(value))
-    throw Error(ErrorKind::usage, "input '" + impl_->input_infos.at(index).name +
-                                      "' must be finite, got " + std::to_string(value));
+  const Impl& m = *impl_;
+  const SignalInfo& info = m.input_infos.at(index);
+  if (!(value >= m.input_min[index] && value <= m.input_max[index]))
+    throw Error(ErrorKind::usage,
+                "input '" + info.name + "' must lie in " +
+                    range_text(m.input_min[index], m.input_max[index]) +
+                    (info.unit.empty() || info.unit == "1" ? "" : " " + info.unit) + ", got " +
+                    sim::short_decimal(value));
   impl_->inputs.at(index) = value;
   impl_->changed();
 }

@@ -145,6 +145,10 @@ struct Simulation::Impl {
   std::unordered_map<std::string, std::size_t> signal_by_name;
   std::vector<SignalInfo> input_infos;
   std::unordered_map<std::string, std::size_t> input_by_name;
+  // Each input's valid range, bounds included (WorldView::input_min/max), and its name as
+  // WorldView::input_names points at it (filled once every input is declared).
+  std::vector<double> input_min, input_max;
+  std::vector<const char*> input_names;
   std::vector<std::int32_t> ref_torque_input;  // per axis
 
   std::vector<sim::ComponentSlot> components;
@@ -291,9 +295,10 @@ struct Simulation::Impl {
   // --- registration (signals.cpp) --------------------------------------------------------------
   std::size_t add_signal(std::string name, std::string unit, sim::Source source,
                          std::int32_t index);
-  /// Declares an input or joins an existing one (units must agree).
+  /// Declares an input or joins an existing one (units must agree, the ranges narrow to what
+  /// both accept); a side of `valid` left unbounded takes the unit's sanity bound.
   std::int32_t add_input(const std::string& name, const std::string& unit, double initial,
-                         const Location& where);
+                         const Location& where, const Range& valid = {});
   // Paths of scene objects by index (sim/names.hpp builds them).
   /// `robots/<robot>`.
   std::string robot_prefix(int robot) const;

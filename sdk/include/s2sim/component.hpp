@@ -205,6 +205,10 @@ struct WorldView {
   // Inputs, published signals, state (doubles) and random streams (four words per component).
   std::int32_t input_count = 0;
   double* inputs = nullptr;
+  // Each input's valid range, bounds included, and its full name (StepContext::set_input).
+  const double* input_min = nullptr;
+  const double* input_max = nullptr;
+  const char* const* input_names = nullptr;
   std::int32_t signal_count = 0;
   double* signals = nullptr;
   std::int32_t state_count = 0;
@@ -287,6 +291,16 @@ enum class Annotation : std::int32_t {
   throw Error(ErrorKind::runtime, std::string("StepContext::") + accessor + ": invalid " + kind +
                                       " handle (" + detail +
                                       "): get handles from the ConfigureContext in configure()");
+}
+
+/// Throws the error of a value outside an input's valid range, naming the input.
+[[noreturn]] S2SIM_DETAIL_COLD inline void throw_input_out_of_range(const char* name, double value,
+                                                                    double min, double max) {
+  char detail[128];
+  std::snprintf(detail, sizeof detail, "%.17g is outside its range [%.17g, %.17g]", value, min,
+                max);
+  throw Error(ErrorKind::runtime,
+              std::string("set_input: input '") + (name ? name : "?") + "': " + detail);
 }
 
 /// `index` when 0 <= index < count, else throws naming the accessor: one unsigned compare on
@@ -574,9 +588,20 @@ class StepContext {
   double input(InputHandle i) const {
     return w_->inputs[detail::checked(i.index, w_->input_count, "input", "input")];
   }
-  /// Sets an input (controllers set the references that motor controllers read).
+  /// Sets an input (controllers set the references that motor controllers read). Throws
+  /// naming the input for a value outside its valid range (ConfigureContext::declare_input;
+  /// NaN is outside every range).
   void set_input(InputHandle i, double v) {
-    w_->inputs[detail::checked(i.index, w_->input_count, "set_input", "input")] = v;
+    const std::int32_t k = detail::checked(i.index, w_->input_count, "set_input", "input");
+    if (!input_accepts_at(k, v))
+      detail::throw_input_out_of_range(w_->input_names ? w_->input_names[k] : nullptr, v,
+                                       w_->input_min[k], w_->input_max[k]);
+    w_->inputs[k] = v;
+  }
+  /// Whether `v` lies in the input's valid range: what set_input would take (a link to a
+  /// program outside drops and counts the rest).
+  bool input_accepts(InputHandle i, double v) const {
+    return input_accepts_at(detail::checked(i.index, w_->input_count, "input_accepts", "input"), v);
   }
   /// Publishes a signal value; it holds until published again.
   void publish(SignalHandle s, double v) {
@@ -618,6 +643,10 @@ class StepContext {
     if (w_->annotate != nullptr)
       w_->annotate(w_->annotator, component_, static_cast<std::int32_t>(what), id, text.data(),
                    text.size(), values);
+  }
+
+  bool input_accepts_at(std::int32_t k, double v) const {
+    return w_->input_min == nullptr || (v >= w_->input_min[k] && v <= w_->input_max[k]);
   }
 
   detail::WorldView* w_;
@@ -709,12 +738,16 @@ class ConfigureContext {
   /// Declares a signal by its full name (for example an axis's `.../current`).
   virtual SignalHandle declare_signal_at(std::string_view full_name, std::string_view unit) = 0;
   /// Declares, or joins when another component declared it already, the input
-  /// `<signal_prefix>/<name>`; `initial` is its value at reset.
-  virtual InputHandle declare_input(std::string_view name, std::string_view unit,
-                                    double initial) = 0;
+  /// `<signal_prefix>/<name>`; `initial` is its value at reset. `valid` is the range a value
+  /// must lie in (StepContext::set_input, Simulation::set_input, remote links); a side left
+  /// unbounded takes the unit's sanity bound (docs/plugins.md, "Input ranges"), and joining
+  /// components narrow it to what all of them accept. Throws naming the input when `initial`
+  /// lies outside.
+  virtual InputHandle declare_input(std::string_view name, std::string_view unit, double initial,
+                                    const Range& valid = {}) = 0;
   /// Same with a full name, e.g. `robots/r/axes/left/ref_speed`.
   virtual InputHandle declare_input_at(std::string_view full_name, std::string_view unit,
-                                       double initial) = 0;
+                                       double initial, const Range& valid = {}) = 0;
 
   // --- other components' signals and inputs ---
   // A `<plugin>` of category controller is configured after every other component (sensors,

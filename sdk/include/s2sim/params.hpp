@@ -24,6 +24,8 @@ struct Range {
   static constexpr Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true}; }
   /// Zero or more.
   static constexpr Range non_negative() { return {0.0}; }
+  /// 0 to 1, both included (also the on/off inputs: 0 off, 1 on).
+  static constexpr Range unit_interval() { return {0.0, 1.0}; }
 };
 
 /// Read-only view of a component's XML element. A `path` names an attribute: `"gain"` is the

@@ -11,7 +11,7 @@
 /// Bumped whenever a type that crosses the plugin boundary changes layout: the descriptor, the
 /// kind entry, a virtual table (`Component`, `ConfigureContext`, `Params`), a type passed
 /// through them (`SensorSpec`...), or `s2sim::detail::WorldView`.
-#define S2SIM_PLUGIN_ABI_VERSION 10
+#define S2SIM_PLUGIN_ABI_VERSION 11
 
 namespace s2sim {
 /// The SDK version as a "major.minor.patch" string.

@@ -51,8 +51,12 @@ class FakeConfigure : public ConfigureContext {
   SignalHandle declare_signal_at(std::string_view, std::string_view) override {
     return {signals++};
   }
-  InputHandle declare_input(std::string_view, std::string_view, double) override { return {0}; }
-  InputHandle declare_input_at(std::string_view, std::string_view, double) override { return {0}; }
+  InputHandle declare_input(std::string_view, std::string_view, double, const Range&) override {
+    return {0};
+  }
+  InputHandle declare_input_at(std::string_view, std::string_view, double, const Range&) override {
+    return {0};
+  }
   StateHandle declare_state(std::string_view, int count, double) override { return {0, count}; }
   void set_schedule(Stage, double, double) override {}
   const SensorSpec* sensor_spec() const override { return &spec_; }
