@@ -79,6 +79,7 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
         Pose rotation_only = g.pose;
         rotation_only.position = {};
         d.local = translation(to_f(g.pose.position + mesh.offset_m)) * to_mat4(rotation_only);
+        d.frame = to_mat4(g.pose);  // where a mesh chosen while running goes
         take_mesh(d, loaded, mesh.shadow, renderer, mesh.shadow_file, mesh.scale, warnings);
         drawables_.push_back(d);
         return;

@@ -56,8 +56,13 @@ void cell_widget(ViewerState& state, std::size_t input, const std::string& label
   } else {
     double value = sim.input(input);
     ImGui::SetNextItemWidth(-1);
-    if (ImGui::InputDouble("##v", &value, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue))
-      sim.set_input(input, value);
+    if (ImGui::InputDouble("##v", &value, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue)) {
+      try {
+        sim.set_input(input, value);
+      } catch (const std::exception& e) {  // outside the input's range: said, nothing set
+        state.log_message(e.what(), true);
+      }
+    }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s [%s]", info.name.c_str(), info.unit.c_str());
   }
   ImGui::PopID();
