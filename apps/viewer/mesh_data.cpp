@@ -5,6 +5,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <numbers>
@@ -146,6 +147,17 @@ MeshData flat_polygon(const std::vector<std::pair<double, double>>& vertices_m) 
     for (std::size_t i = 0; i + 2 < m.indices.size(); i += 3)
       std::swap(m.indices[i + 1], m.indices[i + 2]);
   return m;
+}
+
+void vertex_bounds(const MeshData& mesh, Vec3f& lo, Vec3f& hi) {
+  lo = {1e30f, 1e30f, 1e30f};
+  hi = {-1e30f, -1e30f, -1e30f};
+  for (const Vertex& v : mesh.vertices) {
+    lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
+          std::min(lo.z, v.position[2])};
+    hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
+          std::max(hi.z, v.position[2])};
+  }
 }
 
 MeshData load_mesh_file(const std::filesystem::path& file, double scale) {

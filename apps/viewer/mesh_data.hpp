@@ -31,6 +31,9 @@ MeshData unit_sphere(int rings = 16, int segments = 32);
 /// A flat polygon in the XY plane (ear clipping; either winding), normal +Z.
 MeshData flat_polygon(const std::vector<std::pair<double, double>>& vertices_m);
 
+/// The box around `mesh`'s vertices (lo above hi when it has none).
+void vertex_bounds(const MeshData& mesh, Vec3f& lo, Vec3f& hi);
+
 /// Reads a mesh file through assimp, applying `scale` to its vertices. Throws s2sim::Error
 /// (kind scene) naming the file when assimp cannot read it.
 MeshData load_mesh_file(const std::filesystem::path& file, double scale);

@@ -93,13 +93,8 @@ int Renderer::upload(const MeshData& mesh) {
   glBindVertexArray(0);
   g.index_count = static_cast<int>(mesh.indices.size());
   // Bounding sphere: the box's centre and its farthest vertex.
-  Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-  for (const Vertex& v : mesh.vertices) {
-    lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
-          std::min(lo.z, v.position[2])};
-    hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
-          std::max(hi.z, v.position[2])};
-  }
+  Vec3f lo, hi;
+  vertex_bounds(mesh, lo, hi);
   if (!mesh.vertices.empty()) {
     g.centre = (lo + hi) * 0.5f;
     for (const Vertex& v : mesh.vertices) {

@@ -185,13 +185,8 @@ SceneDrawables::LoadedMesh SceneDrawables::load_mesh(Renderer& renderer,
   LoadedMesh loaded;
   try {
     const MeshData data = load_mesh_file(file, scale);
-    Vec3f lo{1e30f, 1e30f, 1e30f}, hi{-1e30f, -1e30f, -1e30f};
-    for (const auto& v : data.vertices) {
-      lo = {std::min(lo.x, v.position[0]), std::min(lo.y, v.position[1]),
-            std::min(lo.z, v.position[2])};
-      hi = {std::max(hi.x, v.position[0]), std::max(hi.y, v.position[1]),
-            std::max(hi.z, v.position[2])};
-    }
+    Vec3f lo, hi;
+    vertex_bounds(data, lo, hi);
     loaded = {renderer.upload(data), lo, hi};
   } catch (const Error& e) {
     warnings.push_back(e.what());  // once per file: the failure is cached too
