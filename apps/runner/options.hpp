@@ -2,6 +2,8 @@
 /// \file
 /// Command line of s2sim-run.
 
+#include "exit_codes.hpp"
+
 #include <s2sim/kernel/simulation.hpp>
 
 #include <cstdint>
@@ -31,7 +33,7 @@ struct Options {
   bool check_dynamics = false;         ///< --check-dynamics: Simbody's compared every substep
   int threads = 1;                     ///< --threads: parts of the multibody stepped at once
   /// --watchdog: the longest one call into a component may last (wall seconds; 0: unwatched).
-  double watchdog_s = 120.0;
+  double watchdog_s = apps::kDefaultWatchdogS;
   std::vector<std::string> plugin_path;  ///< searched before the default folders
   bool default_plugin_path = true;       ///< false: --no-default-plugin-path
   std::vector<std::string> model_path;   ///< --model-path: package:// and model:// folders

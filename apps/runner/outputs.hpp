@@ -2,6 +2,8 @@
 /// \file
 /// What s2sim-run writes: the CSV log, the final summary (terminal and JSON), the progress bar.
 
+#include "exit_codes.hpp"
+
 #include <s2sim/kernel/simulation.hpp>
 
 #include <cstdio>
@@ -11,11 +13,10 @@
 
 namespace s2sim::runner {
 
-/// Exit codes of the runner beyond s2sim::exit_code()'s (docs/reliability.md).
-inline constexpr int kExitOutputFailed = 6;      ///< --log or --summary could not be written
-inline constexpr int kExitComponentCrashed = 7;  ///< a fatal signal (crash_report.hpp)
-inline constexpr int kExitWatchdog = 8;          ///< one call into a component outlasted --watchdog
-inline constexpr int kExitComponentExited = 9;   ///< a component called exit() (crash_report.hpp)
+using apps::kExitComponentCrashed;  // a fatal signal (crash_report.hpp)
+using apps::kExitComponentExited;   // a component called exit() (crash_report.hpp)
+using apps::kExitOutputFailed;      // --log or --summary could not be written
+using apps::kExitWatchdog;          // one call into a component outlasted --watchdog
 
 /// An output file could not be written (a full disk, a lost mount): not the simulation's
 /// failure, so not exit 5.

@@ -1,6 +1,7 @@
 // s2sim-run's watchdog (watchdog.hpp).
 #include "watchdog.hpp"
 
+#include "call_watch.hpp"
 #include "outputs.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
@@ -35,12 +36,7 @@ Watchdog::~Watchdog() {
 }
 
 void Watchdog::watch() {
-  struct Seen {  // a call seen running, and since when
-    RunningCall call;
-    Clock::time_point since;
-  };
-  std::vector<RunningCall> now_running(kMaxThreads);
-  std::vector<Seen> seen, next;
+  apps::CallWatch calls(kMaxThreads);
   // The window's samples: how many, and per component how many found it running.
   struct Share {
     const char* component;
@@ -55,29 +51,22 @@ void Watchdog::watch() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, kSample, [&] { return stop_; })) {
     const Clock::time_point now = Clock::now();
-    const std::size_t n = running_calls(now_running.data(), now_running.size());
-    next.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      const RunningCall& c = now_running[i];
-      Clock::time_point since = now;
-      for (const Seen& s : seen)
-        if (s.call.component == c.component && s.call.call == c.call) since = s.since;
-      next.push_back({c, since});
-      if (std::chrono::duration<double>(now - since).count() > budget_s_) {
+    calls.sample(now);
+    for (const apps::CallWatch::Call& c : calls.calls()) {
+      if (c.running_s(now) > budget_s_) {
         std::fprintf(stderr,
                      "s2sim-run: watchdog: %s has not returned from one call for %.1f s (the "
                      "budget, --watchdog %g s): the run is stopped; the --log file keeps every "
                      "complete row\n",
-                     c.component, std::chrono::duration<double>(now - since).count(), budget_s_);
+                     c.call.component, c.running_s(now), budget_s_);
         std::fflush(stderr);
         ::_exit(kExitWatchdog);
       }
       bool counted = false;
       for (Share& s : shares)
-        if (s.component == c.component) counted = (++s.samples, true);
-      if (!counted) shares.push_back({c.component, 1});
+        if (s.component == c.call.component) counted = (++s.samples, true);
+      if (!counted) shares.push_back({c.call.component, 1});
     }
-    seen.swap(next);
     ++window_samples;
     const double window_s = std::chrono::duration<double>(now - window_start).count();
     if (window_s < kWindowS) continue;

@@ -1,5 +1,6 @@
 #include "app.hpp"
 
+#include "frame_stepping.hpp"
 #include "gl.hpp"
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
@@ -12,6 +13,7 @@
 #include "viewer_state.hpp"
 #include "windows/panels.hpp"
 #include "windows/published_overlay.hpp"
+#include "windows/stuck_window.hpp"
 #include "windows/windows.hpp"
 #include "windows/world_overlay.hpp"
 #include "world_input.hpp"
@@ -21,6 +23,7 @@
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
 
+#include <exit_codes.hpp>
 #include <recording.hpp>
 #include <s2sim/error.hpp>
 #include <scene_search.hpp>
@@ -189,11 +192,17 @@ class App {
       if (o.report_fps && frames > 0) frame_times_s.push_back(wall_dt_s);
       state_.frame_time_s = state_.frame_time_s * 0.9 + wall_dt_s * 0.1;
 
-      if (state_.pending_simulation && state_.replay) {
-        state_.pending_simulation.reset();
-        state_.log_message("a replay shows the recorded scene: the edit is saved, not shown", true);
+      // A call into a component that has not come back since an earlier frame: this frame
+      // touches nothing of the simulation's (stepper.hpp).
+      bool stuck = !stepping_.idle() && !stepping_.wait(state_, false, 0.02);
+      if (!stuck) {
+        if (state_.pending_simulation && state_.replay) {
+          state_.pending_simulation.reset();
+          state_.log_message("a replay shows the recorded scene: the edit is saved, not shown",
+                             true);
+        }
+        if (state_.pending_simulation) install(std::move(state_.pending_simulation));
       }
-      if (state_.pending_simulation) install(std::move(state_.pending_simulation));
       std::string screenshot_file;
       script_.frame(state_, screenshot_file);
 
@@ -204,40 +213,48 @@ class App {
       glfwGetFramebufferSize(window_, &width, &height);
       const ImVec2 display = ImGui::GetIO().DisplaySize;
       update_layout(state_, display.x, display.y);
-      input_.update(state_, drawables_);
       const bool fixed_pacing = scripted && !state_.scripted_wall_pacing;
-      if (video) {
-        state_.replay->seek(state_.replay->start_s() + video->frames() * video_step_s);
-        state_.replay->show(*state_.sim, state_.chart);
-      } else if (state_.replay) {
-        state_.replay->advance(fixed_pacing ? fixed_frame_s : wall_dt_s);
-        state_.replay->show(*state_.sim, state_.chart);
-      } else {
-        state_.run.advance(*state_.sim, fixed_pacing ? fixed_frame_s : wall_dt_s, state_.chart,
-                           fixed_pacing);
+      if (!stuck) {
+        input_.update(state_, drawables_);
+        if (video) {
+          state_.replay->seek(state_.replay->start_s() + video->frames() * video_step_s);
+          state_.replay->show(*state_.sim, state_.chart);
+        } else if (state_.replay) {
+          state_.replay->advance(fixed_pacing ? fixed_frame_s : wall_dt_s);
+          state_.replay->show(*state_.sim, state_.chart);
+        } else {
+          stepping_.start(state_, fixed_pacing ? fixed_frame_s : wall_dt_s, fixed_pacing);
+          stuck = !stepping_.wait(state_, fixed_pacing, FrameStepping::kStuckAfterS);
+        }
       }
-      {
+      if (!stuck) {
         std::vector<std::string> mesh_warnings;
         drawables_.take_meshes(*state_.sim, renderer_, mesh_warnings);
         for (const auto& w : mesh_warnings)
           state_.log_message("warning: " + w);
+        drawables_.update(*state_.sim);
+        record_trails(state_);
+        collect_published_lines(state_);
+        reload_script_if_changed(state_);
+        frame_camera();
       }
-      drawables_.update(*state_.sim);
-      record_trails(state_);
-      collect_published_lines(state_);
-      reload_script_if_changed(state_);
-      frame_camera();
 
-      // The 3-D view in framebuffer pixels (they differ from ImGui's on a HiDPI screen).
+      // The 3-D view in framebuffer pixels (they differ from ImGui's on a HiDPI screen); while
+      // stuck, the bodies where they were last drawn.
       const float scale = display.x > 0 ? static_cast<float>(width) / display.x : 1;
       const Rect& world = state_.layout_rects.world;
       renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints, state_.selected_body),
                      state_.camera,
                      {world.x * scale, world.y * scale, world.width * scale, world.height * scale},
                      height, state_.render);
-      draw_world_overlay(state_);
-      draw_published_overlay(state_);
-      draw_windows();
+      if (!stuck) {
+        draw_world_overlay(state_);
+        draw_published_overlay(state_);
+        draw_windows();
+      } else {
+        if (draw_stuck_window(state_)) stepping_.give_up(state_);
+        check_scripted_clicks();
+      }
       ImGui::Render();
       for (const std::string& what : state_.end_of_frame_prints)
         what == "layout" ? print_layout(state_) : print_scene_box();
@@ -269,13 +286,31 @@ class App {
         const std::string error = save_screenshot(screenshot_file, width, height);
         if (!error.empty()) throw Error(ErrorKind::usage, "--screenshot: " + error);
       }
-      if (last_frame && o.print_projections) print_projections();
+      if (last_frame && o.print_projections && !stuck) print_projections();
       glfwSwapBuffers(window_);
       if (last_frame) break;
       if (!o.no_frame_cap && !scripted) cap_frame_rate(now);
     }
     if (o.report_fps) report_frame_rate(frame_times_s);
+    if (!stepping_.idle()) {
+      // Closed while a call had not returned: it keeps what it uses, and the viewer says so.
+      std::fprintf(stderr,
+                   "s2sim-view: the window closed while %s had not returned for %.1f s; "
+                   "the viewer quits without waiting for it\n",
+                   FrameStepping::what_runs(state_.stuck).c_str(), state_.stuck.running_s);
+      stepping_.give_up(state_, false);
+      return apps::kExitWatchdog;
+    }
     return 0;
+  }
+
+  /// A stepping thread was given up: the process must end without the destructors it may need.
+  bool abandoned_stepping() const { return stepping_.abandoned_any(); }
+  /// Gives up a frame's stepping still running (an error left the frame loop meanwhile); true
+  /// when one was ever given up.
+  bool give_up_stepping() {
+    if (!stepping_.idle()) stepping_.give_up(state_, false);
+    return stepping_.abandoned_any();
   }
 
  private:
@@ -410,7 +445,11 @@ class App {
 
   void draw_windows() {
     draw_panels(state_);
-    // A scripted click on a button that was not drawn this frame is an error in the script.
+    check_scripted_clicks();
+  }
+
+  /// A scripted click on a button that was not drawn this frame is an error in the script.
+  void check_scripted_clicks() {
     if (!state_.scripted_clicks.empty()) {
       const std::string label = state_.scripted_clicks.front();
       state_.scripted_clicks.clear();
@@ -483,6 +522,7 @@ class App {
   int followed_robot_ = -1;                  ///< the robot followed last frame, -1 = none
   std::filesystem::path look_folder_;        ///< the folder whose floor and sky are applied
   std::optional<SavedCamera> start_camera_;  ///< a SimTwo project's camera, until first used
+  FrameStepping stepping_;
 };
 
 }  // namespace
@@ -494,7 +534,22 @@ int run_viewer(const Options& options) {
   glfwSwapInterval(options.no_frame_cap || headless ? 0 : 1);
   ImGuiContextGuard imgui(window.handle, !headless && options.script.empty());
   App app(options, window.handle);
-  return app.run();
+  // A stepping thread given up may still run a component's code, which static destructors
+  // and unloaded libraries would pull from under it: then the process ends at once.
+  auto end_now = [](int code) {
+    std::fflush(nullptr);
+    std::_Exit(code);
+  };
+  try {
+    const int code = app.run();
+    if (app.abandoned_stepping()) end_now(code);
+    return code;
+  } catch (const Error& e) {
+    if (!app.give_up_stepping()) throw;
+    std::fprintf(stderr, "s2sim-view: error: %s\n", e.what());
+    end_now(exit_code(e.kind()));
+  }
+  return 0;
 }
 
 }  // namespace s2sim::viewer

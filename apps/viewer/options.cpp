@@ -71,6 +71,10 @@ const char* usage_text() {
   --font-scale X           text and widgets X times their size, 0.5 to 4 (HiDPI screens)
   --screenshot FILE.png    write the last frame, then quit (with --frames N, default 3)
   --frames N               quit after N frames
+  --watchdog S             with --frames, a UI script or --video: quit (exit 8) when one
+                           call into a component lasts longer than S seconds of wall time,
+                           naming it (default 120; 0: never). A window that is used by hand
+                           shows such a call and offers to stop the simulation instead
   --do "COMMAND"           a UI script command (repeatable, see docs/viewer.md)
   --script FILE            UI script commands, one a line
   --no-frame-cap           draw as fast as possible (benchmark)
@@ -170,6 +174,10 @@ Options parse_options(int argc, char** argv) {
       o.screenshot_file = value(i, a);
     } else if (a == "--frames") {
       o.frames = parse_int(a, value(i, a), 1);
+    } else if (a == "--watchdog") {
+      o.watchdog_s = parse_double(a, value(i, a));
+      if (!(o.watchdog_s >= 0) || !std::isfinite(o.watchdog_s))
+        throw Error(ErrorKind::usage, a + ": must be a finite number of seconds >= 0 (0: never)");
     } else if (a == "--do") {
       o.script.push_back(value(i, a));
     } else if (a == "--script") {

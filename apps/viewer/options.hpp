@@ -2,6 +2,8 @@
 /// \file
 /// Command line of s2sim-view.
 
+#include "exit_codes.hpp"
+
 #include <s2sim/kernel/simulation.hpp>
 
 #include <cstdint>
@@ -25,6 +27,10 @@ struct Options {
   int height_px = 720;
   std::string screenshot_file;  ///< write the last frame as PNG, then quit
   int frames = -1;              ///< stop after this many frames (-1 = until closed)
+  /// --watchdog: in a run paced by frames (--frames, a UI script, --video), the longest one call
+  /// into a component may last (wall seconds; 0: unwatched). An interactive window shows the
+  /// call instead and offers to stop the simulation.
+  double watchdog_s = apps::kDefaultWatchdogS;
   std::vector<std::string> show_windows;
   std::vector<std::string> chart_signals;  ///< patterns, as s2sim-run --signals
   std::vector<std::string> script;         ///< UI commands, see ui_script.hpp

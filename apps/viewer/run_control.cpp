@@ -28,13 +28,29 @@ double RtfMeter::rtf() const {
   return wall_s > 0 ? (newest.sim_s - ring_[oldest].sim_s) / wall_s : 0;
 }
 
-void RunControl::step_one(Simulation& sim, ChartData& chart) {
-  sim.step(1);
+template <class What>
+void RunControl::outside_gate(StepGate* gate, What&& what) {
+  if (!gate) {
+    what();
+    return;
+  }
+  gate->mutex.unlock();
+  struct Relock {  // also when `what` throws: the caller's lock owns the mutex again
+    StepGate* gate;
+    ~Relock() { gate->mutex.lock(); }
+  } relock{gate};
+  what();
+}
+
+bool RunControl::step_one(Simulation& sim, ChartData& chart, StepGate* gate) {
+  outside_gate(gate, [&] { sim.step(1); });
+  if (gate && gate->abandoned) return false;
   chart.record(sim);
+  return true;
 }
 
 std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& chart,
-                                 bool ignore_budget) {
+                                 bool ignore_budget, StepGate* gate) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   std::int64_t done = 0;
@@ -43,7 +59,8 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
     rtf_meter_.clear();
     pending_steps_ = 0;
     owed_sim_s_ = 0;
-    sim.reset();
+    outside_gate(gate, [&] { sim.reset(); });
+    if (gate && gate->abandoned) return done;
     for (const auto& [name, value] : held_inputs)  // reset() restores the scene's values
       sim.set_input(name, value);
     chart.clear_samples();
@@ -51,7 +68,7 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
   }
   // Single steps happen whether playing or not (a step while playing is simply one more).
   for (; pending_steps_ > 0; --pending_steps_, ++done)
-    step_one(sim, chart);
+    if (!step_one(sim, chart, gate)) return done;
 
   // A SimTwo script's CloseSimTwo (signal controllers/script/close) stops the run too.
   const std::optional<std::size_t> close = sim.find_signal("controllers/script/close");
@@ -72,13 +89,13 @@ std::int64_t RunControl::advance(Simulation& sim, double wall_dt_s, ChartData& c
       const std::int64_t cap =
           ignore_budget ? static_cast<std::int64_t>(std::llround(16.7 / tick_s)) : INT64_MAX;
       for (std::int64_t n = 0; n < cap && !at_pause_point(); ++n, ++done) {
-        step_one(sim, chart);
+        if (!step_one(sim, chart, gate)) return done;
         if ((n & 15) == 15 && over_budget()) break;
       }
     } else {
       owed_sim_s_ += std::min(wall_dt_s, 0.25) * speed;  // a long stall is not caught up
       while (owed_sim_s_ >= 0.5 * tick_s && !at_pause_point()) {
-        step_one(sim, chart);
+        if (!step_one(sim, chart, gate)) return done;
         ++done;
         owed_sim_s_ -= tick_s;
         if ((done & 15) == 15 && over_budget()) {

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -37,6 +38,16 @@ class RtfMeter {
   std::size_t newest_ = 0, count_ = 0;
 };
 
+/// How advance() shares the window's state when it runs on the stepping thread (stepper.hpp):
+/// the caller holds `mutex` for the whole call, and advance() lets go of it only while the
+/// simulation steps or resets. So the window can give up a run whose component never returns:
+/// it sets `abandoned` under the mutex, and advance() touches nothing more once the step it is
+/// in returns.
+struct StepGate {
+  std::mutex mutex;
+  bool abandoned = false;
+};
+
 class RunControl {
  public:
   bool playing = true;
@@ -57,9 +68,10 @@ class RunControl {
 
   /// Advances the simulation for a frame that lasted `wall_dt_s`, recording the chart after
   /// every tick. `ignore_budget` (scripted runs) steps all the ticks the frame asks for, so
-  /// results do not depend on the machine's speed. Returns the number of ticks done.
+  /// results do not depend on the machine's speed. Returns the number of ticks done. With a
+  /// `gate` (its mutex held by the caller), it returns as soon as the gate is abandoned.
   std::int64_t advance(Simulation& sim, double wall_dt_s, ChartData& chart,
-                       bool ignore_budget = false);
+                       bool ignore_budget = false, StepGate* gate = nullptr);
 
   /// Simulated seconds per wall second (measured on the steady clock, whatever `wall_dt_s`
   /// the frames were paced with) over the last half second of playing.
@@ -68,7 +80,11 @@ class RunControl {
   bool falling_behind() const { return falling_behind_; }
 
  private:
-  void step_one(Simulation& sim, ChartData& chart);
+  /// One tick and its chart sample; false when the gate was abandoned during the tick.
+  bool step_one(Simulation& sim, ChartData& chart, StepGate* gate);
+  /// Runs `what` (a step or a reset) with the gate let go.
+  template <class What>
+  static void outside_gate(StepGate* gate, What&& what);
 
   std::int64_t pending_steps_ = 0;
   bool pending_reset_ = false;

@@ -38,9 +38,18 @@ int find_body(const ViewerState& state, const std::string& id) {
 }
 }  // namespace
 
+namespace {
+/// The commands that touch nothing of the simulation's: all a script may run while the
+/// stepping thread is in a call that has not come back.
+bool runs_while_stuck(const std::string& command, const std::string& rest) {
+  return command == "wait" || command == "click" || command == "screenshot" || command == "quit" ||
+         command == "sleep" || (command == "print" && rest == "stuck");
+}
+}  // namespace
+
 void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
   if (running_) {
-    if (state.run.playing) return;
+    if (state.stuck.now || state.run.playing) return;
     running_ = false;
   }
   if (wait_frames_ > 0) {
@@ -58,6 +67,10 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       return Error(ErrorKind::usage, "script command '" + line + "': " + why);
     };
     if (command.empty() || command[0] == '#') continue;
+    if (state.stuck.now && !runs_while_stuck(command, rest)) {
+      --next_;  // once the simulation answers again
+      return;
+    }
     if (command == "wait") {
       wait_frames_ = std::stoi(rest.empty() ? "1" : rest) - 1;
       return;
@@ -77,7 +90,10 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.run.as_fast_as_possible = x == 0;
       if (x > 0) state.run.speed = x;
     } else if (command == "print") {
-      if (rest == "time")
+      if (rest == "stuck")
+        std::printf("stuck %s %.1f %s\n", state.stuck.now ? "yes" : "no", state.stuck.running_s,
+                    state.stuck.component.c_str());
+      else if (rest == "time")
         std::printf("time %.9f\n", state.sim->time_s());
       else if (rest == "tick")
         std::printf("tick %lld\n", static_cast<long long>(state.sim->tick()));
@@ -118,7 +134,7 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
       else if (!print_more(state, rest))
         throw bad(
-            "print time, tick, clock, rtf, camera, layout, scene-box, body ID, signal NAME, "
+            "print time, tick, clock, stuck, rtf, camera, layout, scene-box, body ID, signal NAME, "
             "editor-error, script-errors, script-view, script-status, script-line N, hud, "
             "log-count TEXT, script-trails, xy-series, chart-samples, memory or replay");
       std::fflush(stdout);

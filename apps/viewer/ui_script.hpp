@@ -9,6 +9,8 @@
 ///   run-until T          play until the simulated time reaches T seconds, then pause
 ///   speed X              times real time; 0 = as fast as possible
 ///   print time           print "time <t>" on stdout
+///   print stuck          print "stuck yes|no <seconds> <component>": a call into a component
+///                        that has not returned (the only print while one runs)
 ///   print editor-error   print "editor-error <line> <message>" (line -1 when unknown)
 ///   print tick           print "tick <n>"
 ///   print body ID        print "body <ID> <x> <y> <z>" (its position, m)
@@ -27,6 +29,8 @@
 ///   follow ROBOT         the camera follows the robot
 ///   screenshot FILE      save this frame as PNG
 ///   quit
+/// While a component's call has not returned, only wait, click, screenshot, sleep, quit and
+/// `print stuck` run; the next other command waits until the simulation answers again.
 
 #include "viewer_state.hpp"
 

@@ -143,6 +143,14 @@ struct ViewerState {
   /// start of the next frame, keeping the camera, the chart's signals and the windows.
   std::unique_ptr<Simulation> pending_simulation;
 
+  /// While the stepping thread is in a call that has not come back (stepper.hpp), nothing may
+  /// read or write `sim`, `run` or `chart`: the frame shows what runs and for how long.
+  struct Stuck {
+    bool now = false;
+    std::string component;  ///< running_component()'s text, or empty for the kernel's own code
+    double running_s = 0;   ///< wall seconds the call (or the step) has been running
+  } stuck;
+
   /// Buttons pressed by a UI script this frame, consumed by `button()`.
   std::vector<std::string> scripted_clicks;
 

@@ -6,6 +6,7 @@
 #include <mesh_data.hpp>
 #include <run_control.hpp>
 #include <simtwo_camera.hpp>
+#include <stepper.hpp>
 #include <trails.hpp>
 
 #include <s2sim/error.hpp>
@@ -15,10 +16,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <thread>
 #include "common/temp_dir.hpp"
 
 namespace s2sim::viewer {
@@ -352,6 +357,71 @@ TEST(ChartData, KeepsTheLastSpanAndAtMostItsBoundOfNumbers) {
   EXPECT_LE(all.sample_count() * per_sample, ChartData::kMaxStoredValues);
   EXPECT_LE(all.stored_values(), ChartData::kMaxStoredValues * 11 / 10);
   EXPECT_NEAR(all.times_s().back(), sim->time_s(), 1e-9) << "the newest sample is kept";
+}
+
+// The stepping thread: a job's exception reaches the window's thread; a job that does not
+// return can be given up, and the next job runs on a new thread meanwhile.
+TEST(Stepper, RethrowsAJobsErrorAndGivesUpAJobThatDoesNotReturn) {
+  Stepper stepper;
+  EXPECT_TRUE(stepper.idle());
+  int runs = 0;
+  stepper.start([&] { ++runs; });
+  EXPECT_TRUE(stepper.wait(10));
+  EXPECT_EQ(runs, 1);
+  stepper.start([] { throw std::runtime_error("from the job"); });
+  EXPECT_THROW(stepper.wait(10), std::runtime_error);
+  EXPECT_TRUE(stepper.idle());
+
+  static std::atomic<bool> release{false};  // outlives the abandoned job, as the docs ask
+  static std::atomic<bool> returned{false};
+  stepper.start([] {
+    while (!release)
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    returned = true;
+  });
+  EXPECT_FALSE(stepper.wait(0.05));
+  EXPECT_FALSE(stepper.idle());
+  stepper.abandon();
+  EXPECT_TRUE(stepper.idle());
+  EXPECT_TRUE(stepper.abandoned_any());
+  stepper.start([&] { runs = 10; });
+  EXPECT_TRUE(stepper.wait(10));
+  EXPECT_EQ(runs, 10);
+  release = true;  // the abandoned thread ends once its job returns
+  for (int i = 0; i < 1000 && !returned; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  EXPECT_TRUE(returned);
+}
+
+// With a gate, advance() lets go of it while the simulation steps, and once the gate is
+// abandoned during a step it returns without touching the chart or the run control again.
+TEST(RunControl, AnAbandonedGateEndsTheAdvanceAfterTheStepItIsIn) {
+  auto sim = Simulation::load(std::filesystem::path(S2SIM_SOURCE_DIR) / "scenes/default");
+  ChartData chart;
+  RunControl run;
+  StepGate gate;
+  {
+    std::lock_guard<std::mutex> lock(gate.mutex);
+    EXPECT_EQ(run.advance(*sim, 0.01, chart, true, &gate), 10);
+  }
+  // The gate is free between advances and during steps: another thread abandons it.
+  run.request_step(1000000);
+  std::atomic<bool> abandoned{false};
+  std::thread window([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    std::lock_guard<std::mutex> lock(gate.mutex);
+    gate.abandoned = true;
+    abandoned = true;
+  });
+  std::int64_t done = 0;
+  {
+    std::lock_guard<std::mutex> lock(gate.mutex);
+    done = run.advance(*sim, 0.0, chart, true, &gate);
+  }
+  window.join();
+  EXPECT_TRUE(abandoned);
+  EXPECT_LT(done, 1000000) << "the advance ended early";
+  EXPECT_EQ(sim->tick(), 10 + done + 1) << "the step it was in finished; none after";
 }
 
 }  // namespace

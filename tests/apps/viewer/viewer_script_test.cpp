@@ -19,20 +19,6 @@ using namespace viewer_test;
 const fs::path kShared = S2SIM_SHARED_SCENES;
 const fs::path kFixtures = S2SIM_VIEWER_FIXTURES;
 
-/// Lines of `out` that start with `prefix`, without it.
-std::vector<std::string> lines_with(const std::string& out, const std::string& prefix) {
-  std::vector<std::string> found;
-  std::istringstream in(out);
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind(prefix, 0) == 0) found.push_back(line.substr(prefix.size()));
-  return found;
-}
-
-double number_after(const std::string& out, const std::string& prefix, std::size_t nth = 0) {
-  const auto found = lines_with(out, prefix);
-  return nth < found.size() ? std::stod(found[nth]) : NAN;
-}
-
 class ViewerScript : public Viewer {
  protected:
   void SetUp() override {

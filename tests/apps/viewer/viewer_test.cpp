@@ -503,4 +503,54 @@ TEST_F(Viewer, BadOptionsAndScenesAreClearErrorsNotCrashes) {
   EXPECT_NE(signal.err.find("no/such"), std::string::npos) << signal.err;
 }
 
+// A component whose update never returns froze the viewer: no frame was drawn and the window
+// could not be closed. Now the window draws on, names the call and how long it has run, and
+// "Stop the simulation" gives the run up, loading the scene again, paused. A run paced by
+// frames stops at --watchdog (exit 8), and closing the window on a stuck call is exit 8 too.
+TEST_F(Viewer, AComponentThatNeverReturnsLeavesTheWindowDrawingAndCanBeStopped) {
+  const fs::path scene = dir_ / "hang";
+  fs::create_directories(scene);
+  std::ofstream(scene / "scene.xml") << "<scene>\n"
+                                        "  <plugin kind='test_hostile' id='villain' "
+                                        "mode='update_hang'/>\n"
+                                        "</scene>\n";
+  const std::string plugins = (fs::path(S2SIM_TEST_PLUGIN_DIR) / "hostile").string();
+  const std::string villain = "component 'controllers/villain' (kind 'test_hostile')";
+
+  const Result stopped =
+      view(scene.string(), {"--plugin-path", plugins,
+                            "--do",          "pace wall",
+                            "--do",          "wait 30",
+                            "--do",          "print stuck",
+                            "--do",          "click Stop the simulation",
+                            "--do",          "wait 2",
+                            "--do",          "print stuck",
+                            "--do",          "print time",
+                            "--do",          "print log-count stopped: " + villain,
+                            "--do",          "quit"});
+  ASSERT_EQ(stopped.status, 0) << stopped.err;
+  const std::vector<std::string> stuck = lines_with(stopped.out, "stuck ");
+  ASSERT_EQ(stuck.size(), 2u) << stopped.out;
+  EXPECT_EQ(stuck[0].rfind("yes ", 0), 0u) << stuck[0];
+  EXPECT_NE(stuck[0].find(villain), std::string::npos) << stuck[0];
+  EXPECT_GT(number_after(stopped.out, "stuck yes ", 0), 1.0) << "frames went on past the wait";
+  EXPECT_EQ(stuck[1].rfind("no ", 0), 0u) << stuck[1];
+  EXPECT_EQ(number_after(stopped.out, "time ", 0), 0) << "the scene is loaded again, paused";
+  EXPECT_EQ(number_after(stopped.out, "log-count ", 0), 1) << stopped.out;
+
+  const Result closed = view(scene.string(), {"--plugin-path", plugins, "--do", "pace wall", "--do",
+                                              "wait 10", "--do", "quit"});
+  EXPECT_EQ(closed.status, 8) << closed.err;
+  EXPECT_NE(closed.err.find("the window closed while " + villain), std::string::npos) << closed.err;
+
+  const Result paced =
+      view(scene.string(), {"--plugin-path", plugins, "--frames", "100", "--watchdog", "0.5"});
+  EXPECT_EQ(paced.status, 8) << paced.err;
+  EXPECT_NE(paced.err.find("watchdog: " + villain), std::string::npos) << paced.err;
+  EXPECT_NE(paced.err.find("has not returned for"), std::string::npos) << paced.err;
+  const Result bad = view(scene.string(), {"--watchdog", "-1"});
+  EXPECT_EQ(bad.status, 4);
+  EXPECT_NE(bad.err.find("--watchdog"), std::string::npos) << bad.err;
+}
+
 }  // namespace

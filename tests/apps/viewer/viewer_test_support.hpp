@@ -62,6 +62,20 @@ inline Result run(const std::string& command, const fs::path& dir) {
   return r;
 }
 
+/// Lines of `out` that start with `prefix`, without it.
+inline std::vector<std::string> lines_with(const std::string& out, const std::string& prefix) {
+  std::vector<std::string> found;
+  std::istringstream in(out);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) found.push_back(line.substr(prefix.size()));
+  return found;
+}
+
+inline double number_after(const std::string& out, const std::string& prefix, std::size_t nth = 0) {
+  const auto found = lines_with(out, prefix);
+  return nth < found.size() ? std::stod(found[nth]) : NAN;
+}
+
 inline bool have_xvfb() {
   return std::system("command -v xvfb-run >/dev/null 2>&1") == 0;
 }
