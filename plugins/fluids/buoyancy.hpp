@@ -16,7 +16,8 @@
 /// weight of `mass` reversed in sign, mass·(0, 0, −g), at the body-frame point `point_x/_y/_z`
 /// (a negative mass lifts; simtwo-format.md §4.4).
 ///
-/// Signals `force` (N, upward), `volume` (m³ immersed), `immersed_fraction` (0..1).
+/// Signals `force` (N, upward), `volume` (m³ immersed), `immersed_fraction` (0..1). A surface
+/// is shown to the viewer (StepContext::show_liquid_surface).
 
 #include "common.hpp"
 #include "immersion.hpp"
@@ -57,6 +58,12 @@ class Buoyancy final : public Component {
     volume_ = ctx.declare_signal("volume", "m^3");
     fraction_ = ctx.declare_signal("immersed_fraction", "1");
     ctx.set_schedule(Stage::actuate, ctx.tick_s());
+  }
+
+  void initialize(StepContext& ctx) override {
+    // The viewer draws the surface the body floats on (water blue, see-through).
+    if (!simtwo_ && std::isfinite(surface_z_))
+      ctx.show_liquid_surface(surface_z_, 0.18, 0.42, 0.62, 0.45);
   }
 
   void update(StepContext& ctx) override {

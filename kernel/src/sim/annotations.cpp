@@ -64,6 +64,7 @@ void Annotations::forget_body(int body) {
 void Annotations::clear() {
   body_colors.clear();
   body_meshes.clear();
+  liquid_surfaces.clear();
   shape_colors.clear();
   sensor_colors.clear();
   fire = Fire{};
@@ -223,6 +224,22 @@ void Simulation::Impl::annotate(const void* impl, std::int32_t component, std::i
             it->scale == mesh.scale && it->casts_shadow == mesh.casts_shadow)
           return;
         *it = std::move(mesh);
+      }
+      break;
+    }
+    case detail::Annotation::liquid_surface: {
+      if (values == nullptr || !std::isfinite(values[0])) return;
+      Annotations::LiquidSurface surface{std::string(source), values[0], {}};
+      for (int k = 0; k < 4; ++k)
+        surface.rgba[k] = unit_interval(values[1 + k]);
+      const auto same = [&](const Annotations::LiquidSurface& o) { return o.source == source; };
+      auto it = std::find_if(a.liquid_surfaces.begin(), a.liquid_surfaces.end(), same);
+      if (it == a.liquid_surfaces.end()) {
+        if (a.liquid_surfaces.size() >= Annotations::kMaxTrailsOrSeries) return;
+        a.liquid_surfaces.push_back(std::move(surface));
+      } else {
+        if (it->z_m == surface.z_m && std::equal(it->rgba, it->rgba + 4, surface.rgba)) return;
+        *it = std::move(surface);
       }
       break;
     }

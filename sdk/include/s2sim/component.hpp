@@ -267,6 +267,8 @@ enum class Annotation : std::int32_t {
   /// id: body, text: the mesh file, a NUL, the shadow mesh file (may be empty), values:
   /// scale, casts shadows (0 or 1)
   body_mesh = 10,
+  /// values: height z in metres (world), red, green, blue, opacity in 0..1
+  liquid_surface = 11,
 };
 
 #if defined(__GNUC__)
@@ -580,6 +582,18 @@ class StepContext {
     text.append(shadow_file.data(), shadow_file.size());
     const double values[2] = {scale, casts_shadow ? 1.0 : 0.0};
     annotate(detail::Annotation::body_mesh, body(b, "set_body_mesh"), text, values);
+  }
+
+  /// Shows the horizontal surface of a liquid at height `z_m` (world frame), drawn as a
+  /// translucent plane over the floor in red, green, blue and `opacity` (0..1), so that a
+  /// floating body is seen on its water. One surface per component, until shown again or a
+  /// reset (publish it from initialize()); components showing the same height share one plane.
+  /// Only the picture: the physics is the component's own. Throws for a z that is not finite.
+  void show_liquid_surface(double z_m, double red, double green, double blue, double opacity) {
+    if (!(std::abs(z_m) < std::numeric_limits<double>::infinity()))
+      throw Error(ErrorKind::usage, "StepContext::show_liquid_surface: z must be finite");
+    const double values[5] = {z_m, red, green, blue, opacity};
+    annotate(detail::Annotation::liquid_surface, 0, {}, values);
   }
 
   // --- inputs and signals ---

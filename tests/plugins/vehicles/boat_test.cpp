@@ -21,6 +21,23 @@ TEST(Boat, FloatsAtItsComputedDraft) {
   EXPECT_NEAR(draft, computed, 0.01 * computed);
 }
 
+// The viewer drew the boat over a grey floor: no water was drawn. The buoyancy shows its
+// surface (StepContext::show_liquid_surface), and a reset shows it again.
+TEST(Boat, ShowsTheWaterSurfaceItFloatsOn) {
+  auto sim = vehicles_test::load("boat", {{"speed", 0}});
+  for (int run = 0; run < 2; ++run) {
+    const auto& surfaces = sim->annotations().liquid_surfaces;
+    ASSERT_EQ(surfaces.size(), 1u) << "run " << run;
+    EXPECT_EQ(surfaces[0].z_m, 0.5);
+    EXPECT_EQ(surfaces[0].source, "robots/boat/actuators/float");
+    EXPECT_GT(surfaces[0].rgba[2], surfaces[0].rgba[0]) << "blue";
+    EXPECT_GT(surfaces[0].rgba[3], 0.1);
+    EXPECT_LT(surfaces[0].rgba[3], 0.9) << "see-through";
+    sim->step(10);
+    sim->reset();
+  }
+}
+
 TEST(Boat, TurnsWithDifferentialThrust) {
   auto sim = vehicles_test::load("boat");
   sim->run_until(10.0);

@@ -93,6 +93,13 @@ struct Annotations {
   };
   std::vector<BodyMesh> body_meshes;
   const BodyMesh* body_mesh(int body) const;
+  /// Liquid surfaces (StepContext::show_liquid_surface), one per component that showed one.
+  struct LiquidSurface {
+    std::string source;
+    double z_m = 0;
+    double rgba[4] = {0, 0, 0, 0};  ///< 0..1
+  };
+  std::vector<LiquidSurface> liquid_surfaces;
   /// Forgets what was painted on or drawn for `body` (a spare body taken by a new thing).
   void forget_body(int body);
   const SensorColor* sensor_color(int sensor) const;
