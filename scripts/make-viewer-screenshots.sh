@@ -11,10 +11,11 @@ shared="$repo/../shared/simtwo-scenes"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 mkdir -p "$out"
-shot() {  # shot NAME SCENE ARGS...
-  local name="$1" scene="$2"
+shot() {  # shot NAME SCENE ARGS... (SCENE "-": none, a replay names its own)
+  local name="$1" scene=("$2")
+  [ "$2" = "-" ] && scene=()
   shift 2
-  xvfb-run -a -s "-screen 0 1280x720x24" "$view" "$scene" --size 1280x720 "$@" \
+  xvfb-run -a -s "-screen 0 1280x720x24" "$view" "${scene[@]}" --size 1280x720 "$@" \
     --do "screenshot $out/$name.png" --do quit >/dev/null
   echo "wrote docs/images/$name.png"
 }
@@ -32,6 +33,11 @@ shot viewer-chart "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --chart 'robots/nxt/axes/*/speed' 'robots/nxt/axes/*/current' --do "follow nxt" \
   --do "camera -150 30 0.8" --do "hide run" --do "run-until 3"
 shot viewer-body "$default" --do "select bob" --do "run-until 0.5"
+# Keep in view: the quadrotor flying its square, followed once it would leave the view.
+shot viewer-quadrotor "$repo/scenes/quadrotor" --show-window log --do "camera -120 15 1.8" \
+  --do "overlay trails on" --do "run-until 9"
+# The boat on its water: the buoyancy's surface, a translucent plane over the floor.
+shot viewer-boat "$repo/scenes/boat" --do "run-until 8" --do "camera -125 22 4.5" --do "wait 1"
 # Trails, names, axes and scale bar: the NXT turning a small circle for 4 s.
 shot viewer-trail "$nxt" --set robots/nxt/axes/right/ref_voltage=6 \
   --set robots/nxt/axes/left/ref_voltage=3 --show-window configuration \
@@ -96,6 +102,6 @@ shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "cam
 # the timeline, the chart following it.
 "$build/bin/s2sim-run" "$nxt" --duration 3 --log-period 0.02 --quiet --record "$tmp/nxt.s2rec" \
   --set robots/nxt/axes/right/ref_voltage=6 robots/nxt/axes/left/ref_voltage=2
-shot viewer-replay --replay "$tmp/nxt.s2rec" --paused \
+shot viewer-replay - --replay "$tmp/nxt.s2rec" --paused \
   --chart 'robots/nxt/x' 'robots/nxt/y' 'robots/nxt/axes/*/speed' --do "follow nxt" \
   --do "camera -150 35 1.0" --do "replay-seek 3" --do "wait 2" --do "replay-seek 1.8" --do "wait 2"

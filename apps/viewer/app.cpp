@@ -2,6 +2,7 @@
 
 #include "frame_stepping.hpp"
 #include "gl.hpp"
+#include "keep_in_view.hpp"
 #include "renderer.hpp"
 #include "scene_drawables.hpp"
 #include "scene_look.hpp"
@@ -232,7 +233,7 @@ class App {
         drawables_.take_meshes(*state_.sim, renderer_, mesh_warnings);
         for (const auto& w : mesh_warnings)
           state_.log_message("warning: " + w);
-        drawables_.update(*state_.sim);
+        drawables_.update(*state_.sim, state_.render.floor_half_size_m);
         record_trails(state_);
         collect_published_lines(state_);
         reload_script_if_changed(state_);
@@ -332,6 +333,8 @@ class App {
       state_.log_message("warning: " + w);
     state_.log_message("loaded " + state_.sim->scene().file.string());
     state_.selected_body = -1;
+    declined_.clear();
+    auto_followed_ = -1;
     if (state_.camera.follow_robot >= static_cast<int>(state_.sim->scene().robots.size()))
       state_.camera.follow_robot = -1;
     load_editor_files(state_);
@@ -407,8 +410,10 @@ class App {
         state_.camera.frame_box(lo, hi, view_aspect());
       }
     }
+    keep_flying_robots_in_view();
     const int r = state_.camera.follow_robot;
-    if (r != followed_robot_ && r >= 0 && !state_.camera_set_by_script &&
+    // A robot followed by hand is framed; one kept in view keeps the distance it was seen at.
+    if (r != followed_robot_ && r >= 0 && r != auto_followed_ && !state_.camera_set_by_script &&
         drawables_.bounds(scene, r, lo, hi))
       state_.camera.frame_box(lo, hi, view_aspect(), 0.5f);  // room to see where it goes
     followed_robot_ = r;
@@ -416,6 +421,25 @@ class App {
     if (r < 0) return;
     const int body = scene.robots[r].main_body;
     if (body >= 0) state_.camera.target_m = to_f(state_.sim->body_pose(body + 1).position);
+  }
+
+  /// A robot that flies or floats and would leave the view is followed, once: one the user
+  /// then stops following (another choice, F) is left alone.
+  void keep_flying_robots_in_view() {
+    const std::size_t robots = state_.sim->scene().robots.size();
+    if (declined_.size() != robots) declined_.assign(robots, false), auto_followed_ = -1;
+    if (auto_followed_ >= 0 && state_.camera.follow_robot != auto_followed_) {
+      declined_[static_cast<std::size_t>(auto_followed_)] = true;
+      auto_followed_ = -1;
+    }
+    if (!state_.camera.keep_in_view || state_.camera.follow_robot >= 0) return;
+    const Mat4 vp = state_.camera.projection(view_aspect()) * state_.camera.view();
+    const int r = robot_leaving_view(*state_.sim, vp, declined_);
+    if (r < 0) return;
+    state_.camera.follow_robot = auto_followed_ = r;
+    state_.log_message("camera: follows " + state_.sim->scene().robots[r].id +
+                       ", which touches nothing and was leaving the view (Configuration: keep "
+                       "in view)");
   }
 
   /// Where the scene's bounding box (the one F frames) lands in the window, in pixels, and the
@@ -520,6 +544,8 @@ class App {
   UiScript script_;
   WorldInput input_;
   int followed_robot_ = -1;                  ///< the robot followed last frame, -1 = none
+  int auto_followed_ = -1;                   ///< the robot kept in view now, -1 = none
+  std::vector<bool> declined_;               ///< robots the user stopped following
   std::filesystem::path look_folder_;        ///< the folder whose floor and sky are applied
   std::optional<SavedCamera> start_camera_;  ///< a SimTwo project's camera, until first used
   FrameStepping stepping_;

@@ -15,6 +15,8 @@ class Camera {
   float pitch_rad = 0.5f;  ///< above the horizon
   float fov_y_rad = 0.8f;
   int follow_robot = -1;  ///< index into scene robots, -1 = free
+  /// Follow a robot that flies or floats when it would leave the view (keep_in_view.hpp).
+  bool keep_in_view = true;
 
   Vec3f eye_m() const;
   Mat4 view() const;

@@ -268,6 +268,27 @@ void SceneDrawables::place_fire(const Simulation& sim) {
   }
 }
 
+void SceneDrawables::place_liquids(const Simulation& sim, float half_size_m) {
+  liquid_count_ = 0;
+  for (const Annotations::LiquidSurface& surface : sim.annotations().liquid_surfaces) {
+    const auto z = static_cast<float>(surface.z_m);
+    bool shown = false;
+    for (int k = 0; k < liquid_count_; ++k)
+      shown = shown || liquid_z_m_[k] == z;
+    if (shown || liquid_count_ == kMaxLiquids) continue;
+    liquid_z_m_[liquid_count_] = z;
+    DrawItem& item = liquids_[liquid_count_++];
+    item.mesh = box_;
+    item.casts_shadow = false;
+    for (int c = 0; c < 4; ++c)
+      item.color[c] = static_cast<float>(surface.rgba[c]);
+    // A slab whose top is the surface, a millimetre thick so that it has no seam.
+    constexpr float thickness_m = 0.001f;
+    item.model = translation({0, 0, z - 0.5f * thickness_m}) *
+                 scale_matrix({2 * half_size_m, 2 * half_size_m, thickness_m});
+  }
+}
+
 void SceneDrawables::take_primitive(Drawable& d, const scene::Shape& s) const {
   d.item.coarse_mesh = -1;
   d.box_min = {-0.5f, -0.5f, -0.5f};
@@ -316,9 +337,10 @@ void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
   take_primitive(d, shape);
 }
 
-void SceneDrawables::update(const Simulation& sim) {
+void SceneDrawables::update(const Simulation& sim, float floor_half_size_m) {
   const Annotations& notes = sim.annotations();
   place_fire(sim);
+  place_liquids(sim, floor_half_size_m);
   const std::vector<ThingView>& things = sim.things();
   for (auto& d : drawables_) {
     if (d.thing >= 0) {
@@ -372,6 +394,7 @@ const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int 
         selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
   }
   if (burning_) items_.insert(items_.end(), flames_, flames_ + kFlames);
+  items_.insert(items_.end(), liquids_, liquids_ + liquid_count_);
   return items_;
 }
 

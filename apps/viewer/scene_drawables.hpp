@@ -54,9 +54,11 @@ class SceneDrawables {
   /// annotations changed. Files it cannot read are reported in `warnings`.
   void take_meshes(const Simulation& sim, Renderer& renderer, std::vector<std::string>& warnings);
 
-  /// Updates every item's model matrix from the simulation's body poses, and each solid's
-  /// colour from the run-time colours (`Annotations::body_colors`). No allocation.
-  void update(const Simulation& sim);
+  /// Updates every item's model matrix from the simulation's body poses, each solid's colour
+  /// from the run-time colours (`Annotations::body_colors`), and the liquid surfaces
+  /// (`Annotations::liquid_surfaces`), as wide as the floor (`floor_half_size_m`). No
+  /// allocation.
+  void update(const Simulation& sim, float floor_half_size_m);
 
   /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags),
   /// those of `selected_body` highlighted.
@@ -97,6 +99,13 @@ class SceneDrawables {
   static constexpr int kFlames = 3;
   DrawItem flames_[kFlames];
   bool burning_ = false;
+  /// The liquid surfaces, one translucent slab per height (components at the same height
+  /// share it), placed by update().
+  void place_liquids(const Simulation& sim, float half_size_m);
+  static constexpr int kMaxLiquids = 8;
+  DrawItem liquids_[kMaxLiquids];
+  float liquid_z_m_[kMaxLiquids] = {};
+  int liquid_count_ = 0;
 
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame

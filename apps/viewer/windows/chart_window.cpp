@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace s2sim::viewer {
@@ -33,6 +35,89 @@ void legend_swatch(ImDrawList* dl, std::size_t k) {
                     series_colour(k));
   ImGui::Dummy(ImVec2(20, h));
   ImGui::SameLine();
+}
+
+/// A legend: one entry a series (its swatch and text), laid out in rows that fill the width, so
+/// that the plot above keeps as many lines as it can. Past `max_height` it scrolls: every
+/// entry stays listed.
+class Legend {
+ public:
+  /// `title` (may be empty) comes first, without a swatch.
+  Legend(std::string title, std::vector<std::string> texts, float width)
+      : title_(std::move(title)), texts_(std::move(texts)) {
+    float x = 0;
+    rows_ = texts_.empty() ? 0 : 1;
+    for (std::size_t k = 0; k <= texts_.size(); ++k) {
+      const float w = entry_width(k);
+      if (w == 0) continue;
+      if (x > 0 && x + w > width) ++rows_, x = 0;
+      x += w;
+    }
+  }
+  /// The height it takes, at most `max_height` (then it scrolls).
+  float height(float max_height) const {
+    const float all = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(rows_);
+    return std::min(all, std::max(ImGui::GetTextLineHeightWithSpacing(), max_height));
+  }
+  void draw(float height) const {
+    if (texts_.empty()) return;
+    ImGui::BeginChild("legend", ImVec2(0, height), false);
+    const float width = ImGui::GetContentRegionAvail().x;
+    float x = 0;
+    for (std::size_t k = 0; k <= texts_.size(); ++k) {
+      const float w = entry_width(k);
+      if (w == 0) continue;
+      if (x > 0 && x + w <= width)
+        ImGui::SameLine(0, 2 * ImGui::GetStyle().ItemSpacing.x);
+      else
+        x = 0;
+      x += w;
+      if (k == 0) {
+        ImGui::TextDisabled("%s", title_.c_str());
+        continue;
+      }
+      legend_swatch(ImGui::GetWindowDrawList(), k - 1);
+      ImGui::TextUnformatted(texts_[k - 1].c_str());
+    }
+    ImGui::EndChild();
+  }
+
+ private:
+  static constexpr float kSwatchWidth = 20;
+  /// Entry 0 is the title (0 wide when there is none), entry k the series k - 1.
+  float entry_width(std::size_t k) const {
+    const float gap = 2 * ImGui::GetStyle().ItemSpacing.x;
+    if (k == 0) return title_.empty() ? 0 : ImGui::CalcTextSize(title_.c_str()).x + gap;
+    return kSwatchWidth + ImGui::CalcTextSize(texts_[k - 1].c_str()).x + gap;
+  }
+
+  std::string title_;
+  std::vector<std::string> texts_;
+  int rows_ = 0;
+};
+
+/// The length of the folders (up to and with a '/') that the names of all `signals` begin
+/// with, when there are two or more.
+std::size_t shared_folders(const Simulation& sim, const std::vector<std::size_t>& signals) {
+  if (signals.size() < 2) return 0;
+  const std::string& first = sim.signal_info(signals[0]).name;
+  std::size_t common = first.size();
+  for (std::size_t i : signals) {
+    const std::string& name = sim.signal_info(i).name;
+    std::size_t n = 0;
+    while (n < common && n < name.size() && name[n] == first[n])
+      ++n;
+    common = n;
+  }
+  const std::size_t slash = first.rfind('/', common == 0 ? 0 : common - 1);
+  return common == 0 || slash == std::string::npos ? 0 : slash + 1;
+}
+
+/// The plot's and the legend's heights in `avail_h`: the legend takes what its rows need, up to
+/// 40 % of the height (then it scrolls); the plot the rest.
+std::pair<float, float> plot_and_legend_heights(const Legend& legend, float avail_h) {
+  const float legend_h = legend.height(0.4f * avail_h);
+  return {std::max(60.0f, avail_h - legend_h - ImGui::GetStyle().ItemSpacing.y), legend_h};
 }
 
 /// A "nice" tick spacing (1, 2 or 5 times a power of ten) for about `count` ticks.
@@ -72,18 +157,6 @@ void plot(ViewerState& state) {
   const Simulation& sim = *state.sim;
   const auto times = chart.times_s();
 
-  const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const float legend_h = ImGui::GetTextLineHeightWithSpacing() *
-                         static_cast<float>(std::max<std::size_t>(1, chart.signals().size()));
-  const ImVec2 size(std::max(100.0f, avail.x), std::max(80.0f, avail.y - legend_h - 4));
-  ImGui::InvisibleButton("plot", size);
-  const bool hovered = ImGui::IsItemHovered();
-  // Wheel over the plot zooms the time axis.
-  if (hovered && ImGui::GetIO().MouseWheel != 0)
-    view.window_s =
-        std::clamp(view.window_s * std::pow(0.85, ImGui::GetIO().MouseWheel), 0.01, 1e6);
-
   // The newest samples at the right edge; before a full span has run, time 0 at the left.
   const double end_s = std::max(view.frozen ? view.frozen_end_s : sim.time_s(), view.window_s);
   const double start_s = end_s - view.window_s;
@@ -91,6 +164,30 @@ void plot(ViewerState& state) {
       std::lower_bound(times.begin(), times.end(), start_s) - times.begin());
   const auto last =
       static_cast<std::size_t>(std::upper_bound(times.begin(), times.end(), end_s) - times.begin());
+
+  // Each signal's legend entry with its latest shown value; the folders that all the names
+  // share are said once, so that more entries fit on a row.
+  const std::size_t shared = shared_folders(sim, chart.signals());
+  std::vector<std::string> entries;
+  for (std::size_t k = 0; k < chart.signals().size(); ++k) {
+    const SignalInfo& info = sim.signal_info(chart.signals()[k]);
+    char value[32];
+    std::snprintf(value, sizeof value, "%.5g", last > first ? chart.values(k)[last - 1] : NAN);
+    entries.push_back(info.name.substr(shared) + " [" + info.unit + "]  " + value);
+  }
+  const std::string title =
+      shared > 0 ? sim.signal_info(chart.signals()[0]).name.substr(0, shared) : "";
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const Legend legend(title, std::move(entries), avail.x);
+  const auto [plot_h, legend_h] = plot_and_legend_heights(legend, avail.y);
+  const ImVec2 size(std::max(100.0f, avail.x), plot_h);
+  ImGui::InvisibleButton("plot", size);
+  const bool hovered = ImGui::IsItemHovered();
+  // Wheel over the plot zooms the time axis.
+  if (hovered && ImGui::GetIO().MouseWheel != 0)
+    view.window_s =
+        std::clamp(view.window_s * std::pow(0.85, ImGui::GetIO().MouseWheel), 0.01, 1e6);
 
   double lo = INFINITY, hi = -INFINITY;
   for (std::size_t k = 0; k < chart.signals().size(); ++k)
@@ -163,13 +260,7 @@ void plot(ViewerState& state) {
   dl->PopClipRect();
   dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
 
-  // Legend with each signal's latest shown value.
-  for (std::size_t k = 0; k < chart.signals().size(); ++k) {
-    const SignalInfo& info = sim.signal_info(chart.signals()[k]);
-    legend_swatch(dl, k);
-    const double latest = last > first ? chart.values(k)[last - 1] : NAN;
-    ImGui::Text("%s [%s]  %.6g", info.name.c_str(), info.unit.c_str(), latest);
-  }
+  legend.draw(legend_h);
 }
 
 /// XY mode: one charted signal against another over the visible time span (a trajectory),
@@ -232,11 +323,15 @@ void plot_xy(ViewerState& state) {
     curves.push_back(std::move(c));
   }
 
+  std::vector<std::string> entries;
+  for (const Curve& c : curves)
+    entries.push_back(c.name + "  (" + std::to_string(c.points.size()) + " points)");
   const ImVec2 origin = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const float legend_h = ImGui::GetTextLineHeightWithSpacing() *
-                         static_cast<float>(std::max<std::size_t>(1, curves.size()));
-  const ImVec2 size(std::max(100.0f, avail.x), std::max(80.0f, avail.y - legend_h - 4));
+  const Legend legend("", std::move(entries), avail.x);
+  const float hint_h = curves.empty() ? ImGui::GetTextLineHeightWithSpacing() : 0;
+  const auto [plot_h, legend_h] = plot_and_legend_heights(legend, avail.y - hint_h);
+  const ImVec2 size(std::max(100.0f, avail.x), plot_h);
   ImGui::InvisibleButton("xyplot", size);
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const Curve& c : curves)
@@ -289,10 +384,7 @@ void plot_xy(ViewerState& state) {
   }
   dl->PopClipRect();
   dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
-  for (std::size_t k = 0; k < curves.size(); ++k) {
-    legend_swatch(dl, k);
-    ImGui::Text("%s  (%zu points)", curves[k].name.c_str(), curves[k].points.size());
-  }
+  legend.draw(legend_h);
   if (curves.empty())
     ImGui::TextDisabled(
         "Tick two signals, then choose X and Y (or run a script that calls "

@@ -76,6 +76,11 @@ void draw_configuration_window(ViewerState& state) {
         if (ImGui::Selectable(robots[r].id.c_str(), cam.follow_robot == r)) cam.follow_robot = r;
       ImGui::EndCombo();
     }
+    ImGui::Checkbox("keep in view", &cam.keep_in_view);
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip(
+          "follow a robot that flies or floats (touches nothing) when it would "
+          "leave the view");
     ImGui::DragFloat3("camera target, m", &cam.target_m.x, 0.01f);
     ImGui::DragFloat("camera distance, m", &cam.distance_m, 0.02f, 0.05f, 500.0f);
     float fov_deg = cam.fov_y_rad * 180 / static_cast<float>(kPi);

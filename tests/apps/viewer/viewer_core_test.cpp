@@ -2,6 +2,7 @@
 // assimp), the camera, the chart's CSV export and run control's pacing.
 #include <camera.hpp>
 #include <chart_data.hpp>
+#include <keep_in_view.hpp>
 #include <layout.hpp>
 #include <mesh_data.hpp>
 #include <run_control.hpp>
@@ -422,6 +423,38 @@ TEST(RunControl, AnAbandonedGateEndsTheAdvanceAfterTheStepItIsIn) {
   EXPECT_TRUE(abandoned);
   EXPECT_LT(done, 1000000) << "the advance ended early";
   EXPECT_EQ(sim->tick(), 10 + done + 1) << "the step it was in finished; none after";
+}
+
+// The quadrotor left the view after 2 s (the camera framed the scene once). A robot that
+// touches nothing and leaves the view's central part is to be followed; one on the floor is
+// not, and neither is one the user stopped following.
+TEST(KeepInView, FollowsARobotThatTouchesNothingNotOneOnTheFloor) {
+  Camera camera;  // looking level at the start, close: 1 m up is outside the view
+  camera.target_m = {0, 0, 0.1f};
+  camera.distance_m = 1.0f;
+  camera.pitch_rad = 0;
+  const Mat4 vp = camera.projection(16.0f / 9) * camera.view();
+
+  auto quad = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/quadrotor");
+  EXPECT_EQ(robot_leaving_view(*quad, vp, {}), -1) << "on the floor, in the view";
+  quad->run_until(3.0);  // hovering at 1 m
+  EXPECT_EQ(robot_leaving_view(*quad, vp, {}), 0);
+  EXPECT_EQ(robot_leaving_view(*quad, vp, {true}), -1) << "declined";
+  Camera above = camera;
+  above.target_m = to_f(quad->body_pose(quad->scene().robots[0].main_body + 1).position);
+  EXPECT_EQ(robot_leaving_view(*quad, above.projection(16.0f / 9) * above.view(), {}), -1)
+      << "in the view";
+
+  auto nxt = Simulation::load(fs::path(S2SIM_SOURCE_DIR) / "scenes/nxt");
+  nxt->step(100);
+  Camera away = camera;
+  away.target_m = {20, 20, 0};
+  EXPECT_EQ(robot_leaving_view(*nxt, away.projection(16.0f / 9) * away.view(), {}), -1)
+      << "out of the view, but on its wheels";
+
+  auto pendulum = Simulation::load(kDefaultScene);  // its bob swings, touching nothing
+  EXPECT_EQ(robot_leaving_view(*pendulum, away.projection(16.0f / 9) * away.view(), {}), -1)
+      << "jointed to the world";
 }
 
 }  // namespace

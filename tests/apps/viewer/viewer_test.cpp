@@ -553,4 +553,42 @@ TEST_F(Viewer, AComponentThatNeverReturnsLeavesTheWindowDrawingAndCanBeStopped) 
   EXPECT_NE(bad.err.find("--watchdog"), std::string::npos) << bad.err;
 }
 
+// The quadrotor left the frame after 2 s: the camera framed the scene once. Now a robot that
+// touches nothing is followed as it would leave the view. The boat floated over a grey floor:
+// its water is drawn now, a translucent blue plane at the buoyancy's surface.
+TEST_F(Viewer, AFlyingRobotIsKeptInViewAndABoatIsDrawnOnItsWater) {
+  const Result quad =
+      view((kSource / "scenes/quadrotor").string(),
+           {"--do", "run-until 8", "--do", "print log-count camera: follows quad, which touches",
+            "--do", "print body frame", "--do", "print camera"});
+  ASSERT_EQ(quad.status, 0) << quad.err;
+  EXPECT_EQ(number_after(quad.out, "log-count ", 0), 1) << quad.out;
+  double body[3] = {0, 0, 0}, target[3] = {0, 0, 0}, yaw, pitch, distance;
+  ASSERT_EQ(std::sscanf(lines_with(quad.out, "body frame ").at(0).c_str(), "%lf %lf %lf", &body[0],
+                        &body[1], &body[2]),
+            3);
+  ASSERT_EQ(std::sscanf(lines_with(quad.out, "camera ").at(0).c_str(), "%lf %lf %lf %lf %lf %lf",
+                        &yaw, &pitch, &distance, &target[0], &target[1], &target[2]),
+            6);
+  EXPECT_GT(body[2], 0.5) << "flying";
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(target[k], body[k], 0.05) << "the camera looks at the quadrotor, axis " << k;
+
+  const fs::path png = dir_ / "boat.png";
+  const Result boat =
+      view((kSource / "scenes/boat").string(),
+           {"--hide-ui", "--look", "fast", "--do", "run-until 1", "--do", "camera -120 25 5",
+            "--do", "wait 1", "--do", "screenshot " + png.string()});
+  ASSERT_EQ(boat.status, 0) << boat.err;
+  const Image image = read_png(png);
+  ASSERT_EQ(image.width, 1280) << "no PNG written";
+  int blue = 0, samples = 0;  // the lower half of the view looks at the water over the floor
+  for (int y = image.height / 2; y < image.height; y += 16)
+    for (int x = 0; x < image.width; x += 16, ++samples) {
+      const unsigned char* p = image.at(x, y);
+      if (p[2] > p[0] + 25) ++blue;
+    }
+  EXPECT_GT(blue, samples * 3 / 4) << blue << " of " << samples << " samples are blue";
+}
+
 }  // namespace
