@@ -59,15 +59,17 @@ class Legend {
     const float all = ImGui::GetTextLineHeightWithSpacing() * static_cast<float>(rows_);
     return std::min(all, std::max(ImGui::GetTextLineHeightWithSpacing(), max_height));
   }
-  void draw(float height) const {
+  /// In rows that fill the width, or (`column`) one entry a line, wrapped at the width.
+  void draw(float height, bool column = false) const {
     if (texts_.empty()) return;
     ImGui::BeginChild("legend", ImVec2(0, height), false);
     const float width = ImGui::GetContentRegionAvail().x;
+    if (column) ImGui::PushTextWrapPos(0.0f);
     float x = 0;
     for (std::size_t k = 0; k <= texts_.size(); ++k) {
       const float w = entry_width(k);
       if (w == 0) continue;
-      if (x > 0 && x + w <= width)
+      if (!column && x > 0 && x + w <= width)
         ImGui::SameLine(0, 2 * ImGui::GetStyle().ItemSpacing.x);
       else
         x = 0;
@@ -79,6 +81,7 @@ class Legend {
       legend_swatch(ImGui::GetWindowDrawList(), k - 1);
       ImGui::TextUnformatted(texts_[k - 1].c_str());
     }
+    if (column) ImGui::PopTextWrapPos();
     ImGui::EndChild();
   }
 
@@ -118,6 +121,12 @@ std::size_t shared_folders(const Simulation& sim, const std::vector<std::size_t>
 std::pair<float, float> plot_and_legend_heights(const Legend& legend, float avail_h) {
   const float legend_h = legend.height(0.4f * avail_h);
   return {std::max(60.0f, avail_h - legend_h - ImGui::GetStyle().ItemSpacing.y), legend_h};
+}
+
+/// How many ticks an axis of `length_px` has room for, a label every `label_px` at most (2 to
+/// 8 ticks).
+int ticks_along(float length_px, float label_px) {
+  return std::clamp(static_cast<int>(length_px / label_px), 2, 8);
 }
 
 /// A "nice" tick spacing (1, 2 or 5 times a power of ten) for about `count` ticks.
@@ -215,13 +224,13 @@ void plot(ViewerState& state) {
     return bottom - static_cast<float>((v - lo) / (hi - lo)) * (bottom - top);
   };
   char label[32];
-  const double ty = tick_step(hi - lo, 5);
+  const double ty = tick_step(hi - lo, ticks_along(bottom - top, 25));
   for (double v = std::ceil(lo / ty) * ty; v <= hi; v += ty) {
     dl->AddLine(ImVec2(left, y_of(v)), ImVec2(right, y_of(v)), IM_COL32(220, 220, 220, 255));
     std::snprintf(label, sizeof label, "%.4g", std::abs(v) < ty * 1e-6 ? 0.0 : v);
     dl->AddText(ImVec2(origin.x + 2, y_of(v) - 7), IM_COL32(230, 230, 230, 255), label);
   }
-  const double tx = tick_step(view.window_s, 8);
+  const double tx = tick_step(view.window_s, ticks_along(right - left, 70));
   for (double t = std::ceil(start_s / tx) * tx; t <= end_s; t += tx) {
     dl->AddLine(ImVec2(x_of(t), top), ImVec2(x_of(t), bottom), IM_COL32(220, 220, 220, 255));
     std::snprintf(label, sizeof label, "%.4g s", t);
@@ -330,8 +339,14 @@ void plot_xy(ViewerState& state) {
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const Legend legend("", std::move(entries), avail.x);
   const float hint_h = curves.empty() ? ImGui::GetTextLineHeightWithSpacing() : 0;
-  const auto [plot_h, legend_h] = plot_and_legend_heights(legend, avail.y - hint_h);
-  const ImVec2 size(std::max(100.0f, avail.x), plot_h);
+  // A short, wide space (the bottom row): the legend beside the plot, which keeps the whole
+  // height, as a path needs it (same unit, same scale); otherwise under it.
+  const bool beside = avail.x > 3 * avail.y;
+  const float beside_w = beside ? std::clamp(2.0f * avail.y, 200.0f, 0.6f * avail.x) : 0;
+  const auto [plot_h, legend_h] =
+      beside ? std::pair<float, float>{std::max(60.0f, avail.y - hint_h), avail.y - hint_h}
+             : plot_and_legend_heights(legend, avail.y - hint_h);
+  const ImVec2 size(beside ? beside_w : std::max(100.0f, avail.x), plot_h);
   ImGui::InvisibleButton("xyplot", size);
   double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
   for (const Curve& c : curves)
@@ -361,7 +376,8 @@ void plot_xy(ViewerState& state) {
   };
   dl->AddRectFilled(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(255, 255, 255, 255));
   char label[32];
-  const double ty = tick_step(y1 - y0, 5), tx = tick_step(x1 - x0, 8);
+  const double ty = tick_step(y1 - y0, ticks_along(bottom - top, 25));
+  const double tx = tick_step(x1 - x0, ticks_along(right - left, 70));
   for (double v = std::ceil(y0 / ty) * ty; v <= y1; v += ty) {
     dl->AddLine(ImVec2(left, py(v)), ImVec2(right, py(v)), IM_COL32(220, 220, 220, 255));
     std::snprintf(label, sizeof label, "%.4g", std::abs(v) < ty * 1e-6 ? 0.0 : v);
@@ -384,7 +400,8 @@ void plot_xy(ViewerState& state) {
   }
   dl->PopClipRect();
   dl->AddRect(ImVec2(left, top), ImVec2(right, bottom), IM_COL32(90, 90, 90, 255));
-  legend.draw(legend_h);
+  if (beside) ImGui::SameLine();
+  legend.draw(legend_h, beside);
   if (curves.empty())
     ImGui::TextDisabled(
         "Tick two signals, then choose X and Y (or run a script that calls "
