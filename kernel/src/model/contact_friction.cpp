@@ -244,6 +244,7 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction_effective_w.assign(4 * n, 0.0);
   const std::size_t most_axes = m.rows_axes.size();  // the largest tree's (axis_trees.cpp)
   m.friction_linear.assign(most_axes, 0);
+  m.friction_built_linear.assign(most_axes, 0);
   m.friction_scale.assign(most_axes, 0.0);
   m.friction_rhs.assign(most_axes, 0.0);
   m.friction_coupling.assign(most_axes * most_axes, 0.0);

@@ -313,9 +313,11 @@ constexpr double kRelativeSlipTolerance = 1e-6;
 /// the point's rates of those axes per unit impulse and A = I + κ·C·W over them (W the tree's
 /// Delassus matrix, C their damping), a friction impulse changes the drives by −A⁻¹·C·h, so
 /// its column becomes c − κ·M⁻¹·Gᵀ·A⁻¹·C·h and its W the Schur complement. Solved as
-/// A⁻¹·C = S·B⁻¹·S, B = I + κ·S·W·S, S = √C. Returns how many axes were folded in.
+/// A⁻¹·C = S·B⁻¹·S, B = I + κ·S·W·S, S = √C. Returns how many axes were folded in. `built`:
+/// how many the group's columns were last built with in this substep (-1: none); the columns
+/// depend on nothing else within it, so the same axes keep them.
 int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int group, int begin,
-                              int end, double kick_s) {
+                              int end, double kick_s, int& built) {
   const int n = end - begin;
   const int* axis = m.solve_order.data() + begin;
   const double* W = m.tree_delassus.data();  // the tree's, built by solve_axes
@@ -338,6 +340,10 @@ int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int gr
     linear[count] = p;
     scale[count++] = std::sqrt(damping);
   }
+  int* built_linear = m.friction_built_linear.data();
+  if (built == count && std::equal(linear, linear + count, built_linear)) return count;
+  built = count;
+  std::copy_n(linear, count, built_linear);
   if (count == 0) {
     uncoupled_friction(m, group);
     return 0;
@@ -398,8 +404,10 @@ void solve_friction_group(Multibody::Impl& m, SimTK::State& s, int group, int t,
   SimTK::Vector& u = s.updU();
   const bool with_axes = t >= 0 && begin != end;
   int sweeps_left = kMaxFrictionSweeps;  // over all rounds: a bounded cost per substep
+  int built = -1;
   for (int round = 0; round < kMaxFrictionRounds && sweeps_left > 0; ++round) {
-    const int coupled = with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s) : 0;
+    const int coupled =
+        with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s, built) : 0;
     if (!with_axes) uncoupled_friction(m, group);
     bool moved = false;
     while (sweeps_left-- > 0) {

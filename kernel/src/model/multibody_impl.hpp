@@ -295,9 +295,10 @@ struct Multibody::Impl {
   std::vector<double> friction_g, friction_column, friction_w, friction_impulse;
   // The columns and W the sweeps use: the raw ones with the tree's linear drives' implicit
   // response folded in (implicit_axes.cpp, couple_friction_to_drives), and that solve's
-  // scratch: its axes, √C, the matrix I + κ·S·W·S, a right side.
+  // scratch: its axes, √C, the matrix I + κ·S·W·S, a right side; and the axes the current
+  // group's columns were built with.
   std::vector<double> friction_effective_column, friction_effective_w;
-  std::vector<int> friction_linear;
+  std::vector<int> friction_linear, friction_built_linear;
   std::vector<double> friction_scale, friction_coupling, friction_rhs;
   // Blocks: runs of a group's points in friction_order, up to kMaxBlockPoints, solved at once
   // while they stick. Per order position: the size of the block starting there (0 inside
