@@ -235,7 +235,6 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction.capacity = static_cast<std::int32_t>(n);
   m.friction_g.assign(2 * n * stride, 0.0);
   m.friction_column.assign(2 * n * stride, 0.0);
-  m.friction_w.assign(4 * n, 0.0);
   m.friction_block_size.assign(n, 0);
   m.friction_block_factored.assign(n, 0);
   m.friction_block_w.assign(64 * n, 0.0);  // kBlockRoom (friction_sweeps.cpp)
@@ -319,7 +318,14 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
                               SimTK::Vec3(p.point_m.x, p.point_m.y, p.point_m.z),
                               SimTK::Vec3(d.x, d.y, d.z), begin, begin + span, full_g);
       std::copy_n(full_g + begin, span, g[j]);
-      if (range.cached) {  // M^-1·g from the kept inverse, over g's non-zero speeds
+      if (!range.cached) {
+        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g,
+                                 m.friction_full_column.data());
+        std::copy_n(m.friction_full_column.data() + begin, span, c[j]);
+      }
+    }
+    if (range.cached) {  // M^-1·g from the kept inverse, over g's non-zero speeds
+      for (int j = 0; j < 2; ++j) {
         std::fill(c[j], c[j] + span, 0.0);
         for (int k = 0; k < span; ++k) {
           const double gk = g[j][k];
@@ -328,20 +334,8 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
           for (int e = 0; e < span; ++e)
             c[j][e] += gk * row_k[e];
         }
-      } else {
-        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g,
-                                 m.friction_full_column.data());
-        std::copy_n(m.friction_full_column.data() + begin, span, c[j]);
       }
     }
-    double* w = &m.friction_w[4 * static_cast<std::size_t>(i)];
-    for (int j = 0; j < 2; ++j)
-      for (int k = 0; k < 2; ++k) {
-        double sum = 0;
-        for (int e = 0; e < span; ++e)
-          sum += g[j][e] * c[k][e];
-        w[2 * j + k] = sum;
-      }
     m.friction_impulse[2 * static_cast<std::size_t>(i)] = 0;
     m.friction_impulse[2 * static_cast<std::size_t>(i) + 1] = 0;
   }
@@ -355,12 +349,22 @@ void copy_raw_friction(Multibody::Impl& m, int group) {
     const auto i = static_cast<std::size_t>(m.friction_order[static_cast<std::size_t>(n)]);
     std::copy_n(m.friction_column.data() + 2 * i * stride, 2 * stride,
                 m.friction_effective_column.data() + 2 * i * stride);
-    std::copy_n(m.friction_w.data() + 4 * i, 4, m.friction_effective_w.data() + 4 * i);
   }
 }
 
 void uncoupled_friction(Multibody::Impl& m, int group) {
   copy_raw_friction(m, group);
+  // Each point's W here only: a group coupled to its drives has its own.
+  const auto stride = static_cast<std::size_t>(m.friction_stride);
+  for (int n = m.friction_group_start[static_cast<std::size_t>(group)];
+       n < m.friction_group_start[static_cast<std::size_t>(group) + 1]; ++n) {
+    const auto i = static_cast<std::size_t>(m.friction_order[static_cast<std::size_t>(n)]);
+    const auto b = static_cast<std::size_t>(m.friction.points[i].body);
+    const double* g = m.friction_g.data() + 2 * i * stride;
+    const double* c = m.friction_column.data() + 2 * i * stride;
+    friction_pair_w(g, g + stride, c, c + stride, m.friction_u_end[b] - m.friction_u_begin[b],
+                    &m.friction_effective_w[4 * i]);
+  }
   build_friction_blocks(m, group);
 }
 

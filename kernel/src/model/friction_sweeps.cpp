@@ -169,14 +169,25 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   }
   // v₀ = v − W·λ over the members: their slip without their own impulses.
   double v0[2 * kMaxBlockPoints];
-  for (std::size_t r = 0; r < size; ++r) {
-    v0[r] = v[index[r]];
-    for (std::size_t c = 0; c < size; ++c)
-      v0[r] -= W[index[r] * dim + index[c]] * lambda[index[c]];
+  const bool whole = members == (1u << k) - 1;
+  if (whole) {  // (the same sums, W's rows read in place)
+    for (std::size_t r = 0; r < dim; ++r) {
+      const double* row = W + r * dim;
+      double value = v[r];
+      for (std::size_t c = 0; c < dim; ++c)
+        value -= row[c] * lambda[c];
+      v0[r] = value;
+    }
+  } else {
+    for (std::size_t r = 0; r < size; ++r) {
+      v0[r] = v[index[r]];
+      for (std::size_t c = 0; c < size; ++c)
+        v0[r] -= W[index[r] * dim + index[c]] * lambda[index[c]];
+    }
   }
   outside = 0;
   const double* factor = L;
-  if (members == (1u << k) - 1) {  // the whole block: its factor, built with W
+  if (whole) {  // the whole block: its factor, built with W
     if (!m.friction_block_factored[static_cast<std::size_t>(n)]) return false;
     factor = W + dim * dim;
   } else {
@@ -265,23 +276,34 @@ void build_friction_blocks(Multibody::Impl& m, int group) {
       const int* order = m.friction_order.data() + n;
       const auto body = static_cast<std::size_t>(m.friction.points[order[0]].body);
       const int span = m.friction_u_end[body] - m.friction_u_begin[body];
-      const double* g[2 * kMaxBlockPoints];
-      const double* col[2 * kMaxBlockPoints];
-      for (std::size_t r = 0; r < dim; ++r) {
-        const std::size_t row = (2 * static_cast<std::size_t>(order[r / 2]) + r % 2) * stride;
-        g[r] = m.friction_g.data() + row;
-        col[r] = m.friction_effective_column.data() + row;
-      }
-      // Symmetric (W = G·M_eff⁻¹·Gᵀ): the upper triangle, mirrored.
+      // Symmetric (W = G·M_eff⁻¹·Gᵀ): the upper triangle, mirrored, point by point: a point's
+      // own 2×2 is its W (the same sums), another's four entries in one pass.
       double largest = 0;
-      for (std::size_t r = 0; r < dim; ++r)
-        for (std::size_t c = r; c < dim; ++c) {
-          double sum = 0;
-          for (int e = 0; e < span; ++e)
-            sum += g[r][e] * col[c][e];
-          W[r * dim + c] = W[c * dim + r] = sum;
-          largest = std::max(largest, std::abs(sum));
+      for (int p = 0; p < k; ++p) {
+        const auto i = static_cast<std::size_t>(order[p]);
+        const double* g = m.friction_g.data() + 2 * i * stride;
+        for (int q = p; q < k; ++q) {
+          const auto j = static_cast<std::size_t>(order[q]);
+          const auto b = static_cast<std::size_t>(m.friction.points[j].body);
+          double pair[4];
+          if (q == p && m.friction_u_end[b] - m.friction_u_begin[b] == span) {
+            std::copy_n(&m.friction_effective_w[4 * i], 4, pair);
+            pair[2] = pair[1];  // (the upper entry, mirrored)
+          } else {
+            const double* col = m.friction_effective_column.data() + 2 * j * stride;
+            friction_pair_w(g, g + stride, col, col + stride, span, pair);
+            if (q == p) pair[2] = pair[1];
+          }
+          for (std::size_t a = 0; a < 2; ++a)
+            for (std::size_t c = 0; c < 2; ++c) {
+              const std::size_t r = 2 * static_cast<std::size_t>(p) + a;
+              const std::size_t col_index = 2 * static_cast<std::size_t>(q) + c;
+              const double value = pair[2 * a + c];
+              W[r * dim + col_index] = W[col_index * dim + r] = value;
+              largest = std::max(largest, std::abs(value));
+            }
         }
+      }
       std::copy_n(W, dim * dim, L);
       for (std::size_t r = 0; r < dim; ++r)
         L[r * dim + r] += kBlockRegularisation * largest;

@@ -380,15 +380,7 @@ int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int gr
     }
     const double* g = m.friction_g.data() + 2 * i * stride;
     const double* c = m.friction_effective_column.data() + 2 * i * stride;
-    double* w = &m.friction_effective_w[4 * i];
-    for (std::size_t j = 0; j < 2; ++j)
-      for (std::size_t k = 0; k < 2; ++k) {
-        double sum = 0;
-        for (int e = 0; e < span; ++e)
-          sum += g[j * stride + static_cast<std::size_t>(e)] *
-                 c[k * stride + static_cast<std::size_t>(e)];
-        w[2 * j + k] = sum;
-      }
+    friction_pair_w(g, g + stride, c, c + stride, span, &m.friction_effective_w[4 * i]);
   }
   build_friction_blocks(m, group);
   return count;
