@@ -170,13 +170,15 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   // v₀ = v − W·λ over the members: their slip without their own impulses.
   double v0[2 * kMaxBlockPoints];
   const bool whole = members == (1u << k) - 1;
-  if (whole) {  // (the same sums, W's rows read in place)
-    for (std::size_t r = 0; r < dim; ++r) {
-      const double* row = W + r * dim;
-      double value = v[r];
-      for (std::size_t c = 0; c < dim; ++c)
-        value -= row[c] * lambda[c];
-      v0[r] = value;
+  if (whole) {
+    // Column by column, W's rows being its columns (it is mirrored): each row's terms in the
+    // same order, the rows at once.
+    std::copy_n(v, dim, v0);
+    for (std::size_t c = 0; c < dim; ++c) {
+      const double* column = W + c * dim;
+      const double l = lambda[c];
+      for (std::size_t r = 0; r < dim; ++r)
+        v0[r] -= column[r] * l;
     }
   } else {
     for (std::size_t r = 0; r < size; ++r) {
@@ -214,12 +216,16 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   change = 0;
   for (std::size_t r = 0; r < dim; ++r)
     lambda[r] = next[r] - lambda[r];  // the changes (zero but the members')
-  for (std::size_t r = 0; r < dim; ++r) {
-    double dv = 0;
-    for (std::size_t c = 0; c < dim; ++c)
-      dv += W[r * dim + c] * lambda[c];
-    change = std::max(change, std::abs(dv));
+  // W·Δλ, column by column as v₀ above.
+  double dv[2 * kMaxBlockPoints] = {};
+  for (std::size_t c = 0; c < dim; ++c) {
+    const double* column = W + c * dim;
+    const double l = lambda[c];
+    for (std::size_t r = 0; r < dim; ++r)
+      dv[r] += column[r] * l;
   }
+  for (std::size_t r = 0; r < dim; ++r)
+    change = std::max(change, std::abs(dv[r]));
   for (int q = 0; q < k; ++q) {
     if (!(members & (1u << q))) continue;
     const auto i = static_cast<std::size_t>(order[q]);
