@@ -251,7 +251,7 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction_order.assign(n, 0);
   m.friction_group_start.assign(n + 1, 0);
   const auto nu = static_cast<std::size_t>(m.initial_state.getNU());
-  m.friction_full_g.assign(nu, 0.0);
+  m.friction_full_g.assign(2 * nu, 0.0);  // (one row per tangent)
   m.friction_full_column.assign(nu, 0.0);
   m.friction_scratch.resize(static_cast<int>(nu));
 }
@@ -307,19 +307,23 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
     Multibody::Impl::FrictionRange& range = m.friction_ranges[static_cast<std::size_t>(r)];
     if (range.cached && !range.checked) update_range_inverse(m, s, r, p.body);
     const double* minv = m.friction_minv.data() + range.minv;
+    // Both tangents' g over every speed, then the range's.
+    const std::size_t nu = m.friction_full_column.size();
+    double* full_g[2] = {m.friction_full_g.data(), m.friction_full_g.data() + nu};
+    const SimTK::Vec3 directions[2] = {
+        SimTK::Vec3(p.direction[0].x, p.direction[0].y, p.direction[0].z),
+        SimTK::Vec3(p.direction[1].x, p.direction[1].y, p.direction[1].z)};
+    m.dynamics->point_forces(m, s, m.mobod_of_body[b],
+                             SimTK::Vec3(p.point_m.x, p.point_m.y, p.point_m.z), directions, begin,
+                             begin + span, full_g);
     for (int j = 0; j < 2; ++j) {
       const std::size_t row =
           (2 * static_cast<std::size_t>(i) + static_cast<std::size_t>(j)) * stride;
       g[j] = m.friction_g.data() + row;
       c[j] = m.friction_column.data() + row;
-      const Vec3& d = p.direction[j];
-      double* full_g = m.friction_full_g.data();
-      m.dynamics->point_force(m, s, m.mobod_of_body[b],
-                              SimTK::Vec3(p.point_m.x, p.point_m.y, p.point_m.z),
-                              SimTK::Vec3(d.x, d.y, d.z), begin, begin + span, full_g);
-      std::copy_n(full_g + begin, span, g[j]);
+      std::copy_n(full_g[j] + begin, span, g[j]);
       if (!range.cached) {
-        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g,
+        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g[j],
                                  m.friction_full_column.data());
         std::copy_n(m.friction_full_column.data() + begin, span, c[j]);
       }

@@ -308,7 +308,7 @@ struct Multibody::Impl {
   std::vector<char> friction_block_factored;
   std::vector<double> friction_block_w, friction_block_rhs;
   double friction_sweep_slip = 0;  // the last sweep's largest slip met (|v₁| + |v₂|, m/s)
-  std::vector<double> friction_full_g, friction_full_column;  // one row over every speed
+  std::vector<double> friction_full_g, friction_full_column;  // rows over every speed
   SimTK::Vector friction_scratch;                             // Simbody's M^-1 of one row
   std::vector<int> friction_order, friction_group_start;
   int friction_groups = 0;
