@@ -462,6 +462,9 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   // that a robot's numbers do not depend on another's (the parallel islands' parts must match
   // the serial run).
   group_solve_list_by_tree(m);
+  // The friction groups are ordered by key (prepare_contact_friction): the axis trees' in tree
+  // order, then those without axes. A cursor walks them with the trees.
+  int group = 0;
   for (std::size_t t = 0; t + 1 < m.tree_solve_start.size(); ++t) {
     const int begin = m.tree_solve_start[t], end = m.tree_solve_start[t + 1];
     if (begin != end) {  // (a row's axis is in the solve list)
@@ -470,12 +473,13 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       if (m.tree_sweeps[t]) sweep_tree(m, s, t, begin, end, kick_s);
     }
     // The contact friction on the tree's bodies, with its axes.
-    for (int g = 0; friction && g < m.friction_groups; ++g)
-      if (friction_group_tree(m, g) == static_cast<int>(t))
-        solve_friction_group(m, s, g, static_cast<int>(t), begin, end, kick_s);
+    for (; friction && group < m.friction_groups &&
+           friction_group_tree(m, group) == static_cast<int>(t);
+         ++group)
+      solve_friction_group(m, s, group, static_cast<int>(t), begin, end, kick_s);
   }
   // The friction on trees without axes.
-  for (int g = 0; friction && g < m.friction_groups; ++g)
+  for (int g = group; friction && g < m.friction_groups; ++g)
     if (friction_group_tree(m, g) < 0) solve_friction_group(m, s, g, -1, 0, 0, kick_s);
   if (friction) finish_contact_friction(m, kick_s);
   for (const auto& row : m.rows)
