@@ -25,13 +25,17 @@ void point_slip(const Multibody::Impl& m, const double* x, int i, double* v) {
   const int begin = m.friction_u_begin[b], span = m.friction_u_end[b] - begin;
   const double* g0 = m.friction_g.data() + 2 * static_cast<std::size_t>(i) * stride;
   const double* g1 = g0 + stride;
-  v[0] = -dot(p.surface_velocity_m_s, p.direction[0]);
-  v[1] = -dot(p.surface_velocity_m_s, p.direction[1]);
+  // Summed in locals, not in v: the compiler would store it at every term, as the rows might
+  // overlap it.
+  double slip0 = -dot(p.surface_velocity_m_s, p.direction[0]);
+  double slip1 = -dot(p.surface_velocity_m_s, p.direction[1]);
   const double* xu = x + begin;
   for (int e = 0; e < span; ++e) {
-    v[0] += g0[e] * xu[e];
-    v[1] += g1[e] * xu[e];
+    slip0 += g0[e] * xu[e];
+    slip1 += g1[e] * xu[e];
   }
+  v[0] = slip0;
+  v[1] = slip1;
 }
 
 /// Adds point i's impulse change (d0, d1) to the speeds x.
@@ -217,7 +221,8 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   for (std::size_t r = 0; r < dim; ++r)
     lambda[r] = next[r] - lambda[r];  // the changes (zero but the members')
   // W·Δλ, column by column as v₀ above.
-  double dv[2 * kMaxBlockPoints] = {};
+  double dv[2 * kMaxBlockPoints];
+  std::fill_n(dv, dim, 0.0);
   for (std::size_t c = 0; c < dim; ++c) {
     const double* column = W + c * dim;
     const double l = lambda[c];
