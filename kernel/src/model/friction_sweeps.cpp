@@ -17,6 +17,54 @@ constexpr std::size_t kBlockRoom = 64;
 /// ε of a block's solve, relative to its largest entry (solve_members).
 constexpr double kBlockRegularisation = 1e-6;
 
+/// Cholesky's factor and substitution at a block's size (two rows per point) as a constant,
+/// unrolled: the same numbers in fewer instructions.
+static_assert(kMaxBlockPoints == 8, "a case per block size below");
+bool factor_block(double* A, int size) {
+  switch (size) {
+    case 2:
+      return common::cholesky_factor<2>(A);
+    case 4:
+      return common::cholesky_factor<4>(A);
+    case 6:
+      return common::cholesky_factor<6>(A);
+    case 8:
+      return common::cholesky_factor<8>(A);
+    case 10:
+      return common::cholesky_factor<10>(A);
+    case 12:
+      return common::cholesky_factor<12>(A);
+    case 14:
+      return common::cholesky_factor<14>(A);
+    case 16:
+      return common::cholesky_factor<16>(A);
+    default:
+      return common::cholesky_factor(A, size);
+  }
+}
+void substitute_block(const double* L, int size, double* x) {
+  switch (size) {
+    case 2:
+      return common::cholesky_substitute<2>(L, x, x);
+    case 4:
+      return common::cholesky_substitute<4>(L, x, x);
+    case 6:
+      return common::cholesky_substitute<6>(L, x, x);
+    case 8:
+      return common::cholesky_substitute<8>(L, x, x);
+    case 10:
+      return common::cholesky_substitute<10>(L, x, x);
+    case 12:
+      return common::cholesky_substitute<12>(L, x, x);
+    case 14:
+      return common::cholesky_substitute<14>(L, x, x);
+    case 16:
+      return common::cholesky_substitute<16>(L, x, x);
+    default:
+      return common::cholesky_substitute(L, size, x, x);
+  }
+}
+
 /// Point i's slip along its two tangents at the speeds x, against its surface.
 void point_slip(const Multibody::Impl& m, const double* x, int i, double* v) {
   const auto stride = static_cast<std::size_t>(m.friction_stride);
@@ -206,9 +254,9 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
     if (!(largest > 0)) return false;
     for (std::size_t r = 0; r < size; ++r)
       L[r * size + r] += kBlockRegularisation * largest;
-    if (!common::cholesky_factor(L, static_cast<int>(size))) return false;
+    if (!factor_block(L, static_cast<int>(size))) return false;
   }
-  common::cholesky_substitute(factor, static_cast<int>(size), v0, v0);
+  substitute_block(factor, static_cast<int>(size), v0);
   for (std::size_t r = 0; r < dim; ++r)
     next[r] = lambda[r];
   for (std::size_t r = 0; r < size; ++r)
@@ -319,7 +367,7 @@ void build_friction_blocks(Multibody::Impl& m, int group) {
       for (std::size_t r = 0; r < dim; ++r)
         L[r * dim + r] += kBlockRegularisation * largest;
       m.friction_block_factored[static_cast<std::size_t>(n)] =
-          largest > 0 && common::cholesky_factor(L, static_cast<int>(dim));
+          largest > 0 && factor_block(L, static_cast<int>(dim));
     }
     n += std::max(1, k);
   }
