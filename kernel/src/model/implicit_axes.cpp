@@ -186,11 +186,12 @@ void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
   for (int q = 0; q < n; ++q) {
     const auto b = static_cast<std::size_t>(axis[q]);
     const double* column = m.minv_column[b].getContiguousScalarData();
-    for (int p = 0; p < n; ++p) {
+    double* out = W + q;  // W's column q, row by row
+    for (int p = 0; p < n; ++p, out += n) {
       const auto a = static_cast<std::size_t>(axis[p]);
       // axis_dot(a, column), read raw for a tree axis: it is asked n² times.
-      W[p * n + q] = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
-                                    : m.axis_impl[a].sign * column[m.axis_u[a]];
+      *out = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
+                            : m.axis_impl[a].sign * column[m.axis_u[a]];
     }
   }
 }
