@@ -3,17 +3,23 @@
 /// Dense Cholesky factorisation and substitution for small symmetric positive definite
 /// systems: the implicit axis solve's rows (model/implicit_axes.cpp, model/axis_modes.cpp; the
 /// tree's mass matrix has its own sparse factor, model/tree_dynamics.cpp) and the exact stop
-/// groups (contact/stop_graph.cpp); and a pivoted one for the semidefinite systems of redundant
+/// groups (contact/stop_graph.cpp), contact friction's blocks (model/friction_sweeps.cpp); and a
+/// pivoted one for the semidefinite systems of redundant
 /// loop constraints (model/loop_constraints.cpp). Row-major n x n; a few dozen rows at most.
 
 #include <cmath>
+#include <type_traits>
 
 namespace s2sim::common {
 
-/// Replaces A's lower triangle with L, A = L·Lᵀ (the upper triangle is not read). Returns
-/// whether every pivot was positive; past a bad one it goes on (its NaNs propagate) so that the
-/// caller decides.
-inline bool cholesky_factor(double* A, int n) {
+namespace detail {
+
+// The bodies of the factorisation and the substitution, for a size given at run time (int) or
+// at compile time (std::integral_constant, whose loops the compiler unrolls): the same
+// operations in the same order, so the same numbers.
+template <class Size>
+inline bool cholesky_factor(double* A, Size size) {
+  const int n = size;
   bool positive = true;
   for (int j = 0; j < n; ++j) {
     double d = A[j * n + j];
@@ -32,9 +38,9 @@ inline bool cholesky_factor(double* A, int n) {
   return positive;
 }
 
-/// x = A^-1·b from cholesky_factor's L; x may be b. Leading zeros of b (a unit vector's) are
-/// skipped: they give zeros.
-inline void cholesky_substitute(const double* L, int n, const double* b, double* x) {
+template <class Size>
+inline void cholesky_substitute(const double* L, Size size, const double* b, double* x) {
+  const int n = size;
   int first = 0;
   while (first < n && b[first] == 0.0)
     x[first++] = 0.0;
@@ -50,6 +56,32 @@ inline void cholesky_substitute(const double* L, int n, const double* b, double*
       v -= L[k * n + i] * x[k];
     x[i] = v / L[i * n + i];
   }
+}
+
+}  // namespace detail
+
+/// Replaces A's lower triangle with L, A = L·Lᵀ (the upper triangle is not read). Returns
+/// whether every pivot was positive; past a bad one it goes on (its NaNs propagate) so that the
+/// caller decides.
+inline bool cholesky_factor(double* A, int n) {
+  return detail::cholesky_factor(A, n);
+}
+
+/// x = A^-1·b from cholesky_factor's L; x may be b. Leading zeros of b (a unit vector's) are
+/// skipped: they give zeros.
+inline void cholesky_substitute(const double* L, int n, const double* b, double* x) {
+  detail::cholesky_substitute(L, n, b, x);
+}
+
+/// The same two for an n known at compile time, unrolled: the same numbers, fewer
+/// instructions on the small blocks solved many times a step (contact friction's).
+template <int N>
+inline bool cholesky_factor(double* A) {
+  return detail::cholesky_factor(A, std::integral_constant<int, N>{});
+}
+template <int N>
+inline void cholesky_substitute(const double* L, const double* b, double* x) {
+  detail::cholesky_substitute(L, std::integral_constant<int, N>{}, b, x);
 }
 
 /// Solves A·x = b for a symmetric positive semidefinite A whose rank may be below n (loop

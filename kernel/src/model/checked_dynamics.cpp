@@ -156,10 +156,10 @@ class CheckedPath final : public Dynamics {
   void loop_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const override {
     tree().loop_axis_column(m, s, a);
   }
-  void point_force(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
-                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
-                   double* g) const override {
-    tree().point_force(m, s, body, point, direction, u_begin, u_end, g);
+  void point_forces(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
+                    const SimTK::Vec3& point, const SimTK::Vec3* directions, int u_begin, int u_end,
+                    double* const* g) const override {
+    tree().point_forces(m, s, body, point, directions, u_begin, u_end, g);
   }
   void solve_speeds(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
                     int u_begin, int u_end, const double* g, double* x) const override {

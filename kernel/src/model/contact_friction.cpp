@@ -235,7 +235,6 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction.capacity = static_cast<std::int32_t>(n);
   m.friction_g.assign(2 * n * stride, 0.0);
   m.friction_column.assign(2 * n * stride, 0.0);
-  m.friction_w.assign(4 * n, 0.0);
   m.friction_block_size.assign(n, 0);
   m.friction_block_factored.assign(n, 0);
   m.friction_block_w.assign(64 * n, 0.0);  // kBlockRoom (friction_sweeps.cpp)
@@ -244,6 +243,7 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction_effective_w.assign(4 * n, 0.0);
   const std::size_t most_axes = m.rows_axes.size();  // the largest tree's (axis_trees.cpp)
   m.friction_linear.assign(most_axes, 0);
+  m.friction_built_linear.assign(most_axes, 0);
   m.friction_scale.assign(most_axes, 0.0);
   m.friction_rhs.assign(most_axes, 0.0);
   m.friction_coupling.assign(most_axes * most_axes, 0.0);
@@ -251,7 +251,7 @@ void Multibody::reserve_contact_friction(std::int32_t points) {
   m.friction_order.assign(n, 0);
   m.friction_group_start.assign(n + 1, 0);
   const auto nu = static_cast<std::size_t>(m.initial_state.getNU());
-  m.friction_full_g.assign(nu, 0.0);
+  m.friction_full_g.assign(2 * nu, 0.0);  // (one row per tangent)
   m.friction_full_column.assign(nu, 0.0);
   m.friction_scratch.resize(static_cast<int>(nu));
 }
@@ -307,18 +307,29 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
     Multibody::Impl::FrictionRange& range = m.friction_ranges[static_cast<std::size_t>(r)];
     if (range.cached && !range.checked) update_range_inverse(m, s, r, p.body);
     const double* minv = m.friction_minv.data() + range.minv;
+    // Both tangents' g over every speed, then the range's.
+    const std::size_t nu = m.friction_full_column.size();
+    double* full_g[2] = {m.friction_full_g.data(), m.friction_full_g.data() + nu};
+    const SimTK::Vec3 directions[2] = {
+        SimTK::Vec3(p.direction[0].x, p.direction[0].y, p.direction[0].z),
+        SimTK::Vec3(p.direction[1].x, p.direction[1].y, p.direction[1].z)};
+    m.dynamics->point_forces(m, s, m.mobod_of_body[b],
+                             SimTK::Vec3(p.point_m.x, p.point_m.y, p.point_m.z), directions, begin,
+                             begin + span, full_g);
     for (int j = 0; j < 2; ++j) {
       const std::size_t row =
           (2 * static_cast<std::size_t>(i) + static_cast<std::size_t>(j)) * stride;
       g[j] = m.friction_g.data() + row;
       c[j] = m.friction_column.data() + row;
-      const Vec3& d = p.direction[j];
-      double* full_g = m.friction_full_g.data();
-      m.dynamics->point_force(m, s, m.mobod_of_body[b],
-                              SimTK::Vec3(p.point_m.x, p.point_m.y, p.point_m.z),
-                              SimTK::Vec3(d.x, d.y, d.z), begin, begin + span, full_g);
-      std::copy_n(full_g + begin, span, g[j]);
-      if (range.cached) {  // M^-1·g from the kept inverse, over g's non-zero speeds
+      std::copy_n(full_g[j] + begin, span, g[j]);
+      if (!range.cached) {
+        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g[j],
+                                 m.friction_full_column.data());
+        std::copy_n(m.friction_full_column.data() + begin, span, c[j]);
+      }
+    }
+    if (range.cached) {  // M^-1·g from the kept inverse, over g's non-zero speeds
+      for (int j = 0; j < 2; ++j) {
         std::fill(c[j], c[j] + span, 0.0);
         for (int k = 0; k < span; ++k) {
           const double gk = g[j][k];
@@ -327,20 +338,8 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s) {
           for (int e = 0; e < span; ++e)
             c[j][e] += gk * row_k[e];
         }
-      } else {
-        m.dynamics->solve_speeds(m, s, m.mobod_of_body[b], begin, begin + span, full_g,
-                                 m.friction_full_column.data());
-        std::copy_n(m.friction_full_column.data() + begin, span, c[j]);
       }
     }
-    double* w = &m.friction_w[4 * static_cast<std::size_t>(i)];
-    for (int j = 0; j < 2; ++j)
-      for (int k = 0; k < 2; ++k) {
-        double sum = 0;
-        for (int e = 0; e < span; ++e)
-          sum += g[j][e] * c[k][e];
-        w[2 * j + k] = sum;
-      }
     m.friction_impulse[2 * static_cast<std::size_t>(i)] = 0;
     m.friction_impulse[2 * static_cast<std::size_t>(i) + 1] = 0;
   }
@@ -354,12 +353,22 @@ void copy_raw_friction(Multibody::Impl& m, int group) {
     const auto i = static_cast<std::size_t>(m.friction_order[static_cast<std::size_t>(n)]);
     std::copy_n(m.friction_column.data() + 2 * i * stride, 2 * stride,
                 m.friction_effective_column.data() + 2 * i * stride);
-    std::copy_n(m.friction_w.data() + 4 * i, 4, m.friction_effective_w.data() + 4 * i);
   }
 }
 
 void uncoupled_friction(Multibody::Impl& m, int group) {
   copy_raw_friction(m, group);
+  // Each point's W here only: a group coupled to its drives has its own.
+  const auto stride = static_cast<std::size_t>(m.friction_stride);
+  for (int n = m.friction_group_start[static_cast<std::size_t>(group)];
+       n < m.friction_group_start[static_cast<std::size_t>(group) + 1]; ++n) {
+    const auto i = static_cast<std::size_t>(m.friction_order[static_cast<std::size_t>(n)]);
+    const auto b = static_cast<std::size_t>(m.friction.points[i].body);
+    const double* g = m.friction_g.data() + 2 * i * stride;
+    const double* c = m.friction_column.data() + 2 * i * stride;
+    friction_pair_w(g, g + stride, c, c + stride, m.friction_u_end[b] - m.friction_u_begin[b],
+                    &m.friction_effective_w[4 * i]);
+  }
   build_friction_blocks(m, group);
 }
 

@@ -61,13 +61,14 @@ class Dynamics {
   /// For loop axis `a`, whose unit load is m.unit_body_forces: its generalized force g = Jᵀ·F
   /// into m.loop_unit_force[a], and M⁻¹·g into m.minv_column[a].
   virtual void loop_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const = 0;
-  /// For a unit force along `direction` at `point` (Ground) on mobilized body `body`: its
-  /// generalized force g = Jᵀ·F over the speeds [u_begin, u_end), which hold the body's tree
-  /// (`g` over every speed; the others are left as they are). `s` at Position.
-  virtual void point_force(Multibody::Impl& m, const SimTK::State& s,
-                           SimTK::MobilizedBodyIndex body, const SimTK::Vec3& point,
-                           const SimTK::Vec3& direction, int u_begin, int u_end,
-                           double* g) const = 0;
+  /// For unit forces along `directions` (two) at `point` (Ground) on mobilized body `body`:
+  /// their generalized forces g_j = Jᵀ·F_j over the speeds [u_begin, u_end), which hold the
+  /// body's tree, into g[j] (each over every speed; the others are left as they are). `s` at
+  /// Position.
+  virtual void point_forces(Multibody::Impl& m, const SimTK::State& s,
+                            SimTK::MobilizedBodyIndex body, const SimTK::Vec3& point,
+                            const SimTK::Vec3* directions, int u_begin, int u_end,
+                            double* const* g) const = 0;
   /// x = M⁻¹·g over [u_begin, u_end), g zero outside it and the range holding `body`'s tree
   /// (arrays over every speed); the mass matrix of this substep's accelerations.
   virtual void solve_speeds(Multibody::Impl& m, const SimTK::State& s,

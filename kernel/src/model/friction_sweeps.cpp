@@ -17,6 +17,54 @@ constexpr std::size_t kBlockRoom = 64;
 /// ε of a block's solve, relative to its largest entry (solve_members).
 constexpr double kBlockRegularisation = 1e-6;
 
+/// Cholesky's factor and substitution at a block's size (two rows per point) as a constant,
+/// unrolled: the same numbers in fewer instructions.
+static_assert(kMaxBlockPoints == 8, "a case per block size below");
+bool factor_block(double* A, int size) {
+  switch (size) {
+    case 2:
+      return common::cholesky_factor<2>(A);
+    case 4:
+      return common::cholesky_factor<4>(A);
+    case 6:
+      return common::cholesky_factor<6>(A);
+    case 8:
+      return common::cholesky_factor<8>(A);
+    case 10:
+      return common::cholesky_factor<10>(A);
+    case 12:
+      return common::cholesky_factor<12>(A);
+    case 14:
+      return common::cholesky_factor<14>(A);
+    case 16:
+      return common::cholesky_factor<16>(A);
+    default:
+      return common::cholesky_factor(A, size);
+  }
+}
+void substitute_block(const double* L, int size, double* x) {
+  switch (size) {
+    case 2:
+      return common::cholesky_substitute<2>(L, x, x);
+    case 4:
+      return common::cholesky_substitute<4>(L, x, x);
+    case 6:
+      return common::cholesky_substitute<6>(L, x, x);
+    case 8:
+      return common::cholesky_substitute<8>(L, x, x);
+    case 10:
+      return common::cholesky_substitute<10>(L, x, x);
+    case 12:
+      return common::cholesky_substitute<12>(L, x, x);
+    case 14:
+      return common::cholesky_substitute<14>(L, x, x);
+    case 16:
+      return common::cholesky_substitute<16>(L, x, x);
+    default:
+      return common::cholesky_substitute(L, size, x, x);
+  }
+}
+
 /// Point i's slip along its two tangents at the speeds x, against its surface.
 void point_slip(const Multibody::Impl& m, const double* x, int i, double* v) {
   const auto stride = static_cast<std::size_t>(m.friction_stride);
@@ -25,13 +73,17 @@ void point_slip(const Multibody::Impl& m, const double* x, int i, double* v) {
   const int begin = m.friction_u_begin[b], span = m.friction_u_end[b] - begin;
   const double* g0 = m.friction_g.data() + 2 * static_cast<std::size_t>(i) * stride;
   const double* g1 = g0 + stride;
-  v[0] = -dot(p.surface_velocity_m_s, p.direction[0]);
-  v[1] = -dot(p.surface_velocity_m_s, p.direction[1]);
+  // Summed in locals, not in v: the compiler would store it at every term, as the rows might
+  // overlap it.
+  double slip0 = -dot(p.surface_velocity_m_s, p.direction[0]);
+  double slip1 = -dot(p.surface_velocity_m_s, p.direction[1]);
   const double* xu = x + begin;
   for (int e = 0; e < span; ++e) {
-    v[0] += g0[e] * xu[e];
-    v[1] += g1[e] * xu[e];
+    slip0 += g0[e] * xu[e];
+    slip1 += g1[e] * xu[e];
   }
+  v[0] = slip0;
+  v[1] = slip1;
 }
 
 /// Adds point i's impulse change (d0, d1) to the speeds x.
@@ -169,14 +221,27 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   }
   // v₀ = v − W·λ over the members: their slip without their own impulses.
   double v0[2 * kMaxBlockPoints];
-  for (std::size_t r = 0; r < size; ++r) {
-    v0[r] = v[index[r]];
-    for (std::size_t c = 0; c < size; ++c)
-      v0[r] -= W[index[r] * dim + index[c]] * lambda[index[c]];
+  const bool whole = members == (1u << k) - 1;
+  if (whole) {
+    // Column by column, W's rows being its columns (it is mirrored): each row's terms in the
+    // same order, the rows at once.
+    std::copy_n(v, dim, v0);
+    for (std::size_t c = 0; c < dim; ++c) {
+      const double* column = W + c * dim;
+      const double l = lambda[c];
+      for (std::size_t r = 0; r < dim; ++r)
+        v0[r] -= column[r] * l;
+    }
+  } else {
+    for (std::size_t r = 0; r < size; ++r) {
+      v0[r] = v[index[r]];
+      for (std::size_t c = 0; c < size; ++c)
+        v0[r] -= W[index[r] * dim + index[c]] * lambda[index[c]];
+    }
   }
   outside = 0;
   const double* factor = L;
-  if (members == (1u << k) - 1) {  // the whole block: its factor, built with W
+  if (whole) {  // the whole block: its factor, built with W
     if (!m.friction_block_factored[static_cast<std::size_t>(n)]) return false;
     factor = W + dim * dim;
   } else {
@@ -189,9 +254,9 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
     if (!(largest > 0)) return false;
     for (std::size_t r = 0; r < size; ++r)
       L[r * size + r] += kBlockRegularisation * largest;
-    if (!common::cholesky_factor(L, static_cast<int>(size))) return false;
+    if (!factor_block(L, static_cast<int>(size))) return false;
   }
-  common::cholesky_substitute(factor, static_cast<int>(size), v0, v0);
+  substitute_block(factor, static_cast<int>(size), v0);
   for (std::size_t r = 0; r < dim; ++r)
     next[r] = lambda[r];
   for (std::size_t r = 0; r < size; ++r)
@@ -203,12 +268,17 @@ bool solve_members(Multibody::Impl& m, double* x, int n, int k, unsigned members
   change = 0;
   for (std::size_t r = 0; r < dim; ++r)
     lambda[r] = next[r] - lambda[r];  // the changes (zero but the members')
-  for (std::size_t r = 0; r < dim; ++r) {
-    double dv = 0;
-    for (std::size_t c = 0; c < dim; ++c)
-      dv += W[r * dim + c] * lambda[c];
-    change = std::max(change, std::abs(dv));
+  // W·Δλ, column by column as v₀ above.
+  double dv[2 * kMaxBlockPoints];
+  std::fill_n(dv, dim, 0.0);
+  for (std::size_t c = 0; c < dim; ++c) {
+    const double* column = W + c * dim;
+    const double l = lambda[c];
+    for (std::size_t r = 0; r < dim; ++r)
+      dv[r] += column[r] * l;
   }
+  for (std::size_t r = 0; r < dim; ++r)
+    change = std::max(change, std::abs(dv[r]));
   for (int q = 0; q < k; ++q) {
     if (!(members & (1u << q))) continue;
     const auto i = static_cast<std::size_t>(order[q]);
@@ -265,28 +335,39 @@ void build_friction_blocks(Multibody::Impl& m, int group) {
       const int* order = m.friction_order.data() + n;
       const auto body = static_cast<std::size_t>(m.friction.points[order[0]].body);
       const int span = m.friction_u_end[body] - m.friction_u_begin[body];
-      const double* g[2 * kMaxBlockPoints];
-      const double* col[2 * kMaxBlockPoints];
-      for (std::size_t r = 0; r < dim; ++r) {
-        const std::size_t row = (2 * static_cast<std::size_t>(order[r / 2]) + r % 2) * stride;
-        g[r] = m.friction_g.data() + row;
-        col[r] = m.friction_effective_column.data() + row;
-      }
-      // Symmetric (W = G·M_eff⁻¹·Gᵀ): the upper triangle, mirrored.
+      // Symmetric (W = G·M_eff⁻¹·Gᵀ): the upper triangle, mirrored, point by point: a point's
+      // own 2×2 is its W (the same sums), another's four entries in one pass.
       double largest = 0;
-      for (std::size_t r = 0; r < dim; ++r)
-        for (std::size_t c = r; c < dim; ++c) {
-          double sum = 0;
-          for (int e = 0; e < span; ++e)
-            sum += g[r][e] * col[c][e];
-          W[r * dim + c] = W[c * dim + r] = sum;
-          largest = std::max(largest, std::abs(sum));
+      for (int p = 0; p < k; ++p) {
+        const auto i = static_cast<std::size_t>(order[p]);
+        const double* g = m.friction_g.data() + 2 * i * stride;
+        for (int q = p; q < k; ++q) {
+          const auto j = static_cast<std::size_t>(order[q]);
+          const auto b = static_cast<std::size_t>(m.friction.points[j].body);
+          double pair[4];
+          if (q == p && m.friction_u_end[b] - m.friction_u_begin[b] == span) {
+            std::copy_n(&m.friction_effective_w[4 * i], 4, pair);
+            pair[2] = pair[1];  // (the upper entry, mirrored)
+          } else {
+            const double* col = m.friction_effective_column.data() + 2 * j * stride;
+            friction_pair_w(g, g + stride, col, col + stride, span, pair);
+            if (q == p) pair[2] = pair[1];
+          }
+          for (std::size_t a = 0; a < 2; ++a)
+            for (std::size_t c = 0; c < 2; ++c) {
+              const std::size_t r = 2 * static_cast<std::size_t>(p) + a;
+              const std::size_t col_index = 2 * static_cast<std::size_t>(q) + c;
+              const double value = pair[2 * a + c];
+              W[r * dim + col_index] = W[col_index * dim + r] = value;
+              largest = std::max(largest, std::abs(value));
+            }
         }
+      }
       std::copy_n(W, dim * dim, L);
       for (std::size_t r = 0; r < dim; ++r)
         L[r * dim + r] += kBlockRegularisation * largest;
       m.friction_block_factored[static_cast<std::size_t>(n)] =
-          largest > 0 && common::cholesky_factor(L, static_cast<int>(dim));
+          largest > 0 && factor_block(L, static_cast<int>(dim));
     }
     n += std::max(1, k);
   }

@@ -186,11 +186,12 @@ void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
   for (int q = 0; q < n; ++q) {
     const auto b = static_cast<std::size_t>(axis[q]);
     const double* column = m.minv_column[b].getContiguousScalarData();
-    for (int p = 0; p < n; ++p) {
+    double* out = W + q;  // W's column q, row by row
+    for (int p = 0; p < n; ++p, out += n) {
       const auto a = static_cast<std::size_t>(axis[p]);
       // axis_dot(a, column), read raw for a tree axis: it is asked n² times.
-      W[p * n + q] = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
-                                    : m.axis_impl[a].sign * column[m.axis_u[a]];
+      *out = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
+                            : m.axis_impl[a].sign * column[m.axis_u[a]];
     }
   }
 }
@@ -313,9 +314,11 @@ constexpr double kRelativeSlipTolerance = 1e-6;
 /// the point's rates of those axes per unit impulse and A = I + κ·C·W over them (W the tree's
 /// Delassus matrix, C their damping), a friction impulse changes the drives by −A⁻¹·C·h, so
 /// its column becomes c − κ·M⁻¹·Gᵀ·A⁻¹·C·h and its W the Schur complement. Solved as
-/// A⁻¹·C = S·B⁻¹·S, B = I + κ·S·W·S, S = √C. Returns how many axes were folded in.
+/// A⁻¹·C = S·B⁻¹·S, B = I + κ·S·W·S, S = √C. Returns how many axes were folded in. `built`:
+/// how many the group's columns were last built with in this substep (-1: none); the columns
+/// depend on nothing else within it, so the same axes keep them.
 int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int group, int begin,
-                              int end, double kick_s) {
+                              int end, double kick_s, int& built) {
   const int n = end - begin;
   const int* axis = m.solve_order.data() + begin;
   const double* W = m.tree_delassus.data();  // the tree's, built by solve_axes
@@ -338,6 +341,10 @@ int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int gr
     linear[count] = p;
     scale[count++] = std::sqrt(damping);
   }
+  int* built_linear = m.friction_built_linear.data();
+  if (built == count && std::equal(linear, linear + count, built_linear)) return count;
+  built = count;
+  std::copy_n(linear, count, built_linear);
   if (count == 0) {
     uncoupled_friction(m, group);
     return 0;
@@ -374,15 +381,7 @@ int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int gr
     }
     const double* g = m.friction_g.data() + 2 * i * stride;
     const double* c = m.friction_effective_column.data() + 2 * i * stride;
-    double* w = &m.friction_effective_w[4 * i];
-    for (std::size_t j = 0; j < 2; ++j)
-      for (std::size_t k = 0; k < 2; ++k) {
-        double sum = 0;
-        for (int e = 0; e < span; ++e)
-          sum += g[j * stride + static_cast<std::size_t>(e)] *
-                 c[k * stride + static_cast<std::size_t>(e)];
-        w[2 * j + k] = sum;
-      }
+    friction_pair_w(g, g + stride, c, c + stride, span, &m.friction_effective_w[4 * i]);
   }
   build_friction_blocks(m, group);
   return count;
@@ -398,8 +397,10 @@ void solve_friction_group(Multibody::Impl& m, SimTK::State& s, int group, int t,
   SimTK::Vector& u = s.updU();
   const bool with_axes = t >= 0 && begin != end;
   int sweeps_left = kMaxFrictionSweeps;  // over all rounds: a bounded cost per substep
+  int built = -1;
   for (int round = 0; round < kMaxFrictionRounds && sweeps_left > 0; ++round) {
-    const int coupled = with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s) : 0;
+    const int coupled =
+        with_axes ? couple_friction_to_drives(m, u, group, begin, end, kick_s, built) : 0;
     if (!with_axes) uncoupled_friction(m, group);
     bool moved = false;
     while (sweeps_left-- > 0) {
@@ -462,6 +463,9 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
   // that a robot's numbers do not depend on another's (the parallel islands' parts must match
   // the serial run).
   group_solve_list_by_tree(m);
+  // The friction groups are ordered by key (prepare_contact_friction): the axis trees' in tree
+  // order, then those without axes. A cursor walks them with the trees.
+  int group = 0;
   for (std::size_t t = 0; t + 1 < m.tree_solve_start.size(); ++t) {
     const int begin = m.tree_solve_start[t], end = m.tree_solve_start[t + 1];
     if (begin != end) {  // (a row's axis is in the solve list)
@@ -470,12 +474,13 @@ void solve_axes(Multibody::Impl& m, SimTK::State& s, double kick_s) {
       if (m.tree_sweeps[t]) sweep_tree(m, s, t, begin, end, kick_s);
     }
     // The contact friction on the tree's bodies, with its axes.
-    for (int g = 0; friction && g < m.friction_groups; ++g)
-      if (friction_group_tree(m, g) == static_cast<int>(t))
-        solve_friction_group(m, s, g, static_cast<int>(t), begin, end, kick_s);
+    for (; friction && group < m.friction_groups &&
+           friction_group_tree(m, group) == static_cast<int>(t);
+         ++group)
+      solve_friction_group(m, s, group, static_cast<int>(t), begin, end, kick_s);
   }
   // The friction on trees without axes.
-  for (int g = 0; friction && g < m.friction_groups; ++g)
+  for (int g = group; friction && g < m.friction_groups; ++g)
     if (friction_group_tree(m, g) < 0) solve_friction_group(m, s, g, -1, 0, 0, kick_s);
   if (friction) finish_contact_friction(m, kick_s);
   for (const auto& row : m.rows)

@@ -269,8 +269,8 @@ struct Multibody::Impl {
   // body: its tree's speed range [begin, end) (empty: it cannot take friction points) and the
   // axis tree its axes are solved in (-1: none). Per point of the substep, 2 rows: the
   // generalized force g of a unit force along each tangent and M^-1·g over the whole speed
-  // vector (zero outside the tree's range), the 2×2 W = g·M^-1·g, the impulses found; and the
-  // points ordered by tree.
+  // vector (zero outside the tree's range), the impulses found; and the points ordered by
+  // tree.
   std::vector<int> friction_u_begin, friction_u_end, friction_axis_tree;
   std::vector<FrictionPoint> friction_storage;
   FrictionPoints friction;
@@ -292,12 +292,13 @@ struct Multibody::Impl {
   std::vector<char> friction_q_compared;  // per q: a cache compares it (shapes M, or a quaternion
                                           // not turned with)
   int friction_stride = 0;                // the longest speed range: a row's room in the lists
-  std::vector<double> friction_g, friction_column, friction_w, friction_impulse;
+  std::vector<double> friction_g, friction_column, friction_impulse;
   // The columns and W the sweeps use: the raw ones with the tree's linear drives' implicit
   // response folded in (implicit_axes.cpp, couple_friction_to_drives), and that solve's
-  // scratch: its axes, √C, the matrix I + κ·S·W·S, a right side.
+  // scratch: its axes, √C, the matrix I + κ·S·W·S, a right side; and the axes the current
+  // group's columns were built with.
   std::vector<double> friction_effective_column, friction_effective_w;
-  std::vector<int> friction_linear;
+  std::vector<int> friction_linear, friction_built_linear;
   std::vector<double> friction_scale, friction_coupling, friction_rhs;
   // Blocks: runs of a group's points in friction_order, up to kMaxBlockPoints, solved at once
   // while they stick. Per order position: the size of the block starting there (0 inside
@@ -307,7 +308,7 @@ struct Multibody::Impl {
   std::vector<char> friction_block_factored;
   std::vector<double> friction_block_w, friction_block_rhs;
   double friction_sweep_slip = 0;  // the last sweep's largest slip met (|v₁| + |v₂|, m/s)
-  std::vector<double> friction_full_g, friction_full_column;  // one row over every speed
+  std::vector<double> friction_full_g, friction_full_column;  // rows over every speed
   SimTK::Vector friction_scratch;                             // Simbody's M^-1 of one row
   std::vector<int> friction_order, friction_group_start;
   int friction_groups = 0;
@@ -435,10 +436,26 @@ bool prepare_contact_friction(Multibody::Impl& m, const SimTK::State& s);
 /// for zero slip within κ times its bounds, the others held. Returns the largest speed change
 /// it made at a point (m/s); friction_sweep_slip, the largest slip it met.
 double sweep_contact_friction(Multibody::Impl& m, SimTK::Vector& u, int group, double kick_s);
-/// Group `group`'s points' columns and W as the sweeps use them, uncoupled: the raw ones,
-/// copied (copy_raw_friction) and their blocks built.
+/// Group `group`'s points' columns and W as the sweeps use them, uncoupled: the raw columns,
+/// copied (copy_raw_friction), their W and their blocks built.
 void copy_raw_friction(Multibody::Impl& m, int group);
 void uncoupled_friction(Multibody::Impl& m, int group);
+/// A pair of rows' 2×2 block of W, w_jk = g_j·c_k over `span` speeds: four sums in one pass,
+/// each term in the order of its own dot product.
+inline void friction_pair_w(const double* g0, const double* g1, const double* c0, const double* c1,
+                            int span, double* w) {
+  double w00 = 0, w01 = 0, w10 = 0, w11 = 0;
+  for (int e = 0; e < span; ++e) {
+    w00 += g0[e] * c0[e];
+    w01 += g0[e] * c1[e];
+    w10 += g1[e] * c0[e];
+    w11 += g1[e] * c1[e];
+  }
+  w[0] = w00;
+  w[1] = w01;
+  w[2] = w10;
+  w[3] = w11;
+}
 /// The W of group `group`'s blocks from the columns the sweeps use.
 void build_friction_blocks(Multibody::Impl& m, int group);
 /// The axis tree of friction group `group` (-1: its tree has no solved axes).

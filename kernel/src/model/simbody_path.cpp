@@ -77,15 +77,17 @@ class SimbodyPath final : public Dynamics {
     m.matter.multiplyByMInv(s, g, m.minv_column[a]);
   }
 
-  void point_force(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
-                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
-                   double* g) const override {
-    m.unit_body_forces.setToZero();
+  void point_forces(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,
+                    const SimTK::Vec3& point, const SimTK::Vec3* directions, int u_begin, int u_end,
+                    double* const* g) const override {
     const SimTK::Vec3 arm = point - m.matter.getMobilizedBody(body).getBodyOriginLocation(s);
-    m.unit_body_forces[body] = SimTK::SpatialVec(SimTK::cross(arm, direction), direction);
-    m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, m.unit_force);
-    for (int k = u_begin; k < u_end; ++k)
-      g[k] = m.unit_force[k];
+    for (int j = 0; j < 2; ++j) {
+      m.unit_body_forces.setToZero();
+      m.unit_body_forces[body] = SimTK::SpatialVec(SimTK::cross(arm, directions[j]), directions[j]);
+      m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, m.unit_force);
+      for (int k = u_begin; k < u_end; ++k)
+        g[j][k] = m.unit_force[k];
+    }
   }
 
   void solve_speeds(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex,

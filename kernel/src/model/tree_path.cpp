@@ -138,18 +138,26 @@ class TreePath final : public Dynamics {
     m.tree->solve(g.getContiguousScalarData(), m.minv_column[a].updContiguousScalarData());
   }
 
-  void point_force(Multibody::Impl& m, const SimTK::State&, SimTK::MobilizedBodyIndex body,
-                   const SimTK::Vec3& point, const SimTK::Vec3& direction, int u_begin, int u_end,
-                   double* g) const override {
-    // g_k = d·(the point's velocity per unit speed k), over the body's chain of mobilizers.
+  void point_forces(Multibody::Impl& m, const SimTK::State&, SimTK::MobilizedBodyIndex body,
+                    const SimTK::Vec3& point, const SimTK::Vec3* directions, int u_begin, int u_end,
+                    double* const* g) const override {
+    // g_k = d·(the point's velocity per unit speed k), over the body's chain of mobilizers;
+    // that velocity once for both directions.
     const TreeDynamics& tree = *m.tree;
-    std::fill(g + u_begin, g + u_end, 0.0);
-    const Vec3 p{point[0], point[1], point[2]}, d{direction[0], direction[1], direction[2]};
+    double* g0 = g[0];
+    double* g1 = g[1];
+    std::fill(g0 + u_begin, g0 + u_end, 0.0);
+    std::fill(g1 + u_begin, g1 + u_end, 0.0);
+    const Vec3 p{point[0], point[1], point[2]};
+    const Vec3 d0{directions[0][0], directions[0][1], directions[0][2]};
+    const Vec3 d1{directions[1][0], directions[1][1], directions[1][2]};
     for (int i = body; i > 0; i = tree.parent(i)) {
       const Vec3 arm = p - tree.pose(i).position;
       for (int k = tree.first_speed(i); k < tree.first_speed(i) + tree.speed_count(i); ++k) {
         const Twist& h = tree.column(k);
-        g[k] = dot(d, h.linear_m_s + cross(h.angular_rad_s, arm));
+        const Vec3 velocity = h.linear_m_s + cross(h.angular_rad_s, arm);
+        g0[k] = dot(d0, velocity);
+        g1[k] = dot(d1, velocity);
       }
     }
   }
