@@ -1,6 +1,8 @@
 // Calls into components and how long they run (call_watch.hpp).
 #include "call_watch.hpp"
 
+#include <algorithm>
+
 namespace s2sim::apps {
 
 CallWatch::CallWatch(std::size_t max_threads) : now_running_(max_threads) {
@@ -21,10 +23,14 @@ void CallWatch::sample(Clock::time_point now) {
   seen_.swap(next_);
 }
 
-const CallWatch::Call* CallWatch::longest() const {
+const CallWatch::Call* CallWatch::longest(const std::vector<RunningCall>& ignored) const {
   const Call* longest = nullptr;
-  for (const Call& c : seen_)
-    if (!longest || c.since < longest->since) longest = &c;
+  for (const Call& c : seen_) {
+    const bool left_out = std::any_of(ignored.begin(), ignored.end(), [&](const RunningCall& i) {
+      return i.component == c.call.component && i.call == c.call.call;
+    });
+    if (!left_out && (!longest || c.since < longest->since)) longest = &c;
+  }
   return longest;
 }
 

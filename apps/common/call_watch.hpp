@@ -31,8 +31,9 @@ class CallWatch {
   /// Samples what runs at `now`; calls() then lists it.
   void sample(Clock::time_point now);
   const std::vector<Call>& calls() const { return seen_; }
-  /// The call running longest in the last sample, or nullptr when none runs.
-  const Call* longest() const;
+  /// The call running longest in the last sample, leaving out the `ignored` ones (calls given
+  /// up on), or nullptr when none runs.
+  const Call* longest(const std::vector<RunningCall>& ignored = {}) const;
 
  private:
   std::vector<RunningCall> now_running_;

@@ -31,7 +31,7 @@ bool FrameStepping::wait(ViewerState& state, bool fixed_pacing, double wait_s) {
     }
     const auto now = Clock::now();
     calls_.sample(now);
-    const apps::CallWatch::Call* call = calls_.longest();
+    const apps::CallWatch::Call* call = calls_.longest(given_up_);
     state.stuck.component = call ? call->call.component : "";
     state.stuck.running_s =
         call ? call->running_s(now) : std::chrono::duration<double>(now - since_).count();
@@ -57,6 +57,8 @@ void FrameStepping::give_up(ViewerState& state, bool reload) {
     gate_->abandoned = true;
   }
   stepper_.abandon();
+  for (const apps::CallWatch::Call& c : calls_.calls())  // still running, but no longer ours
+    given_up_.push_back(c.call);
   (void)state.sim.release();  // the thread may still be in it: never freed
   (void)gate_.release();
   gate_ = std::make_unique<StepGate>();

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace s2sim::viewer {
 
@@ -45,6 +46,7 @@ class FrameStepping {
   Stepper stepper_;
   std::unique_ptr<StepGate> gate_ = std::make_unique<StepGate>();
   apps::CallWatch calls_;
+  std::vector<RunningCall> given_up_;  ///< calls of given-up runs, never named again
   Clock::time_point since_;
 };
 

@@ -520,28 +520,34 @@ TEST_F(Viewer, AComponentThatNeverReturnsLeavesTheWindowDrawingAndCanBeStopped) 
   const Result stopped =
       view(scene.string(), {"--plugin-path", plugins,
                             "--do",          "pace wall",
-                            "--do",          "wait 30",
+                            "--do",          "wait 60",
                             "--do",          "print stuck",
                             "--do",          "click Stop the simulation",
                             "--do",          "wait 2",
                             "--do",          "print stuck",
                             "--do",          "print time",
                             "--do",          "print log-count stopped: " + villain,
+                            "--do",          "click Play",
+                            "--do",          "wait 20",
+                            "--do",          "print stuck",
                             "--do",          "quit"});
-  ASSERT_EQ(stopped.status, 0) << stopped.err;
+  // Quit while the second call hangs: the viewer does not wait for it, and says so (exit 8).
+  EXPECT_EQ(stopped.status, 8) << stopped.err;
+  EXPECT_NE(stopped.err.find("the window closed while " + villain), std::string::npos)
+      << stopped.err;
   const std::vector<std::string> stuck = lines_with(stopped.out, "stuck ");
-  ASSERT_EQ(stuck.size(), 2u) << stopped.out;
+  ASSERT_EQ(stuck.size(), 3u) << stopped.out;
   EXPECT_EQ(stuck[0].rfind("yes ", 0), 0u) << stuck[0];
   EXPECT_NE(stuck[0].find(villain), std::string::npos) << stuck[0];
   EXPECT_GT(number_after(stopped.out, "stuck yes ", 0), 1.0) << "frames went on past the wait";
   EXPECT_EQ(stuck[1].rfind("no ", 0), 0u) << stuck[1];
   EXPECT_EQ(number_after(stopped.out, "time ", 0), 0) << "the scene is loaded again, paused";
   EXPECT_EQ(number_after(stopped.out, "log-count ", 0), 1) << stopped.out;
-
-  const Result closed = view(scene.string(), {"--plugin-path", plugins, "--do", "pace wall", "--do",
-                                              "wait 10", "--do", "quit"});
-  EXPECT_EQ(closed.status, 8) << closed.err;
-  EXPECT_NE(closed.err.find("the window closed while " + villain), std::string::npos) << closed.err;
+  // Played again, the reloaded scene's own call hangs: the notice names it with its own time,
+  // not the given-up call's (which still runs on its thread).
+  EXPECT_EQ(stuck[2].rfind("yes ", 0), 0u) << stuck[2];
+  EXPECT_LT(number_after(stopped.out, "stuck yes ", 1), number_after(stopped.out, "stuck yes ", 0))
+      << stopped.out;
 
   const Result paced =
       view(scene.string(), {"--plugin-path", plugins, "--frames", "100", "--watchdog", "0.5"});
