@@ -18,7 +18,9 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <optional>
+#include <system_error>
 #include <thread>
 
 namespace {
@@ -204,8 +206,14 @@ int main(int argc, char** argv) {
   } catch (const s2sim::runner::OutputError& e) {
     std::fprintf(stderr, "s2sim-run: error: %s\n", e.what());
     return s2sim::runner::kExitOutputFailed;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "s2sim-run: error: %s\n", s2sim::apps::kOutOfMemoryText);
+    return s2sim::apps::kExitCannotGoOn;
+  } catch (const std::system_error& e) {
+    std::fprintf(stderr, "s2sim-run: error: %s: %s\n", s2sim::apps::kResourceRefusedText, e.what());
+    return s2sim::apps::kExitCannotGoOn;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "s2sim-run: internal error: %s\n", e.what());
-    return 1;
+    return s2sim::apps::kExitCannotGoOn;
   }
 }

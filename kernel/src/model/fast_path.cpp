@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <sstream>
 
 namespace s2sim::model {
@@ -145,6 +146,8 @@ void build_fast_path(Multibody::Impl& m) {
       scale = std::max(scale, std::abs(simbody[i]));
       worst = std::max(worst, std::abs(simbody[i] - m.udot[i]));
     }
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception&) {
     // A system either side cannot solve at load (a singular mass matrix): Simbody's, which
     // reports it when stepping as it always did.

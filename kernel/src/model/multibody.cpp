@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace s2sim::model {
 
@@ -292,6 +293,8 @@ void Multibody::restored() {
   m.substep = 0;
   try {
     m.system.realize(m.current, SimTK::Stage::Velocity);
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception& e) {  // e.g. a zero quaternion: a NaN inertia
     throw Error(ErrorKind::usage,
                 std::string("the snapshot's multibody state is not a valid one: ") + e.what());

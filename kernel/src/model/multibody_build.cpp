@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <new>
 #include <string>
 
 namespace s2sim::model {
@@ -170,6 +171,8 @@ void add_tree_bodies(Multibody::Impl& m, Build& b) {
       if (sb.gravity) m.weights.push_back({index, sb.mass_kg, to_simtk(sb.com_m)});
     } catch (const Error&) {
       throw;
+    } catch (const std::bad_alloc&) {
+      throw;
     } catch (const std::exception& ex) {
       throw scene_error(e.joint >= 0 ? scene.joints[e.joint].where : sb.where,
                         "Simbody refused body '" + sb.id + "': " + ex.what());
@@ -283,6 +286,8 @@ void build_initial_state(Multibody::Impl& m, const Build& b, double tick_s, int 
     if (!m.stops.empty()) tune_stops(m, state, kStopRinging * substeps / tick_s);
     m.system.realize(state, SimTK::Stage::Velocity);
     m.initial_state = state;
+  } catch (const std::bad_alloc&) {
+    throw;
   } catch (const std::exception& ex) {
     throw scene_error(Location{b.scene.file.string(), "", ""},
                       std::string("the multibody system could not be built: ") + ex.what());

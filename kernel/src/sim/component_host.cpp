@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace s2sim {
 
@@ -391,6 +392,8 @@ void sim::rethrow_from_component(const ComponentSlot& slot, const char* call, Er
     if (!at.file.empty() || e.message().rfind(label, 0) == 0)
       throw Error(e.kind(), at, e.message());
     throw Error(e.kind(), slot.where, label + from + ", " + call + ": " + e.message());
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory is the system's refusal, not the component's error
   } catch (const std::exception& e) {
     throw Error(fallback, slot.where, label + from + ", " + call + ": " + e.what());
   } catch (...) {

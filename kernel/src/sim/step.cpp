@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 
 namespace s2sim {
@@ -176,6 +177,8 @@ void physics_tick(model::MultibodyIslands& mb, model::SubstepForces* contact, St
     }
   } catch (const Error&) {
     throw;
+  } catch (const std::bad_alloc&) {
+    throw;  // out of memory, not a diverged state
   } catch (const std::exception& e) {
     throw_diverged(mb, e);
   }

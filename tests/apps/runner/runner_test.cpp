@@ -36,6 +36,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace pt = boost::property_tree;
 using ::testing::AllOf;
+using ::testing::AnyOf;
 using ::testing::Contains;
 using ::testing::Each;
 using ::testing::ElementsAreArray;
@@ -143,11 +144,14 @@ class Runner : public ::testing::Test {
   }
 
   /// Runs s2sim-run in dir_ (relative output paths land there).
-  Result run(const std::vector<std::string>& args) const {
+  /// `shell` goes before the runner's name in the shell's command (e.g. "ulimit -v 90000; exec").
+  Result run(const std::vector<std::string>& args, const std::string& shell = "") const {
     // Appended piece by piece: `"literal" + std::string&&` trips a false GCC 12 -Wrestrict.
     std::string cmd = "cd ";
     cmd += quote(dir_.string());
     cmd += " && ";
+    cmd += shell;
+    cmd += ' ';
     cmd += quote(kRunner.string());
     for (const auto& a : args) {
       cmd += ' ';
@@ -515,6 +519,43 @@ TEST_F(Runner, AComponentThatNeverReturnsIsStoppedByTheWatchdogNamingIt) {
   const Result bad = run({scene.string(), "--watchdog", "-1"});
   EXPECT_EQ(bad.status, 4);
   EXPECT_THAT(bad.err, HasSubstr("--watchdog must be"));
+}
+
+// Memory the system refused (a process limit, a full machine) was "internal error:
+// std::bad_alloc", exit 1 as for a bug, and a thread it refused "internal error: Resource
+// temporarily unavailable"; out of memory inside the step was reported as a diverged state. Each
+// limit below what the run needs now ends it saying what was refused (exit 1, as documented),
+// or, when a plugin's library could not be mapped, as a plugin that cannot be loaded (exit 3).
+TEST_F(Runner, MemoryOrAThreadTheSystemRefusesIsSaidSo) {
+  const std::string scene = (fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_64").string();
+  auto limited = [&](int kB) {
+    return run({scene, "--duration", "0.05", "--quiet"},
+               "ulimit -v " + std::to_string(kB) + "; exec");
+  };
+  // The least address space the run needs, to 1 MB (the libraries' share differs by machine).
+  int enough = 4 << 20, too_little = 8 << 10;
+  ASSERT_EQ(limited(enough).status, 0) << limited(enough).err;
+  while (enough - too_little > 1024) {
+    const int middle = (enough + too_little) / 2;
+    (limited(middle).status == 0 ? enough : too_little) = middle;
+  }
+  int said_out_of_memory = 0;
+  for (int kB = enough - 1024; kB > enough - 16 * 1024; kB -= 1024) {
+    const Result r = limited(kB);
+    if (r.status == 127) break;   // the loader could not map the runner: before S2Sim runs
+    if (r.status == 0) continue;  // the need varies by a little from run to run
+    EXPECT_THAT(r.err, Not(HasSubstr("internal error"))) << kB << " kB";
+    EXPECT_THAT(r.err, Not(HasSubstr("diverged"))) << kB << " kB";
+    if (r.status == 1) {
+      EXPECT_THAT(r.err, AnyOf(HasSubstr("out of memory: the system refused"),
+                               HasSubstr("the system refused a resource")))
+          << kB << " kB";
+      said_out_of_memory += r.err.find("out of memory") != std::string::npos;
+    } else {
+      EXPECT_EQ(r.status, 3) << kB << " kB: " << r.err;
+    }
+  }
+  EXPECT_GT(said_out_of_memory, 0) << "no limit ran out of memory in S2Sim's own code";
 }
 
 // A plugin's exit(0) ended the run with exit 0, no word and the CSV cut short; exit(3) passed
