@@ -117,7 +117,7 @@ void on_fatal_signal(int sig, siginfo_t* info, void* context) {
     say(" in S2Sim itself (no component was running): please report it\n");
   }
   say("s2sim-run: the --log file keeps every complete row written before it\n");
-  ::_exit(kExitComponentCrashed);
+  end_process_now(kExitComponentCrashed);
 }
 
 /// exit() from inside a call into a component (a plugin's `exit(0)`): the run did not end, it
@@ -130,7 +130,7 @@ void on_exit_call() {
   say(component);
   say(" called exit() during its call: the run is stopped there; the --log file keeps every "
       "complete row\n");
-  ::_exit(kExitComponentExited);
+  end_process_now(kExitComponentExited);
 }
 
 }  // namespace

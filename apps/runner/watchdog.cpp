@@ -2,6 +2,7 @@
 #include "watchdog.hpp"
 
 #include "call_watch.hpp"
+#include "crash_report.hpp"
 #include "outputs.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
@@ -60,7 +61,7 @@ void Watchdog::watch() {
                      "complete row\n",
                      c.call.component, c.running_s(now), budget_s_);
         std::fflush(stderr);
-        ::_exit(kExitWatchdog);
+        end_process_now(kExitWatchdog);
       }
       bool counted = false;
       for (Share& s : shares)

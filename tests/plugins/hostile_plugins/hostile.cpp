@@ -7,6 +7,8 @@
 // in mode 'destroy_segv'.
 #include <s2sim/sdk.hpp>
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -64,6 +66,8 @@ class Hostile : public Component {
     if (mode_ == "update_slow") std::this_thread::sleep_for(std::chrono::milliseconds(100));
     if (mode_ == "update_exit0") std::exit(0);  // as a careless plugin ends "its" program
     if (mode_ == "update_exit3") std::exit(3);
+    if (mode_ == "update__exit0") ::_exit(0);  // no atexit handler sees this one
+    if (mode_ == "update__Exit3") std::_Exit(3);
     // A crash on a thread of the plugin's own, outside any call of the kernel into it.
     if (mode_ == "thread_trap" && !thread_.joinable())
       thread_ = std::thread([] { __builtin_trap(); });
