@@ -74,6 +74,10 @@ std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene);
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
 std::unique_ptr<Engine> make_mujoco(const SceneSpec& scene);
 #endif
+#ifdef S2SIM_PEERS_HAVE_BULLET
+/// Bullet's btMultiBody for the jointed scenes, rigid bodies for the pile (bullet_engine.cpp).
+std::unique_ptr<Engine> make_bullet(const SceneSpec& scene);
+#endif
 #ifdef S2SIM_PEERS_HAVE_ODE
 std::unique_ptr<Engine> make_ode_quickstep(const SceneSpec& scene);
 std::unique_ptr<Engine> make_ode_worldstep(const SceneSpec& scene);
