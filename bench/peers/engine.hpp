@@ -1,6 +1,7 @@
 #pragma once
 // The peer benchmark's view of a physics engine (bench/peers, docs/benchmarks.md): S2Sim
-// through its façade, MuJoCo and ODE through their C APIs, each loaded with the same scene.
+// through its façade, MuJoCo and ODE through their C APIs, Bullet through its C++ one, each
+// loaded with the same scene.
 
 #include <array>
 #include <filesystem>
