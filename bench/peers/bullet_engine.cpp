@@ -276,8 +276,8 @@ class BulletEngine final : public Engine {
   void add_robot(const std::array<double, 2>& origin) {
     using namespace diffbot;
     // The chassis: brick and motor housings (massive), caster (massless), about their centre
-    // of mass. btMultiBody takes principal inertias: the small xz product (about 6 % of Iyy)
-    // is left out.
+    // of mass. btMultiBody takes principal inertias: the xz product (6 % of Iyy, principal
+    // axes 10° about y) is left out.
     struct Part {
       double mass;
       Vec3d size, centre;
