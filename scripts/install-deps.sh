@@ -4,6 +4,7 @@
 # SimTwo projects' control.pas scripts (docs/scripting.md); binutils' addr2line names the line
 # of a script's run-time error. libavcodec (with libavformat and libswscale) writes s2sim-view's
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
+# libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
 set -euo pipefail
 
@@ -14,7 +15,7 @@ packages=(
   liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
   libgtest-dev libbenchmark-dev
-  libmujoco-dev libode-dev
+  libmujoco-dev libode-dev libbullet-dev
   xvfb xauth
   gnuplot-nox
   python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed

@@ -1,6 +1,7 @@
 #pragma once
 // The peer benchmark's view of a physics engine (bench/peers, docs/benchmarks.md): S2Sim
-// through its façade, MuJoCo and ODE through their C APIs, each loaded with the same scene.
+// through its façade, MuJoCo and ODE through their C APIs, Bullet through its C++ one, each
+// loaded with the same scene.
 
 #include <array>
 #include <filesystem>
@@ -73,6 +74,10 @@ std::unique_ptr<Engine> make_s2sim_copies2(const SceneSpec& scene);
 std::unique_ptr<Engine> make_s2sim_simbody(const SceneSpec& scene);
 #ifdef S2SIM_PEERS_HAVE_MUJOCO
 std::unique_ptr<Engine> make_mujoco(const SceneSpec& scene);
+#endif
+#ifdef S2SIM_PEERS_HAVE_BULLET
+/// Bullet's btMultiBody for the jointed scenes, rigid bodies for the pile (bullet_engine.cpp).
+std::unique_ptr<Engine> make_bullet(const SceneSpec& scene);
 #endif
 #ifdef S2SIM_PEERS_HAVE_ODE
 std::unique_ptr<Engine> make_ode_quickstep(const SceneSpec& scene);

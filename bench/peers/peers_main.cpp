@@ -1,10 +1,10 @@
-// s2sim-peers: S2Sim side by side with MuJoCo and ODE on the same scenes (docs/benchmarks.md,
-// "Peers"). Every engine steps each scene in turn, several rounds in a rotating order; the
-// report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's speed-up over
-// each peer, and each engine's physical outcome, so that a faster wrong answer shows. The
-// engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two threads:
-// its speed-up column is the serial run's wall time over its own. The engine s2sim-copies2 is two
-// serial copies of the scene stepped at once on two threads: its speed-up column, twice the
+// s2sim-peers: S2Sim side by side with MuJoCo, ODE and Bullet on the same scenes
+// (docs/benchmarks.md, "Peers"). Every engine steps each scene in turn, several rounds in a
+// rotating order; the report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's
+// speed-up over each peer, and each engine's physical outcome, so that a faster wrong answer shows.
+// The engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two
+// threads: its speed-up column is the serial run's wall time over its own. The engine s2sim-copies2
+// is two serial copies of the scene stepped at once on two threads: its speed-up column, twice the
 // serial run's wall time over its own, is what the machine gives two threads on the scene's
 // work, the ceiling for s2sim-par2 in the same rounds; s2sim-par2-lockstep is s2sim-par2
 // without running ahead (the parts wait for each other at every tick). The engine s2sim-simbody is
@@ -60,6 +60,9 @@ std::vector<EngineFactory> available_engines() {
 #ifdef S2SIM_PEERS_HAVE_ODE
   engines.push_back({"ode-quick20", &make_ode_quickstep});
   engines.push_back({"ode-step", &make_ode_worldstep});
+#endif
+#ifdef S2SIM_PEERS_HAVE_BULLET
+  engines.push_back({"bullet", &make_bullet});
 #endif
   return engines;
 }
@@ -334,6 +337,9 @@ int run(const Options& o) {
 #endif
 #ifndef S2SIM_PEERS_HAVE_ODE
   std::printf("(ODE skipped: libode-dev not found at configure time) ");
+#endif
+#ifndef S2SIM_PEERS_HAVE_BULLET
+  std::printf("(Bullet skipped: libbullet-dev not found at configure time) ");
 #endif
   std::printf("\n");
 
