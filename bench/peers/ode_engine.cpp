@@ -80,20 +80,10 @@ class OdeEngine final : public Engine {
     space_ = dHashSpaceCreate(nullptr);
     contacts_ = dJointGroupCreate(0);
     dCreatePlane(space_, 0, 0, 1, 0);  // no surface of its own: the other's friction applies
-    switch (scene_.kind) {
-      case SceneSpec::Kind::robots:
-        for (int i = 0; i < scene_.robot_count; ++i)
-          add_robot(grid_position(i, scene_.robot_count));
-        break;
-      case SceneSpec::Kind::pile:
-        for (const PileBody& b : read_pile(scene_.mjcf()))
-          add_pile_body(b);
-        break;
-      case SceneSpec::Kind::humanoid:
-      case SceneSpec::Kind::arm_loop:
-        add_articulated(read_articulated(scene_.ode_table()));
-        break;
-    }
+    add_scene_bodies(
+        scene_, [&](const std::array<double, 2>& xy) { add_robot(xy); },
+        [&](const PileBody& b) { add_pile_body(b); },
+        [&](const ArticulatedModel& model) { add_articulated(model); });
   }
 
   void destroy() {

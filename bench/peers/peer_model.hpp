@@ -4,6 +4,8 @@
 // articulated models' tables and the pile's bodies (read from the files that
 // make-peer-scenes.py writes). Keep in step with make-peer-scenes.py.
 
+#include "engine.hpp"
+
 #include <array>
 #include <filesystem>
 #include <string>
@@ -79,5 +81,26 @@ struct PileBody {
 /// The bodies of bench/peers/mjcf/pile.xml (one `<body>` a line, as make-peer-scenes.py writes
 /// them); throws std::runtime_error naming file and line.
 std::vector<PileBody> read_pile(const std::filesystem::path& mjcf);
+
+/// What an engine builds for `scene`, from the files every engine reads: each robot at its
+/// place on the grid, each pile body, or the articulated model (humanoid, arm).
+template <class AddRobot, class AddPileBody, class AddArticulated>
+void add_scene_bodies(const SceneSpec& scene, AddRobot&& add_robot, AddPileBody&& add_pile_body,
+                      AddArticulated&& add_articulated) {
+  switch (scene.kind) {
+    case SceneSpec::Kind::robots:
+      for (int i = 0; i < scene.robot_count; ++i)
+        add_robot(grid_position(i, scene.robot_count));
+      break;
+    case SceneSpec::Kind::pile:
+      for (const PileBody& b : read_pile(scene.mjcf()))
+        add_pile_body(b);
+      break;
+    case SceneSpec::Kind::humanoid:
+    case SceneSpec::Kind::arm_loop:
+      add_articulated(read_articulated(scene.ode_table()));
+      break;
+  }
+}
 
 }  // namespace peers
