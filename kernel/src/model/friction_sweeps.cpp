@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace s2sim::model {
 namespace {
@@ -17,52 +18,42 @@ constexpr std::size_t kBlockRoom = 64;
 /// ε of a block's solve, relative to its largest entry (solve_members).
 constexpr double kBlockRegularisation = 1e-6;
 
-/// Cholesky's factor and substitution at a block's size (two rows per point) as a constant,
-/// unrolled: the same numbers in fewer instructions.
+/// Calls `fixed(std::integral_constant<int, N>{})` for a block of N rows (two per point) known
+/// at compile time, unrolled, else `any()`: the same numbers in fewer instructions.
 static_assert(kMaxBlockPoints == 8, "a case per block size below");
-bool factor_block(double* A, int size) {
+template <class Fixed, class Any>
+auto at_block_size(int size, Fixed&& fixed, Any&& any) {
+  using std::integral_constant;
   switch (size) {
     case 2:
-      return common::cholesky_factor<2>(A);
+      return fixed(integral_constant<int, 2>{});
     case 4:
-      return common::cholesky_factor<4>(A);
+      return fixed(integral_constant<int, 4>{});
     case 6:
-      return common::cholesky_factor<6>(A);
+      return fixed(integral_constant<int, 6>{});
     case 8:
-      return common::cholesky_factor<8>(A);
+      return fixed(integral_constant<int, 8>{});
     case 10:
-      return common::cholesky_factor<10>(A);
+      return fixed(integral_constant<int, 10>{});
     case 12:
-      return common::cholesky_factor<12>(A);
+      return fixed(integral_constant<int, 12>{});
     case 14:
-      return common::cholesky_factor<14>(A);
+      return fixed(integral_constant<int, 14>{});
     case 16:
-      return common::cholesky_factor<16>(A);
+      return fixed(integral_constant<int, 16>{});
     default:
-      return common::cholesky_factor(A, size);
+      return any();
   }
 }
+bool factor_block(double* A, int size) {
+  return at_block_size(
+      size, [&](auto n) { return common::cholesky_factor<decltype(n)::value>(A); },
+      [&] { return common::cholesky_factor(A, size); });
+}
 void substitute_block(const double* L, int size, double* x) {
-  switch (size) {
-    case 2:
-      return common::cholesky_substitute<2>(L, x, x);
-    case 4:
-      return common::cholesky_substitute<4>(L, x, x);
-    case 6:
-      return common::cholesky_substitute<6>(L, x, x);
-    case 8:
-      return common::cholesky_substitute<8>(L, x, x);
-    case 10:
-      return common::cholesky_substitute<10>(L, x, x);
-    case 12:
-      return common::cholesky_substitute<12>(L, x, x);
-    case 14:
-      return common::cholesky_substitute<14>(L, x, x);
-    case 16:
-      return common::cholesky_substitute<16>(L, x, x);
-    default:
-      return common::cholesky_substitute(L, size, x, x);
-  }
+  at_block_size(
+      size, [&](auto n) { common::cholesky_substitute<decltype(n)::value>(L, x, x); },
+      [&] { common::cholesky_substitute(L, size, x, x); });
 }
 
 /// Point i's slip along its two tangents at the speeds x, against its surface.
