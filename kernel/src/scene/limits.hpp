@@ -31,7 +31,7 @@ inline constexpr std::int64_t kMaxRuntimeThings = 4096;
 inline constexpr int kDefaultRuntimeThings = 32;
 
 // Rays of one sensor beam: s2sim::kMaxBeamRays (s2sim/sensor.hpp, shared with the plugins).
-/// A camera's or canvas's width or height in pixels, and a camera's frame decimation.
-inline constexpr int kMaxImageSide_px = 16384;
+// A camera's or canvas's width or height in pixels, and a camera's frame decimation:
+// s2sim::kMaxImageSide_px (s2sim/image.hpp, shared with the plugins).
 
 }  // namespace s2sim::scene::limits

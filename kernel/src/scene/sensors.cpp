@@ -17,10 +17,10 @@ namespace {
 
 bool is_sensor_element(std::string_view name) {
   // SimTwo's twelve, then S2Sim's own kinds (SimTwo ignores them as unknown names).
-  static constexpr std::array<std::string_view, 16> kinds = {
-      "IR",    "IRSharp", "capacitive", "inductive", "floorline", "ranger2d",
-      "imu",   "RFID",    "beacon",     "pentip",    "solenoid",  "spraygun",
-      "sonar", "pose",    "touch",      "jointforce"};
+  static constexpr std::array<std::string_view, 18> kinds = {
+      "IR",    "IRSharp", "capacitive", "inductive",  "floorline", "ranger2d",
+      "imu",   "RFID",    "beacon",     "pentip",     "solenoid",  "spraygun",
+      "sonar", "pose",    "touch",      "jointforce", "camera",    "lidar3d"};
   for (auto k : kinds)
     if (k == name) return true;
   return false;

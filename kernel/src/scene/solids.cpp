@@ -105,9 +105,9 @@ bool read_visual_child(LoadContext& ctx, const Reader& r, const Element& c, Shap
       ctx.warn(r.at(c), "<" + n + "> applies to cuboids only; ignored");
     } else if (n == "canvas") {
       v.canvas = true;
-      v.canvas_width_px = r.integer_in(c, "width", v.canvas_width_px, 1, limits::kMaxImageSide_px);
+      v.canvas_width_px = r.integer_in(c, "width", v.canvas_width_px, 1, kMaxImageSide_px);
       v.canvas_height_px =  // SimTwo's spelling
-          r.integer_in(c, "heigth", v.canvas_height_px, 1, limits::kMaxImageSide_px);
+          r.integer_in(c, "heigth", v.canvas_height_px, 1, kMaxImageSide_px);
     } else {
       v.liquid = true;
     }

@@ -148,6 +148,23 @@ class ConfigureContextImpl final : public ConfigureContext {
     sim_.state_initial.insert(sim_.state_initial.end(), static_cast<std::size_t>(count), initial);
     return StateHandle{offset, count};
   }
+  ImageHandle declare_image(std::string_view name, int width_px, int height_px,
+                            PixelFormat format) override {
+    try {
+      return ImageHandle{sim_.add_image(sim::field_path(slot().prefix, name), width_px, height_px,
+                                        format, index_)};
+    } catch (const Error& e) {
+      throw fail(e.what());
+    }
+  }
+  ImageHandle image(std::string_view full_name) const override {
+    const std::int32_t i = sim_.image_index(full_name);
+    if (i >= 0) return ImageHandle{i};
+    std::vector<std::string> names;
+    for (const auto& img : sim_.image_slots)
+      names.push_back(img.name);
+    throw fail(unknown("image", std::string(full_name), names));
+  }
   const SensorSpec* sensor_spec() const override {
     if (slot().sensor < 0) return nullptr;
     S2SIM_ASSERT(static_cast<std::size_t>(slot().sensor) < sim_.scene.sensors.size(),

@@ -182,6 +182,8 @@ void Simulation::Impl::sync_local_views() {
     local.view.axis_drive_count = drive_count;
     local.view.kernel = &local;
     local.view.cast_ray = &refuse_ray;
+    local.view.renderer = &local;
+    local.view.render_camera = &refuse_render;
     local.view.placer = &local;
     local.view.request_place = &refuse_place;
     local.view.request_move = &refuse_move;
@@ -217,6 +219,9 @@ namespace {
 RayHit Simulation::Impl::refuse_ray(const void* local, const Vec3&, const Vec3&, double,
                                     std::int32_t) {
   refuse(local, "cast a ray");
+}
+void Simulation::Impl::refuse_render(const void* local, const CameraShot&, Image*, Image*, Image*) {
+  refuse(local, "rendered a camera");
 }
 void Simulation::Impl::refuse_place(const void* local, std::int32_t, const Pose&) {
   refuse(local, "asked to place a body");

@@ -232,6 +232,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.world.request_velocity = &Simulation::Impl::request_velocity;
   m.world.annotator = &m;
   m.world.annotate = &Simulation::Impl::annotate;
+  m.bind_images();
   m.init_body_masses();  // before the things, whose spares take their masses
   m.init_things();
   m.init_body_shapes();

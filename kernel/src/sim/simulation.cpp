@@ -42,7 +42,9 @@ void use_alternate_signal_stack() noexcept {
   common::use_alternate_signal_stack();
 }
 
-Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Simulation::Simulation(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {
+  impl_->facade = this;
+}
 Simulation::~Simulation() = default;
 
 const scene::Scene& Simulation::scene() const {

@@ -171,6 +171,7 @@ struct Simulation::Impl {
   void record_group_axis_loads(const sim::ComponentGroup& group);
   // What a local component is refused (LocalView): each throws naming it.
   static RayHit refuse_ray(const void* local, const Vec3&, const Vec3&, double, std::int32_t);
+  static void refuse_render(const void* local, const CameraShot&, Image*, Image*, Image*);
   static void refuse_place(const void* local, std::int32_t, const Pose&);
   static void refuse_move(const void* local, std::int32_t, const Pose&);
   static void refuse_velocity(const void* local, std::int32_t, const Twist&);
@@ -285,6 +286,30 @@ struct Simulation::Impl {
 
   // Ray casting for sensors (WorldView::cast_ray), over the poses buffer.
   std::unique_ptr<collision::RayCaster> ray_caster;
+
+  // --- images (images.cpp) ---------------------------------------------------------------------
+  // Declared by components at configure; the pixels are allocated once, at bind_images, and
+  // read in place by components, the façade and Python. Outputs, not state: a reset zeroes
+  // them, a snapshot leaves them out.
+  struct ImageSlot {
+    std::string name;
+    int component = -1;
+    std::vector<std::uint8_t> pixels;
+  };
+  std::vector<ImageSlot> image_slots;
+  std::vector<Image> images;
+  const Simulation* facade = nullptr;  ///< what the renderer factory is given
+  CameraRendererFactory renderer_factory;
+  std::unique_ptr<CameraRenderer> renderer;
+  std::string renderer_error;  ///< why the factory failed, said again at every later frame
+  std::int32_t add_image(const std::string& name, int width_px, int height_px, PixelFormat format,
+                         int component);
+  /// Gives every image its pixels and the WorldView its images and renderer, after configure.
+  void bind_images();
+  void reset_images();
+  std::int32_t image_index(std::string_view name) const;  ///< -1 when unknown
+  static void render_camera(const void* impl, const CameraShot& shot, Image* rgb, Image* depth,
+                            Image* body_ids);
 
   // Per-stage timing of the tick pipeline (Simulation::set_profiling); null when off.
   std::unique_ptr<sim::StageProfile> profile;

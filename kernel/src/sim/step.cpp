@@ -410,6 +410,7 @@ void Simulation::Impl::reset() {
   pending_moves.clear();
   pending_velocities.clear();
   annotations.clear();
+  reset_images();
   multibody->reset();
   contacts->reset();
   reset_things();

@@ -10,6 +10,7 @@
 /// exact. `update()` must not allocate; it may throw `s2sim::Error` to stop the run.
 
 #include <s2sim/error.hpp>
+#include <s2sim/image.hpp>
 #include <s2sim/math.hpp>
 #include <s2sim/params.hpp>
 #include <s2sim/random.hpp>
@@ -245,6 +246,16 @@ struct WorldView {
   void (*annotate)(const void* annotator, std::int32_t component, std::int32_t what,
                    std::int32_t id, const char* text, std::size_t text_size,
                    const double* values) = nullptr;
+
+  // Images, `image_count` (ConfigureContext::declare_image).
+  std::int32_t image_count = 0;
+  Image* images = nullptr;
+  /// Draws the scene as it stands into the images given (any may be null), each of the
+  /// shot's size: rgb8, float32 depth along the optical axis, uint16 body ids. Throws
+  /// s2sim::Error when the simulation has no renderer or it fails.
+  const void* renderer = nullptr;
+  void (*render_camera)(const void* renderer, const CameraShot& shot, Image* rgb, Image* depth,
+                        Image* body_ids) = nullptr;
 };
 
 /// The kinds of `WorldView::annotate` calls; new kinds may be added without an ABI change (a
@@ -419,6 +430,33 @@ class StepContext {
   RayHit cast_ray(const Vec3& origin_m, const Vec3& direction, double max_distance_m,
                   BodyHandle ignore = {}) const {
     return w_->cast_ray(w_->kernel, origin_m, direction, max_distance_m, ignore.index);
+  }
+
+  // --- images ---
+
+  /// An image as it stands (its last frame); declared by this component or looked up with
+  /// `ConfigureContext::image`.
+  const Image& image(ImageHandle h) const {
+    return w_->images[detail::checked(h.index, w_->image_count, "image", "image")];
+  }
+  /// Starts a new frame of an image this component declared: counts the frame, stamps it
+  /// with this tick's time, and returns it to fill in place.
+  Image& begin_image(ImageHandle h) {
+    Image& image = w_->images[detail::checked(h.index, w_->image_count, "begin_image", "image")];
+    ++image.frame;
+    image.time_s = w_->time_s;
+    return image;
+  }
+  /// Draws the scene as the other sensors see it this tick, from `shot`, into any of three
+  /// images of the shot's size (null: not wanted): rgb8 colour; float32 depth in metres
+  /// along the optical axis (+infinity where nothing is within `far_m`); uint16 body ids,
+  /// the simulation's body index (0: the world's floor and obstacles, kNoBodyId: the sky).
+  /// Throws s2sim::Error when the simulation has no renderer (s2sim-run, s2sim-view and the
+  /// Python module give it one) or it fails. Start each image's frame first (begin_image).
+  void render_camera(const CameraShot& shot, Image* rgb, Image* depth, Image* body_ids) {
+    if (w_->render_camera == nullptr)
+      throw Error(ErrorKind::runtime, "StepContext::render_camera: not available here");
+    w_->render_camera(w_->renderer, shot, rgb, depth, body_ids);
   }
 
   // --- moving bodies by hand ---
@@ -784,6 +822,18 @@ class ConfigureContext {
   virtual std::vector<NamedUnit> signal_names(std::string_view pattern) const = 0;
   /// Every input declared so far whose full name matches the glob `pattern`.
   virtual std::vector<NamedUnit> input_names(std::string_view pattern) const = 0;
+
+  // --- images ---
+
+  /// Declares the image `<signal_prefix>/<name>`, `width_px` × `height_px` pixels of `format`,
+  /// zero until the first frame. Throws naming the image for a size outside 1..kMaxImageSide_px
+  /// or past kMaxImagePixels, or a name declared already.
+  virtual ImageHandle declare_image(std::string_view name, int width_px, int height_px,
+                                    PixelFormat format) = 0;
+  /// An image declared by a component configured before this one, by its full name (e.g.
+  /// `robots/r/sensors/cam/rgb`), to read with `StepContext::image`. Throws naming close names
+  /// when there is none.
+  virtual ImageHandle image(std::string_view full_name) const = 0;
 
   // --- state and schedule ---
 

@@ -4,6 +4,7 @@
 
 #include <s2sim/component.hpp>
 #include <s2sim/error.hpp>
+#include <s2sim/image.hpp>
 #include <s2sim/math.hpp>
 #include <s2sim/params.hpp>
 #include <s2sim/plugin.hpp>

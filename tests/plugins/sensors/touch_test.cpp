@@ -72,6 +72,8 @@ class FakeConfigure : public ConfigureContext {
   std::vector<NamedUnit> input_names(std::string_view) const override { return {}; }
   InputHandle input(std::string_view) override { return {}; }
   SignalReader signal_reader(std::string_view) const override { return {}; }
+  ImageHandle declare_image(std::string_view, int, int, PixelFormat) override { return {}; }
+  ImageHandle image(std::string_view) const override { return {}; }
 };
 
 struct World {

@@ -5,6 +5,7 @@
 
 #include <s2sim/component.hpp>
 #include <s2sim/kernel/annotations.hpp>
+#include <s2sim/kernel/camera_renderer.hpp>
 #include <s2sim/kernel/scene.hpp>
 #include <s2sim/math.hpp>
 
@@ -343,6 +344,16 @@ class Simulation {
   void set_body_mass(int body, double mass_kg);
   /// Body `body`'s mass properties as they stand now.
   MassProperties body_mass(int body) const;
+
+  /// The images the components declared (a camera's colour, depth and segmentation, a
+  /// lidar's range image...), by full name, in declaration order.
+  std::vector<std::string> image_names() const;
+  /// An image by its full name, read in place (valid while the simulation lives; its pixels
+  /// change at the frames its component writes). Throws naming close names when unknown.
+  const Image& image(std::string_view full_name) const;
+  /// How the cameras are drawn: the factory is called once, at the first camera frame.
+  /// Without one, a camera's first frame stops the run with an error naming it.
+  void set_camera_renderer(CameraRendererFactory factory);
 
   /// Log lines, HUD texts, trails and XY series the components published (SDK 0.9,
   /// annotations.hpp), since the load or the last reset. Not part of the state.
