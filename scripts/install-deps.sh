@@ -5,6 +5,7 @@
 # of a script's run-time error. libavcodec (with libavformat and libswscale) writes s2sim-view's
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
 # libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
+# libpng writes s2sim-run's --save-images frames.
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
 set -euo pipefail
 
@@ -14,6 +15,7 @@ packages=(
   libfcl-dev libassimp-dev
   liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
+  libpng-dev
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev libbullet-dev
   xvfb xauth

@@ -1,6 +1,7 @@
 // s2sim-run: the headless runner. Loads a scene, holds the --set inputs, steps it for
 // --duration seconds, logs and summarises.
 #include "crash_report.hpp"
+#include "image_saver.hpp"
 #include "options.hpp"
 #include "outputs.hpp"
 #include "recording.hpp"
@@ -128,6 +129,13 @@ int run(const s2sim::runner::Options& o) {
     if (const std::string error = recording->write_frame(*sim); !error.empty())
       throw runner::OutputError(error);
   };
+  std::optional<runner::ImageSaver> images;
+  if (!o.save_images_dir.empty()) {
+    images.emplace(o.save_images_dir, *sim);
+    for (const std::string& name : images->skipped())
+      std::fprintf(stderr, "s2sim-run: --save-images: '%s' is a point cloud, not saved\n",
+                   name.c_str());
+  }
   runner::ProgressBar progress(!o.quiet && isatty(STDERR_FILENO));
   if (log) log->write_row(*sim);
   record_frame();
@@ -136,10 +144,11 @@ int run(const s2sim::runner::Options& o) {
   // lets the parts run ahead over a chunk with --threads (docs/scheduling.md): a hundredth of
   // the run, a thousandth when paced in real time.
   // A SimTwo script may end the run (CloseSimTwo): then the steps go one by one, so that the
-  // run stops at the step of the request, its outputs written as at the end.
+  // run stops at the step of the request, its outputs written as at the end. Saved images
+  // too, so that no frame is drawn over before it is written.
   const std::optional<std::size_t> close = sim->find_signal("controllers/script/close");
   const std::int64_t chunk =
-      close              ? 1
+      close || images    ? 1
       : log || recording ? log_every
                          : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
   std::int64_t done = 0;
@@ -153,6 +162,7 @@ int run(const s2sim::runner::Options& o) {
     done += n;
     if (log && done % log_every == 0) log->write_row(*sim);
     if (done % log_every == 0) record_frame();
+    if (images) images->save_new_frames();
     if (o.realtime) {
       const double ahead = sim->time_s() - seconds_since(start);
       if (ahead > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead));

@@ -66,6 +66,8 @@ Options:
                        physics step; needs --log or --record)
   --record FILE        record the whole state at every log period (docs/recording.md):
                        s2sim-view --replay FILE plays it, s2sim.recording reads it
+  --save-images DIR    write every frame of every image (cameras, lidars) as
+                       DIR/<image name>/<frame>.png (docs/models/sensors.md, "Cameras")
   --summary FILE.json  write the final summary as JSON
   --no-timing          leave wall_time and rtf out of the JSON (byte-identical reruns)
   --seed N             seed of every random stream (default 1)
@@ -106,7 +108,7 @@ Options:
 
 Exit codes: 0 ok, 1 internal error, 2 bad scene, 3 plugin error, 4 bad usage
 (unknown signal or input, bad option), 5 the simulation failed (non-finite state),
-6 --log, --record or --summary could not be written, 7 a fatal signal (the component is
+6 --log, --record, --save-images or --summary could not be written, 7 a fatal signal (the component is
 named).
 )";
 }
@@ -139,6 +141,8 @@ Options parse_options(int argc, char** argv) {
       o.log_file = value();
     } else if (a == "--record") {
       o.record_file = value();
+    } else if (a == "--save-images") {
+      o.save_images_dir = value();
     } else if (a == "--signals") {
       values(o.signal_patterns);
     } else if (a == "--log-period") {

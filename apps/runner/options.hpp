@@ -21,6 +21,7 @@ struct Options {
   std::string log_file;
   std::optional<double> log_period_s;  ///< default: every tick
   std::string record_file;             ///< --record: the state at every log period
+  std::string save_images_dir;         ///< --save-images: every camera frame as a PNG
   std::vector<std::string> signal_patterns;
   std::string summary_file;
   bool summary_timing = true;  ///< wall_time and rtf in the JSON summary

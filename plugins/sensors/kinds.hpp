@@ -110,6 +110,24 @@ class Sonar : public Component {
   SignalHandle value_;
 };
 
+/// `camera`: colour, depth and segmentation images drawn by the simulation's renderer
+/// (`StepContext::render_camera`), with pixel and depth noise; also made from a `<camera>`
+/// shell.
+class CameraSensor : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  SensorSetup s_;
+  CameraShot shot_;  ///< its pose is the camera frame in the sensor frame
+  ImageHandle rgb_, depth_, ids_;
+  bool want_rgb_ = true, want_depth_ = false, want_ids_ = false;
+  GenericNoise depth_noise_;
+  const ZigguratTables* zig_ = nullptr;
+  SignalHandle frames_;
+};
+
 /// `imu`: accelerometer (specific force) and gyroscope in the sensor frame, with bias,
 /// white noise and bias random walk.
 class Imu : public Component {

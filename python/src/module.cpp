@@ -91,6 +91,7 @@ PYBIND11_MODULE(_s2sim, m) {
                                "check_dynamics=False, runtime_things=None).");
   bind_state(simulation);
   bind_queries(simulation);
+  bind_images(simulation);
   simulation
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,

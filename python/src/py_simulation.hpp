@@ -236,6 +236,8 @@ using PySimulationClass = pybind11::class_<PySimulation>;
 void bind_state(PySimulationClass& cls);
 /// Contacts and ray casts (queries.cpp).
 void bind_queries(PySimulationClass& cls);
+/// image_names, image(name), image_frame(name) (images.cpp).
+void bind_images(PySimulationClass& cls);
 /// Snapshot's pickling and its construction from parts (snapshots.cpp).
 void bind_snapshot(pybind11::class_<PySnapshot>& cls);
 

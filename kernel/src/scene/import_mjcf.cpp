@@ -266,6 +266,36 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
       model.warnings.push_back(display + ": actuator '" +
                                name_of(m, mjOBJ_ACTUATOR, u, "actuator") +
                                "' does not act on a joint; ignored");
+  for (int c = 0; c < m->ncam; ++c) {
+    // MuJoCo's camera looks along its -Z with +Y up; S2Sim's camera sensor frame along +X
+    // with +Z up. Columns: the sensor's X, Y, Z in the camera frame: -Z, -X, +Y.
+    const std::string cname = name_of(m, mjOBJ_CAMERA, c, "camera");
+    const Location where{display, "camera '" + cname + "'", ""};
+    const int b = m->cam_bodyid[c];
+    if (b == 0 || m->cam_mode[c] != mjCAMLIGHT_FIXED) {
+      model.warnings.push_back(where.str() + (b == 0 ? ": a camera fixed to the world"
+                                                     : ": a tracking camera") +
+                               " is not imported (cameras ride on a body)");
+      continue;
+    }
+    Sensor s;
+    s.kind = "camera";
+    s.id = s.name = cname;
+    s.where = where;
+    const Pose cam = pose_of(m->cam_pos + 3 * c, m->cam_quat + 4 * c);
+    const Mat3 sensor_in_camera{{{0, -1, 0}, {0, 0, 1}, {-1, 0, 0}}};
+    s.pose = Pose{cam.position, cam.rotation * sensor_in_camera};
+    Element params;
+    params.name = "camera";
+    params.path = where.element;
+    Element fov;
+    fov.name = "fov";
+    fov.path = params.path + "/fov";
+    fov.attributes = {{"vertical", format_number(m->cam_fovy[c])}};
+    params.children.push_back(std::move(fov));
+    s.params = ParamSource{std::move(params), display, std::make_shared<const ConstantTable>()};
+    model.sensors.push_back({link(b), std::move(s)});
+  }
   if (m->nsensor > 0)
     model.warnings.push_back(display + ": " + std::to_string(m->nsensor) +
                              " sensors are not imported");

@@ -68,7 +68,8 @@ bool has_descendant(const sdf::ElementPtr& el, const std::string& name) {
 
 /// An SDF sensor as S2Sim's kind (docs/models/import.md, "Sensors"): `imu` → imu, `lidar`,
 /// `gpu_lidar` (and their older names `ray`, `gpu_ray`) → a ranger2d scanning at once,
-/// `contact` → touch; the others are warned about. The pose is in the link's frame.
+/// `contact` → touch, `camera`, `depth_camera`, `rgbd_camera`, `segmentation_camera` → camera;
+/// the others are warned about. The pose is in the link's frame.
 std::optional<Sensor> imported_sensor(ImportedModel& model, const sdf::Sensor& in,
                                       const std::string& link, const std::string& display) {
   Sensor s;
@@ -118,6 +119,36 @@ std::optional<Sensor> imported_sensor(ImportedModel& model, const sdf::Sensor& i
       scan.path = params.path + "/scan";
       scan.attributes = {{"mode", "instant"}};
       params.children.push_back(std::move(scan));
+      break;
+    }
+    case sdf::SensorType::CAMERA:
+    case sdf::SensorType::DEPTH_CAMERA:
+    case sdf::SensorType::RGBD_CAMERA:
+    case sdf::SensorType::SEGMENTATION_CAMERA: {
+      // Gazebo's camera looks along its frame's +X with +Z up, as S2Sim's camera sensor does.
+      const sdf::Camera* camera = in.CameraSensor();
+      if (!camera) return std::nullopt;
+      s.kind = "camera";
+      const sdf::SensorType type = in.Type();
+      auto child = [&](const char* name, std::vector<std::pair<std::string, std::string>> attrs) {
+        Element e;
+        e.name = name;
+        e.path = params.path + "/" + name;
+        e.attributes = std::move(attrs);
+        params.children.push_back(std::move(e));
+      };
+      auto number = [](double v) { return format_number(v); };
+      child("frame", {{"width", std::to_string(camera->ImageWidth())},
+                      {"height", std::to_string(camera->ImageHeight())}});
+      child("fov", {{"horizontal", number(camera->HorizontalFov().Degree())}});
+      child("clip", {{"near", number(camera->NearClip())}, {"far", number(camera->FarClip())}});
+      const bool depth = type == sdf::SensorType::DEPTH_CAMERA || type == sdf::SensorType::RGBD_CAMERA;
+      child("outputs", {{"rgb", type == sdf::SensorType::DEPTH_CAMERA ? "0" : "1"},
+                        {"depth", depth ? "1" : "0"},
+                        {"segmentation", type == sdf::SensorType::SEGMENTATION_CAMERA ? "1" : "0"}});
+      if (type == sdf::SensorType::SEGMENTATION_CAMERA)
+        model.warnings.push_back(s.where.str() + ": camera '" + s.name +
+                                 "': segmentation gives body ids (S2Sim's), not Gazebo's labels");
       break;
     }
     default:

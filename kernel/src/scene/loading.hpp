@@ -70,6 +70,10 @@ void load_shells(LoadContext& ctx, const Reader& reader, const Element& shells, 
 void load_wheels(LoadContext& ctx, const Reader& reader, const Element& wheels, int robot);
 void load_articulations(LoadContext& ctx, const Reader& reader, const Element& list, int robot);
 /// Sensors or tools of a robot (`robot` >= 0) or of a scene-level file (`robot` = -1).
+/// A `<camera>` shell's `camera` sensor on `body`, looking along the shell's +Z (`shell_pose`
+/// in the body frame), its parameters the shell element (`focal`, `frame`...).
+void add_camera_shell(LoadContext& ctx, const Reader& reader, const Element& el, int robot,
+                      int body, const Pose& shell_pose, const std::string& id);
 void load_sensors(LoadContext& ctx, const Reader& reader, const Element& list, int robot,
                   bool is_tool);
 

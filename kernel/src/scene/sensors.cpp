@@ -42,6 +42,29 @@ void check_index_name(const Scene& scene, const Reader& r, const Element& el, co
   }
 }
 
+/// Names `s` (its ID, or its index in its list) and adds it to the scene, its parameters the
+/// element `el`; to its robot's list (which scripts index) when `listed`.
+void add_sensor(Scene& scene, const Reader& r, const Element& el, Sensor&& s, bool listed = true) {
+  s.params = ParamSource{el, r.file(), std::make_shared<ConstantTable>(r.constants())};
+  // Scripts address an ID-less sensor by its index (SimTwo's ID is ""), so that index names
+  // its signals; the world's index for scene-level sensors (GetGlobalSensorVal).
+  const int robot = s.robot;
+  std::vector<int> siblings;  // the sensors of the same list: the robot's, or scene-level
+  if (robot >= 0) {
+    siblings = scene.robots[static_cast<std::size_t>(robot)].sensors;
+  } else {
+    for (std::size_t i = 0; i < scene.sensors.size(); ++i)
+      if (scene.sensors[i].robot < 0) siblings.push_back(static_cast<int>(i));
+  }
+  const std::size_t index = robot >= 0 ? siblings.size() : scene.sensors.size();
+  s.name = s.id.empty() ? std::to_string(index) : s.id;
+  check_index_name(scene, r, el, s, siblings);
+  scene.sensors.push_back(std::move(s));
+  if (robot >= 0 && listed)
+    scene.robots[static_cast<std::size_t>(robot)].sensors.push_back(
+        static_cast<int>(scene.sensors.size() - 1));
+}
+
 }  // namespace
 
 void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int robot, bool is_tool) {
@@ -136,24 +159,28 @@ void load_sensors(LoadContext& ctx, const Reader& r, const Element& list, int ro
       ctx.warn(r.at(*solid_el), "<solid> of a scene-level sensor ignored (world-fixed)");
     }
 
-    s.params = ParamSource{el, r.file(), std::make_shared<ConstantTable>(r.constants())};
-    // Scripts address an ID-less sensor by its index (SimTwo's ID is ""), so that index names
-    // its signals; the world's index for scene-level sensors (GetGlobalSensorVal).
-    std::vector<int> siblings;  // the sensors of the same list: the robot's, or scene-level
-    if (robot >= 0) {
-      siblings = scene.robots[static_cast<std::size_t>(robot)].sensors;
-    } else {
-      for (std::size_t i = 0; i < scene.sensors.size(); ++i)
-        if (scene.sensors[i].robot < 0) siblings.push_back(static_cast<int>(i));
-    }
-    const std::size_t index = robot >= 0 ? siblings.size() : scene.sensors.size();
-    s.name = s.id.empty() ? std::to_string(index) : s.id;
-    check_index_name(scene, r, el, s, siblings);
-    scene.sensors.push_back(std::move(s));
-    if (robot >= 0)
-      scene.robots[static_cast<std::size_t>(robot)].sensors.push_back(
-          static_cast<int>(scene.sensors.size() - 1));
+    add_sensor(scene, r, el, std::move(s));
   }
+}
+
+void add_camera_shell(LoadContext& ctx, const Reader& r, const Element& el, int robot, int body,
+                      const Pose& shell_pose, const std::string& id) {
+  Sensor s;
+  s.kind = "camera";
+  s.id = id;
+  s.robot = robot;
+  s.body = body;
+  s.where = r.at(el);
+  // The shell's camera looks along the shell's +Z with +Y up; a sensor frame looks along its
+  // +X with +Z up. Columns: the sensor's X, Y, Z in the shell frame.
+  Mat3 sensor_in_shell;
+  sensor_in_shell.m[0][0] = 0, sensor_in_shell.m[0][1] = 1, sensor_in_shell.m[0][2] = 0;
+  sensor_in_shell.m[1][0] = 0, sensor_in_shell.m[1][1] = 0, sensor_in_shell.m[1][2] = 1;
+  sensor_in_shell.m[2][0] = 1, sensor_in_shell.m[2][1] = 0, sensor_in_shell.m[2][2] = 0;
+  s.pose = Pose{shell_pose.position, shell_pose.rotation * sensor_in_shell};
+  // Not in the robot's sensor list: SimTwo's scripts index that list, and a shell is not in
+  // it there.
+  add_sensor(ctx.scene, r, el, std::move(s), false);
 }
 
 void load_sensors_file(LoadContext& ctx, const std::filesystem::path& file,

@@ -83,6 +83,8 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
     }
     if (kind == "camera") g.camera = camera;
     g.pose = Pose{prim.pos, rotation_from_rot_deg(prim.rot_deg)};
+    // A camera shell is also a camera sensor, named by its ID ("Shell" when it has none).
+    if (kind == "camera") add_camera_shell(ctx, r, el, robot, body, g.pose, g.id);
 
     Body& b = scene.bodies[static_cast<std::size_t>(body)];
     if (mass > 0) {
