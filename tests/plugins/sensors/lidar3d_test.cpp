@@ -56,10 +56,10 @@ std::string room_lidar(const std::string& extra = "") {
          extra + "</lidar3d>\n";
 }
 
-/// Writes the room with the robot carrying `robot_sensors` and the world-fixed
-/// `scene_sensors` into a folder of this process named `name`.
+/// Writes the room with the robot carrying `robot_sensors` (and `robot_extra` after its
+/// `<sensors>`) and the world-fixed `scene_sensors` into a folder of this process named `name`.
 fs::path write_scene(const std::string& name, const std::string& robot_sensors,
-                     const std::string& scene_sensors = "") {
+                     const std::string& scene_sensors = "", const std::string& robot_extra = "") {
   const fs::path dir = test::process_temp_dir() / ("lidar3d_" + name);
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -69,7 +69,8 @@ fs::path write_scene(const std::string& name, const std::string& robot_sensors,
          "      <ID value='base'/>\n      <mass value='1'/>\n"
          "      <size x='0.3' y='0.3' z='0.2'/>\n      <pos x='0.7' y='-0.4' z='1.1'/>\n"
          "      <nogravity/>\n    </cuboid>\n  </solids>\n  <sensors>\n"
-      << robot_sensors << "  </sensors>\n</robot>\n";
+      << robot_sensors << "  </sensors>\n"
+      << robot_extra << "</robot>\n";
   std::ofstream(dir / "sensors.xml") << "<?xml version=\"1.0\" ?>\n<sensors>\n"
                                      << scene_sensors << "</sensors>\n";
   std::ofstream(dir / "scene.xml")
@@ -317,6 +318,22 @@ TEST(Lidar3D, TheFrameCounterAdvancesOncePerPeriod) {
   }
   sim->reset();
   EXPECT_EQ(range.frame, 0u);
+}
+
+TEST(Lidar3D, APluginPlacementReadsTheSameChildrenAndScansTheSame) {
+  // <plugin kind='lidar3d'> in the robot file: the same children, read by the plugin itself.
+  std::string plugin = room_lidar();
+  plugin.replace(0, std::string("<lidar3d>\n  <ID value='lidar'/>\n").size(),
+                 "<plugin kind='lidar3d' id='plug'>\n");
+  plugin.replace(plugin.rfind("</lidar3d>"), 10, "</plugin>");
+  auto sim = Simulation::load(write_scene("plugin", room_lidar(), "", plugin), options());
+  for (const std::string& w : sim->warnings())
+    ADD_FAILURE() << w;  // every attribute read, none ignored
+  sim->step(1);
+  for (const char* image : {"range", "points"})
+    EXPECT_TRUE(same_bytes(sim->image(std::string("robots/bot/sensors/lidar/") + image),
+                           sim->image(std::string("robots/bot/sensors/plug/") + image)))
+        << image;
 }
 
 /// The message of loading the room with the lidar given `children` instead of its defaults.
