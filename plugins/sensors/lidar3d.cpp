@@ -47,10 +47,13 @@ void Lidar3D::configure(ConfigureContext& ctx) {
     refuse(p, "channels.lowest", "must be in -90..90 degrees, got " + num(lowest));
   if (highest < -90 || highest > 90)
     refuse(p, "channels.highest", "must be in -90..90 degrees, got " + num(highest));
-  if (lowest > highest || (rows_ > 1 && lowest == highest))
+  if (rows_ > 1 && !(lowest < highest))
     refuse(p, "channels.lowest",
            "must be below highest (" + num(highest) + " degrees) for " + std::to_string(rows_) +
                " channels, got " + num(lowest));
+  if (lowest > highest)
+    refuse(p, "channels.lowest",
+           "must not be above highest (" + num(highest) + " degrees), got " + num(lowest));
 
   // Azimuth: the columns, from `start` counter-clockwise to `stop` (degrees). A full turn
   // spaces them by 360/M (the last one short of `stop`, which is `start` again); a partial
