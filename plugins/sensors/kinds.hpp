@@ -98,6 +98,26 @@ class Ranger2D : public Component {
   StateHandle sweep_count_;
 };
 
+/// `lidar3d`: channels × azimuth steps of rays from one origin, every period: a range image
+/// (`range`, float32), a point cloud in the sensor frame (`points`, xyz_float32), the number
+/// of hits and the nearest range.
+class Lidar3D : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  SensorSetup s_;
+  int rows_ = 16, cols_ = 1800;  ///< channels, azimuth steps
+  double min_m_ = 0.1, max_m_ = 100;
+  std::vector<double> cos_el_, sin_el_;  ///< per image row (row 0 = the highest channel)
+  std::vector<double> cos_az_, sin_az_;  ///< per image column
+  const ZigguratTables* zig_ = nullptr;
+  ImageHandle range_, points_;
+  SignalHandle hits_, nearest_;
+};
+
 /// `sonar`: a cone (half angle = beam angle / 2) of rays; the nearest echo.
 class Sonar : public Component {
  public:

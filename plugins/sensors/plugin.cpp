@@ -12,6 +12,7 @@ S2SIM_PLUGIN(
     S2SIM_KIND("RFID", Category::sensor, Rfid), S2SIM_KIND("solenoid", Category::sensor, Solenoid),
     S2SIM_KIND("floorline", Category::sensor, FloorLine),
     S2SIM_KIND("ranger2d", Category::sensor, Ranger2D),
+    S2SIM_KIND("lidar3d", Category::sensor, Lidar3D),
     S2SIM_KIND("pentip", Category::sensor, PenTip), S2SIM_KIND("beacon", Category::sensor, Beacon),
     S2SIM_KIND("imu", Category::sensor, Imu), S2SIM_KIND("pose", Category::sensor, PoseSensor),
     S2SIM_KIND("sonar", Category::sensor, Sonar), S2SIM_KIND("touch", Category::sensor, Touch),

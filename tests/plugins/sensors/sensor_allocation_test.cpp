@@ -45,7 +45,7 @@ TEST(SensorAllocation, SensorsAddNoAllocationToTheStep) {
   without.plugin_path = {others};
   without.default_plugin_path = false;  // not the build's folder, which has the sensors
   for (const std::string fixture :
-       {"ir_wall", "ranger", "floorline", "imu", "proximity", "jointforce"}) {
+       {"ir_wall", "ranger", "floorline", "imu", "proximity", "jointforce", "lidar3d"}) {
     // Joint reactions come from Simbody's Acceleration stage, so reading them turns the
     // small-tree fast path off (docs/models/multibody.md): the inert run takes the same path.
     with.simbody_dynamics_only = without.simbody_dynamics_only = fixture == "jointforce";
