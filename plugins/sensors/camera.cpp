@@ -99,13 +99,10 @@ void CameraSensor::configure(ConfigureContext& ctx) {
   zig_ = &ziggurat_tables();
 
   // The period: <period value>, or SimTwo's <frame decimation> in frames of 10 ms.
-  double period_s = kDefaultCameraPeriod_s;
-  if (p.has_element("period"))
-    period_s = s_.spec.period_s;
-  else if (p.has("frame.decimation"))
-    period_s = kDecimationUnit_s *
-               static_cast<double>(p.integer_in("frame.decimation", 4, 1, kMaxImageSide_px));
-  s_.period_ticks = std::max<std::int64_t>(1, std::llround(period_s / ctx.tick_s()));
+  s_.default_period(ctx, p.has("frame.decimation")
+                             ? kDecimationUnit_s * static_cast<double>(p.integer_in(
+                                                       "frame.decimation", 4, 1, kMaxImageSide_px))
+                             : kDefaultCameraPeriod_s);
   s_.schedule(ctx);
   frames_ = ctx.declare_signal("frames", "1");
 }

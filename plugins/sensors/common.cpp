@@ -135,6 +135,12 @@ void SensorSetup::read(ConfigureContext& ctx) {
   period_ticks = std::max<std::int64_t>(1, std::llround(spec.period_s / ctx.tick_s()));
 }
 
+void SensorSetup::default_period(ConfigureContext& ctx, double period_s) {
+  if (ctx.params().has_element("period")) return;
+  spec.period_s = period_s;
+  period_ticks = std::max<std::int64_t>(1, std::llround(period_s / ctx.tick_s()));
+}
+
 void SensorSetup::schedule(ConfigureContext& ctx, Stage stage) {
   ctx.set_schedule(stage, static_cast<double>(period_ticks) * ctx.tick_s());
 }

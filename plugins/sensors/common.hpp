@@ -57,6 +57,8 @@ struct SensorSetup {
   /// children are read from the parameters: `solid id`, `pos`, `rot_deg`, `beam`, `noise`,
   /// `tag`, `period value`, checked by the rules of s2sim/sensor.hpp. Does not schedule.
   void read(ConfigureContext& ctx);
+  /// A kind's own default period (seconds) where the scene gives no `<period>`.
+  void default_period(ConfigureContext& ctx, double period_s);
   /// Schedules `update()` at the sensor's period in `stage` (the period rounded to a whole
   /// number of ticks, at least one).
   void schedule(ConfigureContext& ctx, Stage stage = Stage::sense);

@@ -16,6 +16,9 @@ namespace s2sim::sensors {
 
 namespace {
 
+/// The period of a lidar without `<period>`: 10 Hz, a spinning lidar's usual rate.
+constexpr double kDefaultLidarPeriod_s = 0.1;
+
 /// A located error at the attribute `path` ("channels.lowest") of the sensor's element.
 [[noreturn]] void refuse(const Params& p, std::string_view path, const std::string& message) {
   throw Error(ErrorKind::scene, p.where(path), message);
@@ -36,6 +39,7 @@ void store(std::uint8_t* at, float v) {
 
 void Lidar3D::configure(ConfigureContext& ctx) {
   s_.read(ctx);
+  s_.default_period(ctx, kDefaultLidarPeriod_s);
   s_.schedule(ctx);
   const Params& p = ctx.params();
 

@@ -5,6 +5,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "common/edited_copy.hpp"
+#include "common/recording_renderer.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -21,6 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 const fs::path kFixtures = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/scene/fixtures/import";
 
@@ -534,7 +536,7 @@ namespace {
 TEST(Import, SdfSensorsBecomeS2SimSensorsAndMeasure) {
   auto sim = Simulation::load(kFixtures / "sensor_cart.sdf", options());
   const scene::Scene& s = sim->scene();
-  ASSERT_EQ(s.sensors.size(), 3u);
+  ASSERT_EQ(s.sensors.size(), 4u);
   EXPECT_EQ(s.sensors[0].kind, "imu");
   EXPECT_DOUBLE_EQ(s.sensors[0].period_s, 0.01);
   const scene::Sensor& lidar = s.sensors[1];
@@ -543,10 +545,18 @@ TEST(Import, SdfSensorsBecomeS2SimSensorsAndMeasure) {
   EXPECT_NEAR(lidar.beam.angle_rad, 0.4, 1e-12);
   EXPECT_DOUBLE_EQ(lidar.beam.length_m, 2.0);
   EXPECT_EQ(s.sensors[2].kind, "touch");
+  // Gazebo's camera: 64 × 48 pixels across a horizontal field of 1 rad, its clip planes
+  // sdformat's defaults (0.1 m, 100 m).
+  EXPECT_EQ(s.sensors[3].kind, "camera");
+  const Image& eye = sim->image("robots/sensor_cart/sensors/eye/rgb");
+  EXPECT_EQ(eye.width_px, 64);
+  EXPECT_EQ(eye.height_px, 48);
+  std::vector<CameraShot> shots;
+  test::record_shots(*sim, shots);
   std::string warnings;
   for (const std::string& w : sim->warnings())
     warnings += w + "\n";
-  EXPECT_THAT(warnings, HasSubstr("sensor 'eye' of type 'camera' is not imported"));
+  EXPECT_THAT(warnings, Not(HasSubstr("'eye' of type 'camera' is not imported")));
   EXPECT_THAT(warnings, HasSubstr("sensor 'down_lidar': its <noise> is not imported"));
   EXPECT_THAT(warnings, HasSubstr("the minimum range is not applied"));
   // Resting on the floor (its bottom at z = 0), the cart's lidar looks down from 0.5 m.
@@ -556,6 +566,51 @@ TEST(Import, SdfSensorsBecomeS2SimSensorsAndMeasure) {
   EXPECT_NEAR(middle, 0.5, 2e-3);
   EXPECT_EQ(sim->signal("robots/sensor_cart/sensors/bumper/value"), 1.0);  // on the floor
   EXPECT_NEAR(sim->signal("robots/sensor_cart/sensors/bumper/force"), 9.81, 0.1);
+  ASSERT_FALSE(shots.empty());
+  EXPECT_NEAR(shots[0].vertical_fov_rad, 2 * std::atan(std::tan(0.5) * 48 / 64), 1e-9);
+  EXPECT_NEAR(shots[0].near_m, 0.1, 1e-12);
+  EXPECT_NEAR(shots[0].far_m, 100, 1e-12);
+}
+
+}  // namespace
+}  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+TEST(Import, MjcfCamerasRideTheirBodyLookingAlongTheirMinusZ) {
+  // A camera on the upper bar looking along the body's -Z (MuJoCo's default orientation),
+  // 45° high; one fixed to the world, which S2Sim does not import.
+  const fs::path xml =
+      test::edited_copy(kFixtures, "double_pendulum_mjcf.xml",
+                        "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>",
+                        "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>"
+                        "<camera name=\"tip\" pos=\"0 0 -0.5\" fovy=\"45\"/>") /
+      "double_pendulum_mjcf.xml";
+  const fs::path with_world = test::edited_copy(xml.parent_path(), "double_pendulum_mjcf.xml",
+                                                "<geom name=\"floor\"",
+                                                "<camera name=\"overhead\" pos=\"0 0 5\"/>"
+                                                "<geom name=\"floor\"") /
+                              "double_pendulum_mjcf.xml";
+  auto sim = Simulation::load(with_world, options());
+  std::vector<CameraShot> shots;
+  test::record_shots(*sim, shots);
+  const Pose upper = sim->body_pose(1);
+  sim->step(1);
+  ASSERT_EQ(shots.size(), 1u);
+  const CameraShot& shot = shots[0];
+  EXPECT_NEAR(shot.vertical_fov_rad, 45 * kPi / 180, 1e-12);
+  // The shot looks along the shot frame's +Z: the body's -Z; its +Y (up) is the body's +Y.
+  const Mat3 in_body = upper.rotation.transposed() * shot.pose.rotation;
+  EXPECT_NEAR(in_body.m[2][2], -1, 1e-9);
+  EXPECT_NEAR(in_body.m[1][1], 1, 1e-9);
+  const Vec3 at = upper.rotation * Vec3{0, 0, -0.5} + upper.position;
+  EXPECT_NEAR(shot.pose.position.x, at.x, 1e-9);
+  EXPECT_NEAR(shot.pose.position.z, at.z, 1e-9);
+  std::string warnings;
+  for (const std::string& w : sim->warnings())
+    warnings += w + "\n";
+  EXPECT_THAT(warnings, HasSubstr("camera 'overhead': a camera fixed to the world is not imported"));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "common/recording_renderer.hpp"
 #include "common/temp_dir.hpp"
 
 namespace s2sim {
@@ -24,26 +25,6 @@ using ::testing::HasSubstr;
 
 constexpr const char* kFront = "robots/rig/sensors/front/";
 constexpr const char* kEye = "robots/rig/sensors/eye/";
-
-/// Records each shot and fills the images: colour 100, depth 2 m, body id 7.
-class RecordingRenderer final : public CameraRenderer {
- public:
-  explicit RecordingRenderer(std::vector<CameraShot>& shots) : shots_(shots) {}
-  void render(const CameraShot& shot, const Pose*, int, Image* rgb, Image* depth,
-              Image* ids) override {
-    shots_.push_back(shot);
-    if (rgb) std::memset(rgb->data, 100, rgb->size_bytes());
-    for (int y = 0; depth && y < depth->height_px; ++y)
-      for (int x = 0; x < depth->width_px; ++x)
-        reinterpret_cast<float*>(depth->row(y))[x] = 2.0f;
-    for (int y = 0; ids && y < ids->height_px; ++y)
-      for (int x = 0; x < ids->width_px; ++x)
-        reinterpret_cast<std::uint16_t*>(ids->row(y))[x] = 7;
-  }
-
- private:
-  std::vector<CameraShot>& shots_;
-};
 
 std::string rig(const std::string& front_camera) {
   return R"(<?xml version="1.0" ?>
@@ -91,9 +72,7 @@ SimulationOptions options(std::uint64_t seed = 1) {
 std::unique_ptr<Simulation> load(const std::string& name, const std::string& front,
                                  std::vector<CameraShot>& shots, std::uint64_t seed = 1) {
   auto sim = Simulation::load(write_scene(name, front), options(seed));
-  sim->set_camera_renderer([&shots](const Simulation&) -> std::unique_ptr<CameraRenderer> {
-    return std::make_unique<RecordingRenderer>(shots);
-  });
+  test::record_shots(*sim, shots);
   return sim;
 }
 
@@ -133,6 +112,7 @@ TEST(Camera, DeclaresTheImagesItsOutputsAskForWithTheirSizesAndFormats) {
 TEST(Camera, LooksAlongTheSensorsXOrTheShellsZWithTheFieldOfViewAsked) {
   std::vector<CameraShot> shots;
   auto sim = load("camera_shot", kFrontCamera, shots);
+  const Pose base = sim->body_pose(1);  // the shot of tick 0 sees the pose at its start
   sim->step(1);
   ASSERT_EQ(shots.size(), 2u);  // the shell's camera, then the sensor's, in scene order
   const CameraShot& eye = shots[0];
@@ -144,7 +124,6 @@ TEST(Camera, LooksAlongTheSensorsXOrTheShellsZWithTheFieldOfViewAsked) {
   EXPECT_NEAR(forward.y, s, 1e-12);
   EXPECT_NEAR(forward.z, 0, 1e-12);
   EXPECT_NEAR(up.z, 1, 1e-12);
-  const Pose base = sim->body_pose(1);
   EXPECT_NEAR(front.pose.position.x, base.position.x + 0.1, 1e-9);
   EXPECT_NEAR(front.pose.position.z, base.position.z + 0.1, 1e-9);
   // 90° across 64 pixels: the vertical field across 48.
