@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 struct Drawable {
   enum class Kind { solid, shell, obstacle, track, beam, joint };
@@ -112,4 +112,4 @@ class SceneDrawables {
   int box_ = -1, cylinder_ = -1, sphere_ = -1, cylinder_coarse_ = -1, sphere_coarse_ = -1;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

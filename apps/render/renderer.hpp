@@ -3,22 +3,21 @@
 /// Draws the world view with OpenGL 3.3 core: lit meshes (colour, transparency, texture), a
 /// floor (colour or texture, grid), a gradient sky and the shadows of a directional light
 /// (a shadow map, on bodies and floor; planar floor-only shadows when it is unavailable),
-/// multisampled and resolved into the window.
+/// multisampled and resolved into the framebuffer drawn into.
 
-#include "camera.hpp"
 #include "gl_math.hpp"
-#include "layout.hpp"
 #include "mesh_data.hpp"
 #include "msaa_target.hpp"
 #include "shadow_map.hpp"
 #include "sky.hpp"
+#include "view.hpp"
 
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 /// One thing to draw this frame.
 struct DrawItem {
@@ -65,10 +64,8 @@ class Renderer {
   /// Loads an image file once (stb_image) and returns its texture, or 0 with `error` set.
   unsigned texture(const std::filesystem::path& file, std::string& error);
 
-  /// Clears the framebuffer and draws the floor and the items into `view` (framebuffer
-  /// pixels from the top left; the framebuffer is `framebuffer_height_px` high).
-  void draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
-            int framebuffer_height_px, const RenderSettings& settings);
+  /// Clears `view`'s framebuffer and draws the floor and the items into its rectangle.
+  void draw(const std::vector<DrawItem>& items, const View& view, const RenderSettings& settings);
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }
@@ -115,4 +112,4 @@ class Renderer {
   int msaa_in_use_ = 0;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

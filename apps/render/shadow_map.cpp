@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 constexpr const char* kDepthVertex = R"(#version 330 core
@@ -136,4 +136,4 @@ void ShadowMap::end_pass() const {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -6,7 +6,7 @@
 #include <limits>
 #include <map>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 void set_color(DrawItem& item, const scene::Color& c) {
@@ -454,4 +454,4 @@ int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& dis
   return best;
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render
