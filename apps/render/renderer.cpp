@@ -180,10 +180,7 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f
     casters_.push_back(bound);
   }
   // Nothing moved since the map was drawn (paused, or bodies at rest): keep it.
-  // Not before the map was drawn twice: on llvmpipe the frame that creates it shows no shadow
-  // (seen on a static scene, whose map was then never drawn again).
-  if (shadow_map_valid_ && shadow_map_draws_ >= 2 &&
-      caster_models_.size() == drawn_caster_models_.size()) {
+  if (shadow_map_valid_ && caster_models_.size() == drawn_caster_models_.size()) {
     bool same = true;
     for (std::size_t i = 0; same && i < caster_models_.size(); ++i)
       for (int k = 0; same && k < 16; ++k)
@@ -202,7 +199,6 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f
   }
   shadow_map_.end_pass();
   shadow_map_valid_ = true;
-  ++shadow_map_draws_;
   return true;
 }
 

@@ -105,7 +105,6 @@ class Renderer {
   std::vector<int> caster_items_;  ///< indices of this frame's casters in the items
   bool shadow_map_valid_ = false;
   bool shadow_map_tried_ = false;  ///< created on the first frame with shadows
-  int shadow_map_draws_ = 0;
   MsaaTarget msaa_;
   ShadowMap shadow_map_;
   Sky sky_;
