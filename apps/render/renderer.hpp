@@ -33,6 +33,9 @@ struct DrawItem {
   bool lit = true;           ///< false for markers such as sensor beams
   bool two_sided = false;    ///< mesh files and flat polygons: no back-face culling
   bool highlighted = false;  ///< the selected body: tinted
+  int body = 0;              ///< the simulation's body index, for a camera's body-id image
+  /// Seen by a camera's depth and body-id images (false: the fire's flames, colour only).
+  bool sensed = true;
 };
 
 struct RenderSettings {
@@ -66,6 +69,11 @@ class Renderer {
 
   /// Clears `view`'s framebuffer and draws the floor and the items into its rectangle.
   void draw(const std::vector<DrawItem>& items, const View& view, const RenderSettings& settings);
+
+  /// Draws mesh `mesh` (from upload) with the program bound; `floor_mesh()` is the floor's
+  /// square, from -1 to 1 in x and y.
+  void draw_mesh(int mesh) const { draw_mesh(meshes_[static_cast<std::size_t>(mesh)]); }
+  int floor_mesh() const { return floor_mesh_; }
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }
