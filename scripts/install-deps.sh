@@ -6,6 +6,8 @@
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
 # libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
+# libegl-dev, libegl-mesa0 and libgl1-mesa-dri draw the cameras headless: OpenGL through EGL
+# with no display server (docs/rendering.md).
 set -euo pipefail
 
 packages=(
@@ -14,6 +16,7 @@ packages=(
   libfcl-dev libassimp-dev
   liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev libbullet-dev
   xvfb xauth
