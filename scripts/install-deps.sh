@@ -7,6 +7,8 @@
 # libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
 # libpng writes s2sim-run's --save-images frames.
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
+# libegl-dev, libegl-mesa0 and libgl1-mesa-dri draw the cameras headless: OpenGL through EGL
+# with no display server (docs/rendering.md).
 set -euo pipefail
 
 packages=(
@@ -16,6 +18,7 @@ packages=(
   liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
   libpng-dev
+  libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev libbullet-dev
   xvfb xauth

@@ -245,9 +245,10 @@ class App {
       const float scale = display.x > 0 ? static_cast<float>(width) / display.x : 1;
       const Rect& world = state_.layout_rects.world;
       renderer_.draw(drawables_.items(state_.show_beams, state_.show_joints, state_.selected_body),
-                     state_.camera,
-                     {world.x * scale, world.y * scale, world.width * scale, world.height * scale},
-                     height, state_.render);
+                     state_.camera.render_view({world.x * scale, world.y * scale,
+                                                world.width * scale, world.height * scale},
+                                               height),
+                     state_.render);
       if (!stuck) {
         draw_world_overlay(state_);
         draw_published_overlay(state_);

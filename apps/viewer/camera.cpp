@@ -22,6 +22,23 @@ Mat4 Camera::projection(float aspect) const {
                      std::max(100.0f, distance_m * 50));
 }
 
+render::View Camera::render_view(const Rect& rect, int framebuffer_height_px) const {
+  render::View v;
+  v.width_px = std::max(1, static_cast<int>(std::lround(rect.width)));
+  v.height_px = std::max(1, static_cast<int>(std::lround(rect.height)));
+  // OpenGL counts rows from the bottom.
+  v.x_px = static_cast<int>(std::lround(rect.x));
+  v.y_px = framebuffer_height_px - static_cast<int>(std::lround(rect.y)) - v.height_px;
+  v.view = view();
+  v.projection = projection(static_cast<float>(v.width_px) / static_cast<float>(v.height_px));
+  v.eye_m = eye_m();
+  v.fov_y_rad = fov_y_rad;
+  // The casters within 2.5 view distances of the point looked at (at least 3 m).
+  v.focus_m = target_m;
+  v.focus_radius_m = std::max(3.0f, 2.5f * distance_m);
+  return v;
+}
+
 void Camera::look_from(const Vec3f& eye, const Vec3f& target) {
   const Vec3f d = eye - target;
   target_m = target;

@@ -3,7 +3,9 @@
 /// The world view's orbit camera: it turns around a target point (orbit), moves the target
 /// (pan), changes its distance (zoom) and can follow a robot's main body. Z is up.
 
-#include "gl_math.hpp"
+#include "layout.hpp"
+#include "render_names.hpp"
+#include "view.hpp"
 
 namespace s2sim::viewer {
 
@@ -21,6 +23,9 @@ class Camera {
   Vec3f eye_m() const;
   Mat4 view() const;
   Mat4 projection(float aspect) const;
+  /// What the renderer draws for the world view in `rect` of a framebuffer
+  /// `framebuffer_height_px` high (the window's).
+  render::View render_view(const Rect& rect, int framebuffer_height_px) const;
 
   /// Looks from `eye_m` at `target_m` (a SimTwo project's saved camera).
   void look_from(const Vec3f& eye_m, const Vec3f& target_m);

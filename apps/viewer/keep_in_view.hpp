@@ -5,7 +5,7 @@
 /// projects outside the view's central part. A robot on the floor, an arm or a pendulum is
 /// left to leave the view: the user frames it or follows it.
 
-#include "gl_math.hpp"
+#include "render_names.hpp"
 
 #include <s2sim/kernel/simulation.hpp>
 

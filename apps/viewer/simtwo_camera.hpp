@@ -5,7 +5,7 @@
 /// form's `EditSetCamLook{X,Y,Z}_Text` (config_Params.ini, else SimTwo.ini). Both in metres,
 /// Z up, as S2Sim's world.
 
-#include "gl_math.hpp"
+#include "render_names.hpp"
 
 #include <filesystem>
 #include <optional>

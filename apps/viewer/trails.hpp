@@ -3,7 +3,7 @@
 /// Each robot's trail: where its main body went, as a ring of timed points (no allocation
 /// after `reset`), trimmed to the last `length_s` of simulated time when drawn.
 
-#include "gl_math.hpp"
+#include "render_names.hpp"
 
 #include <cstddef>
 #include <vector>

@@ -24,6 +24,12 @@
 
 namespace s2sim::viewer {
 
+using render::Drawable;
+using render::DrawItem;
+using render::Renderer;
+using render::RenderSettings;
+using render::SceneDrawables;
+
 struct LogLine {
   double time_s;
   std::string text;

@@ -31,6 +31,13 @@ namespace s2sim::viewer {
 namespace {
 
 namespace fs = std::filesystem;
+using render::flat_polygon;
+using render::load_mesh_file;
+using render::MeshData;
+using render::unit_box;
+using render::unit_cylinder;
+using render::unit_sphere;
+using render::Vertex;
 
 const fs::path kDefaultScene = fs::path(S2SIM_SOURCE_DIR) / "scenes/default";
 

@@ -2,7 +2,7 @@
 
 #include "floor_look.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 void apply_scene_look(const std::filesystem::path& folder, bool shadows_allowed, Renderer& renderer,
                       RenderSettings& settings, std::vector<std::string>& warnings,
@@ -34,4 +34,4 @@ void apply_scene_look(const std::filesystem::path& folder, bool shadows_allowed,
   notes.push_back(note);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

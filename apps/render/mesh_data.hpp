@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 struct Vertex {
   float position[3];
@@ -38,4 +38,4 @@ void vertex_bounds(const MeshData& mesh, Vec3f& lo, Vec3f& hi);
 /// (kind scene) naming the file when assimp cannot read it.
 MeshData load_mesh_file(const std::filesystem::path& file, double scale);
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <string>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 // Texels a side: 2048 with smooth shadows (a GPU, or screenshots); 1024, 4x cheaper to clear
@@ -180,10 +180,7 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f
     casters_.push_back(bound);
   }
   // Nothing moved since the map was drawn (paused, or bodies at rest): keep it.
-  // Not before the map was drawn twice: on llvmpipe the frame that creates it shows no shadow
-  // (seen on a static scene, whose map was then never drawn again).
-  if (shadow_map_valid_ && shadow_map_draws_ >= 2 &&
-      caster_models_.size() == drawn_caster_models_.size()) {
+  if (shadow_map_valid_ && caster_models_.size() == drawn_caster_models_.size()) {
     bool same = true;
     for (std::size_t i = 0; same && i < caster_models_.size(); ++i)
       for (int k = 0; same && k < 16; ++k)
@@ -202,7 +199,6 @@ bool Renderer::render_shadow_map(const std::vector<DrawItem>& items, const Vec3f
   }
   shadow_map_.end_pass();
   shadow_map_valid_ = true;
-  ++shadow_map_draws_;
   return true;
 }
 
@@ -213,13 +209,12 @@ void Renderer::set_shadow_uniforms(unsigned program) const {
   glUniform1f(location(program, "u_shadow_texel_m"), shadow_map_.texel_m());
 }
 
-void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
-                    int framebuffer_height_px, const RenderSettings& settings) {
-  const int width_px = std::max(1, static_cast<int>(std::lround(view.width)));
-  const int height_px = std::max(1, static_cast<int>(std::lround(view.height)));
-  // OpenGL counts rows from the bottom.
-  const int x_px = static_cast<int>(std::lround(view.x));
-  const int y_px = framebuffer_height_px - static_cast<int>(std::lround(view.y)) - height_px;
+void Renderer::draw(const std::vector<DrawItem>& items, const View& view,
+                    const RenderSettings& settings) {
+  const int width_px = std::max(1, view.width_px);
+  const int height_px = std::max(1, view.height_px);
+  const int x_px = view.x_px;
+  const int y_px = view.y_px;
   glDisable(GL_SCISSOR_TEST);
 
   // The light's depth first: it has its own framebuffer and viewport.
@@ -228,16 +223,14 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
     if (!shadow_map_.init(settings.smooth_shadows ? kSmoothShadowMapSize_px
                                                   : kFastShadowMapSize_px))
       std::fprintf(stderr,
-                   "s2sim-view: the driver refused the shadow map's framebuffer; shadows fall on "
+                   "s2sim: the driver refused the shadow map's framebuffer; shadows fall on "
                    "the floor only\n");
   }
   if (shadow_map_.ready()) shadow_map_.set_smooth(settings.smooth_shadows);
-  // The casters within 2.5 view distances of the point looked at (at least 3 m).
-  const bool use_shadow_map =
-      settings.shadows && settings.shadow_map && shadow_map_.ready() &&
-      render_shadow_map(items, camera.target_m, std::max(3.0f, 2.5f * camera.distance_m));
+  const bool use_shadow_map = settings.shadows && settings.shadow_map && shadow_map_.ready() &&
+                              render_shadow_map(items, view.focus_m, view.focus_radius_m);
 
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, view.framebuffer);
   glClearColor(settings.clear_color[0], settings.clear_color[1], settings.clear_color[2], 1);
   glClearStencil(0);
   glDepthMask(GL_TRUE);
@@ -254,9 +247,8 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_BLEND);
-  const Mat4 view_projection =
-      camera.projection(static_cast<float>(width_px) / height_px) * camera.view();
-  const Vec3f eye = camera.eye_m();
+  const Mat4 view_projection = view.projection * view.view;
+  const Vec3f eye = view.eye_m;
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, use_shadow_map ? shadow_map_.texture() : 0);
   glActiveTexture(GL_TEXTURE0);
@@ -343,7 +335,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
 
   // Pixels per metre at one metre from the eye: an item's size on screen is its largest scale
   // times this over its distance.
-  const float pixels_per_m_at_1m = height_px / (2 * std::tan(camera.fov_y_rad / 2));
+  const float pixels_per_m_at_1m = height_px / (2 * std::tan(view.fov_y_rad / 2));
   auto coarse_enough = [&](const DrawItem& item) {
     if (item.coarse_mesh < 0) return false;
     const Mat4& m = item.model;
@@ -392,7 +384,7 @@ void Renderer::draw(const std::vector<DrawItem>& items, const Camera& camera, co
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE0);
-  if (multisampled) msaa_.resolve_to_window(x_px, y_px);
+  if (multisampled) msaa_.resolve_into(view.framebuffer, x_px, y_px);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

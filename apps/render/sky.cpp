@@ -3,7 +3,7 @@
 #include "gl.hpp"
 #include "gl_program.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 // One triangle covering the viewport; each corner's world direction comes from unprojecting
@@ -62,4 +62,4 @@ void Sky::draw(const Mat4& view_projection, const Vec3f& eye_m) const {
   glDepthFunc(GL_LESS);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

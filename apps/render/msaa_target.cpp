@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 MsaaTarget::~MsaaTarget() {
   release();
@@ -57,12 +57,12 @@ bool MsaaTarget::bind(int width_px, int height_px, int samples) {
   return true;
 }
 
-void MsaaTarget::resolve_to_window(int x_px, int y_px) const {
+void MsaaTarget::resolve_into(unsigned framebuffer, int x_px, int y_px) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
-  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+  glBindFramebuffer(GL_DRAW_FRAMEBUFFER, framebuffer);
   glBlitFramebuffer(0, 0, width_px_, height_px_, x_px, y_px, x_px + width_px_, y_px + height_px_,
                     GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 unsigned compile(GLenum type, const char* source) {
@@ -51,4 +51,4 @@ int uniform(unsigned program, const char* name) {
   return glGetUniformLocation(program, name);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 struct FloorLook {
   std::optional<std::array<float, 3>> color;  ///< Floor.Diffuse.Color, 0..1
@@ -28,4 +28,4 @@ struct FloorLook {
 /// value and otherwise ignored; a folder without settings gives an empty look (the defaults).
 FloorLook read_floor_look(const std::filesystem::path& folder, std::vector<std::string>& warnings);
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

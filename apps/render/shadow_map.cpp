@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 constexpr const char* kDepthVertex = R"(#version 330 core
@@ -107,6 +107,10 @@ bool ShadowMap::fit(const CasterBound* casters, int count, const Vec3f& light_di
 void ShadowMap::begin_pass() const {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, size_px_, size_px_);
+  // Depth is written only with the depth test on: a fresh context has it off, and the first
+  // map drawn there stayed empty (no shadow on the first frame).
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
   glClear(GL_DEPTH_BUFFER_BIT);
   glUseProgram(program_);
@@ -136,4 +140,4 @@ void ShadowMap::end_pass() const {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

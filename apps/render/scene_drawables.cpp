@@ -6,7 +6,7 @@
 #include <limits>
 #include <map>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 void set_color(DrawItem& item, const scene::Color& c) {
@@ -241,11 +241,11 @@ void SceneDrawables::take_meshes(const Simulation& sim, Renderer& renderer,
   }
 }
 
-void SceneDrawables::place_fire(const Simulation& sim) {
+void SceneDrawables::place_fire(const Simulation& sim, const Pose* body_poses, int body_count) {
   const Annotations::Fire& fire = sim.annotations().fire;
   burning_ = fire.burning;
   if (!burning_) return;
-  const Pose on = fire.body > 0 ? sim.body_pose(fire.body) : Pose{};
+  const Pose on = fire.body > 0 && fire.body < body_count ? body_poses[fire.body] : Pose{};
   const Vec3 base = on.position + on.rotation * fire.position_m;
   // Three unlit, translucent blobs stacked upwards, from orange to yellow, flickering.
   const float sizes[kFlames] = {0.06f, 0.045f, 0.03f};
@@ -261,6 +261,8 @@ void SceneDrawables::place_fire(const Simulation& sim) {
     item.coarse_mesh = sphere_coarse_;
     item.lit = false;
     item.casts_shadow = false;
+    item.sensed = false;
+    item.body = fire.body;
     std::copy(colors[k], colors[k] + 4, item.color);
     const float r = sizes[k] * flicker;
     item.model = translation(to_f(base) + Vec3f{0, 0, heights[k] * scale.z}) *
@@ -337,9 +339,10 @@ void SceneDrawables::take_thing_shape(Drawable& d, const ThingView& thing) {
   take_primitive(d, shape);
 }
 
-void SceneDrawables::update(const Simulation& sim, float floor_half_size_m) {
+void SceneDrawables::update(const Simulation& sim, const Pose* body_poses, int body_count,
+                            float floor_half_size_m) {
   const Annotations& notes = sim.annotations();
-  place_fire(sim);
+  place_fire(sim, body_poses, body_count);
   place_liquids(sim, floor_half_size_m);
   const std::vector<ThingView>& things = sim.things();
   for (auto& d : drawables_) {
@@ -349,6 +352,8 @@ void SceneDrawables::update(const Simulation& sim, float floor_half_size_m) {
       if (thing.added && thing.present) take_thing_shape(d, thing);
     } else if (d.kind == Drawable::Kind::obstacle) {
       d.hidden = !sim.obstacle_present(d.index);
+    } else {
+      d.hidden = false;
     }
     const bool scene_solid = d.kind == Drawable::Kind::solid && d.primitive && !d.run_time_mesh &&
                              (d.thing < 0 || !things[static_cast<std::size_t>(d.thing)].added);
@@ -362,7 +367,11 @@ void SceneDrawables::update(const Simulation& sim, float floor_half_size_m) {
         d.local = d.loaded_local;
       }
     }
-    d.item.model = d.body == 0 ? d.local : to_mat4(sim.body_pose(d.body)) * d.local;
+    if (d.body >= body_count) {
+      d.hidden = true;
+      continue;
+    }
+    d.item.model = d.body == 0 ? d.local : to_mat4(body_poses[d.body]) * d.local;
     // A run-time colour: a solid's, a shell's or an obstacle's, a sensor beam's (its alpha).
     const double* painted = nullptr;
     if (d.kind == Drawable::Kind::solid && !notes.body_colors.empty()) {
@@ -390,6 +399,7 @@ const std::vector<DrawItem>& SceneDrawables::items(bool beams, bool joints, int 
     if (d.kind == Drawable::Kind::beam && !beams) continue;
     if (d.kind == Drawable::Kind::joint && !joints) continue;
     items_.push_back(d.item);
+    items_.back().body = d.body;
     items_.back().highlighted =
         selected_body > 0 && d.body == selected_body && d.kind != Drawable::Kind::beam;
   }
@@ -454,4 +464,4 @@ int SceneDrawables::pick(const Vec3f& origin, const Vec3f& direction, float& dis
   return best;
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -6,7 +6,7 @@
 
 #include "gl_math.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 class Sky {
  public:
@@ -25,4 +25,4 @@ class Sky {
   int inverse_location_ = -1, eye_location_ = -1;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -4,7 +4,7 @@
 /// own framebuffer afterwards: smooth edges for the world, while the ImGui panels and the
 /// screenshot keep reading an ordinary single-sampled window.
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 class MsaaTarget {
  public:
@@ -18,9 +18,9 @@ class MsaaTarget {
   /// the driver refuses it (the caller then draws straight into the window).
   bool bind(int width_px, int height_px, int samples);
 
-  /// Averages the samples into the window's framebuffer at (x, y) from its bottom left, and
-  /// leaves the window's framebuffer bound.
-  void resolve_to_window(int x_px, int y_px) const;
+  /// Averages the samples into `framebuffer` (0: the window's) at (x, y) from its bottom left,
+  /// and leaves that framebuffer bound.
+  void resolve_into(unsigned framebuffer, int x_px, int y_px) const;
 
   /// The sample count actually given (the driver may round up), 0 before bind.
   int samples() const { return actual_samples_; }
@@ -32,4 +32,4 @@ class MsaaTarget {
   bool failed_ = false;  ///< refused once for this size and count: do not retry every frame
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -1,6 +1,6 @@
 #include "gl_math.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 Mat4 inverse(const Mat4& a) {
   // Gauss-Jordan on a 4x8 augmented matrix: small, clear and fast enough for once a click.
@@ -32,4 +32,4 @@ Mat4 inverse(const Mat4& a) {
   return r;
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

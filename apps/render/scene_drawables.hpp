@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 struct Drawable {
   enum class Kind { solid, shell, obstacle, track, beam, joint };
@@ -58,7 +58,15 @@ class SceneDrawables {
   /// from the run-time colours (`Annotations::body_colors`), and the liquid surfaces
   /// (`Annotations::liquid_surfaces`), as wide as the floor (`floor_half_size_m`). No
   /// allocation.
-  void update(const Simulation& sim, float floor_half_size_m);
+  void update(const Simulation& sim, float floor_half_size_m) {
+    const std::vector<Pose>& poses = sim.body_poses();
+    update(sim, poses.data(), static_cast<int>(poses.size()), floor_half_size_m);
+  }
+  /// The same with the bodies at `body_poses` (by body index, `body_count` of them: a camera
+  /// drawn during a step); the rest still comes from `sim`. A body beyond `body_count` is
+  /// hidden.
+  void update(const Simulation& sim, const Pose* body_poses, int body_count,
+              float floor_half_size_m);
 
   /// Items to hand to the renderer (sensor beams and joint markers filtered by the flags),
   /// those of `selected_body` highlighted.
@@ -95,7 +103,7 @@ class SceneDrawables {
   std::uint64_t meshes_version_ = 0;
 
   /// The fire effect's flames (Annotations::fire), placed by update(); empty while out.
-  void place_fire(const Simulation& sim);
+  void place_fire(const Simulation& sim, const Pose* body_poses, int body_count);
   static constexpr int kFlames = 3;
   DrawItem flames_[kFlames];
   bool burning_ = false;
@@ -112,4 +120,4 @@ class SceneDrawables {
   int box_ = -1, cylinder_ = -1, sphere_ = -1, cylinder_coarse_ = -1, sphere_coarse_ = -1;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <numbers>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 void add_quad(MeshData& m, Vec3f a, Vec3f b, Vec3f c, Vec3f d, Vec3f n) {
@@ -190,4 +190,4 @@ MeshData load_mesh_file(const std::filesystem::path& file, double scale) {
   return m;
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 namespace fs = std::filesystem;
@@ -98,4 +98,4 @@ FloorLook read_floor_look(const fs::path& folder, std::vector<std::string>& warn
   return look;
 }
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 /// Reads the folder's settings and sets `settings` from them (what the folder does not set
 /// keeps the viewer's default; shadows stay off when `shadows_allowed` is false, i.e.
@@ -20,4 +20,4 @@ void apply_scene_look(const std::filesystem::path& folder, bool shadows_allowed,
                       RenderSettings& settings, std::vector<std::string>& warnings,
                       std::vector<std::string>& notes);
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

@@ -7,7 +7,7 @@
 /// the 2x2 nearest texels and blends the results (percentage-closer filtering); more taps cost too
 /// much on llvmpipe, where every lookup runs on the CPU for every pixel.
 
-namespace s2sim::viewer::shaders {
+namespace s2sim::render::shaders {
 
 /// Shadow lookup shared by both fragment shaders: 1 = lit, 0 = in shadow. The receiver is
 /// moved two and a half texels along its normal (normal offset) so it does not shadow itself.
@@ -123,4 +123,4 @@ void main() {
 
 #undef S2SIM_SHADOW_FUNCTION
 
-}  // namespace s2sim::viewer::shaders
+}  // namespace s2sim::render::shaders

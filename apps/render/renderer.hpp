@@ -3,22 +3,21 @@
 /// Draws the world view with OpenGL 3.3 core: lit meshes (colour, transparency, texture), a
 /// floor (colour or texture, grid), a gradient sky and the shadows of a directional light
 /// (a shadow map, on bodies and floor; planar floor-only shadows when it is unavailable),
-/// multisampled and resolved into the window.
+/// multisampled and resolved into the framebuffer drawn into.
 
-#include "camera.hpp"
 #include "gl_math.hpp"
-#include "layout.hpp"
 #include "mesh_data.hpp"
 #include "msaa_target.hpp"
 #include "shadow_map.hpp"
 #include "sky.hpp"
+#include "view.hpp"
 
 #include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 /// One thing to draw this frame.
 struct DrawItem {
@@ -34,6 +33,9 @@ struct DrawItem {
   bool lit = true;           ///< false for markers such as sensor beams
   bool two_sided = false;    ///< mesh files and flat polygons: no back-face culling
   bool highlighted = false;  ///< the selected body: tinted
+  int body = 0;              ///< the simulation's body index, for a camera's body-id image
+  /// Seen by a camera's depth and body-id images (false: the fire's flames, colour only).
+  bool sensed = true;
 };
 
 struct RenderSettings {
@@ -65,10 +67,13 @@ class Renderer {
   /// Loads an image file once (stb_image) and returns its texture, or 0 with `error` set.
   unsigned texture(const std::filesystem::path& file, std::string& error);
 
-  /// Clears the framebuffer and draws the floor and the items into `view` (framebuffer
-  /// pixels from the top left; the framebuffer is `framebuffer_height_px` high).
-  void draw(const std::vector<DrawItem>& items, const Camera& camera, const Rect& view,
-            int framebuffer_height_px, const RenderSettings& settings);
+  /// Clears `view`'s framebuffer and draws the floor and the items into its rectangle.
+  void draw(const std::vector<DrawItem>& items, const View& view, const RenderSettings& settings);
+
+  /// Draws mesh `mesh` (from upload) with the program bound; `floor_mesh()` is the floor's
+  /// square, from -1 to 1 in x and y.
+  void draw_mesh(int mesh) const { draw_mesh(meshes_[static_cast<std::size_t>(mesh)]); }
+  int floor_mesh() const { return floor_mesh_; }
 
   /// Direction towards the light (unit).
   Vec3f light_direction() const { return light_direction_; }
@@ -108,11 +113,10 @@ class Renderer {
   std::vector<int> caster_items_;  ///< indices of this frame's casters in the items
   bool shadow_map_valid_ = false;
   bool shadow_map_tried_ = false;  ///< created on the first frame with shadows
-  int shadow_map_draws_ = 0;
   MsaaTarget msaa_;
   ShadowMap shadow_map_;
   Sky sky_;
   int msaa_in_use_ = 0;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

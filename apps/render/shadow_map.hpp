@@ -7,7 +7,7 @@
 
 #include "gl_math.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 /// A sphere bounding one caster in the world frame.
 struct CasterBound {
@@ -58,4 +58,4 @@ class ShadowMap {
   bool smooth_ = false;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

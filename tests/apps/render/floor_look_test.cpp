@@ -1,4 +1,4 @@
-// A scene folder's floor and sky settings (apps/viewer/floor_look.cpp): SimTwo's params.cfg
+// A scene folder's floor and sky settings (apps/render/floor_look.cpp): SimTwo's params.cfg
 // rows and check boxes, the project's ground image, and located warnings for bad rows.
 
 #include "floor_look.hpp"
@@ -10,7 +10,7 @@
 #include <fstream>
 #include "common/temp_dir.hpp"
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 namespace {
 
 namespace fs = std::filesystem;
@@ -89,4 +89,4 @@ TEST_F(FloorLookTest, BadRowsAreWarningsNamingFileLineAndValue) {
 }
 
 }  // namespace
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render

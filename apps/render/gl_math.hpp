@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-namespace s2sim::viewer {
+namespace s2sim::render {
 
 struct Vec3f {
   float x = 0, y = 0, z = 0;
@@ -137,4 +137,4 @@ inline Mat4 orthographic(float l, float r, float b, float t, float n, float f) {
 /// General 4x4 inverse (for unprojecting mouse rays); identity when singular.
 Mat4 inverse(const Mat4& a);
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::render
