@@ -86,8 +86,7 @@ std::string write_png(const std::filesystem::path& file, const Image& image) {
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   const bool failed = std::ferror(f) != 0;
-  if (std::fclose(f) != 0 || failed)
-    return cannot_write(file, std::strerror(errno));
+  if (std::fclose(f) != 0 || failed) return cannot_write(file, std::strerror(errno));
   return "";
 }
 

@@ -19,8 +19,7 @@ ImageSaver::ImageSaver(const std::filesystem::path& dir, const Simulation& sim) 
     std::error_code error;
     std::filesystem::create_directories(folder, error);
     if (error)
-      throw OutputError("--save-images: cannot make '" + folder.string() + "': " +
-                        error.message());
+      throw OutputError("--save-images: cannot make '" + folder.string() + "': " + error.message());
     saved_.push_back({&image, folder, image.frame});
   }
 }

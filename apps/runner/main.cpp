@@ -1,6 +1,8 @@
 // s2sim-run: the headless runner. Loads a scene, holds the --set inputs, steps it for
 // --duration seconds, logs and summarises.
+#include "camera_video.hpp"
 #include "crash_report.hpp"
+#include "headless_camera_renderer.hpp"
 #include "image_saver.hpp"
 #include "options.hpp"
 #include "outputs.hpp"
@@ -50,6 +52,7 @@ int run(const s2sim::runner::Options& o) {
   std::optional<runner::Watchdog> watchdog;
   if (o.watchdog_s > 0) watchdog.emplace(o.watchdog_s);
   auto sim = Simulation::load(apps::find_scene(o.scene), options);
+  sim->set_camera_renderer(render::headless_camera_renderer_factory());
   if (!o.quiet)
     for (const auto& w : sim->warnings())
       std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -136,6 +139,8 @@ int run(const s2sim::runner::Options& o) {
       std::fprintf(stderr, "s2sim-run: --save-images: '%s' is a point cloud, not saved\n",
                    name.c_str());
   }
+  std::optional<runner::CameraVideo> video;
+  if (!o.video_file.empty()) video.emplace(o.video_file, *sim, o.video_image);
   runner::ProgressBar progress(!o.quiet && isatty(STDERR_FILENO));
   if (log) log->write_row(*sim);
   record_frame();
@@ -148,9 +153,9 @@ int run(const s2sim::runner::Options& o) {
   // too, so that no frame is drawn over before it is written.
   const std::optional<std::size_t> close = sim->find_signal("controllers/script/close");
   const std::int64_t chunk =
-      close || images    ? 1
-      : log || recording ? log_every
-                         : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
+      close || images || video ? 1
+      : log || recording       ? log_every
+                               : std::max<std::int64_t>(1, total_ticks / (o.realtime ? 1000 : 100));
   std::int64_t done = 0;
   while (done < total_ticks && !(close && sim->signal(*close) != 0)) {
     apply_presses();
@@ -163,6 +168,7 @@ int run(const s2sim::runner::Options& o) {
     if (log && done % log_every == 0) log->write_row(*sim);
     if (done % log_every == 0) record_frame();
     if (images) images->save_new_frames();
+    if (video) video->add_new_frame();
     if (o.realtime) {
       const double ahead = sim->time_s() - seconds_since(start);
       if (ahead > 0) std::this_thread::sleep_for(std::chrono::duration<double>(ahead));
@@ -176,6 +182,7 @@ int run(const s2sim::runner::Options& o) {
   if (recording)
     if (const std::string error = recording->close(); !error.empty())
       throw runner::OutputError(error);
+  if (video) video->finish();
 
   if (!o.quiet) std::fputs(runner::summary_text(*sim, timing).c_str(), stdout);
   if (o.check_dynamics) std::fputs(runner::dynamics_check_text(*sim).c_str(), stderr);

@@ -68,6 +68,9 @@ Options:
                        s2sim-view --replay FILE plays it, s2sim.recording reads it
   --save-images DIR    write every frame of every image (cameras, lidars) as
                        DIR/<image name>/<frame>.png (docs/models/sensors.md, "Cameras")
+  --video FILE.mp4     write a camera's colour frames as a video, at the camera's rate
+  --video-image NAME   the camera image --video writes (default: the scene's only one),
+                       e.g. robots/r/sensors/front/rgb
   --summary FILE.json  write the final summary as JSON
   --no-timing          leave wall_time and rtf out of the JSON (byte-identical reruns)
   --seed N             seed of every random stream (default 1)
@@ -108,7 +111,7 @@ Options:
 
 Exit codes: 0 ok, 1 internal error, 2 bad scene, 3 plugin error, 4 bad usage
 (unknown signal or input, bad option), 5 the simulation failed (non-finite state),
-6 --log, --record, --save-images or --summary could not be written, 7 a fatal signal (the component is
+6 --log, --record, --save-images, --video or --summary could not be written, 7 a fatal signal (the component is
 named).
 )";
 }
@@ -143,6 +146,10 @@ Options parse_options(int argc, char** argv) {
       o.record_file = value();
     } else if (a == "--save-images") {
       o.save_images_dir = value();
+    } else if (a == "--video") {
+      o.video_file = value();
+    } else if (a == "--video-image") {
+      o.video_image = value();
     } else if (a == "--signals") {
       values(o.signal_patterns);
     } else if (a == "--log-period") {
@@ -255,6 +262,8 @@ Options parse_options(int argc, char** argv) {
     if (o.log_period_s && o.record_file.empty())
       throw usage_error("--log-period sets the rows of --log and the frames of --record");
   }
+  if (!o.video_image.empty() && o.video_file.empty())
+    throw usage_error("--video-image chooses the camera image of --video");
   return o;
 }
 

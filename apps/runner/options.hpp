@@ -22,6 +22,8 @@ struct Options {
   std::optional<double> log_period_s;  ///< default: every tick
   std::string record_file;             ///< --record: the state at every log period
   std::string save_images_dir;         ///< --save-images: every camera frame as a PNG
+  std::string video_file;              ///< --video: a camera's colour frames as an MP4
+  std::string video_image;             ///< --video-image: which camera image
   std::vector<std::string> signal_patterns;
   std::string summary_file;
   bool summary_timing = true;  ///< wall_time and rtf in the JSON summary

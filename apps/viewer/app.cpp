@@ -175,7 +175,7 @@ class App {
     if (o.report_fps) frame_times_s.reserve(o.frames > 0 ? o.frames : 100000);
     // --video: the replay at its speed, one video frame every 1/fps of wall time, from its
     // start to its end.
-    std::optional<VideoWriter> video;
+    std::optional<apps::VideoWriter> video;
     std::vector<unsigned char> video_pixels;
     const double video_step_s = state_.replay ? state_.replay->speed / o.video_fps : 0;
     if (!o.video_file.empty()) {

@@ -1,5 +1,6 @@
 #include "viewer_state.hpp"
 
+#include "headless_camera_renderer.hpp"
 #include "scene_search.hpp"
 #include "simulation_options.hpp"
 
@@ -34,6 +35,8 @@ std::unique_ptr<Simulation> load_simulation(const Options& o) {
   SimulationOptions options = apps::simulation_options(o);
   options.sheet_cells = o.sheet_cells;
   auto sim = Simulation::load(apps::find_scene(o.scene), options);
+  // Cameras draw on the stepping thread, into a headless context of their own.
+  sim->set_camera_renderer(render::headless_camera_renderer_factory());
   for (const auto& [name, value] : o.inputs)
     sim->set_input(name, value);
   return sim;

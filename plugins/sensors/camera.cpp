@@ -55,11 +55,13 @@ void CameraSensor::configure(ConfigureContext& ctx) {
 
   // The field of view: one of <fov vertical>, <fov horizontal> or <focal length> (SimTwo's;
   // also the default, 50).
-  const int ways = int{p.has("fov.vertical")} + int{p.has("fov.horizontal")} + int{p.has("focal.length")};
+  const int ways =
+      int{p.has("fov.vertical")} + int{p.has("fov.horizontal")} + int{p.has("focal.length")};
   if (ways > 1)
     fail(p, "fov", p.has("fov.vertical") ? "vertical" : "horizontal",
          "give one of <fov vertical>, <fov horizontal> and <focal length>, not several");
-  const double longer = std::max(width, height), shorter_over_longer = std::min(width, height) / longer;
+  const double longer = std::max(width, height),
+               shorter_over_longer = std::min(width, height) / longer;
   double vertical_rad = 0;
   auto from_longer_side = [&](double fov_rad) {
     // The vertical field from the field across the longer side.

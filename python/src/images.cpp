@@ -15,8 +15,8 @@ namespace {
 template <class T>
 py::array view_of(const Image& image, std::vector<py::ssize_t> shape,
                   std::vector<py::ssize_t> strides, py::handle owner) {
-  py::array_t<T> view(std::move(shape), std::move(strides),
-                      reinterpret_cast<const T*>(image.data), owner);
+  py::array_t<T> view(std::move(shape), std::move(strides), reinterpret_cast<const T*>(image.data),
+                      owner);
   py::detail::array_proxy(view.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return view;
 }

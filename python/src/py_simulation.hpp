@@ -6,6 +6,7 @@
 /// snapshots.cpp (pickling).
 
 #include "errors.hpp"
+#include "headless_camera_renderer.hpp"
 
 #include <s2sim/error.hpp>
 #include <s2sim/kernel/simulation.hpp>
@@ -79,6 +80,7 @@ class PySimulation {
       pybind11::gil_scoped_release release;
       sim_ = Simulation::load(scene, options);
     }
+    sim_->set_camera_renderer(render::headless_camera_renderer_factory());
     const auto& sc = sim_->scene();
     for (int b = 0; b < sim_->body_count(); ++b)
       body_names_.push_back(sim_->body_path(b));

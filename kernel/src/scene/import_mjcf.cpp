@@ -273,8 +273,8 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
     const Location where{display, "camera '" + cname + "'", ""};
     const int b = m->cam_bodyid[c];
     if (b == 0 || m->cam_mode[c] != mjCAMLIGHT_FIXED) {
-      model.warnings.push_back(where.str() + (b == 0 ? ": a camera fixed to the world"
-                                                     : ": a tracking camera") +
+      model.warnings.push_back(where.str() +
+                               (b == 0 ? ": a camera fixed to the world" : ": a tracking camera") +
                                " is not imported (cameras ride on a body)");
       continue;
     }

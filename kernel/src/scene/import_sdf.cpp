@@ -142,10 +142,12 @@ std::optional<Sensor> imported_sensor(ImportedModel& model, const sdf::Sensor& i
                       {"height", std::to_string(camera->ImageHeight())}});
       child("fov", {{"horizontal", number(camera->HorizontalFov().Degree())}});
       child("clip", {{"near", number(camera->NearClip())}, {"far", number(camera->FarClip())}});
-      const bool depth = type == sdf::SensorType::DEPTH_CAMERA || type == sdf::SensorType::RGBD_CAMERA;
-      child("outputs", {{"rgb", type == sdf::SensorType::DEPTH_CAMERA ? "0" : "1"},
-                        {"depth", depth ? "1" : "0"},
-                        {"segmentation", type == sdf::SensorType::SEGMENTATION_CAMERA ? "1" : "0"}});
+      const bool depth =
+          type == sdf::SensorType::DEPTH_CAMERA || type == sdf::SensorType::RGBD_CAMERA;
+      child("outputs",
+            {{"rgb", type == sdf::SensorType::DEPTH_CAMERA ? "0" : "1"},
+             {"depth", depth ? "1" : "0"},
+             {"segmentation", type == sdf::SensorType::SEGMENTATION_CAMERA ? "1" : "0"}});
       if (type == sdf::SensorType::SEGMENTATION_CAMERA)
         model.warnings.push_back(s.where.str() + ": camera '" + s.name +
                                  "': segmentation gives body ids (S2Sim's), not Gazebo's labels");

@@ -57,8 +57,7 @@ void load_shells(LoadContext& ctx, const Reader& r, const Element& shells, int r
       } else if (n == "focal" && kind == "camera") {
         camera.focal_length = r.number(c, "length", camera.focal_length);
       } else if (n == "frame" && kind == "camera") {
-        camera.decimation =
-            r.integer_in(c, "decimation", camera.decimation, 1, kMaxImageSide_px);
+        camera.decimation = r.integer_in(c, "decimation", camera.decimation, 1, kMaxImageSide_px);
         camera.width_px = r.integer_in(c, "width", camera.width_px, 1, kMaxImageSide_px);
         camera.height_px = r.integer_in(c, "height", camera.height_px, 1, kMaxImageSide_px);
       } else {

@@ -581,17 +581,16 @@ namespace {
 TEST(Import, MjcfCamerasRideTheirBodyLookingAlongTheirMinusZ) {
   // A camera on the upper bar looking along the body's -Z (MuJoCo's default orientation),
   // 45° high; one fixed to the world, which S2Sim does not import.
-  const fs::path xml =
-      test::edited_copy(kFixtures, "double_pendulum_mjcf.xml",
-                        "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>",
-                        "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>"
-                        "<camera name=\"tip\" pos=\"0 0 -0.5\" fovy=\"45\"/>") /
+  const fs::path xml = test::edited_copy(kFixtures, "double_pendulum_mjcf.xml",
+                                         "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>",
+                                         "<joint name=\"shoulder\" type=\"hinge\" axis=\"0 1 0\"/>"
+                                         "<camera name=\"tip\" pos=\"0 0 -0.5\" fovy=\"45\"/>") /
+                       "double_pendulum_mjcf.xml";
+  const fs::path with_world =
+      test::edited_copy(xml.parent_path(), "double_pendulum_mjcf.xml", "<geom name=\"floor\"",
+                        "<camera name=\"overhead\" pos=\"0 0 5\"/>"
+                        "<geom name=\"floor\"") /
       "double_pendulum_mjcf.xml";
-  const fs::path with_world = test::edited_copy(xml.parent_path(), "double_pendulum_mjcf.xml",
-                                                "<geom name=\"floor\"",
-                                                "<camera name=\"overhead\" pos=\"0 0 5\"/>"
-                                                "<geom name=\"floor\"") /
-                              "double_pendulum_mjcf.xml";
   auto sim = Simulation::load(with_world, options());
   std::vector<CameraShot> shots;
   test::record_shots(*sim, shots);
@@ -610,7 +609,8 @@ TEST(Import, MjcfCamerasRideTheirBodyLookingAlongTheirMinusZ) {
   std::string warnings;
   for (const std::string& w : sim->warnings())
     warnings += w + "\n";
-  EXPECT_THAT(warnings, HasSubstr("camera 'overhead': a camera fixed to the world is not imported"));
+  EXPECT_THAT(warnings,
+              HasSubstr("camera 'overhead': a camera fixed to the world is not imported"));
 }
 
 }  // namespace

@@ -76,7 +76,9 @@ std::unique_ptr<Simulation> load(const std::string& name, const std::string& fro
   return sim;
 }
 
-Vec3 column(const Mat3& r, int c) { return {r.m[0][c], r.m[1][c], r.m[2][c]}; }
+Vec3 column(const Mat3& r, int c) {
+  return {r.m[0][c], r.m[1][c], r.m[2][c]};
+}
 
 std::string error_of(const std::string& name, const std::string& front) {
   try {
@@ -92,10 +94,10 @@ std::string error_of(const std::string& name, const std::string& front) {
 TEST(Camera, DeclaresTheImagesItsOutputsAskForWithTheirSizesAndFormats) {
   std::vector<CameraShot> shots;
   auto sim = load("camera_images", kFrontCamera, shots);
-  EXPECT_THAT(sim->image_names(),
-              ::testing::ElementsAre(std::string(kEye) + "rgb", std::string(kFront) + "rgb",
-                                     std::string(kFront) + "depth",
-                                     std::string(kFront) + "segmentation"));
+  EXPECT_THAT(
+      sim->image_names(),
+      ::testing::ElementsAre(std::string(kEye) + "rgb", std::string(kFront) + "rgb",
+                             std::string(kFront) + "depth", std::string(kFront) + "segmentation"));
   const Image& depth = sim->image(std::string(kFront) + "depth");
   EXPECT_EQ(depth.width_px, 64);
   EXPECT_EQ(depth.height_px, 48);
@@ -229,14 +231,12 @@ TEST(Camera, RefusesSettingsItCannotHonourNamingTheElement) {
                        "<camera><ID value='front'/><fov vertical='60'/><focal length='20'/>"
                        "</camera>"),
               HasSubstr("not several"));
-  EXPECT_THAT(error_of("camera_clip",
-                       "<camera><ID value='front'/><clip near='2' far='1'/></camera>"),
-              HasSubstr("beyond near"));
-  EXPECT_THAT(error_of("camera_outputs",
-                       "<camera><ID value='front'/><outputs rgb='0'/></camera>"),
+  EXPECT_THAT(
+      error_of("camera_clip", "<camera><ID value='front'/><clip near='2' far='1'/></camera>"),
+      HasSubstr("beyond near"));
+  EXPECT_THAT(error_of("camera_outputs", "<camera><ID value='front'/><outputs rgb='0'/></camera>"),
               HasSubstr("at least one"));
-  EXPECT_THAT(error_of("camera_width",
-                       "<camera><ID value='front'/><frame width='0'/></camera>"),
+  EXPECT_THAT(error_of("camera_width", "<camera><ID value='front'/><frame width='0'/></camera>"),
               HasSubstr("width"));
   EXPECT_THAT(error_of("camera_huge",
                        "<camera><ID value='front'/><frame width='16000' height='16000'/></camera>"),

@@ -12,7 +12,7 @@ extern "C" {
 }
 #endif
 
-namespace s2sim::viewer {
+namespace s2sim::apps {
 
 #ifdef S2SIM_HAVE_VIDEO
 
@@ -128,14 +128,17 @@ VideoWriter::VideoWriter(const std::string& file, int width_px, int height_px, i
 VideoWriter::~VideoWriter() = default;
 
 void VideoWriter::add_frame(const unsigned char* rgb_bottom_up) {
+  const int stride = 3 * impl_->source_width;
+  // The top row is the last one OpenGL read: start there and walk the rows backwards.
+  add_frame_rows(rgb_bottom_up + static_cast<std::ptrdiff_t>(impl_->height - 1) * stride, -stride);
+}
+
+void VideoWriter::add_frame_rows(const unsigned char* top_row, int stride_bytes) {
   Impl& m = *impl_;
   int status = av_frame_make_writable(m.frame);
   if (status < 0) throw m.fail("out of memory", status);
-  // The top row is the last one OpenGL read: start there and walk the rows backwards.
-  const int stride = 3 * m.source_width;
-  const std::uint8_t* rows[1] = {rgb_bottom_up +
-                                 static_cast<std::ptrdiff_t>(m.height - 1) * stride};
-  const int strides[1] = {-stride};
+  const std::uint8_t* rows[1] = {top_row};
+  const int strides[1] = {stride_bytes};
   sws_scale(m.scale, rows, strides, 0, m.height, m.frame->data, m.frame->linesize);
   m.frame->pts = frames_++;
   m.encode(m.frame);
@@ -161,13 +164,14 @@ struct VideoWriter::Impl {};
 VideoWriter::VideoWriter(const std::string& file, int, int, int) {
   throw Error(ErrorKind::usage,
               "--video '" + file +
-                  "': this s2sim-view was built without libavcodec (install libavcodec-dev, "
+                  "': this program was built without libavcodec (install libavcodec-dev, "
                   "libavformat-dev and libswscale-dev, then build again)");
 }
 VideoWriter::~VideoWriter() = default;
 void VideoWriter::add_frame(const unsigned char*) {}
+void VideoWriter::add_frame_rows(const unsigned char*, int) {}
 void VideoWriter::finish() {}
 
 #endif
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::apps

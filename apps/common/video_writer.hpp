@@ -1,15 +1,16 @@
 #pragma once
 /// \file
 /// An MP4 video written frame by frame through Debian's libavcodec (`s2sim-view --replay FILE
-/// --video OUT.mp4`, docs/recording.md): H.264 (libx264) when the library has it, else MPEG-4
-/// part 2, in YUV 4:2:0. A viewer built without libavcodec refuses `--video` saying so.
+/// --video OUT.mp4`, `s2sim-run --video OUT.mp4`, docs/recording.md): H.264 (libx264) when the
+/// library has it, else MPEG-4 part 2, in YUV 4:2:0. A program built without libavcodec
+/// refuses `--video` saying so.
 
 #include <memory>
 #include <string>
 
-namespace s2sim::viewer {
+namespace s2sim::apps {
 
-/// Whether this viewer was built with libavcodec.
+/// Whether this program was built with libavcodec.
 bool video_supported();
 
 class VideoWriter {
@@ -23,6 +24,9 @@ class VideoWriter {
 
   /// Encodes one frame of RGB pixels, 3 bytes each, rows bottom-up as OpenGL reads them.
   void add_frame(const unsigned char* rgb_bottom_up);
+  /// Encodes one frame of RGB pixels, 3 bytes each, from the top row, the next row
+  /// `stride_bytes` on (negative: rows bottom-up).
+  void add_frame_rows(const unsigned char* top_row, int stride_bytes);
   /// Flushes the encoder and closes the file. Throws s2sim::Error when writing failed.
   void finish();
   int frames() const { return frames_; }
@@ -36,4 +40,4 @@ class VideoWriter {
   std::string codec_;
 };
 
-}  // namespace s2sim::viewer
+}  // namespace s2sim::apps
