@@ -3,6 +3,8 @@
 /// Resource limits of a scene, checked at load with located errors (docs/reliability.md): a
 /// count or a step beyond them would exhaust memory or time rather than simulate anything.
 
+#include <s2sim/image.hpp>
+
 #include <cstdint>
 
 namespace s2sim::scene::limits {
