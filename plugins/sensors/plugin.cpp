@@ -15,4 +15,5 @@ S2SIM_PLUGIN(
     S2SIM_KIND("pentip", Category::sensor, PenTip), S2SIM_KIND("beacon", Category::sensor, Beacon),
     S2SIM_KIND("imu", Category::sensor, Imu), S2SIM_KIND("pose", Category::sensor, PoseSensor),
     S2SIM_KIND("sonar", Category::sensor, Sonar), S2SIM_KIND("touch", Category::sensor, Touch),
-    S2SIM_KIND("jointforce", Category::sensor, JointForce))
+    S2SIM_KIND("jointforce", Category::sensor, JointForce),
+    S2SIM_KIND("spraygun", Category::sensor, SprayGun))
