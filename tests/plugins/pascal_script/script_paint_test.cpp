@@ -1,6 +1,7 @@
 // SimTwo's spray-painting routines (plugins/pascal_script/host_paint.cpp) from a script
-// (fixtures/spray_paint.pas) on the plate of tests/common/spray_scene.hpp: the statistics the
-// script reads are the ones computed here from the gun's signals, by SimTwo's definitions.
+// (fixtures/spray_paint.pas) on the plate of tests/common/spray_scene.hpp, painted by two guns:
+// the statistics the script reads are the ones computed here from the guns' signals (a
+// triangle's paint the sum of theirs), by SimTwo's definitions.
 #include <s2sim/kernel/simulation.hpp>
 
 #include <gmock/gmock.h>
@@ -13,6 +14,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -56,14 +59,27 @@ TEST(ScriptPaint, TheScriptsStatisticsAreTheGunsPaintBySimTwosDefinitions) {
   o.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
   o.script_mode = ScriptMode::always;
   o.script_file = fs::path(S2SIM_PASCAL_FIXTURES) / "spray_paint.pas";
-  auto sim = Simulation::load(
-      s2sim::test::write_spray_scene(s2sim::test::process_temp_dir() / "script-paint", scene), o);
+  const fs::path dir =
+      s2sim::test::write_spray_scene(s2sim::test::process_temp_dir() / "script-paint", scene);
+  {  // a second gun, 5 cm aside, on from the start, twice the flow
+    std::ifstream in(dir / "sensors.xml");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("</sensors>"), std::string("</sensors>").size(),
+                 "  <spraygun>\n    <ID value='gun2'/>\n    <pos x='0.05' y='0' z='0.31'/>\n"
+                 "    <rot_deg y='90'/>\n    <paint_rate value='2e-6'/>\n"
+                 "    <paint_max_angle value='0.3'/>\n    <paint_default_on value='1'/>\n"
+                 "  </spraygun>\n</sensors>\n");
+    std::ofstream(dir / "sensors.xml") << text;
+  }
+  auto sim = Simulation::load(dir, o);
   sim->run_until(0.6);  // the statistics at 519 ms, the gun off since
   ASSERT_EQ(sim->signal("controllers/script/error"), 0);
   EXPECT_EQ(sim->input(sim->input_index("sensors/gun/on")), 0);
-  std::vector<double> t;
+  EXPECT_EQ(sim->input(sim->input_index("sensors/gun2/on")), 0);
+  std::vector<double> t;  // a triangle's paint: the sum of the guns'
   for (int k = 0; k < 2 * scene.cells * scene.cells; ++k)
-    t.push_back(sim->signal("sensors/gun/paint/0/" + std::to_string(k)));
+    t.push_back(sim->signal("sensors/gun/paint/0/" + std::to_string(k)) +
+                sim->signal("sensors/gun2/paint/0/" + std::to_string(k)));
   const double n = static_cast<double>(t.size());
   double sum = 0, pos_sum = 0, max = 0, min = 10000, pos_min = 10000;
   int painted = 0;
@@ -113,15 +129,17 @@ TEST(ScriptPaint, TheScriptsStatisticsAreTheGunsPaintBySimTwosDefinitions) {
   const auto e = errors(*sim);
   ASSERT_EQ(e.size(), 2u);
   EXPECT_THAT(e[0], HasSubstr("3 colours for the 3200 triangles"));
-  EXPECT_THAT(e[1], HasSubstr("List index (1) out of bounds"));
+  EXPECT_THAT(e[1], HasSubstr("List index (2) out of bounds"));
   // ResetPaintTargetPaint: clear at once for the script, and in the gun's state after it.
   sim->run_until(0.9);
   const auto later = said(*sim);
   EXPECT_EQ(later.at("avg_at_reset"), 0);
   EXPECT_EQ(later.at("posmin_at_reset"), 10000) << "SimTwo's start value: nothing painted";
   EXPECT_EQ(later.at("max_after_reset"), 0);
-  EXPECT_EQ(sim->signal("sensors/gun/volume"), 0);
-  EXPECT_EQ(sim->signal("sensors/gun/paint/0/resets"), 1);
+  for (const char* gun : {"gun", "gun2"}) {
+    EXPECT_EQ(sim->signal(std::string("sensors/") + gun + "/volume"), 0) << gun;
+    EXPECT_EQ(sim->signal(std::string("sensors/") + gun + "/paint/0/resets"), 1) << gun;
+  }
 }
 
 }  // namespace
