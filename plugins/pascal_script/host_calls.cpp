@@ -559,6 +559,24 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::GetAxisEnergy:
     case HostFn::ResetAxisEnergy:
       return call_axes(fn, a, n, s);
+    case HostFn::SetSprayGunOn:
+    case HostFn::SetSprayGunOff:
+    case HostFn::GetPaintGunMinDist:
+    case HostFn::GetPaintTargetExtents:
+    case HostFn::ResetPaintTargetPaint:
+    case HostFn::SetPaintTargetPaintMode:
+    case HostFn::GetPaintTargetTriangles:
+    case HostFn::SetResultTrianglesColor:
+    case HostFn::CalculateSprayThicknessHistogram:
+    case HostFn::CalculateAvgSprayThickness:
+    case HostFn::CalculateSDSprayThickness:
+    case HostFn::CalculatePosAvgSprayThickness:
+    case HostFn::CalculatePosSDSprayThickness:
+    case HostFn::CalculatePosMinSprayThickness:
+    case HostFn::CalculateMinSprayThickness:
+    case HostFn::CalculateMaxSprayThickness:
+    case HostFn::CalculateSprayCoverage:
+      return call_paint(fn, a, n);
     case HostFn::WriteUDPData:
       need(1);
       udp().send(s, static_cast<int>(a[0]), s2);

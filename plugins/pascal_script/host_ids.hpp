@@ -156,7 +156,24 @@
   X(SetBeltSpeed) \
   X(GetBeltSpeed) \
   X(GetShellPos) \
-  X(GetShellColor)
+  X(GetShellColor) \
+  X(SetSprayGunOn) \
+  X(SetSprayGunOff) \
+  X(GetPaintGunMinDist) \
+  X(GetPaintTargetExtents) \
+  X(ResetPaintTargetPaint) \
+  X(SetPaintTargetPaintMode) \
+  X(GetPaintTargetTriangles) \
+  X(SetResultTrianglesColor) \
+  X(CalculateSprayThicknessHistogram) \
+  X(CalculateAvgSprayThickness) \
+  X(CalculateSDSprayThickness) \
+  X(CalculatePosAvgSprayThickness) \
+  X(CalculatePosSDSprayThickness) \
+  X(CalculatePosMinSprayThickness) \
+  X(CalculateMinSprayThickness) \
+  X(CalculateMaxSprayThickness) \
+  X(CalculateSprayCoverage)
 // clang-format on
 
 namespace s2sim::pascal {

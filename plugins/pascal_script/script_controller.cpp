@@ -154,6 +154,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
     if (s.kind == "solenoid") s.vin = ctx.declare_input_at(s.prefix + "/vin", "1", 0.0);
     sensors_.push_back(std::move(s));
   }
+  configure_paint(ctx);
   // A robot's sensor i is the global sensor with its prefix (the robot's come in its order).
   for (auto& robot : robots_) {
     int next = 0;

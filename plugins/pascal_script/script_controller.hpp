@@ -132,6 +132,28 @@ struct ObstacleRef {
   BodyHandle body;       // the spare body an added obstacle holds
 };
 
+/// A `spraygun` of SimTwo's world-wide sensor list (SetSprayGunOn(i): the i-th of them).
+struct SprayGunRef {
+  std::string prefix;
+  InputHandle on{-1};  // index -1 when no plugin gives the kind (an inert sensor)
+  SignalHandle min_dist{-1};
+  /// Per painting target: the resets it carried out, and its paint per triangle.
+  std::vector<SignalHandle> resets_seen;
+  std::vector<std::vector<SignalHandle>> thickness;
+};
+
+/// A painting target (ConfigureContext::painting_targets), SimTwo's i of the paint routines.
+struct PaintTargetRef {
+  std::string id;
+  BodyHandle body;
+  std::vector<Vec3> vertices;  // body frame, three per triangle
+  /// Per triangle, the triangles that share a vertex with it: neighbors_of[t] to
+  /// neighbors_of[t + 1] in neighbors.
+  std::vector<int> neighbors_of, neighbors;
+  InputHandle resets{-1};  // `paint_targets/<k>/resets`, -1 when no gun paints
+  int count() const { return static_cast<int>(vertices.size() / 3); }
+};
+
 /// Rotation about world Z.
 inline Mat3 rot_z(double a) {
   const double c = std::cos(a), s = std::sin(a);
@@ -162,6 +184,15 @@ class ScriptController final : public Component {
   double call_axes(HostFn fn, const double* a, int n, const std::string& s);
   /// Trails, charts, the sheet's colours and UDP packets (host_annotations.cpp).
   double call_annotations(HostFn fn, const double* a, int n);
+  /// The spray guns and painting targets (host_paint.cpp): configure_paint resolves them.
+  void configure_paint(ConfigureContext& ctx);
+  double call_paint(HostFn fn, const double* a, int n);
+  SprayGunRef& spray_gun(double i);
+  PaintTargetRef& paint_target(double i);
+  /// Target `k`'s paint per triangle, summed over the guns, into paint_scratch_: a gun that
+  /// has not yet carried out the target's last reset counts for nothing (the script sees the
+  /// target clear at once, as SimTwo's).
+  const double* paint_of(std::size_t k);
   /// A script error naming `fn` when it got fewer than `want` arguments.
   void require_arguments(HostFn fn, int have, int want);
   /// The obstacle of index `t`, or a script error.
@@ -210,6 +241,9 @@ class ScriptController final : public Component {
     Vec3 position_m, scale{1, 1, 1};
   } fire_;
   std::vector<ObstacleRef> obstacles_;
+  std::vector<SprayGunRef> spray_guns_;
+  std::vector<PaintTargetRef> paint_targets_;
+  std::vector<double> paint_scratch_;  // sized at configure for the largest target
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;
   std::vector<double> sheet_initial_values_;  // the inputs' values at reset

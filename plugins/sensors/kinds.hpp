@@ -232,4 +232,42 @@ class Beacon : public Component {
   SignalHandle x_, y_, z_;
 };
 
+/// `spraygun`: deposits paint on every painting target's triangles inside its cone
+/// (spray_model.hpp), through the on/off input `on`; per triangle the thickness of its own
+/// paint, in its state, published as `paint/<target>/<triangle>` (m).
+class SprayGun : public Component {
+ public:
+  void configure(ConfigureContext& ctx) override;
+  void initialize(StepContext& ctx) override;
+  void update(StepContext& ctx) override;
+
+ private:
+  struct Triangle {
+    Vec3 a, b, c;  ///< vertices, body frame
+    Vec3 centre;   ///< body frame
+    Vec3 normal;   ///< unit, body frame: the side the vertices turn anticlockwise on
+    double area_m2 = 0;
+  };
+  struct Target {
+    BodyHandle body;
+    int first = 0, count = 0;  ///< its triangles in triangles_
+    InputHandle resets;        ///< `paint_targets/<k>/resets`, shared by every gun
+    SignalHandle resets_seen;  ///< `paint/<k>/resets`: the resets this gun has carried out
+  };
+  void read_paint(ConfigureContext& ctx);
+  bool occluded(StepContext& ctx, const Vec3& nozzle, const Vec3& to, double distance,
+                BodyHandle target) const;
+  void publish_all(StepContext& ctx);
+  SensorSetup s_;
+  double rate_m3_s_ = 0.01, max_angle_rad_ = 0.2, sigma_rad_ = 0.1, cos_max_ = 1, per_sr_ = 0;
+  bool occlusion_ = false;
+  std::vector<Triangle> triangles_;
+  std::vector<Target> targets_;
+  std::vector<SignalHandle> thickness_sig_;  ///< per triangle
+  InputHandle on_;
+  StateHandle thickness_, resets_done_;  ///< per triangle (m); per target
+  double color_[3] = {1, 0, 0};          ///< paint_color_rgb, 0..1
+  SignalHandle volume_, min_dist_, color_sig_[3];
+};
+
 }  // namespace s2sim::sensors

@@ -10,6 +10,7 @@ S2SIM_PLUGIN(
     S2SIM_KIND("capacitive", Category::sensor, Capacitive),
     S2SIM_KIND("inductive", Category::sensor, Inductive),
     S2SIM_KIND("RFID", Category::sensor, Rfid), S2SIM_KIND("solenoid", Category::sensor, Solenoid),
+    S2SIM_KIND("spraygun", Category::sensor, SprayGun),
     S2SIM_KIND("floorline", Category::sensor, FloorLine),
     S2SIM_KIND("ranger2d", Category::sensor, Ranger2D),
     S2SIM_KIND("lidar3d", Category::sensor, Lidar3D),

@@ -32,6 +32,10 @@ inline constexpr std::int64_t kMaxArcSegments = 100000;
 inline constexpr std::int64_t kMaxRuntimeThings = 4096;
 inline constexpr int kDefaultRuntimeThings = 32;
 
+/// Triangles of one painting target's mesh (SimTwo's GetPaintTargetTriangles gives at most
+/// this many): a spray gun publishes one thickness per triangle.
+inline constexpr std::int64_t kMaxPaintTriangles = 200000;
+
 // Rays of one sensor beam: s2sim::kMaxBeamRays (s2sim/sensor.hpp, shared with the plugins).
 // A camera's or canvas's width or height in pixels, and a camera's frame decimation:
 // s2sim::kMaxImageSide_px (s2sim/image.hpp, shared with the plugins).

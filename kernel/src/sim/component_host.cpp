@@ -198,6 +198,7 @@ class ConfigureContextImpl final : public ConfigureContext {
     }
     return out;
   }
+  std::vector<PaintingTarget> painting_targets() const override { return sim_.painting_targets(); }
   int body_count() const override { return static_cast<int>(sim_.poses.size()); }
   SignalHandle published_signal(std::string_view full_name) const override {
     auto it = sim_.signal_by_name.find(std::string(full_name));

@@ -311,6 +311,12 @@ struct Simulation::Impl {
   static void render_camera(const void* impl, const CameraShot& shot, Image* rgb, Image* depth,
                             Image* body_ids);
 
+  // --- painting targets (painting_targets.cpp) -------------------------------------------------
+  // The meshes of the scene's `<painting_target/>` geoms, read once at the first query
+  // (ConfigureContext::painting_targets): configure-time data, not state.
+  std::optional<std::vector<PaintingTarget>> painting_targets_read;
+  const std::vector<PaintingTarget>& painting_targets();
+
   // Per-stage timing of the tick pipeline (Simulation::set_profiling); null when off.
   std::unique_ptr<sim::StageProfile> profile;
 

@@ -240,6 +240,10 @@ procedure setModbusInput(bit_addr: integer; new_state: boolean);
 function S2SimAxisCount(R: integer): integer;
 function S2SimAxisJoint(R, i: integer; out which: integer): string;
 function S2SimScriptFolder: string;
+{ For the other support units: host function fn called with the numbers a (any count); the
+  numbers the call left (S2SimHostNumbers gives their count and the first). }
+function S2SimHostCall(fn: longint; const a: array of double): double;
+function S2SimHostNumbers(out first: PDouble): longint;
 { A file name as SimTwo's scripts mean it: a relative one in the script's folder (SimTwo works in
   the project's folder). }
 function InScriptFolder(const name: string): string;
@@ -722,6 +726,18 @@ begin
   result := HostText;
 end;
 function S2SimScriptFolder: string; begin HostCall(hScriptFolder, []); result := HostText; end;
+function S2SimHostCall(fn: longint; const a: array of double): double;
+var zero: double;
+begin
+  zero := 0;
+  if Length(a) = 0 then result := Host.call(Host.host, fn, @zero, 0, nil, 0, nil, 0)
+  else result := Host.call(Host.host, fn, @a[0], Length(a), nil, 0, nil, 0);
+  HostCheck;
+end;
+function S2SimHostNumbers(out first: PDouble): longint;
+begin
+  result := Host.result(Host.host, 1, Pointer(first));
+end;
 function InScriptFolder(const name: string): string;
 begin
   if (name <> '') and (name[1] = '/') then result := name

@@ -1,4 +1,4 @@
-{ SimTwo's canvas, camera and spray-paint routines (written for S2Sim; no SimTwo source):
+{ SimTwo's canvas and camera routines (written for S2Sim; no SimTwo source):
   declared with their types so that scripts compile; each raises "... belongs to rendering"
   until S2Sim renders them. }
 unit s2simtwo_rendering;
@@ -10,10 +10,6 @@ interface
 uses SysUtils, Types, s2simtwo_types;
 
 type
-  TPaintVisuals = integer;
-  THistogram = array of double;
-  TTriangle = record v1, v2, v3: TPoint3D; end;
-  TTriangles = array of TTriangle;
   TCanvasTool = class
   public
     Color: TColor;
@@ -44,23 +40,6 @@ var
 function GetSolidCanvas(R, i: integer): TCanvas;
 function GetObstacleCanvas(i: integer): TCanvas;
 procedure SolidCanvasClear(R, i: integer);
-function GetPaintGunMinDist(i: integer): double;
-function GetPaintTargetExtents(i: integer): TExtents;
-procedure ResetPaintTargetPaint(i: integer);
-procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals);
-procedure SetSprayGunOn(i: integer);
-procedure SetSprayGunOff(i: integer);
-function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
-function CalculateAvgSprayThickness(i: integer): double;
-function CalculateSDSprayThickness(i: integer): double;
-function CalculatePosAvgSprayThickness(i: integer): double;
-function CalculatePosSDSprayThickness(i: integer): double;
-function CalculatePosMinSprayThickness(i: integer): double;
-function CalculateMinSprayThickness(i: integer): double;
-function CalculateMaxSprayThickness(i: integer): double;
-function CalculateSprayCoverage(i: integer): double;
-function GetPaintTargetTriangles(i: integer): TTriangles;
-procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D);
 function GetCameraPixel(X, Y: integer): TRGBAColor;
 
 implementation
@@ -75,24 +54,6 @@ procedure TCanvas.LineTo(X, Y: integer); begin BelongsToRendering('TCanvas.LineT
 function GetSolidCanvas(R, i: integer): TCanvas; begin BelongsToRendering('GetSolidCanvas'); result := nil; end;
 function GetObstacleCanvas(i: integer): TCanvas; begin BelongsToRendering('GetObstacleCanvas'); result := nil; end;
 procedure SolidCanvasClear(R, i: integer); begin BelongsToRendering('SolidCanvasClear'); end;
-function GetPaintGunMinDist(i: integer): double; begin BelongsToRendering('GetPaintGunMinDist'); end;
-function GetPaintTargetExtents(i: integer): TExtents; begin BelongsToRendering('GetPaintTargetExtents'); end;
-procedure ResetPaintTargetPaint(i: integer); begin BelongsToRendering('ResetPaintTargetPaint'); end;
-procedure SetPaintTargetPaintMode(i: integer; paintMode: TPaintVisuals); begin BelongsToRendering('SetPaintTargetPaintMode'); end;
-procedure SetSprayGunOn(i: integer); begin BelongsToRendering('SetSprayGunOn'); end;
-procedure SetSprayGunOff(i: integer); begin BelongsToRendering('SetSprayGunOff'); end;
-function CalculateSprayThicknessHistogram(i: integer; numberOfBins: integer): THistogram;
-begin BelongsToRendering('CalculateSprayThicknessHistogram'); end;
-function CalculateAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculateAvgSprayThickness'); end;
-function CalculateSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculateSDSprayThickness'); end;
-function CalculatePosAvgSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosAvgSprayThickness'); end;
-function CalculatePosSDSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosSDSprayThickness'); end;
-function CalculatePosMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculatePosMinSprayThickness'); end;
-function CalculateMinSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMinSprayThickness'); end;
-function CalculateMaxSprayThickness(i: integer): double; begin BelongsToRendering('CalculateMaxSprayThickness'); end;
-function CalculateSprayCoverage(i: integer): double; begin BelongsToRendering('CalculateSprayCoverage'); end;
-function GetPaintTargetTriangles(i: integer): TTriangles; begin BelongsToRendering('GetPaintTargetTriangles'); end;
-procedure SetResultTrianglesColor(i: integer; colors: array of TPoint3D); begin BelongsToRendering('SetResultTrianglesColor'); end;
 function GetCameraPixel(X, Y: integer): TRGBAColor; begin BelongsToRendering('GetCameraPixel'); end;
 
 initialization

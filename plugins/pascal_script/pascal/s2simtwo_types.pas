@@ -55,12 +55,24 @@ type
   TFrictionDef = record Bv, Fc, CoulombLimit: double; end;
   TRGBAColor = record Red, Green, Blue, alpha: integer; end;
   TExtents = record Min, Max: TPoint3D; end;
+  { The spray-painting routines' (s2simtwo_paint). }
+  TPaintVisuals = (pmPaint, pmHeatmap, pmResult);
+  TFace = record
+    vertice0, vertice1, vertice2, center, normal: TPoint3D;
+    area: double;
+    neighbors: array of integer;
+  end;
+  TTriangles = array of TFace;
+  THistogram = record
+    binUpperLimit: array of double;
+    binHeight: array of integer;
+  end;
 
   EScriptHostError = class(Exception);
 
 { "<routine> is not yet available in S2Sim": what S2Sim lacks raises, never a silent no-op. }
 procedure NotYetAvailable(const routine: string);
-{ "<routine> belongs to rendering, ...": canvas, camera and spray paint. }
+{ "<routine> belongs to rendering, ...": canvas and camera. }
 procedure BelongsToRendering(const routine: string);
 
 implementation

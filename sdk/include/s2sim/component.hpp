@@ -118,6 +118,18 @@ struct FloorPolygon {
   std::vector<double> x_m, y_m;
 };
 
+/// A painting target of the scene (SimTwo's `<painting_target/>` on a solid, thing or obstacle
+/// that has a `<mesh>`): the mesh's triangles as they stand in its body's frame, for a spray
+/// gun to paint and a script to query (docs/models/sensors.md, "Spray painting").
+struct PaintingTarget {
+  std::string id;   ///< the solid's, thing's or obstacle's ID as written
+  BodyHandle body;  ///< the body it moves with; index 0 for an obstacle (world frame)
+  /// Three vertices per triangle, in the order the mesh file winds them (the front face is
+  /// the one they turn anticlockwise on): the file's vertices times the mesh scale, placed as
+  /// the viewer draws them (the geom's pose and the mesh offset), in the body frame.
+  std::vector<Vec3> vertices_m;
+};
+
 /// The primitive of a thing added at run time (SimTwo's `AddThingBox`, `AddThingSphere`,
 /// `AddThingCylinder`).
 enum class ThingShape : std::uint8_t { box = 0, sphere = 1, cylinder = 2 };
@@ -780,6 +792,11 @@ class ConfigureContext {
   virtual const SensorSpec* sensor_spec() const = 0;
   /// A copy of every floor polygon of the scene's tracks, in scene order.
   virtual std::vector<FloorPolygon> floor_polygons() const = 0;
+  /// A copy of every painting target: the scene's things first, then the robots' solids and
+  /// shells, then the obstacles, each in scene order (SimTwo's routines number the targets
+  /// among its things in this order). The kernel reads each mesh file once, at the first call;
+  /// one it cannot read throws naming the file and the element. None outside the kernel.
+  virtual std::vector<PaintingTarget> painting_targets() const { return {}; }
 
   // --- the component's signals and inputs ---
 

@@ -3,6 +3,7 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "common/counting_new.hpp"
+#include "common/spray_scene.hpp"
 
 #include <gtest/gtest.h>
 
@@ -53,6 +54,15 @@ TEST(SensorAllocation, SensorsAddNoAllocationToTheStep) {
     EXPECT_EQ(allocations_per_1000_ticks(scene, with), allocations_per_1000_ticks(scene, without))
         << fixture;
   }
+  // A spray gun painting through its cone, its rays cast for occlusion, on a moving target.
+  with.simbody_dynamics_only = without.simbody_dynamics_only = false;
+  test::SprayScene spray;
+  spray.cells = 20;
+  spray.occlusion = spray.blocker = true;
+  const fs::path scene =
+      test::write_spray_scene(s2sim::test::process_temp_dir() / "spray_allocation", spray);
+  EXPECT_EQ(allocations_per_1000_ticks(scene, with), allocations_per_1000_ticks(scene, without))
+      << "spraygun";
 }
 
 }  // namespace
