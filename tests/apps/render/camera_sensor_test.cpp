@@ -16,21 +16,12 @@
 #include <string>
 #include <vector>
 #include "common/temp_dir.hpp"
+#include "no_display.hpp"
 
 namespace s2sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-class NoDisplay : public ::testing::Environment {
- public:
-  void SetUp() override {
-    ::unsetenv("DISPLAY");
-    ::unsetenv("WAYLAND_DISPLAY");
-  }
-};
-[[maybe_unused]] ::testing::Environment* const kNoDisplay =
-    ::testing::AddGlobalTestEnvironment(new NoDisplay);
 
 // The camera, on a post at (0.8, 0, 0.05), sits at (1, y, z) looking along +X: the cube's near
 // face (x = 2, y in ±0.5, z in 0..1) is 1 m in front of it. The offsets put the face's edges

@@ -22,22 +22,12 @@
 #include <thread>
 #include <vector>
 #include "common/temp_dir.hpp"
+#include "no_display.hpp"
 
 namespace s2sim::render {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Every test runs as on a machine without a display server, whatever ctest's environment.
-class NoDisplay : public ::testing::Environment {
- public:
-  void SetUp() override {
-    ::unsetenv("DISPLAY");
-    ::unsetenv("WAYLAND_DISPLAY");
-  }
-};
-[[maybe_unused]] ::testing::Environment* const kNoDisplay =
-    ::testing::AddGlobalTestEnvironment(new NoDisplay);
 
 // The camera looks along the world's +X from (1, y, z), so the cube's near face (x = 2) is 1 m
 // in front of it; it stands inside the cube's slab in y and z, so no other face shows. The
