@@ -36,9 +36,8 @@ std::string num(double v) {
 
 void fail(const Params& p, const std::string& child, const std::string& attribute,
           const std::string& message) {
-  std::string where = p.location();
-  if (!child.empty()) where += "/" + child;
-  throw Error(ErrorKind::scene, Location{"", where, attribute}, message);
+  throw Error(ErrorKind::scene, p.where(child.empty() ? attribute : child + "." + attribute),
+              message);
 }
 
 const ZigguratTables& ziggurat_tables() {
