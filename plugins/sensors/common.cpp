@@ -36,8 +36,11 @@ std::string num(double v) {
 
 void fail(const Params& p, const std::string& child, const std::string& attribute,
           const std::string& message) {
-  throw Error(ErrorKind::scene, p.where(child.empty() ? attribute : child + "." + attribute),
-              message);
+  fail_at(p, child.empty() ? attribute : child + "." + attribute, message);
+}
+
+void fail_at(const Params& p, std::string_view path, const std::string& message) {
+  throw Error(ErrorKind::scene, p.where(path), message);
 }
 
 const ZigguratTables& ziggurat_tables() {

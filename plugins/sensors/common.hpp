@@ -19,6 +19,8 @@ Mat3 rot_z(double rad);
 /// Throws s2sim::Error (scene) "<file: element>/<child>@<attribute>: <message>".
 [[noreturn]] void fail(const Params& p, const std::string& child, const std::string& attribute,
                        const std::string& message);
+/// The same at a dotted `path` ("channels.lowest": the attribute `lowest` of `<channels>`).
+[[noreturn]] void fail_at(const Params& p, std::string_view path, const std::string& message);
 std::string num(double v);
 
 /// SimTwo's generic noise, per value v: gain·v + offset + N(0, stdev) + N(0, stdev_p·|v|).

@@ -19,15 +19,10 @@ namespace {
 /// The period of a lidar without `<period>`: 10 Hz, a spinning lidar's usual rate.
 constexpr double kDefaultLidarPeriod_s = 0.1;
 
-/// A located error at the attribute `path` ("channels.lowest") of the sensor's element.
-[[noreturn]] void refuse(const Params& p, std::string_view path, const std::string& message) {
-  throw Error(ErrorKind::scene, p.where(path), message);
-}
-
 /// A finite number (degrees or metres) at `path`, or `fallback` when absent.
 double finite(const Params& p, std::string_view path, double fallback) {
   const double v = p.number(path, fallback);
-  if (!std::isfinite(v)) refuse(p, path, "must be a finite number, got " + num(v));
+  if (!std::isfinite(v)) fail_at(p, path, "must be a finite number, got " + num(v));
   return v;
 }
 
@@ -48,16 +43,16 @@ void Lidar3D::configure(ConfigureContext& ctx) {
   const double lowest = finite(p, "channels.lowest", -15);
   const double highest = finite(p, "channels.highest", 15);
   if (lowest < -90 || lowest > 90)
-    refuse(p, "channels.lowest", "must be in -90..90 degrees, got " + num(lowest));
+    fail_at(p, "channels.lowest", "must be in -90..90 degrees, got " + num(lowest));
   if (highest < -90 || highest > 90)
-    refuse(p, "channels.highest", "must be in -90..90 degrees, got " + num(highest));
+    fail_at(p, "channels.highest", "must be in -90..90 degrees, got " + num(highest));
   if (rows_ > 1 && !(lowest < highest))
-    refuse(p, "channels.lowest",
-           "must be below highest (" + num(highest) + " degrees) for " + std::to_string(rows_) +
-               " channels, got " + num(lowest));
+    fail_at(p, "channels.lowest",
+            "must be below highest (" + num(highest) + " degrees) for " + std::to_string(rows_) +
+                " channels, got " + num(lowest));
   if (lowest > highest)
-    refuse(p, "channels.lowest",
-           "must not be above highest (" + num(highest) + " degrees), got " + num(lowest));
+    fail_at(p, "channels.lowest",
+            "must not be above highest (" + num(highest) + " degrees), got " + num(lowest));
 
   // Azimuth: the columns, from `start` counter-clockwise to `stop` (degrees). A full turn
   // spaces them by 360/M (the last one short of `stop`, which is `start` again); a partial
@@ -66,23 +61,24 @@ void Lidar3D::configure(ConfigureContext& ctx) {
   const double start = finite(p, "azimuth.start", -180);
   const double stop = finite(p, "azimuth.stop", 180);
   if (!(stop > start) || stop - start > 360 + 1e-9)
-    refuse(p, "azimuth.stop",
-           "must be above start (" + num(start) + " degrees) by at most 360 degrees, got " +
-               num(stop));
+    fail_at(p, "azimuth.stop",
+            "must be above start (" + num(start) + " degrees) by at most 360 degrees, got " +
+                num(stop));
   const bool full_turn = std::abs(stop - start - 360) <= 1e-9;
 
   if (static_cast<std::int64_t>(rows_) * cols_ > kMaxImagePixels)
-    refuse(p, "azimuth.steps",
-           std::to_string(cols_) + " steps of " + std::to_string(rows_) + " channels make " +
-               std::to_string(static_cast<std::int64_t>(rows_) * cols_) +
-               " rays, past the most pixels of an image (" + std::to_string(kMaxImagePixels) + ")");
+    fail_at(p, "azimuth.steps",
+            std::to_string(cols_) + " steps of " + std::to_string(rows_) + " channels make " +
+                std::to_string(static_cast<std::int64_t>(rows_) * cols_) +
+                " rays, past the most pixels of an image (" + std::to_string(kMaxImagePixels) +
+                ")");
 
   // Range (metres): hits nearer than `min` or past `max` read as no hit.
   max_m_ = finite(p, "range.max", 100);
   min_m_ = finite(p, "range.min", 0.1);
-  if (!(min_m_ >= 0)) refuse(p, "range.min", "must be >= 0 m, got " + num(min_m_));
+  if (!(min_m_ >= 0)) fail_at(p, "range.min", "must be >= 0 m, got " + num(min_m_));
   if (!(max_m_ > min_m_))
-    refuse(p, "range.max", "must be above min (" + num(min_m_) + " m), got " + num(max_m_));
+    fail_at(p, "range.max", "must be above min (" + num(min_m_) + " m), got " + num(max_m_));
 
   zig_ = &ziggurat_tables();
   const double deg = kPi / 180;
