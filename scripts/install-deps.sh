@@ -7,6 +7,8 @@
 # libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
 # libpng writes s2sim-run's --save-images frames.
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
+# libjpeg62-turbo-dev encodes camera_stream's JPEG frames (and decodes them in its test);
+# libzmq3-dev gives it SimTwo's ZeroMQ PUB socket of raw frames (optional at build time).
 # libegl-dev, libegl-mesa0 and libgl1-mesa-dri draw the cameras headless: OpenGL through EGL
 # with no display server (docs/rendering.md).
 set -euo pipefail
@@ -27,6 +29,7 @@ packages=(
   fpc binutils
   libavcodec-dev libavformat-dev libswscale-dev
   libsodium-dev
+  libjpeg62-turbo-dev libzmq3-dev
 )
 
 missing=()

@@ -173,7 +173,8 @@
   X(CalculatePosMinSprayThickness) \
   X(CalculateMinSprayThickness) \
   X(CalculateMaxSprayThickness) \
-  X(CalculateSprayCoverage)
+  X(CalculateSprayCoverage) \
+  X(GetCameraPixel)
 // clang-format on
 
 namespace s2sim::pascal {

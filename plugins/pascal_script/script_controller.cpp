@@ -155,6 +155,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
     sensors_.push_back(std::move(s));
   }
   configure_paint(ctx);
+  configure_camera(ctx);
   // A robot's sensor i is the global sensor with its prefix (the robot's come in its order).
   for (auto& robot : robots_) {
     int next = 0;

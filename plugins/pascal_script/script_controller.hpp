@@ -187,6 +187,9 @@ class ScriptController final : public Component {
   /// The spray guns and painting targets (host_paint.cpp): configure_paint resolves them.
   void configure_paint(ConfigureContext& ctx);
   double call_paint(HostFn fn, const double* a, int n);
+  /// The last <camera> shell's rgb image (host_camera.cpp): GetCameraPixel, CamBitmap.
+  void configure_camera(ConfigureContext& ctx);
+  double call_camera(HostFn fn, const double* a, int n);
   SprayGunRef& spray_gun(double i);
   PaintTargetRef& paint_target(double i);
   /// Target `k`'s paint per triangle, summed over the guns, into paint_scratch_: a gun that
@@ -244,6 +247,8 @@ class ScriptController final : public Component {
   std::vector<SprayGunRef> spray_guns_;
   std::vector<PaintTargetRef> paint_targets_;
   std::vector<double> paint_scratch_;  // sized at configure for the largest target
+  std::string camera_prefix_;          // the last camera shell's; empty: none
+  ImageHandle camera_image_;           // its rgb image; index -1: none (no camera plugin)
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;
   std::vector<double> sheet_initial_values_;  // the inputs' values at reset

@@ -3,4 +3,5 @@
 
 #include "kinds.hpp"
 
-S2SIM_PLUGIN("links", s2sim::links::remote_kind(), s2sim::links::serial_kind());
+S2SIM_PLUGIN("links", s2sim::links::remote_kind(), s2sim::links::serial_kind(),
+             s2sim::links::camera_stream_kind());

@@ -65,8 +65,14 @@ long UdpSocket::receive(unsigned char* buffer, std::size_t capacity, double time
   return got < 0 ? -1 : static_cast<long>(got);
 }
 
-void UdpSocket::send(const unsigned char* data, std::size_t size, const sockaddr_in& to) {
-  (void)::sendto(fd_, data, size, MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+bool UdpSocket::send(const unsigned char* data, std::size_t size, const sockaddr_in& to) {
+  const ssize_t sent =
+      ::sendto(fd_, data, size, MSG_DONTWAIT, reinterpret_cast<const sockaddr*>(&to), sizeof to);
+  return sent == static_cast<ssize_t>(size);
+}
+
+void UdpSocket::set_send_buffer(int bytes) {
+  ::setsockopt(fd_, SOL_SOCKET, SO_SNDBUF, &bytes, sizeof bytes);
 }
 
 }  // namespace s2sim::links

@@ -1,7 +1,7 @@
 #pragma once
 /// \file
-/// The remote link's UDP socket: bound at configure (loopback unless allowed otherwise),
-/// non-blocking, closed with the component.
+/// The links' UDP socket (the remote link's, the camera stream's): bound at configure (loopback
+/// unless allowed otherwise), non-blocking, closed with the component.
 
 #include <s2sim/error.hpp>
 
@@ -29,8 +29,11 @@ class UdpSocket {
   /// Waits up to `timeout_s` (0: not at all) for a datagram. Returns its full size (which may
   /// exceed `capacity`: the copy is then cut), or -1 when none came.
   long receive(unsigned char* buffer, std::size_t capacity, double timeout_s, sockaddr_in* from);
-  /// Best effort: a full buffer or an unreachable client is not the simulation's problem.
-  void send(const unsigned char* data, std::size_t size, const sockaddr_in& to);
+  /// Best effort, never waiting: a full buffer or an unreachable client is not the
+  /// simulation's problem. Returns whether the system took the whole datagram.
+  bool send(const unsigned char* data, std::size_t size, const sockaddr_in& to);
+  /// Asks for a send buffer of `bytes` (the system caps it at net.core.wmem_max).
+  void set_send_buffer(int bytes);
 
  private:
   int fd_ = -1;

@@ -7,10 +7,12 @@
 //   robot_<R>_shell_<i>_body / _geom (its index in the body's geoms) / _x / _y / _z / _r...,
 //   robot_<R>_axis_<i>_joint, robot_<R>_sensor_<i>_id / _kind / _prefix
 //   thing_<T>_id / _body / _r / _g / _b / _a, obstacle_<T>_id / _x / _y / _z
-//   global_sensor_<i>_id / _kind / _prefix, cell_<k>_r / _c / _text, constant_<k>_name / _value
+//   global_sensor_<i>_id / _kind / _prefix, camera_shells, camera_shell_<i>_prefix,
+//   cell_<k>_r / _c / _text, constant_<k>_name / _value
 #include "sim/names.hpp"
 #include "sim/simulation_impl.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <fstream>
@@ -185,6 +187,18 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
                                            "sensors", s.name));
   }
   set("global_sensors", std::to_string(g));
+  // The robots' <camera> shells (camera sensors outside their robot's list), in load order:
+  // GetCameraPixel and CamBitmap read the last one's image, as SimTwo's last camera wins.
+  std::size_t cameras = 0;
+  for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+    const scene::Sensor& s = scene.sensors[i];
+    if (s.kind != "camera" || s.robot < 0) continue;
+    const std::vector<int>& listed = scene.robots[static_cast<std::size_t>(s.robot)].sensors;
+    if (std::find(listed.begin(), listed.end(), static_cast<int>(i)) != listed.end()) continue;
+    set("camera_shell_" + std::to_string(cameras++) + "_prefix",
+        sim::component_path(robot_prefix(s.robot), "sensors", s.name));
+  }
+  set("camera_shells", std::to_string(cameras));
   set("things", std::to_string(scene.things.size()));
   for (std::size_t t = 0; t < scene.things.size(); ++t) {
     const scene::Body& b = scene.bodies[static_cast<std::size_t>(scene.things[t])];
