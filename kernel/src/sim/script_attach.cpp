@@ -177,9 +177,19 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       set(sk + "prefix", sim::component_path(rp, "sensors", s.name));
     }
   }
+  // A robot's <camera> shell is a camera sensor outside its robot's list (SimTwo has no such
+  // sensor): in no list a script indexes.
+  auto camera_shell = [&](std::size_t i) {
+    const scene::Sensor& s = scene.sensors[i];
+    if (s.kind != "camera" || s.robot < 0) return false;
+    const std::vector<int>& listed = scene.robots[static_cast<std::size_t>(s.robot)].sensors;
+    return std::find(listed.begin(), listed.end(), static_cast<int>(i)) == listed.end();
+  };
   // The world's sensor list: each robot's sensors, then the scene-level ones, in load order.
   std::size_t g = 0;
-  for (const scene::Sensor& s : scene.sensors) {
+  for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+    if (camera_shell(i)) continue;
+    const scene::Sensor& s = scene.sensors[i];
     const std::string sk = "global_sensor_" + std::to_string(g++) + "_";
     set(sk + "id", s.id);
     set(sk + "kind", s.kind);
@@ -191,10 +201,8 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
   // GetCameraPixel and CamBitmap read the last one's image, as SimTwo's last camera wins.
   std::size_t cameras = 0;
   for (std::size_t i = 0; i < scene.sensors.size(); ++i) {
+    if (!camera_shell(i)) continue;
     const scene::Sensor& s = scene.sensors[i];
-    if (s.kind != "camera" || s.robot < 0) continue;
-    const std::vector<int>& listed = scene.robots[static_cast<std::size_t>(s.robot)].sensors;
-    if (std::find(listed.begin(), listed.end(), static_cast<int>(i)) != listed.end()) continue;
     set("camera_shell_" + std::to_string(cameras++) + "_prefix",
         sim::component_path(robot_prefix(s.robot), "sensors", s.name));
   }
