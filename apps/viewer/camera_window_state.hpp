@@ -38,6 +38,7 @@ struct CameraImage {
   int sensor = -1;
   std::vector<Vec3f> cloud_m;
   std::vector<std::uint32_t> cloud_colours;  ///< ImGui's packed ABGR
+  std::vector<float> cloud_ranges_m;         ///< each point's distance from the sensor
   float cloud_near_m = 0, cloud_far_m = 0;
 };
 

@@ -18,7 +18,8 @@ void rebuild_cloud(const Simulation& sim, const Image& image, CameraImage& entry
   entry.cloud_colours.clear();
   if (entry.sensor < 0) return;
   const Pose pose = sensor_world_pose(sim, entry.sensor);
-  std::vector<float> ranges;
+  std::vector<float>& ranges = entry.cloud_ranges_m;  // reused: no allocation once grown
+  ranges.clear();
   float lo = 1e30f, hi = 0;
   for (int y = 0; y < image.height_px; ++y) {
     const std::uint8_t* row = image.row(y);

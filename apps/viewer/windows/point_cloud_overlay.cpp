@@ -7,6 +7,9 @@
 #include <algorithm>
 
 namespace s2sim::viewer {
+namespace {
+constexpr std::size_t kMaxPointsDrawn = 100000;
+}  // namespace
 
 void draw_point_cloud_overlay(ViewerState& state) {
   if (!state.windows.cameras || !state.cameras.cloud_in_world) return;
@@ -22,7 +25,10 @@ void draw_point_cloud_overlay(ViewerState& state) {
     if (!c.shown || c.view != ImageView::points || c.sensor < 0) continue;
     // Also when the window's tab is hidden behind another: the cloud follows the scans.
     refresh_camera_image(*state.sim, c);
-    for (std::size_t i = 0; i < c.cloud_m.size(); ++i) {
+    // At most kMaxPointsDrawn dots a cloud (every k-th point beyond), bounding the frame's
+    // draw data whatever the lidar's size.
+    const std::size_t every = c.cloud_m.size() / kMaxPointsDrawn + 1;
+    for (std::size_t i = 0; i < c.cloud_m.size(); i += every) {
       const Vec3f& p = c.cloud_m[i];
       const Vec4f h = vp * Vec4f{p.x, p.y, p.z, 1};
       if (h.w <= 1e-6f) continue;  // behind the eye
