@@ -105,3 +105,17 @@ shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "cam
 shot viewer-replay - --replay "$tmp/nxt.s2rec" --paused \
   --chart 'robots/nxt/x' 'robots/nxt/y' 'robots/nxt/axes/*/speed' --do "follow nxt" \
   --do "camera -150 35 1.0" --do "replay-seek 3" --do "wait 2" --do "replay-seek 1.8" --do "wait 2"
+# The Cameras window (C): the rover's camera in colour, depth (false colour, its legend) and
+# body ids, the lidar's range image, and its point cloud drawn in the 3-D view.
+cams="$repo/scenes/camera_lidar"
+shot viewer-cameras "$cams" --do "show cameras" --do "run-until 0.35" --do "wait 2"
+shot viewer-lidar "$cams" --do "show cameras" --do "camera-image robots/rover/sensors/front/rgb off" \
+  --do "camera-image robots/rover/sensors/front/segmentation off" --do "camera 150 35 5.5" \
+  --do "run-until 0.35" --do "wait 2"
+# The camera's own images as s2sim-run --save-images writes them (the frame at 0.3 s): colour,
+# depth in millimetres and body ids, both 16-bit grey.
+"$build/bin/s2sim-run" "$cams" --duration 0.35 --quiet --save-images "$tmp/frames"
+for image in rgb depth segmentation; do
+  cp "$tmp/frames/robots/rover/sensors/front/$image/000004.png" "$out/camera-$image.png"
+  echo "wrote docs/images/camera-$image.png"
+done

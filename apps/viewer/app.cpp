@@ -13,6 +13,7 @@
 #include "video_writer.hpp"
 #include "viewer_state.hpp"
 #include "windows/panels.hpp"
+#include "windows/point_cloud_overlay.hpp"
 #include "windows/published_overlay.hpp"
 #include "windows/stuck_window.hpp"
 #include "windows/windows.hpp"
@@ -119,7 +120,7 @@ class App {
         throw Error(ErrorKind::usage,
                     "--show-window: unknown window '" + name +
                         "' (run, configuration, chart, sheet, editor, script, log, "
-                        "body)");
+                        "body, cameras)");
     if (options.hide_ui) state_.windows = WindowFlags{false};
     state_.render.shadows = options.shadows;
     renderer_.init();
@@ -252,6 +253,7 @@ class App {
       if (!stuck) {
         draw_world_overlay(state_);
         draw_published_overlay(state_);
+        draw_point_cloud_overlay(state_);
         draw_windows();
       } else {
         if (draw_stuck_window(state_)) stepping_.give_up(state_);

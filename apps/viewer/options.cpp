@@ -61,7 +61,7 @@ const char* usage_text() {
   --no-script              do not run the project's SimTwo script
   --sheet R,C=VALUE        set SimTwo's sheet cell (row R, column C, from 1) before the start
   --show-window NAME       open a window: run, configuration, chart, sheet, editor, script,
-                           log, body
+                           log, body, cameras
   --hide-ui                world view only
   --no-shadows             no shadows (faster on a machine without a GPU)
   --look fast|full         full: 4x anti-aliasing, shadows on bodies (shadow map); fast: none,

@@ -22,6 +22,7 @@ bool set_window(WindowFlags& w, const std::string& name, bool open) {
                : name == "script"        ? &w.script
                : name == "log"           ? &w.log
                : name == "body"          ? &w.body
+               : name == "cameras"       ? &w.cameras
                                          : nullptr;
   if (flag == nullptr) return false;
   *flag = open;
@@ -132,11 +133,12 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
                 .count());
       else if (rest == "editor-error")
         std::printf("editor-error %d %s\n", state.editor.error_line, state.editor.error.c_str());
-      else if (!print_more(state, rest))
+      else if (!print_more(state, rest) && !print_camera(state, rest))
         throw bad(
             "print time, tick, clock, stuck, rtf, camera, layout, scene-box, body ID, signal NAME, "
             "editor-error, script-errors, script-view, script-status, script-line N, hud, "
-            "log-count TEXT, script-trails, xy-series, chart-samples, memory or replay");
+            "log-count TEXT, script-trails, xy-series, chart-samples, memory, replay, "
+            "cameras or image-pixel NAME X Y");
       std::fflush(stdout);
     } else if (command == "overlay") {
       std::istringstream args(rest);
@@ -226,6 +228,8 @@ void UiScript::run_commands(ViewerState& state, std::string& screenshot_file) {
       state.frame_request = false;  // following frames the robot, not the whole scene
     } else if (replay_command(state, command, rest)) {
       // replay-seek, replay-speed, replay-step: ui_script_more.cpp
+    } else if (camera_command(state, command, rest)) {
+      // camera-image: ui_script_cameras.cpp
     } else if (more_commands(state, command, rest)) {
       // script-*, chart-xy, chart-time: ui_script_more.cpp
     } else if (command == "screenshot") {

@@ -21,7 +21,7 @@
 ///   chart-add PATTERN    chart the signals matching PATTERN
 ///   chart-csv FILE       set the chart's CSV file name (then `click Export CSV`)
 ///   show NAME / hide NAME   open or close a window (run, configuration, chart, sheet, script,
-///                        editor, log, body)
+///                        editor, log, body, cameras)
 ///   select BODY          pick a body by ID (as a click in the world view does)
 ///   editor-open FILE     show the scene editor's file whose name is FILE
 ///   editor-insert LINE TEXT   insert TEXT and a line break before line LINE (1-based)
@@ -83,6 +83,19 @@ bool more_commands(ViewerState& state, const std::string& command, const std::st
 ///   print replay         "replay <clock s> <frame time s> <frame> <frames> <playing> <speed>"
 bool replay_command(ViewerState& state, const std::string& command, const std::string& rest);
 bool print_more(ViewerState& state, const std::string& what);
+/// The camera window's commands (ui_script_cameras.cpp):
+///   camera-image NAME on|off   show or hide image NAME in the Cameras window
+///   print cameras        "camera-image NAME SHOWN FRAME UPLOADS X Y W H NEAR FAR legend X Y W
+///                        H" for each image (where it and its legend's bar were drawn last
+///                        frame; NEAR FAR: a distance image's legend); a point cloud's
+///                        "points N" instead of the rest
+///   print image-pixel NAME X Y   "image-pixel NAME X Y VALUES": the image's own pixel (r g b,
+///                        metres, or id and body path)
+///   print image-blocks NAME NX NY   "image-blocks NAME NX NY R G B...": the mean colour, as
+///                        the window shows it, of each block of an NX x NY grid, row by row
+///   print image-ids NAME "image-id NAME ID PIXELS PATH" for each body id of an ids image
+bool camera_command(ViewerState& state, const std::string& command, const std::string& rest);
+bool print_camera(ViewerState& state, const std::string& what);
 
 /// Opens or closes a window by name; false for an unknown name.
 bool set_window(WindowFlags& windows, const std::string& name, bool open);

@@ -5,6 +5,7 @@
 /// (windows/*.hpp), so each stays one small file.
 
 #include "camera.hpp"
+#include "camera_window_state.hpp"
 #include "chart_data.hpp"
 #include "layout.hpp"
 #include "options.hpp"
@@ -104,6 +105,7 @@ struct WindowFlags {
   bool script = false;
   bool log = false;
   bool body = false;
+  bool cameras = false;
 };
 
 struct ViewerState {
@@ -126,6 +128,7 @@ struct ViewerState {
   std::array<bool, 16> panels_open_last_frame{};  ///< a panel opened since brings its tab up
   RenderSettings render;
   OverlaySettings overlay;
+  CameraWindowState cameras;
   Trails trails;
   bool show_beams = true;
   bool show_joints = true;

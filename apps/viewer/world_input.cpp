@@ -100,6 +100,7 @@ void WorldInput::keys(ViewerState& state) {
     state.run.request_step(1);
   if (ImGui::IsKeyPressed(GLFW_KEY_R, false)) state.run.request_reset();
   if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) state.frame_request = true;
+  if (ImGui::IsKeyPressed(GLFW_KEY_C, false)) state.windows.cameras = !state.windows.cameras;
 }
 
 }  // namespace s2sim::viewer

@@ -34,6 +34,7 @@ constexpr Panel kPanels[] = {
     {"sheet", "Sheet", Slot::bottom, &WindowFlags::sheet, draw_sheet_window},
     {"editor", "Scene editor", Slot::bottom, &WindowFlags::editor, draw_scene_editor_window},
     {"script", "Script", Slot::bottom, &WindowFlags::script, draw_script_window},
+    {"cameras", "Cameras", Slot::bottom, &WindowFlags::cameras, draw_camera_window},
 };
 
 constexpr ImGuiWindowFlags kFixed =

@@ -25,6 +25,9 @@ void draw_script_window(ViewerState& state);
 void draw_log_window(ViewerState& state);
 /// The data of the body picked in the world view.
 void draw_body_window(ViewerState& state);
+/// The scene's camera and lidar images, each shown one chosen: colour, depth and range in
+/// false colour with a legend, body ids in a colour per body (hovering names the body).
+void draw_camera_window(ViewerState& state);
 
 /// Reads the scene's XML files into the editor (after a load).
 void load_editor_files(ViewerState& state);
