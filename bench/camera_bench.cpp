@@ -1,0 +1,259 @@
+// s2sim-camera-bench: camera frames per second of the headless renderer (docs/benchmarks.md,
+// "Cameras"), colour alone and depth alone at 320 x 240 and 640 x 480, on scenes/default and
+// scenes/pile, beside MuJoCo 2.2's offscreen renderer on the pile's MJCF (bench/peers/mjcf)
+// where MuJoCo is built in; then a 320 x 240 camera at 30 Hz against the physics of
+// scenes/nxt, both as costs per simulated second.
+//
+//   s2sim-camera-bench [--seconds 2] [--settle 1] [--csv out.csv] [--images DIR]
+//
+// --images writes each engine's colour frames as PPM files into DIR, to see that both drew the
+// same scene from the same eye.
+#include "camera_bench.hpp"
+
+#include <headless_camera_renderer.hpp>
+#include <s2sim/image.hpp>
+#include <s2sim/kernel/simulation.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace camera_bench;
+
+namespace {
+
+s2sim::CameraShot shot_of(const View& v, Size size) {
+  const s2sim::Vec3 eye{v.eye[0], v.eye[1], v.eye[2]};
+  const s2sim::Vec3 target{v.target[0], v.target[1], v.target[2]};
+  const s2sim::Vec3 forward = target - eye;
+  const s2sim::Vec3 z = forward * (1 / s2sim::norm(forward));
+  const s2sim::Vec3 left = s2sim::cross(s2sim::Vec3{0, 0, 1}, z);
+  const s2sim::Vec3 x = left * (1 / s2sim::norm(left));
+  const s2sim::Vec3 y = s2sim::cross(z, x);
+  s2sim::CameraShot shot;
+  const s2sim::Vec3 columns[3] = {x, y, z};  // the camera frame: +Z forward, +Y up, +X left
+  for (int c = 0; c < 3; ++c) {
+    shot.pose.rotation.m[0][c] = columns[c].x;
+    shot.pose.rotation.m[1][c] = columns[c].y;
+    shot.pose.rotation.m[2][c] = columns[c].z;
+  }
+  shot.pose.position = eye;
+  shot.vertical_fov_rad = v.vertical_fov_deg * s2sim::kPi / 180;
+  shot.near_m = v.near_m;
+  shot.far_m = v.far_m;
+  shot.width_px = size.width_px;
+  shot.height_px = size.height_px;
+  return shot;
+}
+
+/// An image over `pixels`, resized for it.
+s2sim::Image image_over(std::vector<std::uint8_t>& pixels, Size size, s2sim::PixelFormat f) {
+  s2sim::Image image;
+  image.width_px = size.width_px;
+  image.height_px = size.height_px;
+  image.format = f;
+  image.stride_bytes = size.width_px * s2sim::bytes_per_pixel(f);
+  pixels.assign(image.size_bytes(), 0);
+  image.data = pixels.data();
+  return image;
+}
+
+std::unique_ptr<s2sim::Simulation> load(const fs::path& scene) {
+  return s2sim::Simulation::load(scene, s2sim::SimulationOptions{});
+}
+
+void step_for(s2sim::Simulation& sim, double seconds) {
+  sim.step(static_cast<std::int64_t>(std::llround(seconds / sim.tick_s())));
+}
+
+std::vector<Result> s2sim_fps(s2sim::Simulation& sim, const View& view,
+                              const std::vector<Size>& sizes, double seconds,
+                              const std::string& images_path = "") {
+  auto renderer = s2sim::render::make_headless_camera_renderer(sim);
+  std::vector<Result> results;
+  for (const Size& size : sizes)
+    for (const bool depth_only : {false, true}) {
+      std::vector<std::uint8_t> pixels;
+      s2sim::Image image = image_over(
+          pixels, size, depth_only ? s2sim::PixelFormat::float32 : s2sim::PixelFormat::rgb8);
+      const s2sim::CameraShot shot = shot_of(view, size);
+      const auto& poses = sim.body_poses();
+      results.push_back(time_frames(size, depth_only, seconds, [&] {
+        renderer->render(shot, poses.data(), static_cast<int>(poses.size()),
+                         depth_only ? nullptr : &image, depth_only ? &image : nullptr, nullptr);
+      }));
+      if (!images_path.empty() && !depth_only)
+        write_ppm(images_path + "-" + std::to_string(size.width_px) + ".ppm", image.data, size,
+                  false);
+    }
+  return results;
+}
+
+struct Row {
+  std::string engine, scene;
+  Result result;
+};
+
+void print_rows(const std::vector<Row>& rows, std::FILE* csv) {
+  std::printf("%-10s %-8s %-9s %-6s %7s %9s %8s\n", "engine", "scene", "size", "output", "frames",
+              "ms/frame", "fps");
+  for (const Row& r : rows) {
+    char size[32];
+    std::snprintf(size, sizeof size, "%dx%d", r.result.size.width_px, r.result.size.height_px);
+    const char* output = r.result.depth ? "depth" : "rgb";
+    std::printf("%-10s %-8s %-9s %-6s %7ld %9.2f %8.1f\n", r.engine.c_str(), r.scene.c_str(), size,
+                output, r.result.frames, r.result.ms_per_frame, 1e3 / r.result.ms_per_frame);
+    if (csv)
+      std::fprintf(csv, "%s,%s,%d,%d,%s,%ld,%.3f,%.1f\n", r.engine.c_str(), r.scene.c_str(),
+                   r.result.size.width_px, r.result.size.height_px, output, r.result.frames,
+                   r.result.ms_per_frame, 1e3 / r.result.ms_per_frame);
+  }
+}
+
+/// A camera at 320 x 240 and 30 Hz against the physics on scenes/nxt (driving at 6 V): each
+/// as wall time per simulated second.
+void camera_against_physics(const fs::path& source, double seconds, std::FILE* csv) {
+  auto sim = load(source / "scenes" / "nxt");
+  sim->set_input("robots/nxt/axes/right/ref_voltage", 6.0);
+  sim->set_input("robots/nxt/axes/left/ref_voltage", -6.0);
+  step_for(*sim, 0.2);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  std::int64_t ticks = 0;
+  double elapsed = 0;
+  while (ticks < 1000 || elapsed < seconds) {
+    sim->step(100);
+    ticks += 100;
+    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  }
+  const double us_per_tick = 1e6 * elapsed / static_cast<double>(ticks);
+  const double ticks_per_s = 1 / sim->tick_s();
+  // The robot's view: from the brick's front, level, looking ahead.
+  const s2sim::Pose& robot = sim->body_pose(1);
+  const s2sim::Vec3 eye = robot * s2sim::Vec3{0.03, 0, 0.1};
+  const s2sim::Vec3 ahead = robot * s2sim::Vec3{1.03, 0, 0.1};
+  View view;
+  view.eye[0] = eye.x, view.eye[1] = eye.y, view.eye[2] = eye.z;
+  view.target[0] = ahead.x, view.target[1] = ahead.y, view.target[2] = ahead.z;
+  const Result camera = s2sim_fps(*sim, view, {Size{320, 240}}, seconds).front();
+  const double physics_ms = us_per_tick * ticks_per_s / 1e3, camera_ms = camera.ms_per_frame * 30;
+  std::printf(
+      "\nscenes/nxt: physics %.2f us/tick x %.0f ticks/s = %.1f ms per simulated second; "
+      "camera 320x240 rgb %.2f ms x 30 Hz = %.1f ms per simulated second: the camera costs "
+      "%.2f x the physics\n",
+      us_per_tick, ticks_per_s, physics_ms, camera.ms_per_frame, camera_ms, camera_ms / physics_ms);
+  if (csv)
+    std::fprintf(csv,
+                 "# nxt: physics_us_per_tick=%.3f ticks_per_s=%.0f camera_320x240_ms=%.3f "
+                 "camera_30hz_over_physics=%.3f\n",
+                 us_per_tick, ticks_per_s, camera.ms_per_frame, camera_ms / physics_ms);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 2, settle_s = 1;
+  const char* csv_path = nullptr;
+  std::string images_dir;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--seconds" && i + 1 < argc) {
+      seconds = std::atof(argv[++i]);
+    } else if (a == "--settle" && i + 1 < argc) {
+      settle_s = std::atof(argv[++i]);
+    } else if (a == "--images" && i + 1 < argc) {
+      images_dir = argv[++i];
+    } else if (a == "--csv" && i + 1 < argc) {
+      csv_path = argv[++i];
+    } else {
+      std::fprintf(stderr,
+                   "usage: s2sim-camera-bench [--seconds S] [--settle S] [--csv FILE] "
+                   "[--images DIR]\n");
+      return 2;
+    }
+  }
+  std::FILE* csv = nullptr;
+  if (csv_path) {
+    csv = std::fopen(csv_path, "w");
+    if (!csv) {
+      std::perror(csv_path);
+      return 1;
+    }
+    std::fprintf(csv, "engine,scene,width,height,output,frames,ms_per_frame,fps\n");
+  }
+  const fs::path source = S2SIM_SOURCE_DIR;
+  const std::vector<Size> sizes = {{320, 240}, {640, 480}};
+  View everything;  // scenes/default: five mechanisms about the origin, 1.5 m apart
+  everything.eye[0] = 2.6, everything.eye[1] = -2.6, everything.eye[2] = 1.6;
+  everything.target[0] = 0, everything.target[1] = 0, everything.target[2] = 0.4;
+  View pile;  // scenes/pile: 150 bodies within 0.4 m of the origin
+  pile.eye[0] = 1.2, pile.eye[1] = -1.2, pile.eye[2] = 0.9;
+  pile.target[0] = 0, pile.target[1] = 0, pile.target[2] = 0.1;
+
+  std::vector<Row> rows;
+  try {
+    for (const auto& [name, view] : {std::pair{"default", everything}, std::pair{"pile", pile}}) {
+      auto sim = load(source / "scenes" / name);
+      step_for(*sim, settle_s);
+      const std::string images = images_dir.empty() ? std::string() : images_dir + "/s2sim-" + name;
+      for (const Result& r : s2sim_fps(*sim, view, sizes, seconds, images))
+        rows.push_back({"s2sim", name, r});
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "s2sim-camera-bench: S2Sim: %s\n", e.what());
+    return 1;
+  }
+  std::string mujoco_note =
+      "MuJoCo: scenes/default has no MJCF (bench/peers/mjcf has the pile's only)";
+#ifdef S2SIM_CAMERA_BENCH_MUJOCO
+  try {
+    // The MJCF as the peer benchmark steps it (MuJoCo's headlight alone), then with a sun that
+    // casts shadows as S2Sim's does (a shadow map pass of its own).
+    const fs::path mjcf = source / "bench/peers/mjcf/pile.xml";
+    const fs::path lit = fs::temp_directory_path() / "s2sim-camera-bench-pile-lit.xml";
+    {
+      std::ifstream in(mjcf);
+      std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string body = "<worldbody>";
+      const auto at = xml.find(body);
+      if (at == std::string::npos) throw std::runtime_error(mjcf.string() + ": no <worldbody>");
+      xml.insert(at + body.size(),
+                 "<light directional='true' castshadow='true' pos='0 0 5' dir='-0.3 0.4 -1'/>");
+      std::ofstream(lit) << xml;
+    }
+    for (const auto& [label, file] : {std::pair{"mujoco", mjcf}, std::pair{"mujoco+sun", lit}}) {
+      const std::string images =
+          images_dir.empty() ? std::string() : images_dir + "/" + label + "-pile";
+      for (const Result& r : mujoco_fps(file.string(), pile, sizes, seconds, settle_s, images))
+        rows.push_back({label, "pile", r});
+    }
+    fs::remove(lit);
+  } catch (const std::exception& e) {
+    mujoco_note = std::string("MuJoCo's offscreen renderer did not run: ") + e.what();
+  }
+#else
+  mujoco_note = "MuJoCo: not built in (libmujoco-dev not found)";
+#endif
+  print_rows(rows, csv);
+  std::printf("%s\n", mujoco_note.c_str());
+  if (csv) std::fprintf(csv, "# %s\n", mujoco_note.c_str());
+  try {
+    camera_against_physics(source, seconds, csv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "s2sim-camera-bench: scenes/nxt: %s\n", e.what());
+    return 1;
+  }
+  if (csv) std::fclose(csv);
+  return 0;
+}
