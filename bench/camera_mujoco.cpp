@@ -80,8 +80,8 @@ class EglContext {
 }  // namespace
 
 std::vector<Result> mujoco_fps(const std::string& mjcf, const View& view,
-                               const std::vector<Size>& sizes, double seconds, double settle_s,
-                               const std::string& images_path) {
+                               const std::vector<Size>& sizes, double seconds, int repeats,
+                               double settle_s, const std::string& images_path) {
   char error[1000] = "";
   mjModel* m = mj_loadXML(mjcf.c_str(), nullptr, error, sizeof error);
   if (m == nullptr) throw std::runtime_error(mjcf + ": " + error);
@@ -150,7 +150,7 @@ std::vector<Result> mujoco_fps(const std::string& mjcf, const View& view,
             mjr_readPixels(rgb.data(), nullptr, viewport, &context);
           }
         };
-        results.push_back(time_frames(size, depth_only, seconds, frame));
+        results.push_back(time_frames(size, depth_only, seconds, repeats, frame));
         if (!images_path.empty() && !depth_only)
           write_ppm(images_path + "-" + std::to_string(size.width_px) + ".ppm", rgb.data(), size,
                     true);
