@@ -39,6 +39,7 @@ class SharedRenderer final : public CameraRenderer {
 
   void render(const CameraShot& shot, const Pose* body_poses, int body_count, Image* rgb,
               Image* depth, Image* body_ids) override {
+    const std::lock_guard<std::mutex> lock(rendering_->mutex);
     rendering_->get(sim_).render(shot, body_poses, body_count, rgb, depth, body_ids);
     for (const Image* image : {rgb, depth, body_ids})
       if (image) rendering_->shots[image] = shot;
@@ -269,6 +270,7 @@ py::object render_view(PySimulation& s, const py::object& camera, const py::obje
   {
     PySimulation::Exclusive own(s, "render()");
     py::gil_scoped_release release;
+    const std::lock_guard<std::mutex> lock(s.rendering().mutex);
     const std::vector<Pose>& poses = sim.body_poses();
     s.rendering().get(sim).render(shot, poses.data(), static_cast<int>(poses.size()), wanted(0),
                                   wanted(1), wanted(2));
@@ -284,6 +286,7 @@ py::object render_view(PySimulation& s, const py::object& camera, const py::obje
 
 CameraRendererFactory shared_renderer_factory(std::shared_ptr<PyRendering> rendering) {
   return [rendering](const Simulation& sim) -> std::unique_ptr<CameraRenderer> {
+    const std::lock_guard<std::mutex> lock(rendering->mutex);
     rendering->get(sim);  // the kernel reports the failure of the first frame
     return std::make_unique<SharedRenderer>(rendering, sim);
   };

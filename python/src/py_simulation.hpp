@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -54,8 +55,11 @@ struct PyRendering {
   std::unique_ptr<CameraRenderer> renderer;
   std::string error;  ///< why the renderer could not be made, once it could not
   std::unordered_map<const Image*, CameraShot> shots;
+  /// One shot at a time: the context is current on one thread (cameras stepped on several).
+  std::mutex mutex;
 
-  /// The renderer, made on first use; throws s2sim::Error (runtime) when it cannot be.
+  /// The renderer, made on first use; throws s2sim::Error (runtime) when it cannot be. Called
+  /// with `mutex` held.
   CameraRenderer& get(const Simulation& sim);
 };
 
