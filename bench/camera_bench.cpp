@@ -1,8 +1,8 @@
 // s2sim-camera-bench: camera frames per second of the headless renderer (docs/benchmarks.md,
 // "Cameras"), colour alone and depth alone at 320 x 240 and 640 x 480, on scenes/default and
-// scenes/pile, beside MuJoCo 2.2's offscreen renderer on the pile's MJCF (bench/peers/mjcf)
-// where MuJoCo is built in; then a 320 x 240 camera at 30 Hz against the physics of
-// scenes/nxt, both as costs per simulated second.
+// scenes/pile, beside MuJoCo 2.2's offscreen renderer drawing the same geometry at the same
+// poses (the scene as it stands written as MJCF) where MuJoCo is built in; then a 320 x 240
+// camera at 30 Hz against the physics of scenes/nxt, both as costs per simulated second.
 //
 //   s2sim-camera-bench [--seconds 2] [--repeats 3] [--settle 1] [--csv out.csv] [--images DIR]
 //
@@ -15,6 +15,7 @@
 
 #include <headless_camera_renderer.hpp>
 #include <s2sim/image.hpp>
+#include <s2sim/kernel/scene.hpp>
 #include <s2sim/kernel/simulation.hpp>
 
 #include <algorithm>
@@ -26,7 +27,6 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -102,6 +102,57 @@ std::vector<Result> s2sim_fps(s2sim::Simulation& sim, const View& view,
                   false);
     }
   return results;
+}
+
+/// The scene as it stands written as MJCF for MuJoCo to draw: every body's and obstacle's
+/// boxes, cylinders and spheres as world geoms at their poses now, in their colours, on a
+/// plane; with `sun`, a directional light that casts shadows (else MuJoCo's headlight alone).
+/// Meshes and convex hulls are left out, counted in `*skipped`.
+std::string scene_as_mjcf(const s2sim::Simulation& sim, bool sun, int* skipped) {
+  std::string xml = "<mujoco model='camera-bench'><worldbody>";
+  if (sun) xml += "<light directional='true' castshadow='true' pos='0 0 5' dir='-0.3 0.4 -1'/>";
+  xml += "<geom type='plane' size='0 0 1' rgba='0.8 0.8 0.8 1'/>";
+  auto add = [&](const s2sim::scene::Geom& g, const s2sim::Pose& world) {
+    char text[512];
+    const s2sim::scene::Shape& sh = g.shape;
+    if (sh.type == s2sim::scene::ShapeType::box) {
+      std::snprintf(text, sizeof text, "type='box' size='%g %g %g'", sh.size_m.x / 2,
+                    sh.size_m.y / 2, sh.size_m.z / 2);
+    } else if (sh.type == s2sim::scene::ShapeType::cylinder) {
+      std::snprintf(text, sizeof text, "type='cylinder' size='%g %g'", sh.radius_m,
+                    sh.length_m / 2);
+    } else if (sh.type == s2sim::scene::ShapeType::sphere) {
+      std::snprintf(text, sizeof text, "type='sphere' size='%g'", sh.radius_m);
+    } else {
+      ++*skipped;
+      return;
+    }
+    if (!g.visual.mesh.file.empty()) {
+      ++*skipped;
+      return;
+    }
+    const s2sim::Mat3& r = world.rotation;
+    const s2sim::scene::Color& c = g.visual.color;
+    char place[512];
+    std::snprintf(place, sizeof place,
+                  " pos='%.9g %.9g %.9g' xyaxes='%.9g %.9g %.9g %.9g %.9g %.9g' rgba='%g %g %g %g'",
+                  world.position.x, world.position.y, world.position.z, r.m[0][0], r.m[1][0],
+                  r.m[2][0], r.m[0][1], r.m[1][1], r.m[2][1], c.r, c.g, c.b, c.a);
+    xml += std::string("<geom ") + text + place + "/>";
+  };
+  const s2sim::scene::Scene& sc = sim.scene();
+  std::vector<bool> spare(sc.bodies.size(), false);
+  for (int b : sc.runtime_things)
+    spare[static_cast<std::size_t>(b)] = true;
+  for (std::size_t b = 0; b < sc.bodies.size(); ++b) {
+    if (spare[b]) continue;
+    const s2sim::Pose& body = sim.body_pose(static_cast<int>(b) + 1);
+    for (const s2sim::scene::Geom& g : sc.bodies[b].geoms)
+      add(g, body * g.pose);
+  }
+  for (const s2sim::scene::Geom& g : sc.obstacles)
+    add(g, g.pose);
+  return xml + "</worldbody></mujoco>\n";
 }
 
 struct Row {
@@ -226,53 +277,50 @@ int main(int argc, char** argv) {
   pile.target[0] = 0, pile.target[1] = 0, pile.target[2] = 0.1;
 
   std::vector<Row> rows;
-  try {
-    for (const auto& [name, view] : {std::pair{"default", everything}, std::pair{"pile", pile}}) {
-      auto sim = load(source / "scenes" / name);
+  std::string mujoco_note;
+  for (const auto& [name, view] : {std::pair{"default", everything}, std::pair{"pile", pile}}) {
+    std::unique_ptr<s2sim::Simulation> sim;
+    try {
+      sim = load(source / "scenes" / name);
       step_for(*sim, settle_s);
       const std::string images = images_dir.empty() ? std::string() : images_dir + "/s2sim-" + name;
       for (const Result& r : s2sim_fps(*sim, view, sizes, seconds, repeats, images))
         rows.push_back({"s2sim", name, r});
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "s2sim-camera-bench: S2Sim: %s\n", e.what());
+      return 1;
     }
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "s2sim-camera-bench: S2Sim: %s\n", e.what());
-    return 1;
-  }
-  std::string mujoco_note =
-      "MuJoCo: scenes/default has no MJCF (bench/peers/mjcf has the pile's only)";
 #ifdef S2SIM_CAMERA_BENCH_MUJOCO
-  try {
-    // The MJCF as the peer benchmark steps it (MuJoCo's headlight alone), then with a sun that
-    // casts shadows as S2Sim's does (a shadow map pass of its own).
-    const fs::path mjcf = source / "bench/peers/mjcf/pile.xml";
-    const fs::path lit = fs::temp_directory_path() / "s2sim-camera-bench-pile-lit.xml";
-    {
-      std::ifstream in(mjcf);
-      std::string xml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      const std::string body = "<worldbody>";
-      const auto at = xml.find(body);
-      if (at == std::string::npos) throw std::runtime_error(mjcf.string() + ": no <worldbody>");
-      xml.insert(at + body.size(),
-                 "<light directional='true' castshadow='true' pos='0 0 5' dir='-0.3 0.4 -1'/>");
-      std::ofstream(lit) << xml;
+    // The same geometry at the same poses in MuJoCo: with its headlight alone, then with a sun
+    // that casts shadows as S2Sim's does (a shadow map pass of its own).
+    try {
+      for (const bool sun : {false, true}) {
+        int skipped = 0;
+        const std::string label = sun ? "mujoco+sun" : "mujoco";
+        const fs::path file =
+            fs::temp_directory_path() / ("s2sim-camera-bench-" + label + "-" + name + ".xml");
+        std::ofstream(file) << scene_as_mjcf(*sim, sun, &skipped);
+        if (skipped > 0 && !sun)
+          mujoco_note += std::string("MuJoCo: ") + name + ": " + std::to_string(skipped) +
+                         " meshes or hulls left out. ";
+        const std::string images =
+            images_dir.empty() ? std::string() : images_dir + "/" + label + "-" + name;
+        for (const Result& r : mujoco_fps(file.string(), view, sizes, seconds, repeats, 0, images))
+          rows.push_back({label, name, r});
+        fs::remove(file);
+      }
+    } catch (const std::exception& e) {
+      mujoco_note += std::string("MuJoCo's offscreen renderer did not run: ") + e.what() + ". ";
     }
-    for (const auto& [label, file] : {std::pair{"mujoco", mjcf}, std::pair{"mujoco+sun", lit}}) {
-      const std::string images =
-          images_dir.empty() ? std::string() : images_dir + "/" + label + "-pile";
-      for (const Result& r :
-           mujoco_fps(file.string(), pile, sizes, seconds, repeats, settle_s, images))
-        rows.push_back({label, "pile", r});
-    }
-    fs::remove(lit);
-  } catch (const std::exception& e) {
-    mujoco_note = std::string("MuJoCo's offscreen renderer did not run: ") + e.what();
-  }
 #else
-  mujoco_note = "MuJoCo: not built in (libmujoco-dev not found)";
+    mujoco_note = "MuJoCo: not built in (libmujoco-dev not found)";
 #endif
+  }
   print_rows(rows, csv);
-  std::printf("%s\n", mujoco_note.c_str());
-  if (csv) std::fprintf(csv, "# %s\n", mujoco_note.c_str());
+  if (!mujoco_note.empty()) {
+    std::printf("%s\n", mujoco_note.c_str());
+    if (csv) std::fprintf(csv, "# %s\n", mujoco_note.c_str());
+  }
   try {
     camera_against_physics(source, seconds, repeats, csv);
   } catch (const std::exception& e) {
