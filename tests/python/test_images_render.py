@@ -118,3 +118,23 @@ def test_render_refuses_bad_arguments_by_name(sim, kwargs, argument):
 def test_unknown_camera_lists_the_cameras(sim):
     with pytest.raises(s2sim.UsageError, match="cameras: " + CAMERA):
         sim.render(camera="eye")
+
+
+def test_render_between_steps_leaves_the_run_as_it_was():
+    def drive(render):
+        sim = s2sim.Simulation(SCENE, defines={"target_x": TARGET[0], "target_y": TARGET[1]})
+        sim.set_input(RIGHT, 5.0)
+        sim.set_input(LEFT, -4.0)
+        frames = []
+        for _ in range(10):
+            sim.step(40)
+            if render:
+                sim.render(eye=(-1, -1, 1), target=(0, 0, 0), outputs=("rgb", "depth"))
+                sim.render(camera=CAMERA, width=32, height=24)
+            frames.append(np.array(sim.image(CAMERA + "/rgb")))
+        return np.array(sim.body_positions), frames
+
+    plain, plain_frames = drive(False)
+    rendered, rendered_frames = drive(True)
+    assert np.array_equal(plain, rendered)  # bit for bit
+    assert all(np.array_equal(a, b) for a, b in zip(plain_frames, rendered_frames))
