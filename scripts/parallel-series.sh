@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The parallel step against the machine's own two-thread ceiling, run after run
-# (docs/benchmarks.md#the-parallel-step, "The parallel step"): each run is one `s2sim-peers`
+# (docs/benchmarks-peers.md#the-parallel-step, "The parallel step"): each run is one `s2sim-peers`
 # call on robots_16 and robots_64 with the serial step, the parallel step (running ahead and
 # tick by tick) and two serial copies at once (the ceiling), five rounds each. A table row per
 # run gives each parallel engine's speed-up over the serial run in wall time, the ceiling, the

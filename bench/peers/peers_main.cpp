@@ -1,5 +1,5 @@
 // s2sim-peers: S2Sim side by side with MuJoCo, ODE and Bullet on the same scenes
-// (docs/benchmarks.md, "Peers"). Every engine steps each scene in turn, several rounds in a
+// (docs/benchmarks-peers.md). Every engine steps each scene in turn, several rounds in a
 // rotating order; the report gives medians of thread CPU time and wall time per 1 ms step, S2Sim's
 // speed-up over each peer, and each engine's physical outcome, so that a faster wrong answer shows.
 // The engine s2sim-par2 (two hardware threads or more) is S2Sim stepping its islands on two

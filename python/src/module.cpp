@@ -92,6 +92,7 @@ PYBIND11_MODULE(_s2sim, m) {
   bind_state(simulation);
   bind_queries(simulation);
   bind_images(simulation);
+  bind_render(simulation);
   simulation
       .def(py::init<const std::filesystem::path&, std::uint64_t, std::optional<double>,
                     std::optional<int>, const std::map<std::string, double>&,

@@ -3,7 +3,7 @@
 /// The Python-side Simulation (the façade plus its caches and the one-call-at-a-time guard)
 /// and Snapshot, shared by the binding files: module.cpp (loading, stepping, signals),
 /// state_views.cpp (the NumPy views and writing the state), queries.cpp (contacts and rays),
-/// snapshots.cpp (pickling).
+/// snapshots.cpp (pickling), images.cpp (the cameras' images), free_view.cpp (sim.render).
 
 #include "errors.hpp"
 #include "headless_camera_renderer.hpp"
@@ -17,6 +17,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <unordered_map>
@@ -46,6 +47,25 @@ inline pybind11::array_t<double> mat3(const Mat3& m) {
 
 /// The search path of a Simulation given no plugin_path (module.cpp).
 std::vector<std::filesystem::path> default_plugin_path();
+
+/// What draws a Python Simulation's pictures (free_view.cpp): one headless renderer shared by
+/// its cameras and sim.render, made at the first of either, and each camera's shot as it last
+/// drew, by the address of its images (what sim.render(camera=) takes the optics from).
+struct PyRendering {
+  std::unique_ptr<CameraRenderer> renderer;
+  std::string error;  ///< why the renderer could not be made, once it could not
+  std::unordered_map<const Image*, CameraShot> shots;
+  /// One shot at a time: the context is current on one thread (cameras stepped on several).
+  std::mutex mutex;
+
+  /// The renderer, made on first use; throws s2sim::Error (runtime) when it cannot be. Called
+  /// with `mutex` held.
+  CameraRenderer& get(const Simulation& sim);
+};
+
+/// The kernel's factory over `rendering`: each camera frame drawn by the shared renderer,
+/// its shot recorded.
+CameraRendererFactory shared_renderer_factory(std::shared_ptr<PyRendering> rendering);
 
 /// A snapshot as Python sees it: restorable into the simulation it came from or another of the
 /// same scene and options; pickled and saved through snapshots.cpp.
@@ -80,7 +100,7 @@ class PySimulation {
       pybind11::gil_scoped_release release;
       sim_ = Simulation::load(scene, options);
     }
-    sim_->set_camera_renderer(render::headless_camera_renderer_factory());
+    sim_->set_camera_renderer(shared_renderer_factory(rendering_));
     const auto& sc = sim_->scene();
     for (int b = 0; b < sim_->body_count(); ++b)
       body_names_.push_back(sim_->body_path(b));
@@ -213,6 +233,8 @@ class PySimulation {
   std::size_t axis_index(const pybind11::handle& axis) const;
   /// An input by name, naming it (with the kernel's "did you mean").
   std::size_t input_index(const std::string& name) const { return sim().input_index(name); }
+  /// The renderer of the cameras and of sim.render (free_view.cpp).
+  PyRendering& rendering() { return *rendering_; }
 
  private:
   void refuse_if_busy() const {
@@ -224,6 +246,8 @@ class PySimulation {
                       "thread its own Simulation");
   }
 
+  // Before sim_, so that it goes after it: the kernel's renderer forwards to it.
+  std::shared_ptr<PyRendering> rendering_ = std::make_shared<PyRendering>();
   std::unique_ptr<Simulation> sim_;
   const char* busy_with_ = nullptr;  // the GIL-releasing call that owns the simulation
   std::unordered_map<std::string, std::vector<std::size_t>> matches_;
@@ -240,6 +264,8 @@ void bind_state(PySimulationClass& cls);
 void bind_queries(PySimulationClass& cls);
 /// image_names, image(name), image_frame(name) (images.cpp).
 void bind_images(PySimulationClass& cls);
+/// render: a free view or a camera's, drawn between steps (free_view.cpp).
+void bind_render(PySimulationClass& cls);
 /// Snapshot's pickling and its construction from parts (snapshots.cpp).
 void bind_snapshot(pybind11::class_<PySnapshot>& cls);
 

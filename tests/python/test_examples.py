@@ -11,8 +11,9 @@ EXAMPLES = os.path.join(SOURCE, "python", "examples")
 
 
 def run(name, *args):
+    env = {k: v for k, v in os.environ.items() if k != "DISPLAY"}  # cameras draw headless
     out = subprocess.run([sys.executable, os.path.join(EXAMPLES, name), *args],
-                         capture_output=True, text=True, timeout=240)
+                         capture_output=True, text=True, timeout=240, env=env)
     assert out.returncode == 0, out.stdout + out.stderr
     return out.stdout
 
@@ -39,6 +40,24 @@ def test_gymnasium_style_environment():
     obs, reward, terminated, truncated, _ = env.step(env.action_space.sample())
     assert reward in (0.0, 1.0) and isinstance(terminated, bool) and isinstance(truncated, bool)
     assert "linear policy returns: [500.0" in run("cartpole_env.py")
+
+
+def test_camera_seeker_drives_to_the_post_on_its_image_alone():
+    # The controller sees only the camera's image; the robot's pose is read here, in the test.
+    os.environ.pop("DISPLAY", None)  # the camera draws headless
+    sys.path.insert(0, EXAMPLES)
+    try:
+        import seek_target
+    finally:
+        sys.path.pop(0)
+    for target in ((1.2, 0.5), (-0.4, -0.8)):  # ahead on the left; behind on the right
+        sim, done = seek_target.seek(target, duration_s=15.0)
+        assert done, target
+        x, y = sim.signal("robots/seeker/x"), sim.signal("robots/seeker/y")
+        distance = ((target[0] - x) ** 2 + (target[1] - y) ** 2) ** 0.5
+        assert 0.2 < distance < 0.4, (target, distance)  # near the post, short of touching it
+        assert abs(sim.signal("robots/seeker/vx")) < 0.01  # stopped
+    assert "reached the post" in run("seek_target.py", "--target", "0.9", "-0.3")
 
 
 def test_monte_carlo_stopping_sweep_writes_a_table_and_a_png(tmp_path):
