@@ -577,6 +577,9 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
     case HostFn::CalculateMaxSprayThickness:
     case HostFn::CalculateSprayCoverage:
       return call_paint(fn, a, n);
+    case HostFn::CanvasOf:
+    case HostFn::CanvasOp:
+      return call_canvas(fn, a, n, s, s2);
     case HostFn::WriteUDPData:
       need(1);
       udp().send(s, static_cast<int>(a[0]), s2);

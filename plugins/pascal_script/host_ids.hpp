@@ -173,7 +173,9 @@
   X(CalculatePosMinSprayThickness) \
   X(CalculateMinSprayThickness) \
   X(CalculateMaxSprayThickness) \
-  X(CalculateSprayCoverage)
+  X(CalculateSprayCoverage) \
+  X(CanvasOf) \
+  X(CanvasOp)
 // clang-format on
 
 namespace s2sim::pascal {
