@@ -156,6 +156,13 @@ unsigned Renderer::image_texture(const Image& image, unsigned texture) {
   return texture;
 }
 
+void Renderer::release_image_texture(unsigned texture) {
+  const auto it = std::find(image_textures_.begin(), image_textures_.end(), texture);
+  if (texture == 0 || it == image_textures_.end()) return;
+  glDeleteTextures(1, &texture);
+  image_textures_.erase(it);
+}
+
 bool Renderer::software_rasteriser() const {
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const std::string name = renderer ? renderer : "";

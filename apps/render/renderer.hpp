@@ -71,6 +71,8 @@ class Renderer {
   /// Uploads an rgb8 image (a canvas) into `texture`, made when 0, and returns it; its top
   /// row is the texture's v = 0. 0 for another pixel format.
   unsigned image_texture(const Image& image, unsigned texture);
+  /// Frees a texture image_texture made (0: none).
+  void release_image_texture(unsigned texture);
 
   /// Clears `view`'s framebuffer and draws the floor and the items into its rectangle.
   void draw(const std::vector<DrawItem>& items, const View& view, const RenderSettings& settings);

@@ -59,6 +59,8 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   mesh_cache_.clear();
   meshes_version_ = 0;
 
+  for (const CanvasTexture& t : canvases_)  // the scene's before, when it is loaded again
+    renderer.release_image_texture(t.texture);
   canvases_.clear();
   if (canvas_square_ < 0) canvas_square_ = renderer.upload(unit_canvas_square());
   // SimTwo's canvas covers the box's local +Z face (simtwo-script-api.md §3.8): a square a
