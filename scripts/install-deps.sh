@@ -6,6 +6,7 @@
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
 # libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
 # libpng writes s2sim-run's --save-images frames.
+# libcairo2 (Cairo) rasterises the SimTwo scripts' canvases (docs/scripting.md, "Canvases").
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
 # libjpeg62-turbo-dev encodes camera_stream's JPEG frames (and decodes them in its test);
 # libzmq3-dev gives it SimTwo's ZeroMQ PUB socket of raw frames (optional at build time).
@@ -20,6 +21,7 @@ packages=(
   liburdfdom-dev libsdformat-dev libqhull-dev
   libimgui-dev libglfw3-dev libstb-dev
   libpng-dev
+  libcairo2-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
   libmujoco-dev libode-dev libbullet-dev

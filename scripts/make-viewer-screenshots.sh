@@ -95,6 +95,11 @@ if [ -d "$shared/base" ] && command -v fpc >/dev/null; then
     --script-file "$repo/tests/apps/viewer/fixtures/trail_xy.pas" --show-window log \
     --do "chart-xy robots/Classic/x robots/Classic/y" --do "show chart" --do "run-until 4"
 fi
+if command -v fpc >/dev/null; then
+  # SimTwo's canvases: scenes/canvas's script draws on the board's top and the sign's face.
+  shot viewer-canvas "$repo/scenes/canvas" --show-window log --do "run-until 0.5" \
+    --do "camera -150 35 1.1" --do "wait 1"
+fi
 # Shadows on bodies as well as on the floor: the pile settling, seen close.
 shot viewer-shadows "$repo/scenes/pile" --hide-ui --do "run-until 2.5" --do "camera -60 25 1.4" \
   --do "wait 1"

@@ -64,6 +64,7 @@ class HeadlessCameraRenderer final : public CameraRenderer {
     HeadlessContext::Current current(context_);
     warnings_.clear();
     gl_->drawables.take_meshes(sim_, gl_->renderer, warnings_);
+    gl_->drawables.take_canvases(sim_, gl_->renderer);
     print_warnings(warnings_);
     gl_->drawables.update(sim_, body_poses, body_count, gl_->settings.floor_half_size_m);
     gl_->images.render(gl_->renderer, gl_->drawables.items(false, false, -1), shot, gl_->settings,

@@ -38,6 +38,17 @@ MeshData unit_box() {
   return m;
 }
 
+MeshData unit_canvas_square() {
+  MeshData m;
+  const float h = 0.5f;
+  m.vertices.push_back({{-h, h, 0}, {0, 0, 1}, {0, 0}});
+  m.vertices.push_back({{h, h, 0}, {0, 0, 1}, {1, 0}});
+  m.vertices.push_back({{h, -h, 0}, {0, 0, 1}, {1, 1}});
+  m.vertices.push_back({{-h, -h, 0}, {0, 0, 1}, {0, 1}});
+  m.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from +Z
+  return m;
+}
+
 MeshData unit_cylinder(int segments) {
   MeshData m;
   const float two_pi = 2 * std::numbers::pi_v<float>;

@@ -24,6 +24,10 @@ struct MeshData {
 
 /// A 1 x 1 x 1 box centred on the origin.
 MeshData unit_box();
+/// A 1 x 1 square in the XY plane centred on the origin, normal +Z, for a canvas: texture
+/// (0, 0) at its (-X, +Y) corner, u along +X and v along -Y, so that an image's top row, which
+/// OpenGL gets first, lies along +Y.
+MeshData unit_canvas_square();
 /// Radius 1, length 1 along Z, centred on the origin.
 MeshData unit_cylinder(int segments = 32);
 /// Radius 1.

@@ -41,6 +41,8 @@ Renderer::~Renderer() {
   }
   for (const auto& [path, t] : textures_)
     if (t != 0) glDeleteTextures(1, &t);
+  for (unsigned t : image_textures_)
+    glDeleteTextures(1, &t);
   for (int shadow = 0; shadow < 2; ++shadow) {
     if (lit_programs_[shadow]) glDeleteProgram(lit_programs_[shadow]);
     for (unsigned program : floor_programs_[shadow])
@@ -127,6 +129,38 @@ unsigned Renderer::texture(const std::filesystem::path& file, std::string& error
   }
   textures_[file] = t;
   return t;
+}
+
+unsigned Renderer::image_texture(const Image& image, unsigned texture) {
+  if (image.format != PixelFormat::rgb8 || image.data == nullptr) return 0;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, image.stride_bytes / 3);
+  if (texture == 0) {
+    glGenTextures(1, &texture);
+    image_textures_.push_back(texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, image.width_px, image.height_px, 0, GL_RGB,
+                 GL_UNSIGNED_BYTE, image.data);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  } else {
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image.width_px, image.height_px, GL_RGB,
+                    GL_UNSIGNED_BYTE, image.data);
+  }
+  glGenerateMipmap(GL_TEXTURE_2D);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  return texture;
+}
+
+void Renderer::release_image_texture(unsigned texture) {
+  const auto it = std::find(image_textures_.begin(), image_textures_.end(), texture);
+  if (texture == 0 || it == image_textures_.end()) return;
+  glDeleteTextures(1, &texture);
+  image_textures_.erase(it);
 }
 
 bool Renderer::software_rasteriser() const {

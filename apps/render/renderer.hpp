@@ -12,6 +12,8 @@
 #include "sky.hpp"
 #include "view.hpp"
 
+#include <s2sim/image.hpp>
+
 #include <filesystem>
 #include <map>
 #include <string>
@@ -66,6 +68,11 @@ class Renderer {
   int upload(const MeshData& mesh);
   /// Loads an image file once (stb_image) and returns its texture, or 0 with `error` set.
   unsigned texture(const std::filesystem::path& file, std::string& error);
+  /// Uploads an rgb8 image (a canvas) into `texture`, made when 0, and returns it; its top
+  /// row is the texture's v = 0. 0 for another pixel format.
+  unsigned image_texture(const Image& image, unsigned texture);
+  /// Frees a texture image_texture made (0: none).
+  void release_image_texture(unsigned texture);
 
   /// Clears `view`'s framebuffer and draws the floor and the items into its rectangle.
   void draw(const std::vector<DrawItem>& items, const View& view, const RenderSettings& settings);
@@ -102,6 +109,7 @@ class Renderer {
 
   std::vector<GpuMesh> meshes_;
   std::map<std::filesystem::path, unsigned> textures_;
+  std::vector<unsigned> image_textures_;
   unsigned lit_programs_[2] = {0, 0};                 ///< [shadow map]
   unsigned floor_programs_[2][2] = {{0, 0}, {0, 0}};  ///< [shadow map][texture]
   int floor_mesh_ = -1;

@@ -59,6 +59,34 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
   mesh_cache_.clear();
   meshes_version_ = 0;
 
+  for (const CanvasTexture& t : canvases_)  // the scene's before, when it is loaded again
+    renderer.release_image_texture(t.texture);
+  canvases_.clear();
+  if (canvas_square_ < 0) canvas_square_ = renderer.upload(unit_canvas_square());
+  // SimTwo's canvas covers the box's local +Z face (simtwo-script-api.md §3.8): a square a
+  // hair above it (so that it wins the depth test), in the unit frame of the box's drawable.
+  auto add_canvas = [&](const scene::Geom& g, int body, Drawable::Kind kind, int index) {
+    Drawable c;
+    c.kind = Drawable::Kind::canvas;
+    c.body = body;
+    c.index = index;
+    c.owner = static_cast<int>(drawables_.size()) - 1;
+    c.canvas = static_cast<int>(canvases_.size());
+    constexpr double kLift_m = 2e-4;
+    const double height = std::max(g.shape.size_m.z, 1e-6);
+    c.frame = translation({0, 0, static_cast<float>(0.5 + kLift_m / height)});
+    c.item.mesh = canvas_square_;
+    c.item.casts_shadow = false;
+    c.box_min = {-0.5f, -0.5f, 0};
+    c.box_max = {0.5f, 0.5f, 0};
+    const float white[4] = {1, 1, 1, 1};
+    std::copy(white, white + 4, c.item.color);
+    CanvasTexture t;
+    t.body = kind == Drawable::Kind::obstacle ? 0 : body;
+    t.obstacle = kind == Drawable::Kind::obstacle ? index : -1;
+    canvases_.push_back(t);
+    drawables_.push_back(c);
+  };
   auto add_geom = [&](const scene::Geom& g, int body, Drawable::Kind kind, int index) {
     Drawable d;
     d.kind = kind;
@@ -92,6 +120,9 @@ void SceneDrawables::build(const scene::Scene& scene, Renderer& renderer,
     take_primitive(d, g.shape);
     d.loaded_local = d.local;
     drawables_.push_back(d);
+    const bool own = kind == Drawable::Kind::solid || kind == Drawable::Kind::obstacle;
+    if (own && g.visual.canvas && g.shape.type == scene::ShapeType::box)
+      add_canvas(g, body, kind, index);
   };
 
   for (std::size_t b = 0; b < scene.bodies.size(); ++b) {
@@ -241,6 +272,26 @@ void SceneDrawables::take_meshes(const Simulation& sim, Renderer& renderer,
   }
 }
 
+void SceneDrawables::take_canvases(const Simulation& sim, Renderer& renderer) {
+  for (CanvasTexture& t : canvases_) {
+    if (!t.looked_up) {
+      t.looked_up = true;
+      const std::string name = t.obstacle >= 0
+                                   ? "obstacles/" + std::to_string(t.obstacle) + "/canvas"
+                                   : sim.body_path(t.body) + "/canvas";
+      const std::vector<std::string> names = sim.image_names();
+      if (std::find(names.begin(), names.end(), name) != names.end()) t.image = &sim.image(name);
+    }
+    if (t.image == nullptr || (t.uploaded && t.image->frame == t.uploaded_frame)) continue;
+    t.texture = renderer.image_texture(*t.image, t.texture);
+    t.uploaded_frame = t.image->frame;
+    t.uploaded = true;
+  }
+  for (Drawable& d : drawables_)
+    if (d.kind == Drawable::Kind::canvas)
+      d.item.texture = canvases_[static_cast<std::size_t>(d.canvas)].texture;
+}
+
 void SceneDrawables::place_fire(const Simulation& sim, const Pose* body_poses, int body_count) {
   const Annotations::Fire& fire = sim.annotations().fire;
   burning_ = fire.burning;
@@ -346,6 +397,12 @@ void SceneDrawables::update(const Simulation& sim, const Pose* body_poses, int b
   place_liquids(sim, floor_half_size_m);
   const std::vector<ThingView>& things = sim.things();
   for (auto& d : drawables_) {
+    if (d.kind == Drawable::Kind::canvas) {  // on its box, which comes first
+      const Drawable& box = drawables_[static_cast<std::size_t>(d.owner)];
+      d.hidden = box.hidden || box.run_time_mesh || d.item.texture == 0;
+      d.item.model = box.item.model * d.frame;
+      continue;
+    }
     if (d.thing >= 0) {
       const ThingView& thing = things[static_cast<std::size_t>(d.thing)];
       d.hidden = !thing.present;

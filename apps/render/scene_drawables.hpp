@@ -18,7 +18,8 @@
 namespace s2sim::render {
 
 struct Drawable {
-  enum class Kind { solid, shell, obstacle, track, beam, joint };
+  /// `canvas`: the square on a box's +Z face showing its canvas image (SimTwo's `<canvas>`).
+  enum class Kind { solid, shell, obstacle, track, beam, joint, canvas };
   Kind kind = Kind::solid;
   int body = 0;                        ///< simulation body index (0 = world, scene body i = i + 1)
   Mat4 local;                          ///< mesh to body frame (scale included)
@@ -40,6 +41,10 @@ struct Drawable {
   DrawItem scene_item;
   Vec3f scene_box_min, scene_box_max;
   Mat4 scene_local;
+  /// A canvas: the drawable of its box (earlier in the list) and its texture in
+  /// SceneDrawables::canvases_; `frame` places the square in the box's unit frame.
+  int owner = -1;
+  int canvas = -1;
 };
 
 class SceneDrawables {
@@ -53,6 +58,11 @@ class SceneDrawables {
   /// and back as the scene's when they are forgotten; reads a file once. Only when the
   /// annotations changed. Files it cannot read are reported in `warnings`.
   void take_meshes(const Simulation& sim, Renderer& renderer, std::vector<std::string>& warnings);
+
+  /// Uploads each canvas image (a `<canvas>` box's: `<body path>/canvas`, `obstacles/<i>/canvas`)
+  /// whose frame counter changed since its last upload, into its texture. Looks the images up
+  /// at its first call; no allocation after it.
+  void take_canvases(const Simulation& sim, Renderer& renderer);
 
   /// Updates every item's model matrix from the simulation's body poses, each solid's colour
   /// from the run-time colours (`Annotations::body_colors`), and the liquid surfaces
@@ -114,6 +124,19 @@ class SceneDrawables {
   DrawItem liquids_[kMaxLiquids];
   float liquid_z_m_[kMaxLiquids] = {};
   int liquid_count_ = 0;
+
+  /// A canvas image and its texture.
+  struct CanvasTexture {
+    int body = 0;       ///< the box's body (0: an obstacle)
+    int obstacle = -1;  ///< the obstacle's index, -1 for a body's
+    bool looked_up = false;
+    const Image* image = nullptr;  ///< null when the simulation has no such image
+    unsigned texture = 0;
+    std::uint64_t uploaded_frame = 0;
+    bool uploaded = false;
+  };
+  std::vector<CanvasTexture> canvases_;
+  int canvas_square_ = -1;
 
   std::vector<Drawable> drawables_;
   std::vector<DrawItem> items_;  ///< reused every frame

@@ -232,6 +232,7 @@ class App {
       if (!stuck) {
         std::vector<std::string> mesh_warnings;
         drawables_.take_meshes(*state_.sim, renderer_, mesh_warnings);
+        drawables_.take_canvases(*state_.sim, renderer_);
         for (const auto& w : mesh_warnings)
           state_.log_message("warning: " + w);
         drawables_.update(*state_.sim, state_.render.floor_half_size_m);

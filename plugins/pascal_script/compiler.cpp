@@ -107,7 +107,7 @@ std::string wrapper_text(const std::filesystem::path& script, const std::string&
       "library s2script;\n"
       "{$mode delphi}{$H+}\n"
       "uses SysUtils, Classes, Math, Types, Variants, s2simtwo_types, s2simtwo_engine,\n"
-      "  s2simtwo_matrix, s2simtwo_helpers, s2simtwo_astar, s2simtwo_rendering, s2simtwo,\n"
+      "  s2simtwo_matrix, s2simtwo_helpers, s2simtwo_astar, s2simtwo, s2simtwo_rendering,\n"
       "  s2simtwo_paint, s2simtwo_waypoints;\n"
       "{$I '" +
       script.filename().string() + "'}\n";

@@ -579,6 +579,9 @@ double ScriptController::call(HostFn fn, const double* a, int n, const std::stri
       return call_paint(fn, a, n);
     case HostFn::GetCameraPixel:
       return call_camera(fn, a, n);
+    case HostFn::CanvasOf:
+    case HostFn::CanvasOp:
+      return call_canvas(fn, a, n, s, s2);
     case HostFn::WriteUDPData:
       need(1);
       udp().send(s, static_cast<int>(a[0]), s2);

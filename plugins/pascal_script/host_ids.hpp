@@ -174,7 +174,9 @@
   X(CalculateMinSprayThickness) \
   X(CalculateMaxSprayThickness) \
   X(CalculateSprayCoverage) \
-  X(GetCameraPixel)
+  X(GetCameraPixel) \
+  X(CanvasOf) \
+  X(CanvasOp)
 // clang-format on
 
 namespace s2sim::pascal {

@@ -61,6 +61,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
       const BodyHandle body = ctx.body(p.text(sk + "body"));
       robot.solids.push_back({p.text(sk + "id"), body, read_look(p, sk), {}, {}});
       robot.solids.back().belt.index = -1;
+      robot.solids.back().canvas = configure_canvas(ctx, p.text(sk + "canvas", ""));
       if (p.boolean(sk + "belt", false)) {
         try {
           robot.solids.back().belt = ctx.input(p.text(sk + "body") + "/belt_speed");
@@ -186,6 +187,7 @@ void ScriptController::configure(ConfigureContext& ctx) {
       for (int c = 0; c < 3; ++c)
         ob.rotation.m[r][c] = p.number(ok + "rot_" + std::to_string(r) + std::to_string(c));
     ob.scene_index = static_cast<int>(o);
+    ob.canvas = configure_canvas(ctx, p.text(ok + "canvas", ""));
     obstacles_.push_back(ob);
   }
   obstacles_loaded_ = obstacles_;
@@ -304,6 +306,7 @@ void ScriptController::initialize(StepContext& ctx) {
   for (auto& th : things_)
     restore(th.look);
   chart_series_count_.assign(kMaxCharts, 0);
+  clear_canvases(ctx);  // the kernel's reset made their images white
   last_run_value_ = ctx.input(run_input_);
   // Fresh script globals at every reset, as a new compile in SimTwo.
   if (available_) {
@@ -365,6 +368,7 @@ void ScriptController::update(StepContext& ctx) {
     outcome = library_.run(1, ctx.time_s(), error);
   }
   ctx_ = nullptr;
+  flush_canvases(ctx);
   if (outcome == Outcome::raised) report_error(routine, error);
   if (outcome == Outcome::halted) report_halt(ctx, routine, error);
   // Encoder counts of this tick, for the next period's deltas.

@@ -3,6 +3,7 @@
 /// The `pascal_script` controller (docs/scripting.md): the model it resolves at load (SimTwo's
 /// index tables), the compiled script it calls, and the host functions the script calls back.
 /// script_controller.cpp: load, schedule, calls and errors; host_calls.cpp: the host functions.
+#include "canvas_painter.hpp"
 #include "compiler.hpp"
 #include "host_ids.hpp"
 #include "io_ports.hpp"
@@ -96,6 +97,7 @@ struct SolidRef {
   Look look;
   std::string tag;     // SetSolidTag's
   InputHandle belt{};  // a conveyor belt's surface speed (index -1 for other solids)
+  int canvas = -1;     // its canvas in ScriptController::canvases_, -1 for none
 };
 
 struct RobotRef {
@@ -130,6 +132,13 @@ struct ObstacleRef {
   double rgba[4] = {0, 0, 0, 0};
   int scene_index = -1;  // in the scene's obstacles; -1 for one added while running
   BodyHandle body;       // the spare body an added obstacle holds
+  int canvas = -1;       // its canvas in ScriptController::canvases_, -1 for none
+};
+
+/// A solid's or obstacle's canvas (`<canvas>`): the kernel's image and what draws it.
+struct CanvasRef {
+  ImageHandle image;
+  std::unique_ptr<CanvasPainter> painter;
 };
 
 /// A `spraygun` of SimTwo's world-wide sensor list (SetSprayGunOn(i): the i-th of them).
@@ -191,6 +200,15 @@ class ScriptController final : public Component {
   void configure_camera(ConfigureContext& ctx);
   double call_camera(HostFn fn, const double* a, int n);
   SprayGunRef& spray_gun(double i);
+  /// The canvases (host_canvas.cpp): the kernel's image of each one configure_canvas names,
+  /// drawn by the script's TCanvas (a Cairo surface made at the first initialize), copied
+  /// into the image after each call when it changed (flush_canvases) and white again at a
+  /// reset (clear_canvases).
+  int configure_canvas(ConfigureContext& ctx, const std::string& image_name);
+  double call_canvas(HostFn fn, const double* a, int n, const std::string& s,
+                     const std::string& s2);
+  void flush_canvases(StepContext& ctx);
+  void clear_canvases(StepContext& ctx);
   PaintTargetRef& paint_target(double i);
   /// Target `k`'s paint per triangle, summed over the guns, into paint_scratch_: a gun that
   /// has not yet carried out the target's last reset counts for nothing (the script sees the
@@ -249,6 +267,7 @@ class ScriptController final : public Component {
   std::vector<double> paint_scratch_;  // sized at configure for the largest target
   std::string camera_prefix_;          // the last camera shell's; empty: none
   ImageHandle camera_image_;           // its rgb image; index -1: none (no camera plugin)
+  std::vector<CanvasRef> canvases_;
   std::vector<std::pair<std::string, double>> constants_;
   std::vector<InputHandle> sheet_inputs_;
   std::vector<double> sheet_initial_values_;  // the inputs' values at reset

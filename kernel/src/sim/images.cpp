@@ -40,7 +40,7 @@ std::int32_t Simulation::Impl::add_image(const std::string& name, int width_px, 
 
 void Simulation::Impl::bind_images() {
   for (std::size_t i = 0; i < images.size(); ++i) {
-    image_slots[i].pixels.assign(images[i].size_bytes(), 0);
+    image_slots[i].pixels.assign(images[i].size_bytes(), image_slots[i].blank);
     images[i].data = image_slots[i].pixels.data();
   }
   world.image_count = static_cast<std::int32_t>(images.size());
@@ -51,7 +51,7 @@ void Simulation::Impl::bind_images() {
 
 void Simulation::Impl::reset_images() {
   for (std::size_t i = 0; i < images.size(); ++i) {
-    std::fill(image_slots[i].pixels.begin(), image_slots[i].pixels.end(), std::uint8_t{0});
+    std::fill(image_slots[i].pixels.begin(), image_slots[i].pixels.end(), image_slots[i].blank);
     images[i].frame = 0;
     images[i].time_s = 0;
   }

@@ -65,6 +65,7 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.axis_force_applied.assign(m.axis_views.size(), 0.0);
   m.axis_inertia.assign(m.axis_views.size(), 0.0);
   m.register_kernel_signals();
+  m.declare_canvases();  // before the components, which look them up
 
   // Components: scene sensors with a plugin for their kind, then <plugin> instances, then the
   // drive train of every axis (sim/drive_train_components.hpp), then the <plugin> controllers:

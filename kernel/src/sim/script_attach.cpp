@@ -3,10 +3,11 @@
 // (simtwo-script-api.md §2), as flat attributes the plugin reads through Params:
 //   file, found_by, robots, things, obstacles, global_sensors, cells, constants
 //   robot_<R>_id, _main (body path), _origin_x/y/z, _offset_x/y/z, _yaw, _solids, _axes, _sensors
-//   robot_<R>_solid_<i>_id / _body, robot_<R>_axis_<i> (axis path, '' for Fixed/Ball),
+//   robot_<R>_solid_<i>_id / _body / _canvas (its canvas image, when it has one),
+//   robot_<R>_axis_<i> (axis path, '' for Fixed/Ball),
 //   robot_<R>_shell_<i>_body / _geom (its index in the body's geoms) / _x / _y / _z / _r...,
 //   robot_<R>_axis_<i>_joint, robot_<R>_sensor_<i>_id / _kind / _prefix
-//   thing_<T>_id / _body / _r / _g / _b / _a, obstacle_<T>_id / _x / _y / _z
+//   thing_<T>_id / _body / _r / _g / _b / _a, obstacle_<T>_id / _x / _y / _z / _canvas
 //   global_sensor_<i>_id / _kind / _prefix, camera_shells, camera_shell_<i>_prefix,
 //   cell_<k>_r / _c / _text, constant_<k>_name / _value
 #include "sim/names.hpp"
@@ -132,6 +133,8 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
       set(k + "solid_" + std::to_string(i) + "_body", sim::solid_path(rp, b.id));
       solid_look(k + "solid_" + std::to_string(i) + "_", b);
       if (b.kind == scene::SolidKind::belt) set(k + "solid_" + std::to_string(i) + "_belt", "1");
+      const std::string canvas = solid_canvas_name(robot.bodies[i]);
+      if (image_index(canvas) >= 0) set(k + "solid_" + std::to_string(i) + "_canvas", canvas);
     }
     // The shells (GetShellPos, GetShellColor): their solid, pose in its frame, colour.
     set(k + "shells", std::to_string(robot.shells.size()));
@@ -228,6 +231,8 @@ std::optional<scene::PluginInstance> Simulation::Impl::script_instance() const {
     set(ok + "x", exact_decimal(ob.pose.position.x));
     set(ok + "y", exact_decimal(ob.pose.position.y));
     set(ok + "z", exact_decimal(ob.pose.position.z));
+    const std::string canvas = obstacle_canvas_name(static_cast<int>(o));
+    if (image_index(canvas) >= 0) set(ok + "canvas", canvas);
     const char* rgba[] = {"r", "g", "b", "a"};
     const double c[] = {ob.visual.color.r, ob.visual.color.g, ob.visual.color.b, ob.visual.color.a};
     for (int k = 0; k < 4; ++k)

@@ -293,8 +293,9 @@ struct Simulation::Impl {
   // them, a snapshot leaves them out.
   struct ImageSlot {
     std::string name;
-    int component = -1;
+    int component = -1;  ///< -1: the kernel's (a canvas)
     std::vector<std::uint8_t> pixels;
+    std::uint8_t blank = 0;  ///< every byte after a reset: 0, or 255 for a canvas (white)
   };
   std::vector<ImageSlot> image_slots;
   std::vector<Image> images;
@@ -304,6 +305,13 @@ struct Simulation::Impl {
   std::string renderer_error;  ///< why the factory failed, said again at every later frame
   std::int32_t add_image(const std::string& name, int width_px, int height_px, PixelFormat format,
                          int component);
+  /// The canvases of the scene's solids and obstacles (`<canvas>` on a box), rgb8 images
+  /// `<body path>/canvas` and `obstacles/<index>/canvas`, declared before the components
+  /// configure, white until written (canvases.cpp).
+  void declare_canvases();
+  /// The canvas image of scene body `body` (a scene index) or of obstacle `obstacle`.
+  std::string solid_canvas_name(int body) const;
+  static std::string obstacle_canvas_name(int obstacle);
   /// Gives every image its pixels and the WorldView its images and renderer, after configure.
   void bind_images();
   void reset_images();

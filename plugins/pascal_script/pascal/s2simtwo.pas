@@ -10,8 +10,7 @@ unit s2simtwo;
 
 interface
 
-uses SysUtils, Classes, Math, Types, s2simtwo_types, s2simtwo_matrix, s2simtwo_helpers,
-  s2simtwo_rendering;
+uses SysUtils, Classes, Math, Types, s2simtwo_types, s2simtwo_matrix, s2simtwo_helpers;
 
 {S2SIM_HOST_IDS}
 
@@ -244,6 +243,8 @@ function S2SimScriptFolder: string;
   numbers the call left (S2SimHostNumbers gives their count and the first). }
 function S2SimHostCall(fn: longint; const a: array of double): double;
 function S2SimHostNumbers(out first: PDouble): longint;
+{ The same with two texts (at most 16 numbers). }
+function S2SimHostCallS2(fn: longint; const a: array of double; const s, s2: string): double;
 { A file name as SimTwo's scripts mean it: a relative one in the script's folder (SimTwo works in
   the project's folder). }
 function InScriptFolder(const name: string): string;
@@ -733,6 +734,10 @@ begin
   if Length(a) = 0 then result := Host.call(Host.host, fn, @zero, 0, nil, 0, nil, 0)
   else result := Host.call(Host.host, fn, @a[0], Length(a), nil, 0, nil, 0);
   HostCheck;
+end;
+function S2SimHostCallS2(fn: longint; const a: array of double; const s, s2: string): double;
+begin
+  result := HostCallS2(fn, a, s, s2);
 end;
 function S2SimHostNumbers(out first: PDouble): longint;
 begin

@@ -270,7 +270,7 @@ TEST_F(PascalScript, RunTimeErrorStopsTheScriptNotTheSimulation) {
       EXPECT_NE(err.find("(CONTROL at "), std::string::npos) << err;
       EXPECT_NE(err.find("runtime_error.pas:14"), std::string::npos) << err;  // Mgetv's line
     } else {
-      EXPECT_NE(err.find("SolidCanvasClear belongs to rendering"), std::string::npos) << err;
+      EXPECT_NE(err.find("GetCameraPixel belongs to rendering"), std::string::npos) << err;
     }
   }
 }
