@@ -84,7 +84,7 @@ end;
 
 procedure BelongsToRendering(const routine: string);
 begin
-  raise EScriptHostError.Create(routine + ' belongs to rendering, which S2Sim does not have yet');
+  raise EScriptHostError.Create(routine + ' belongs to SimTwo''s own rendering, which S2Sim does not reproduce');
 end;
 
 end.

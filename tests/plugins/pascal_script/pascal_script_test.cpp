@@ -268,9 +268,11 @@ TEST_F(PascalScript, RunTimeErrorStopsTheScriptNotTheSimulation) {
     if (std::string(mode) == "0") {
       EXPECT_NE(err.find("Invalid (row,col) value"), std::string::npos) << err;
       EXPECT_NE(err.find("(CONTROL at "), std::string::npos) << err;
-      EXPECT_NE(err.find("runtime_error.pas:14"), std::string::npos) << err;  // Mgetv's line
+      EXPECT_NE(err.find("runtime_error.pas:15"), std::string::npos) << err;  // Mgetv's line
     } else {
-      EXPECT_NE(err.find("GetCameraPixel belongs to rendering"), std::string::npos) << err;
+      EXPECT_NE(err.find("the camera's TCanvas belongs to SimTwo's own rendering"),
+                std::string::npos)
+          << err;
     }
   }
 }
@@ -297,7 +299,7 @@ TEST_F(PascalScript, RunTimeErrorIsReportedWhateverFollowsTheEnvironment) {
   const std::string err = ::testing::internal::GetCapturedStderr();
   sim.reset();
   environ = saved;
-  EXPECT_NE(err.find("runtime_error.pas:14"), std::string::npos) << err;
+  EXPECT_NE(err.find("runtime_error.pas:15"), std::string::npos) << err;
 }
 
 /// SetMotorActive, GetMotorPars/SetMotorPars, IsMotorActive, GetAxisTorque and GetAxisIndex

@@ -101,7 +101,7 @@ TEST(ScriptCamera, PixelsAreTheLastShellsImageScaledFromSimTwosSize) {
   ASSERT_EQ(errors.size(), 3u);
   EXPECT_THAT(errors[0], HasSubstr("640"));
   EXPECT_THAT(errors[1], HasSubstr("-1"));
-  EXPECT_THAT(errors[2], HasSubstr("belongs to rendering"));
+  EXPECT_THAT(errors[2], HasSubstr("belongs to SimTwo's own rendering"));
 }
 
 TEST(ScriptCamera, WithoutACameraShellTheImageIsBlack) {
