@@ -16,16 +16,6 @@
 namespace s2sim::sensors {
 namespace {
 
-/// The camera frame (+Z forward, +Y up, +X left) in the sensor frame (+X forward, +Z up).
-Mat3 camera_in_sensor() {
-  Mat3 r;
-  // Columns: the camera's X, Y, Z axes in the sensor frame: +Y, +Z, +X.
-  r.m[0][0] = 0, r.m[0][1] = 0, r.m[0][2] = 1;
-  r.m[1][0] = 1, r.m[1][1] = 0, r.m[1][2] = 0;
-  r.m[2][0] = 0, r.m[2][1] = 1, r.m[2][2] = 0;
-  return r;
-}
-
 /// SimTwo's `focal length` (GLScene's FocalLength) as the full field of view across the
 /// image's longer side: GLScene's ApplyPerspective puts the near plane at
 /// f·2·dpi/(25.4·maxdim) with half-extents of ½ across the longer side, on SimTwo's
@@ -82,7 +72,7 @@ void CameraSensor::configure(ConfigureContext& ctx) {
   if (!(shot_.far_m > shot_.near_m) || !std::isfinite(shot_.far_m))
     fail(p, "clip", "far",
          "must be finite and beyond near (" + num(shot_.near_m) + " m), got " + num(shot_.far_m));
-  shot_.pose = Pose{s_.spec.pose.position, s_.spec.pose.rotation * camera_in_sensor()};
+  shot_.pose = Pose{s_.spec.pose.position, s_.spec.pose.rotation * camera_frame_in_sensor()};
 
   want_rgb_ = p.boolean("outputs.rgb", true);
   want_depth_ = p.boolean("outputs.depth", false);

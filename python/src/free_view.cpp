@@ -87,15 +87,6 @@ Mat3 look_at(const Vec3& eye, const Vec3& target, const Vec3& up) {
   return r;
 }
 
-/// The camera frame in a sensor frame (+X forward, +Z up), as the camera sensor has it.
-Mat3 camera_in_sensor() {
-  Mat3 r;
-  r.m[0][0] = 0, r.m[0][1] = 0, r.m[0][2] = 1;
-  r.m[1][0] = 1, r.m[1][1] = 0, r.m[1][2] = 0;
-  r.m[2][0] = 0, r.m[2][1] = 1, r.m[2][2] = 0;
-  return r;
-}
-
 const char* const kOutputs[3] = {"rgb", "depth", "segmentation"};
 
 /// The cameras: the prefixes of the images named <camera>/rgb, /depth or /segmentation.
@@ -150,8 +141,8 @@ CameraShot camera_shot(const Simulation& sim, const PyRendering& rendering,
   for (const scene::Sensor& s : sc.sensors)
     if (sensor_path(sc, s) == name) {
       CameraShot shot = *drawn;
-      shot.pose =
-          sim.body_pose(s.body + 1) * Pose{s.pose.position, s.pose.rotation * camera_in_sensor()};
+      shot.pose = sim.body_pose(s.body + 1) *
+                  Pose{s.pose.position, s.pose.rotation * camera_frame_in_sensor()};
       return shot;
     }
   refuse("camera", "'" + name + "' is not a sensor of this scene");

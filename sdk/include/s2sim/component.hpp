@@ -451,8 +451,9 @@ class StepContext {
   const Image& image(ImageHandle h) const {
     return w_->images[detail::checked(h.index, w_->image_count, "image", "image")];
   }
-  /// Starts a new frame of an image this component declared: counts the frame, stamps it
-  /// with this tick's time, and returns it to fill in place.
+  /// Starts a new frame of an image this component writes (one it declared, or an image the
+  /// kernel keeps for a writer such as a SimTwo canvas): counts the frame, stamps it with this
+  /// tick's time, and returns it to fill in place.
   Image& begin_image(ImageHandle h) {
     Image& image = w_->images[detail::checked(h.index, w_->image_count, "begin_image", "image")];
     ++image.frame;

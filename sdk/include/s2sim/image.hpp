@@ -45,7 +45,8 @@ struct ImageHandle {
 
 /// An image as it stands: `height_px` rows of `stride_bytes`, the top row first, each of
 /// `width_px` pixels of `format`. `frame` counts the frames written since the last reset (0:
-/// none yet, the pixels are zero), `time_s` is the simulated time of the last one.
+/// none yet: the pixels are as the reset left them, zero, or white for a SimTwo canvas),
+/// `time_s` is the simulated time of the last one.
 struct Image {
   std::int32_t width_px = 0;
   std::int32_t height_px = 0;
@@ -72,5 +73,16 @@ struct CameraShot {
   std::int32_t width_px = 0;
   std::int32_t height_px = 0;
 };
+
+/// The camera frame in a sensor frame: a sensor looks along its +X with +Z up (every sensor's
+/// beam axis), a CameraShot along its +Z with +Y up. Columns: the camera's X, Y, Z axes in the
+/// sensor frame (+Y, +Z, +X).
+constexpr Mat3 camera_frame_in_sensor() {
+  Mat3 r;
+  r.m[0][0] = 0, r.m[0][1] = 0, r.m[0][2] = 1;
+  r.m[1][0] = 1, r.m[1][1] = 0, r.m[1][2] = 0;
+  r.m[2][0] = 0, r.m[2][1] = 1, r.m[2][2] = 0;
+  return r;
+}
 
 }  // namespace s2sim
