@@ -29,8 +29,18 @@ int control_block(const std::filesystem::path& folder) {
   return 0;
 }
 
+/// Whether `file` is there; an over-long name or an unreadable folder (not an exception of the
+/// file system library) in `why`.
+bool is_file(const std::filesystem::path& file, std::string& why) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(file, ec)) return true;
+  if (ec && ec != std::errc::no_such_file_or_directory) why = ec.message();
+  return false;
+}
+
 void load_sheet(LoadContext& ctx, const std::filesystem::path& file) {
-  if (!std::filesystem::exists(file)) return;
+  std::string why;
+  if (!is_file(file, why)) return;
   const Element root = read_xml_file(file, ctx.display(file));
   const Element* cells = root.child("cells");
   if (!cells) return;
@@ -57,8 +67,11 @@ void load_script_and_sheet(LoadContext& ctx, const Reader& reader, const Element
     const std::string name = reader.text(*s2sim_script, "file", "");
     if (name.empty()) reader.fail(*s2sim_script, "file", "missing script file name");
     const auto file = ctx.resolve(name);
-    if (!std::filesystem::exists(file))
-      reader.fail(*s2sim_script, "file", "script file '" + name + "' not found");
+    std::string why;
+    if (!is_file(file, why))
+      reader.fail(*s2sim_script, "file",
+                  why.empty() ? "script file '" + name + "' not found"
+                              : "cannot read the script file '" + name + "': " + why);
     scene.script = ScriptRef{file, reader.at(*s2sim_script, "file").str(), true};
     return;
   }
@@ -67,15 +80,17 @@ void load_script_and_sheet(LoadContext& ctx, const Reader& reader, const Element
     found_by = "config_Editor.ini [Editor] LastProjectName";
   else if (!(name = last_project_name(folder / "SimTwo.ini")).empty())
     found_by = "SimTwo.ini [Editor] LastProjectName";
-  else if (std::filesystem::exists(folder / "control.pas")) {
+  else if (std::string why; is_file(folder / "control.pas", why)) {
     name = "control.pas";
     found_by = "control.pas in the scene folder";
   }
   if (name.empty()) return;
   const auto file = ctx.resolve(name);
-  if (!std::filesystem::exists(file)) {
+  if (std::string why; !is_file(file, why)) {
     ctx.warn(Location{found_by, "", ""},
-             "the script '" + name + "' does not exist; the project runs without a script");
+             "the script '" + name + "' " +
+                 (why.empty() ? "does not exist" : "cannot be read: " + why) +
+                 "; the project runs without a script");
     return;
   }
   scene.script = ScriptRef{file, found_by, control_block(folder) == 1};

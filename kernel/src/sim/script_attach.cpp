@@ -31,8 +31,12 @@ std::optional<std::filesystem::path> Simulation::Impl::script_path(std::string& 
     file = options.script_file->is_absolute() ? *options.script_file
                                               : scene.folder / *options.script_file;
     found_by = "the --script option";
-    if (!std::filesystem::exists(file))
-      throw Error(ErrorKind::usage, "script file '" + file.string() + "' not found");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec))
+      throw Error(ErrorKind::usage, "script file '" + file.string() + "' " +
+                                        (ec && ec != std::errc::no_such_file_or_directory
+                                             ? "cannot be read: " + ec.message()
+                                             : std::string("not found")));
   } else if (scene.script &&
              (options.script_mode == ScriptMode::always || scene.script->runs_at_start)) {
     file = scene.script->file;

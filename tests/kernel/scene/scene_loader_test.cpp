@@ -7,7 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <string>
+
+#include "common/temp_dir.hpp"
 
 namespace s2sim::scene {
 namespace {
@@ -706,6 +710,25 @@ TEST(SceneLoader, QuirksAndWarnings) {
   EXPECT_DOUBLE_EQ(body(s, 0, "Prop2").thrust_coefficient, 0.5);
   EXPECT_EQ(main.where.file, "sub/q.xml");
   EXPECT_EQ(main.where.element, "robot/solids/cuboid[1]");
+}
+
+}  // namespace
+}  // namespace s2sim::scene
+
+namespace s2sim::scene {
+namespace {
+
+// A script file name longer than the system allows (a fuzzed scene) was an exception of the
+// file system library, reported as a refused resource (exit 1); it is a located scene error.
+TEST(SceneLoader, AnOverLongScriptFileNameIsALocatedSceneError) {
+  const std::filesystem::path dir = s2sim::test::process_temp_dir() / "long_script_name";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "scene.xml") << "<?xml version='1.0'?><scene><s2sim><script file='" +
+                                          std::string(5000, 'c') + ".pas'/></s2sim></scene>";
+  const Error e = load_error(dir / "scene.xml");
+  EXPECT_EQ(e.kind(), ErrorKind::scene);
+  EXPECT_THAT(e.what(), HasSubstr("scene/s2sim/script@file: cannot read the script file"));
+  EXPECT_THAT(e.what(), HasSubstr("File name too long"));
 }
 
 }  // namespace
