@@ -181,28 +181,16 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
     }
   }
 
-  // Joints: one per body at most (a body with several needs intermediate links, refused).
+  // Joints: a body with several has them in series, the first at the parent (MuJoCo applies a
+  // body's joints in order, each about its axis as the ones before have turned it).
   std::vector<int> actuator_of(static_cast<std::size_t>(m->njnt), -1);
   for (int u = 0; u < m->nu; ++u)
     if (m->actuator_trntype[u] == mjTRN_JOINT)
       actuator_of[static_cast<std::size_t>(m->actuator_trnid[2 * u])] = u;
-  for (int b = 1; b < m->nbody; ++b) {
-    const int count = m->body_jntnum[b];
-    if (count > 1)
-      throw Error(ErrorKind::scene, body_at(b),
-                  "body '" + name_of(m, mjOBJ_BODY, b, "body") + "' has " + std::to_string(count) +
-                      " joints; S2Sim imports one joint per body (nest a body per joint)");
+  auto imported_joint = [&](int b, int j) {
     ImportedJoint ij;
     ij.child = link(b);
     ij.parent = link(m->body_parentid[b]);
-    if (count == 0) {
-      ij.type = ImportedJointType::fixed;  // MuJoCo welds a body without joints to its parent
-      ij.name = name_of(m, mjOBJ_BODY, b, "body") + "_weld";
-      ij.where = body_at(b);
-      model.joints.push_back(std::move(ij));
-      continue;
-    }
-    const int j = m->body_jntadr[b];
     ij.name = name_of(m, mjOBJ_JOINT, j, "joint");
     ij.where = joint_at(j);
     const Pose& frame = world[static_cast<std::size_t>(b)];
@@ -259,7 +247,24 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
       }
       if (limit >= 0) ij.effort_limit = limit;
     }
-    model.joints.push_back(std::move(ij));
+    return ij;
+  };
+  for (int b = 1; b < m->nbody; ++b) {
+    const int count = m->body_jntnum[b];
+    if (count == 0) {
+      ImportedJoint ij;
+      ij.child = link(b);
+      ij.parent = link(m->body_parentid[b]);
+      ij.type = ImportedJointType::fixed;  // MuJoCo welds a body without joints to its parent
+      ij.name = name_of(m, mjOBJ_BODY, b, "body") + "_weld";
+      ij.where = body_at(b);
+      model.joints.push_back(std::move(ij));
+      continue;
+    }
+    std::vector<ImportedJoint> series;
+    for (int k = 0; k < count; ++k)
+      series.push_back(imported_joint(b, m->body_jntadr[b] + k));
+    add_joints_in_series(model, std::move(series));
   }
   for (int u = 0; u < m->nu; ++u)
     if (m->actuator_trntype[u] != mjTRN_JOINT)

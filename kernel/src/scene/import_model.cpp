@@ -52,8 +52,6 @@ const char* type_name(ImportedJointType t) {
       return "fixed";
     case ImportedJointType::floating:
       return "floating";
-    case ImportedJointType::planar:
-      return "planar";
     case ImportedJointType::ball:
       return "ball";
   }
@@ -227,11 +225,6 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
     const int parent = ij.parent < 0 ? -1 : body_of[static_cast<std::size_t>(ij.parent)];
     if (ij.type == ImportedJointType::fixed && parent >= 0) continue;  // merged above
     if (ij.type == ImportedJointType::floating) continue;              // a free body
-    if (ij.type == ImportedJointType::planar)
-      throw Error(ErrorKind::scene, ij.where,
-                  "joint '" + ij.name +
-                      "': type 'planar' is not supported (model it as two prismatic joints and "
-                      "a revolute one)");
     Joint j;
     j.id = ij.name;
     j.robot = robot_index;
@@ -323,26 +316,37 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
     model.warnings.push_back(model.display + ": effort limits of joints without an actuator " +
                              "bound nothing (" + joints_text(unactuated_effort) + ")");
 
-  // Moving bodies need a mass: a massless link would have no dynamics.
+  // Moving bodies need a mass, or a massive body beyond them that their joint moves (as the
+  // links between joints in series): a massless end link would have no dynamics.
   std::vector<bool> fixed_to_world(scene.bodies.size(), false);
   for (int j : rb.joints) {
     const Joint& joint = scene.joints[static_cast<std::size_t>(j)];
     if (joint.type == JointType::fixed && joint.body2 < 0)
       fixed_to_world[static_cast<std::size_t>(joint.body1)] = true;
   }
+  std::vector<bool> moves_mass(n_links, false);  // the link or one beyond it has mass
+  for (std::size_t l = 0; l < n_links; ++l) {
+    if (!(scene.bodies[static_cast<std::size_t>(body_of[l])].mass_kg > 0)) continue;
+    for (int up = static_cast<int>(l); up >= 0 && !moves_mass[static_cast<std::size_t>(up)];) {
+      moves_mass[static_cast<std::size_t>(up)] = true;
+      const int pj = parent_joint[static_cast<std::size_t>(up)];
+      up = pj < 0 ? -1 : model.joints[static_cast<std::size_t>(pj)].parent;
+    }
+  }
   for (std::size_t l = 0; l < n_links; ++l) {
     if (owner[l] != static_cast<int>(l)) continue;
     const Body& b = scene.bodies[static_cast<std::size_t>(body_of[l])];
     if (fixed_to_world[static_cast<std::size_t>(body_of[l])]) continue;
-    if (!(b.mass_kg > 0))
+    const int pj = parent_joint[l];
+    const bool free =
+        pj < 0 || model.joints[static_cast<std::size_t>(pj)].type == ImportedJointType::floating;
+    if (!(b.mass_kg > 0) && (free || !moves_mass[l]))
       throw Error(ErrorKind::scene, model.links[l].where,
                   "link '" + model.links[l].name +
                       "' moves but has no mass (give it an <inertial>, or join it to the world "
                       "or to a massive link with a fixed joint)");
+    if (!(b.mass_kg > 0)) continue;  // moves the massive links beyond it
     const auto e = symmetric_eigenvalues(b.inertia_kg_m2);
-    const int pj = parent_joint[l];
-    const bool free =
-        pj < 0 || model.joints[static_cast<std::size_t>(pj)].type == ImportedJointType::floating;
     if (free && !(e[0] > 0))
       throw Error(ErrorKind::scene, model.links[l].inertia_where,
                   "link '" + model.links[l].name +

@@ -31,7 +31,7 @@ struct ImportedLink {
   Location inertia_where;     ///< the element holding the inertia values
 };
 
-enum class ImportedJointType { revolute, continuous, prismatic, fixed, floating, planar, ball };
+enum class ImportedJointType { revolute, continuous, prismatic, fixed, floating, ball };
 
 struct ImportedJoint {
   std::string name;
@@ -94,6 +94,17 @@ Geom mesh_geom(ImportedModel& model, const std::filesystem::path& file, const Ve
 /// The same for vertices already read (`vertices` in the mesh frame at `pose`).
 Geom hull_geom(ImportedModel& model, const std::vector<Vec3>& vertices, const Pose& pose,
                const std::string& mesh_name, const Location& where);
+
+/// Adds `joints` (each with the same `parent` and `child` links, the first at the parent) to the
+/// model in series: each but the last ends at a new massless link at the child's frame, named
+/// `<child>.<joint>`; a name the model already has gets `_2`, `_3`... MJCF's several joints in
+/// one body, URDF's planar joint and SDF's two-axis joints are made this way.
+void add_joints_in_series(ImportedModel& model, std::vector<ImportedJoint> joints);
+
+/// URDF's planar joint as three (`<name>_x`, `<name>_y` sliding in the plane normal to
+/// `planar.axis`, `<name>_rot` turning about it), to add in series: x is `in_plane_x` (the
+/// joint frame's x) made normal to the axis.
+std::vector<ImportedJoint> planar_joints(const ImportedJoint& planar, const Vec3& in_plane_x);
 
 /// Adds the model to the scene as one robot, placed by `placement` (§8 of the format page).
 /// Links joined by fixed joints are merged into one body (the child's mass, inertia and

@@ -377,6 +377,7 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
     ij.child = child->second;
     const auto parent = index.find(parent_name);
     ij.parent = parent == index.end() ? -1 : parent->second;  // "world"
+    bool two_axes = false;
     switch (j->Type()) {
       case sdf::JointType::REVOLUTE:
         ij.type = ImportedJointType::revolute;
@@ -393,50 +394,74 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
       case sdf::JointType::BALL:
         ij.type = ImportedJointType::ball;
         break;
+      case sdf::JointType::UNIVERSAL:
+      case sdf::JointType::REVOLUTE2:
+        two_axes = true;
+        break;
       default: {
         const std::string text = j->Element()->GetAttribute("type")
                                      ? j->Element()->GetAttribute("type")->GetAsString()
                                      : std::string("?");
         throw Error(ErrorKind::scene, sdf_at(display, j->Element(), "type"),
                     "joint '" + ij.name + "': joint type '" + text +
-                        "' is not supported (expected revolute, continuous, prismatic, fixed or "
-                        "ball)");
+                        "' is not supported (expected revolute, continuous, prismatic, fixed, "
+                        "ball, universal or revolute2)");
       }
     }
     ignition::math::Pose3d jp;
     resolve_or_fail(display, j->SemanticPose().Resolve(jp, "__model__"));
     ij.anchor_m = to_pose(jp).position;
-    if (const sdf::JointAxis* axis = j->Axis(0)) {
+    // One axis's direction, limits and dynamics (SDF's defaults: limits ±1e16, none; effort
+    // and velocity -1, none).
+    auto read_axis = [&](const sdf::JointAxis& axis, ImportedJoint& to) {
       ignition::math::Vector3d xyz;
-      resolve_or_fail(display, axis->ResolveXyz(xyz, "__model__"));
+      resolve_or_fail(display, axis.ResolveXyz(xyz, "__model__"));
       const Vec3 a{xyz.X(), xyz.Y(), xyz.Z()};
       if (!(norm(a) > 1e-12))
-        throw Error(ErrorKind::scene, sdf_at(display, axis->Element()),
-                    "joint '" + ij.name + "': the axis is the zero vector");
-      ij.axis = a / norm(a);
-      // SDF's defaults: limits ±1e16 (none), effort and velocity -1 (none).
-      if (ij.type == ImportedJointType::revolute || ij.type == ImportedJointType::prismatic) {
-        ij.limited = axis->Lower() > -1e15 || axis->Upper() < 1e15;
-        ij.lower = axis->Lower() > -1e15 ? axis->Lower() : -std::numeric_limits<double>::infinity();
-        ij.upper = axis->Upper() < 1e15 ? axis->Upper() : std::numeric_limits<double>::infinity();
+        throw Error(ErrorKind::scene, sdf_at(display, axis.Element()),
+                    "joint '" + to.name + "': the axis is the zero vector");
+      to.axis = a / norm(a);
+      if (to.type == ImportedJointType::revolute || to.type == ImportedJointType::prismatic) {
+        to.limited = axis.Lower() > -1e15 || axis.Upper() < 1e15;
+        to.lower = axis.Lower() > -1e15 ? axis.Lower() : -std::numeric_limits<double>::infinity();
+        to.upper = axis.Upper() < 1e15 ? axis.Upper() : std::numeric_limits<double>::infinity();
       }
-      if (axis->Effort() >= 0 && std::isfinite(axis->Effort())) ij.effort_limit = axis->Effort();
-      if (axis->MaxVelocity() >= 0 && std::isfinite(axis->MaxVelocity()))
-        ij.velocity_limit = axis->MaxVelocity();
-      ij.damping = axis->Damping();
-      ij.friction = axis->Friction();
-      ij.spring_stiffness = axis->SpringStiffness();
-      ij.spring_reference = axis->SpringReference();
-      if (ij.damping < 0 || ij.friction < 0 || ij.spring_stiffness < 0)
-        throw Error(ErrorKind::scene, sdf_at(display, axis->Element()),
-                    "joint '" + ij.name + "': damping, friction and spring stiffness must be >= 0");
+      if (axis.Effort() >= 0 && std::isfinite(axis.Effort())) to.effort_limit = axis.Effort();
+      if (axis.MaxVelocity() >= 0 && std::isfinite(axis.MaxVelocity()))
+        to.velocity_limit = axis.MaxVelocity();
+      to.damping = axis.Damping();
+      to.friction = axis.Friction();
+      to.spring_stiffness = axis.SpringStiffness();
+      to.spring_reference = axis.SpringReference();
+      if (to.damping < 0 || to.friction < 0 || to.spring_stiffness < 0)
+        throw Error(ErrorKind::scene, sdf_at(display, axis.Element()),
+                    "joint '" + to.name + "': damping, friction and spring stiffness must be >= 0");
+      // SDF has no transmission: a joint with an effort limit gets a bounded torque input.
+      to.actuated = to.effort_limit.has_value();
+    };
+    if (two_axes) {
+      // Two hinges in series: the first axis turns with the parent, the second with the child.
+      std::vector<ImportedJoint> series(2, ij);
+      series[1].name = ij.name + "_axis2";
+      for (std::size_t k = 0; k < 2; ++k) {
+        const sdf::JointAxis* axis = j->Axis(k);
+        if (!axis)
+          throw Error(ErrorKind::scene, ij.where,
+                      "joint '" + ij.name + "': a " + (k ? "second" : "first") + " <axis" +
+                          (k ? "2" : "") + "> is required");
+        series[k].type = ImportedJointType::revolute;
+        read_axis(*axis, series[k]);
+        if (!series[k].limited) series[k].type = ImportedJointType::continuous;
+      }
+      add_joints_in_series(model, std::move(series));
+      continue;
     }
+    if (const sdf::JointAxis* axis = j->Axis(0)) read_axis(*axis, ij);
+    if (ij.type == ImportedJointType::fixed || ij.type == ImportedJointType::ball)
+      ij.actuated = false;
     if (j->Axis(1))
       model.warnings.push_back(ij.where.str() + ": joint '" + ij.name +
                                "': the second axis is not applied");
-    // SDF has no transmission: a joint with an effort limit gets a bounded torque input.
-    ij.actuated = ij.effort_limit.has_value() && ij.type != ImportedJointType::fixed &&
-                  ij.type != ImportedJointType::ball;
     model.joints.push_back(std::move(ij));
   }
   return model;

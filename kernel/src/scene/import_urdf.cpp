@@ -342,7 +342,7 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
         ij.type = ImportedJointType::floating;
         break;
       case urdf::Joint::PLANAR:
-        ij.type = ImportedJointType::planar;
+        ij.type = ImportedJointType::continuous;  // three joints in series, below
         break;
       default:
         ij.type = ImportedJointType::fixed;
@@ -352,6 +352,7 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
     ij.anchor_m = frame.position;
     const Vec3 axis{j->axis.x, j->axis.y, j->axis.z};
     const double len = norm(axis);
+    const bool planar = j->type == urdf::Joint::PLANAR;
     const bool moving = ij.type == ImportedJointType::revolute ||
                         ij.type == ImportedJointType::continuous ||
                         ij.type == ImportedJointType::prismatic;
@@ -359,7 +360,10 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
       throw Error(ErrorKind::scene, at(nth_child(joint_el(*name), "axis", 0), "xyz"),
                   "joint '" + ij.name + "': the axis is the zero vector");
     if (len > 1e-12) ij.axis = frame.rotation * (axis / len);
-    if (j->limits && moving) {
+    if (j->limits && planar) {
+      model.warnings.push_back(ij.where.str() + ": joint '" + ij.name +
+                               "': the limits of a planar joint are not applied");
+    } else if (j->limits && moving) {
       ij.limited = ij.type != ImportedJointType::continuous;
       ij.lower = j->limits->lower;
       ij.upper = j->limits->upper;
@@ -384,6 +388,10 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
     ij.actuated = moving && (has_transmissions ? transmitted.count(ij.name) > 0
                                                : ij.effort_limit.has_value());
     if (auto e = extensions.find(ij.name); e != extensions.end()) ij.s2sim_drive = e->second;
+    if (planar) {
+      add_joints_in_series(model, planar_joints(ij, frame.rotation * Vec3{1, 0, 0}));
+      continue;
+    }
     model.joints.push_back(std::move(ij));
   }
   return model;

@@ -6,6 +6,7 @@
 
 #include "common/edited_copy.hpp"
 #include "common/recording_renderer.hpp"
+#include "kernel/import/import_fixtures.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -24,12 +25,10 @@ namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 using ::testing::Not;
 
-const fs::path kFixtures = fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/scene/fixtures/import";
+const fs::path kFixtures = test::kImportFixtures;
 
 SimulationOptions options() {
-  SimulationOptions o;
-  o.plugin_path = {fs::path(S2SIM_PLUGIN_DIR)};
-  return o;
+  return test::import_options();
 }
 
 /// The shoulder and elbow angles every 10 ms for `seconds`.
@@ -235,10 +234,6 @@ TEST(Import, ASimTwoScenePlacesImportedRobotsWithTheirIdAndPose) {
 }  // namespace
 }  // namespace s2sim
 
-#ifdef S2SIM_TEST_HAVE_MUJOCO
-#include <mujoco/mujoco.h>
-#endif
-
 namespace s2sim {
 namespace {
 
@@ -305,65 +300,13 @@ TEST(Import, MeshWheelsCollideAsTheirHullsAndTheRoverDrivesAtRadiusTimesWheelSpe
 }
 
 #ifdef S2SIM_TEST_HAVE_MUJOCO
-/// How MuJoCo integrates the arm: RK4 at 0.1 ms (close to the exact trajectory), or S2Sim's own
-/// law at S2Sim's step (MuJoCo's semi-implicit Euler, its first velocity update a half step).
-enum class MujocoIntegration { rk4_fine, s2sim_law };
-
-/// The largest difference of the arm's six joint angles, every 10 ms over `seconds`, between
-/// S2Sim at `step_s` and MuJoCo 2.2 loading the same URDF (no contact: the arm's links never
-/// meet); `swing` gets MuJoCo's largest joint angle.
-double arm_difference_from_mujoco(double step_s, double seconds, double& swing,
-                                  MujocoIntegration integration = MujocoIntegration::rk4_fine) {
+/// The arm's six joints against MuJoCo loading the same URDF (its links never meet).
+test::MujocoDifference arm_difference_from_mujoco(
+    double step_s, double seconds,
+    test::MujocoIntegration integration = test::MujocoIntegration::rk4_fine) {
   const fs::path file = kFixtures / "arm6/arm6.urdf";
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(file.string().c_str(), nullptr, error, sizeof error);
-  EXPECT_NE(m, nullptr) << error;
-  if (!m) return 1e300;
-  const bool fine = integration == MujocoIntegration::rk4_fine;
-  m->opt.integrator = fine ? mjINT_RK4 : mjINT_EULER;
-  m->opt.timestep = fine ? 1e-4 : step_s;
-  m->opt.disableflags |= mjDSBL_CONTACT;
-  mjData* d = mj_makeData(m);
-  if (!fine) {
-    // S2Sim's first step: u = h/2 · u'(q0, 0), q = q0 + h · u; then Euler as MuJoCo's.
-    mj_forward(m, d);
-    mju_addToScl(d->qvel, d->qacc, 0.5 * step_s, m->nv);
-    mj_integratePos(m, d->qpos, d->qvel, step_s);
-    d->time += step_s;
-  }
-  const int mujoco_steps = static_cast<int>(std::llround(0.01 / m->opt.timestep));
-  bool first = !fine;
-  SimulationOptions o = options();
-  o.physics_step_s = step_s;
-  auto sim = Simulation::load(file, o);
-  const auto ticks = static_cast<std::int64_t>(std::llround(0.01 / step_s));
-  std::vector<std::size_t> signals;
-  std::vector<int> qpos;
-  for (int j = 1; j <= 6; ++j) {
-    const std::string name = std::string("j").append(std::to_string(j));
-    signals.push_back(sim->signal_index("robots/arm6/axes/" + name + "/pos"));
-    const int id = mj_name2id(m, mjOBJ_JOINT, name.c_str());
-    EXPECT_GE(id, 0) << name;
-    qpos.push_back(m->jnt_qposadr[id]);
-  }
-  double worst = 0;
-  swing = 0;
-  for (int k = 0; k < static_cast<int>(std::llround(seconds / 0.01)); ++k) {
-    sim->step(ticks);
-    for (int i = first ? 1 : 0; i < mujoco_steps; ++i)
-      mj_step(m, d);
-    first = false;
-    EXPECT_EQ(sim->contact_count(), 0u) << "the arm touched itself";
-    for (std::size_t j = 0; j < signals.size(); ++j) {
-      // S2Sim's hinge angle wraps at ±π.
-      const double diff = std::remainder(sim->signal(signals[j]) - d->qpos[qpos[j]], 2 * kPi);
-      worst = std::max(worst, std::abs(diff));
-      swing = std::max(swing, std::abs(d->qpos[qpos[j]]));
-    }
-  }
-  mj_deleteData(d);
-  mj_deleteModel(m);
-  return worst;
+  return test::difference_from_mujoco(file, file, {"j1", "j2", "j3", "j4", "j5", "j6"}, step_s,
+                                      seconds, integration);
 }
 #endif
 
@@ -373,21 +316,20 @@ TEST(Import, TheMeshArmHangsAsMuJoCoLoadingTheSameUrdfSwingsIt) {
 #else
   // The same model: S2Sim's trajectory converges to MuJoCo's as the step shrinks, at the
   // first order of S2Sim's integrator (docs/models/import.md, "Validation").
-  double swing = 0;
-  const double at_1ms = arm_difference_from_mujoco(1e-3, 0.2, swing);
-  const double at_250us = arm_difference_from_mujoco(2.5e-4, 0.2, swing);
+  const test::MujocoDifference at_1ms = arm_difference_from_mujoco(1e-3, 0.2);
+  const test::MujocoDifference at_250us = arm_difference_from_mujoco(2.5e-4, 0.2);
   std::printf(
       "arm6 over 0.2 s (MuJoCo swings up to %.3f rad): largest joint difference %.3g rad "
       "at 1 ms, %.3g rad at 0.25 ms\n",
-      swing, at_1ms, at_250us);
-  EXPECT_GT(swing, 0.3) << "the arm hardly moved";
-  EXPECT_LT(at_1ms, 5e-4);
-  EXPECT_LT(at_250us, 1e-4);
-  EXPECT_GT(at_1ms / at_250us, 3.0) << "not converging to MuJoCo's trajectory";
-  double swing_1s = 0;
-  const double over_1s = arm_difference_from_mujoco(1e-3, 1.0, swing_1s);
+      at_1ms.swing, at_1ms.largest_rad, at_250us.largest_rad);
+  EXPECT_GT(at_1ms.swing, 0.3) << "the arm hardly moved";
+  EXPECT_LT(at_1ms.largest_rad, 5e-4);
+  EXPECT_LT(at_250us.largest_rad, 1e-4);
+  EXPECT_GT(at_1ms.largest_rad / at_250us.largest_rad, 3.0)
+      << "not converging to MuJoCo's trajectory";
+  const test::MujocoDifference over_1s = arm_difference_from_mujoco(1e-3, 1.0);
   std::printf("arm6 over 1 s at 1 ms: largest joint difference %.3g rad (swing %.3f rad)\n",
-              over_1s, swing_1s);
+              over_1s.largest_rad, over_1s.swing);
 #endif
 }
 
@@ -398,18 +340,16 @@ TEST(Import, TheMeshArmHangsAsMuJoCoIntegratingTheSameUrdfTheSameWayWithin1e4Rad
   // With the integration law the same on both sides, what is left is the model: masses,
   // inertias, frames and axes as each simulator read them from the file, and each one's
   // equations of motion.
-  double swing = 0;
-  const double at_1ms = arm_difference_from_mujoco(1e-3, 1.0, swing, MujocoIntegration::s2sim_law);
-  double swing_4ms = 0;
-  const double at_4ms =
-      arm_difference_from_mujoco(4e-3, 1.0, swing_4ms, MujocoIntegration::s2sim_law);
+  const auto law = test::MujocoIntegration::s2sim_law;
+  const test::MujocoDifference at_1ms = arm_difference_from_mujoco(1e-3, 1.0, law);
+  const test::MujocoDifference at_4ms = arm_difference_from_mujoco(4e-3, 1.0, law);
   std::printf(
       "arm6 over 1 s, MuJoCo integrating as S2Sim (swings up to %.3f rad): largest joint "
       "difference %.3g rad at 1 ms, %.3g rad at 4 ms\n",
-      swing, at_1ms, at_4ms);
-  EXPECT_GT(swing, 1.0) << "the arm hardly moved";
-  EXPECT_LT(at_1ms, 1e-4);
-  EXPECT_LT(at_4ms, 1e-4);
+      at_1ms.swing, at_1ms.largest_rad, at_4ms.largest_rad);
+  EXPECT_GT(at_1ms.swing, 1.0) << "the arm hardly moved";
+  EXPECT_LT(at_1ms.largest_rad, 1e-4);
+  EXPECT_LT(at_4ms.largest_rad, 1e-4);
 #endif
 }
 
