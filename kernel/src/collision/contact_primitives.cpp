@@ -61,7 +61,7 @@ int convex_plane(const scene::ConvexHull& hull, const Pose& pose, const Plane& p
   int n = 0;
   int deepest = -1;
   double deepest_depth = -margin;
-  std::int32_t best[8];
+  std::int32_t best[8] = {-1, -1, -1, -1, -1, -1, -1, -1};
   double best_score[8];
   const Vec3 t1 = std::abs(plane.normal.z) < 0.9 ? cross(plane.normal, Vec3{0, 0, 1})
                                                  : cross(plane.normal, Vec3{1, 0, 0});
@@ -83,7 +83,7 @@ int convex_plane(const scene::ConvexHull& hull, const Pose& pose, const Plane& p
     }
     for (int k = 0; k < 7; ++k) {
       const double score = dot(directions[k], p);
-      if (score > best_score[k]) {
+      if (score > best_score[k] || best[k] < 0) {  // the first: a pose of NaNs scores nothing
         best_score[k] = score;
         best[k] = static_cast<std::int32_t>(i);
       }

@@ -166,6 +166,27 @@ std::optional<Sensor> imported_sensor(ImportedModel& model, const sdf::Sensor& i
   return s;
 }
 
+/// sdformat converts `<sdf version>` with std::stoi, which throws on text that is not a
+/// number: checked first, located.
+void check_version(const Element& root, const std::string& display) {
+  const std::string* version = root.name == "sdf" ? root.attribute("version") : nullptr;
+  if (!version) return;  // sdformat's own error names it
+  bool ok = !version->empty() && version->size() <= 8;
+  int dots = 0;
+  for (std::size_t k = 0; ok && k < version->size(); ++k) {
+    const char c = (*version)[k];
+    if (c == '.') {
+      ok = k > 0 && k + 1 < version->size() && (*version)[k - 1] != '.';
+      ++dots;
+    } else {
+      ok = c >= '0' && c <= '9';
+    }
+  }
+  if (!ok || dots != 1)
+    throw Error(ErrorKind::scene, Location{display, "sdf", "version"},
+                "'" + *version + "' is not an SDF version (a major and a minor number, 1.9 say)");
+}
+
 /// sdformat names neither the joint nor the line of an unknown joint type: checked first on
 /// the element tree, located.
 void check_joint_types(const Element& el, const std::string& display) {
@@ -196,7 +217,9 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
   model.file = file;
   model.display = display;
 
-  check_joint_types(read_xml_file(file, display), display);
+  const Element tree = read_xml_file(file, display);
+  check_version(tree, display);
+  check_joint_types(tree, display);
   sdf::ParserConfig config;
   // <include><uri>model://name</uri>: a folder `name` on the model path.
   config.SetFindCallback([&](const std::string& uri) -> std::string {
@@ -213,7 +236,14 @@ ImportedModel read_sdf(const fs::path& file, const std::string& display,
     return {};
   });
   sdf::Root root;
-  resolve_or_fail(display, root.Load(file.string(), config));
+  try {
+    resolve_or_fail(display, root.Load(file.string(), config));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {  // sdformat's own checks throw on some malformed values
+    throw Error(ErrorKind::scene, Location{display, "sdf", ""},
+                std::string("sdformat cannot read the file: ") + e.what());
+  }
   const sdf::Model* m = root.Model();
   if (!m && root.WorldCount() > 0 && root.WorldByIndex(0)->ModelCount() > 0) {
     const sdf::World* w = root.WorldByIndex(0);

@@ -48,6 +48,37 @@ TEST(Primitives, WheelTouchesOnItsRimAtRadiusFromTheAxle) {
   EXPECT_EQ(plane_contacts(s, {{0, 0, 0.0099}, {}}, kGround, out), 3);
 }
 
+TEST(Primitives, AHullOnThePlaneGivesVertexPointsAndAPoseOfNaNsNoGarbageFeature) {
+  // A flat sole of 12 vertices, more than a pair keeps: the deepest and the extreme ones.
+  scene::ConvexHull hull;
+  for (int k = 0; k < 12; ++k) {
+    const double a = 2 * kPi * k / 12;
+    hull.vertices.push_back({0.1 * std::cos(a), 0.1 * std::sin(a), 0});
+  }
+  hull.vertices.push_back({0, 0, 0.05});
+  Shape s;
+  s.kind = ShapeKind::convex;
+  s.hull = &hull;
+  // A body whose state diverged (a fuzzed placement 2e9 m under the floor did this): every
+  // vertex compares false; the points must still name vertices of the hull, not whatever the
+  // stack held (first, so that no earlier call left valid indices there).
+  ContactPoint out[kMaxPointsPerPair];
+  const double nan = std::nan("");
+  const int m = plane_contacts(s, {{nan, nan, nan}, {}}, kGround, out);
+  for (int i = 0; i < m; ++i) {
+    EXPECT_GE(out[i].feature, 0);
+    EXPECT_LT(out[i].feature, 13);
+  }
+  const int n = plane_contacts(s, {{0, 0, -0.001}, {}}, kGround, out);
+  ASSERT_GE(n, 4);  // the deepest and the extremes along the plane's directions, no repeats
+  ASSERT_LE(n, kMaxPointsPerPair);
+  for (int i = 0; i < n; ++i) {
+    EXPECT_NEAR(out[i].depth_m, 0.001, 1e-12);
+    EXPECT_GE(out[i].feature, 0);
+    EXPECT_LT(out[i].feature, 12);
+  }
+}
+
 TEST(Primitives, SphereContacts) {
   ContactPoint out[1];
   Shape s;
