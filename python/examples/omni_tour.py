@@ -190,6 +190,13 @@ class ParticleFilter:
         yaw = math.atan2(np.sum(w * np.sin(self.particles[:, 2])), np.sum(w * np.cos(self.particles[:, 2])))
         return np.array([np.sum(w * self.particles[:, 0]), np.sum(w * self.particles[:, 1]), yaw])
 
+    def spread(self):
+        """The particles' weighted standard deviations in x, y (m) and yaw (rad)."""
+        w, mean = self.weights, self.estimate()
+        offsets = self.particles - mean
+        offsets[:, 2] = (offsets[:, 2] + math.pi) % (2 * math.pi) - math.pi
+        return np.sqrt(w @ offsets ** 2)
+
 
 def wrap(angle):
     return (angle + math.pi) % (2 * math.pi) - math.pi
@@ -222,8 +229,8 @@ def main():
         order = [inputs[name] for name in info.inputs]
         log = open(args.log, "w") if args.log else None
         if log:
-            log.write("time,est_x,est_y,est_yaw,true_x,true_y,true_yaw,odo_x,odo_y,odo_yaw,"
-                      "waypoint,touring\n")
+            log.write("time,est_x,est_y,est_yaw,sd_x,sd_y,sd_yaw,true_x,true_y,true_yaw,"
+                      "odo_x,odo_y,odo_yaw,waypoint,touring\n")
 
         t, y = link.observe()
         counts = np.array([y[k] for k in encoders])
@@ -247,7 +254,7 @@ def main():
                     samples += 1
                 if log:
                     log.write("%.6f,%s,%d,%d\n" % (t, ",".join("%.17g" % v for v in
-                              (*est, *true, *dead_reckoning)), target, touring))
+                              (*est, *pf.spread(), *true, *dead_reckoning)), target, touring))
 
                 wheels = np.zeros(3)
                 if touring:
