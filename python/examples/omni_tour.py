@@ -31,15 +31,6 @@ SCENE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "sc
                      "firefighting_omni")
 ROBOT = "robots/omni/"
 
-# The rooms' insides (x0, y0, x1, y1), m: where the tour must bring the robot (arena.xml's rooms
-# less their walls).
-ROOMS = {
-    "room1": (0.00, 1.54, 0.90, 2.44),
-    "room2": (1.40, 1.28, 2.44, 2.44),
-    "room3": (0.00, 0.00, 1.04, 1.04),
-    "room4": (1.54, 0.00, 2.44, 0.78),
-}
-
 # The tour: hallway waypoints the robot passes, and one goal inside each room (its name), along
 # the hallways' centre lines (46 cm wide: 11 cm on either side of the robot's wheels).
 TOUR = [
@@ -49,6 +40,7 @@ TOUR = [
     (0.53, 1.29, None), (0.53, 2.00, "room1"), (0.53, 1.29, None), (1.22, 1.29, None),
     (1.29, 1.03, None), (1.29, 0.53, None), (0.55, 0.53, "room3"),
 ]
+ROOMS = [room for _, _, room in TOUR if room]
 
 SPEED_M_S = 0.30          # cruising speed
 ACCEL_M_S2 = 0.6          # speed change per second, to keep the omni rollers from slipping

@@ -5,6 +5,7 @@ within 5 cm RMS of the true pose with the IR noise on, and two runs with the sam
 identical logs (docs/tutorials/omni-localisation.md)."""
 
 import filecmp
+import importlib.util
 import os
 import re
 import subprocess
@@ -19,13 +20,24 @@ SCENE = os.path.join(SOURCE, "scenes", "firefighting_omni")
 CLIENT = os.path.join(SOURCE, "python", "examples", "omni_tour.py")
 DURATION_S = 42  # the tour takes about 38.5 s of simulated time
 ROBOT = "robots/omni/"
-# The rooms' insides (m); the true centre must come this far past the wall with the door.
-ROOMS = {
-    "room1": (0.00, 1.54, 0.90, 2.44),
-    "room2": (1.40, 1.28, 2.44, 2.44),
-    "room3": (0.00, 0.00, 1.04, 1.04),
-    "room4": (1.54, 0.00, 2.44, 0.78),
-}
+
+
+def room_insides():
+    """Each room's inside (x0, y0, x1, y1), m: its rectangle in the arena's generator less the
+    walls along its hallway sides."""
+    spec = importlib.util.spec_from_file_location(
+        "arena", os.path.join(SOURCE, "scripts", "make-firefighting-arena.py"))
+    arena = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(arena)
+    insides = {}
+    for name, (x0, y0, x1, y1, sides, _) in arena.ROOMS.items():
+        t = arena.THICK_M
+        insides[name] = (x0 + t * ("west" in sides), y0 + t * ("south" in sides),
+                         x1 - t * ("east" in sides), y1 - t * ("north" in sides))
+    return insides
+
+
+# The true centre must come this far into a room, past the wall with the door.
 DEPTH_M = 0.15
 
 
@@ -33,9 +45,10 @@ def start_tour(tmp_path, tag):
     """s2sim-run and the client, both running; returns the two processes and the log paths."""
     sim_log, client_log = tmp_path / ("sim_%s.csv" % tag), tmp_path / ("client_%s.csv" % tag)
     runner = subprocess.Popen(
-        [os.path.join(BIN, "s2sim-run"), SCENE, "--duration", str(DURATION_S), "--define",
-         "remote_port=0", "--log", str(sim_log), "--log-period", "0.04", "--signals",
-         ROBOT + "x", ROBOT + "y", ROBOT + "yaw", "--quiet"],
+        # A long wait: a client slowed by a loaded machine must not be taken for a lost one.
+        [os.path.join(BIN, "s2sim-run"), SCENE, "--duration", str(DURATION_S),
+         "--define", "remote_port=0", "--define", "remote_wait_s=120", "--log", str(sim_log),
+         "--log-period", "0.04", "--signals", ROBOT + "x", ROBOT + "y", ROBOT + "yaw", "--quiet"],
         stderr=subprocess.PIPE, text=True)
     port = None
     for _ in range(100):  # the announce line, after any warning
@@ -56,6 +69,12 @@ def finish(tour):
     assert runner.wait(timeout=300) == 0, runner.stderr.read()
     assert client.returncode == 0, out
     return out, sim_log, client_log
+
+
+def test_the_arena_file_is_what_its_script_writes():
+    script = os.path.join(SOURCE, "scripts", "make-firefighting-arena.py")
+    written = subprocess.run([sys.executable, script], capture_output=True, text=True, check=True)
+    assert written.stdout == open(os.path.join(SCENE, "arena.xml")).read()
 
 
 def test_every_sensor_is_noisy():
@@ -88,7 +107,9 @@ def test_the_tour_reaches_every_room_localised_within_5_cm_and_repeats(tmp_path,
 
     # Every room entered, by the true pose: past the door's wall by DEPTH_M.
     arrivals = {}
-    for name, (x0, y0, x1, y1) in ROOMS.items():
+    rooms = room_insides()
+    assert len(rooms) == 4
+    for name, (x0, y0, x1, y1) in rooms.items():
         inside = ((truth[:, 1] > x0 + DEPTH_M) & (truth[:, 1] < x1 - DEPTH_M) &
                   (truth[:, 2] > y0 + DEPTH_M) & (truth[:, 2] < y1 - DEPTH_M))
         arrivals[name] = truth[np.argmax(inside), 0] if inside.any() else None
