@@ -29,11 +29,13 @@ fi
 summary=""
 for scene in "${scenes[@]}"; do
   rates=()
-  # cartpole_remote's lock-step link waits for a client that the benchmark does not start:
-  # a free port, and 10 ms of waiting before it runs on without one (not its 10 s).
+  # A lock-step remote link (cartpole_remote, firefighting_omni) waits for a client that the
+  # benchmark does not start: a free port, and 10 ms of waiting before it runs on without one
+  # (not its 10 s).
   extra=()
-  [ "$(basename "$scene")" = cartpole_remote ] &&
-    extra=(--define remote_port=0 --define remote_wait_s=0.01)
+  case "$(basename "$scene")" in cartpole_remote | firefighting_omni)
+    extra=(--define remote_port=0 --define remote_wait_s=0.01) ;;
+  esac
   for ((i = 1; i <= repeats; i++)); do
     line=$(xvfb-run -a -s "-screen 0 1280x720x24" "$build/bin/s2sim-view" "$scene" --size 1280x720 \
       --frames "$frames" --no-frame-cap --report-fps "${extra[@]}" | grep '^frames' || true)

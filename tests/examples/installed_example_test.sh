@@ -82,9 +82,11 @@ if [ "$mode" = install ]; then
     { cat "$tmp/search.err"; fail "the installed runner does not search its prefix"; }
   if grep -q "$build" "$tmp/search.err"; then cat "$tmp/search.err"; fail "it searches the build tree"; fi
   for scene in "$src"/scenes/*/; do
-    # A free port for cartpole_remote's link: another program may hold its default 9808.
+    # A free port for a remote link (cartpole_remote, firefighting_omni): another program may
+    # hold its default; and no client comes, so its lock-step link need not wait long for one.
     defines=()
-    [ "$(basename "$scene")" = cartpole_remote ] && defines=(--define remote_port=0)
+    grep -q "name='remote_port'" "$scene/scene.xml" && defines+=(--define remote_port=0)
+    grep -q "name='remote_wait_s'" "$scene/scene.xml" && defines+=(--define remote_wait_s=0.01)
     "$prefix/bin/s2sim-run" "$scene" --duration 0.05 "${defines[@]}" > /dev/null 2> "$tmp/scene.err" ||
       { cat "$tmp/scene.err"; fail "$scene"; }
     if grep -q "$build" "$tmp/scene.err"; then cat "$tmp/scene.err"; fail "$scene: build tree searched"; fi

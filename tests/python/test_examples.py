@@ -1,5 +1,6 @@
-"""The examples of python/examples run as a user runs them (the remote cart-pole example is run
-against the runner by tests/plugins/remote/test_remote.py)."""
+"""The examples of python/examples run as a user runs them (the remote examples are run
+against the runner by tests/plugins/remote/: the cart-pole by test_remote.py, the omni tour by
+test_omni_tour.py)."""
 
 import csv
 import os

@@ -403,10 +403,13 @@ TEST_F(Viewer, EveryShippedSceneStartsFramedAndFReframes) {
     std::vector<std::string> args{
         "--do", "wait 2", "--do", "print scene-box", "--do", "wait 1", "--do", "camera 10 5 300",
         "--do", "wait 1", "--do", "frame",           "--do", "wait 1", "--do", "print scene-box"};
-    // A free port for cartpole_remote's link: another program may hold its default 9808.
-    if (scene.filename() == "cartpole_remote") {
-      args.push_back("--define");
-      args.push_back("remote_port=0");
+    // A free port for a remote link (cartpole_remote, firefighting_omni): another program may
+    // hold its default; and no client comes, so its lock-step link need not wait for one.
+    if (scene.filename() == "cartpole_remote" || scene.filename() == "firefighting_omni") {
+      for (const char* define : {"remote_port=0", "remote_wait_s=0.01"}) {
+        args.push_back("--define");
+        args.push_back(define);
+      }
     }
     const Result r = view(scene.string(), args);
     ASSERT_EQ(r.status, 0) << scene << "\n" << r.err;
