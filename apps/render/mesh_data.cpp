@@ -2,6 +2,8 @@
 
 #include <s2sim/error.hpp>
 
+#include <s2sim/kernel/mesh_files.hpp>
+
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -173,6 +175,7 @@ void vertex_bounds(const MeshData& mesh, Vec3f& lo, Vec3f& hi) {
 
 MeshData load_mesh_file(const std::filesystem::path& file, double scale) {
   Assimp::Importer importer;
+  configure_mesh_importer(importer);
   const aiScene* scene = importer.ReadFile(
       file.string(), aiProcess_Triangulate | aiProcess_GenSmoothNormals |
                          aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices);

@@ -4,9 +4,12 @@
 
 #include "scene/import_model.hpp"
 
+#include <s2sim/kernel/mesh_files.hpp>
+
 #include "scene/attributes.hpp"
 #include "scene/convex_hull.hpp"
 
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -14,6 +17,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
+namespace s2sim {
+
+void configure_mesh_importer(Assimp::Importer& importer) {
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+}
+
+}  // namespace s2sim
 
 namespace s2sim::scene::detail {
 namespace {
@@ -72,7 +83,7 @@ Geom hull_geom(ImportedModel& model, const std::vector<Vec3>& vertices, const Po
 Geom mesh_geom(ImportedModel& model, const std::filesystem::path& file, const Vec3& scale,
                const Pose& pose, const Location& where) {
   Assimp::Importer importer;
-  // Collada files carry their own up axis and unit: assimp applies both to the root node.
+  configure_mesh_importer(importer);
   const aiScene* s = importer.ReadFile(file.string(), aiProcess_Triangulate);
   if (!s || !s->mRootNode)
     throw Error(ErrorKind::scene, where,

@@ -5,6 +5,8 @@
 #include "scene/limits.hpp"
 #include "sim/simulation_impl.hpp"
 
+#include <s2sim/kernel/mesh_files.hpp>
+
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -20,6 +22,7 @@ namespace {
 std::vector<Vec3> mesh_triangles(const scene::Geom& g) {
   const scene::Mesh& mesh = g.visual.mesh;
   Assimp::Importer importer;
+  configure_mesh_importer(importer);
   const aiScene* s =
       importer.ReadFile(mesh.file.string(), aiProcess_Triangulate | aiProcess_PreTransformVertices);
   if (s == nullptr || s->mNumMeshes == 0)

@@ -103,6 +103,23 @@ TEST(Meshes, FilesLoadThroughAssimpWithTheirScale) {
   }
 }
 
+TEST(Meshes, ColladaAxesAreTheFilesAxesWhateverItsUpAxisAsTheCollisionHullsAre) {
+  // A 0.1 x 0.2 x 0.5 m box tall along the file's z, marked Z_UP, in centimetres: drawn tall
+  // along z (assimp alone would turn it to Y-up), in metres.
+  const fs::path file =
+      fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/scene/fixtures/import/dae_meshes/tall_z_up_cm.dae";
+  const MeshData m = load_mesh_file(file, 1.0);
+  float lo[3] = {1e30f, 1e30f, 1e30f}, hi[3] = {-1e30f, -1e30f, -1e30f};
+  for (const Vertex& v : m.vertices)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], v.position[k]);
+      hi[k] = std::max(hi[k], v.position[k]);
+    }
+  EXPECT_NEAR(hi[0] - lo[0], 0.1, 1e-5);
+  EXPECT_NEAR(hi[1] - lo[1], 0.2, 1e-5);
+  EXPECT_NEAR(hi[2] - lo[2], 0.5, 1e-5);
+}
+
 TEST(Meshes, UnreadableFileIsASceneErrorNamingIt) {
   const fs::path file = temp_file("broken.stl");
   std::ofstream(file) << "this is not a mesh";
