@@ -120,6 +120,62 @@ double lowest_point(const Pose& pose, const Shape& shape) {
   return pose.position.z;
 }
 
+/// Each moving joint must move some inertia along its motion: the links it carries (its child
+/// and everything beyond) have mass for a slider, inertia about the axis for a hinge, an
+/// inertia about the anchor with no zero moment for a ball. Otherwise the mass matrix is
+/// singular and the run would stop at its first step with a NaN.
+void check_joints_move_inertia(const Scene& scene, const Robot& rb) {
+  std::vector<std::vector<int>> carried(scene.bodies.size());  // bodies beyond each body
+  for (int b : rb.bodies) {
+    for (int at = b, guard = 0; at >= 0 && guard <= static_cast<int>(rb.joints.size()); ++guard) {
+      carried[static_cast<std::size_t>(at)].push_back(b);
+      int parent = -1;
+      for (int j : rb.joints) {
+        const Joint& joint = scene.joints[static_cast<std::size_t>(j)];
+        if (joint.body1 == at) parent = joint.body2;
+      }
+      at = parent;
+    }
+  }
+  constexpr double kLeast = 1e-12;  // kg, kg·m²
+  for (int j : rb.joints) {
+    const Joint& joint = scene.joints[static_cast<std::size_t>(j)];
+    if (joint.type == JointType::fixed || joint.body1 < 0) continue;
+    double mass = 0;
+    Mat3 about_anchor{{{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}};
+    for (int b : carried[static_cast<std::size_t>(joint.body1)]) {
+      const Body& body = scene.bodies[static_cast<std::size_t>(b)];
+      if (!(body.mass_kg > 0)) continue;
+      const Mat3& r = body.pose.rotation;
+      const Vec3 d = body.pose * body.com_m - joint.anchor_m;
+      Mat3 i = r * body.inertia_kg_m2 * transpose(r);
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) {
+          const double dk = k == 0 ? d.x : k == 1 ? d.y : d.z;
+          const double dl = l == 0 ? d.x : l == 1 ? d.y : d.z;
+          i.m[k][l] += body.mass_kg * ((k == l ? dot(d, d) : 0) - dk * dl);
+        }
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          about_anchor.m[k][l] += i.m[k][l];
+      mass += body.mass_kg;
+    }
+    const Vec3& a = joint.axis1;
+    const double moved = joint.type == JointType::slider  ? mass
+                         : joint.type == JointType::hinge ? dot(a, about_anchor * a)
+                                                          : symmetric_eigenvalues(about_anchor)[0];
+    if (!(moved > kLeast))
+      throw Error(ErrorKind::scene, joint.where,
+                  "joint '" + joint.id + "' moves link '" +
+                      scene.bodies[static_cast<std::size_t>(joint.body1)].id + "' and what it " +
+                      "carries, which have no " +
+                      (joint.type == JointType::slider ? std::string("mass")
+                                                       : std::string("inertia about its axis")) +
+                      " (" + format_number(moved) +
+                      "): the mass matrix would be singular; give the link an inertia");
+  }
+}
+
 }  // namespace
 
 void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacement& placement) {
@@ -353,6 +409,7 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
                       "' is free and needs an inertia with positive principal moments (" +
                       inertia_text(b.inertia_kg_m2) + ")");
   }
+  check_joints_move_inertia(scene, rb);
   for (ImportedSensor& is : model.sensors) {
     Sensor s = std::move(is.sensor);
     const ImportedLink& link = model.links[static_cast<std::size_t>(is.link)];

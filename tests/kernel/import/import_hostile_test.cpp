@@ -4,13 +4,17 @@
 #include <s2sim/kernel/simulation.hpp>
 
 #include "common/edited_copy.hpp"
+#include "common/temp_dir.hpp"
 #include "kernel/import/import_fixtures.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
 #include <string>
+
+#include <unistd.h>
 
 namespace s2sim {
 namespace {
@@ -53,6 +57,35 @@ TEST(ImportHostile, AnSdfVersionThatIsNoNumberIsALocatedError) {
       EXPECT_EQ(e.where().attribute, "version");
     }
   }
+}
+
+TEST(ImportHostile, AJointThatMovesNoInertiaIsALocatedErrorNotANaNAtTheFirstStep) {
+  // A spinner with a mass on its axis and no inertia, as xacro defaults leave a sensor's link.
+  const fs::path dir =
+      test::process_temp_dir() / ("s2sim_zero_inertia_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "spinner.urdf") << R"(<?xml version="1.0"?>
+<robot name="spinner">
+  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.2 0.2 0.1"/></geometry></collision></link>
+  <link name="rotor"><inertial><mass value="0.1"/>
+    <inertia ixx="0" iyy="0" izz="0" ixy="0" ixz="0" iyz="0"/></inertial></link>
+  <joint name="spin" type="continuous"><parent link="base"/><child link="rotor"/>
+    <origin xyz="0 0 0.1"/><axis xyz="0 0 1"/></joint>
+</robot>
+)";
+  try {
+    Simulation::load(dir / "spinner.urdf", test::import_options());
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    std::printf("%s\n", e.what());
+    EXPECT_EQ(e.kind(), ErrorKind::scene);
+    EXPECT_EQ(e.where().file, "spinner.urdf");
+    EXPECT_THAT(e.message(), HasSubstr("joint 'spin' moves link 'rotor'"));
+    EXPECT_THAT(e.message(), HasSubstr("no inertia about its axis"));
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
