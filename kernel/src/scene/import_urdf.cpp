@@ -102,6 +102,9 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
   }
 
   urdf::ModelInterfaceSharedPtr urdf;
+  // What urdfdom said of parts it dropped while it still read the model (a <collision> whose
+  // mesh scale is one number, an empty <geometry>): a dropped collision is an error below.
+  std::string urdfdom_errors;
   {
     std::ifstream in(file, std::ios::binary);
     std::stringstream text;
@@ -120,6 +123,7 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
       throw Error(ErrorKind::scene, at(root),
                   "urdfdom cannot read the model: " +
                       (log.errors.empty() ? std::string("(no reason given)") : log.errors));
+    urdfdom_errors = log.errors;
   }
   model.name = urdf->getName();
 
@@ -187,9 +191,22 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
     }
   }
 
+  bool dropped_visuals = false;
   for (ImportedLink& l : model.links) {
     const urdf::LinkConstSharedPtr link = urdf->getLink(l.name);
     const Element& el = link_el(l.name);
+    auto written = [&](const char* name) {
+      return static_cast<std::size_t>(
+          std::count_if(el.children.begin(), el.children.end(),
+                        [&](const Element& c) { return c.name == name; }));
+    };
+    if (written("collision") != link->collision_array.size())
+      throw Error(ErrorKind::scene, at(el),
+                  "link '" + l.name + "': urdfdom could not read " +
+                      std::to_string(written("collision") - link->collision_array.size()) +
+                      " of its <collision> elements and would drop them: " +
+                      (urdfdom_errors.empty() ? std::string("(no reason given)") : urdfdom_errors));
+    dropped_visuals = dropped_visuals || written("visual") != link->visual_array.size();
     if (link->inertial) {
       const urdf::Inertial& in = *link->inertial;
       const Element& inertial = nth_child(el, "inertial", 0);
@@ -312,6 +329,9 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
     }
   }
 
+  if (dropped_visuals)
+    model.warnings.push_back(at(root).str() + ": urdfdom dropped visual elements it could not " +
+                             "read (they are not drawn): " + urdfdom_errors);
   for (const Element& c : root.children) {
     if (c.name != "joint") continue;
     const std::string* name = c.attribute("name");

@@ -88,5 +88,34 @@ TEST(ImportHostile, AJointThatMovesNoInertiaIsALocatedErrorNotANaNAtTheFirstStep
   fs::remove_all(dir);
 }
 
+TEST(ImportHostile, ACollisionUrdfdomCannotReadIsALocatedErrorNotADroppedGeom) {
+  // urdfdom logs what it cannot read and still returns the model without that <collision>:
+  // a link that would fall through the floor.
+  const fs::path dir = test::process_temp_dir() / ("s2sim_dropped_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path stl =
+      fs::path(S2SIM_SOURCE_DIR) / "tests/kernel/scene/fixtures/import/arm6/link.stl";
+  for (const std::string& geometry :
+       {"<mesh filename='" + stl.string() + "' scale='0.5'/>", std::string()}) {
+    std::ofstream(dir / "dropped.urdf") << R"(<?xml version="1.0"?>
+<robot name="dropped">
+  <link name="base"><inertial><mass value="2"/>
+    <inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry>)" << geometry << R"(</geometry></collision></link>
+</robot>
+)";
+    try {
+      Simulation::load(dir / "dropped.urdf", test::import_options());
+      ADD_FAILURE() << "loaded with " << geometry;
+    } catch (const Error& e) {
+      std::printf("%s\n", e.what());
+      EXPECT_EQ(e.kind(), ErrorKind::scene);
+      EXPECT_EQ(e.where().element, "robot/link");
+      EXPECT_THAT(e.message(), HasSubstr("urdfdom could not read 1 of its <collision>"));
+    }
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace s2sim
