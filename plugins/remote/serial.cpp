@@ -42,6 +42,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxLine = 4096;
+constexpr double kMaxWait_s = 86400;  // a day: a longer wait is a hang
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
@@ -71,7 +72,7 @@ class Serial final : public Component {
                       (lockstep_ ? "realtime" : "lockstep") + "' only (this link is mode='" +
                       (lockstep_ ? "lockstep" : "realtime") + "'); remove it");
     if (lockstep_)
-      wait_s_ = p.number("wait_s", 10.0, Range::positive());
+      wait_s_ = p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true});  // a clock's range
     else
       timeout_s_ = p.number("timeout_s", 0.5, Range::positive());
     if (p.has("period_s"))
