@@ -43,6 +43,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxLine = 4096;
 constexpr double kMaxWait_s = 86400;  // a day: a longer wait is a hang
+// A flood must not hold the simulation: at most this many reads of the device a period (4 MiB)
+// unless a lock-step period is waiting, which its deadline bounds.
+constexpr int kMaxReadsPerPeriod = 1024;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
@@ -149,9 +152,10 @@ class Serial final : public Component {
       return;
     }
     const Clock::time_point now = Clock::now();
+    int reads = 0;
     do
       take_pending(ctx, now, false);
-    while (read_more());
+    while (reads++ < kMaxReadsPerPeriod && read_more());
     if (inputs_seen_ && seconds_between(last_inputs_, now) > timeout_s_) {
       lose_link(ctx);
       inputs_seen_ = false;
@@ -168,7 +172,7 @@ class Serial final : public Component {
     if (wrote) write_signals(ctx);
     Clock::time_point deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                                     std::chrono::duration<double>(wait_s_));
-    for (;;) {
+    for (int reads = 0;;) {
       const Clock::time_point now = Clock::now();
       const Line got = take_pending(ctx, now, true);
       if (got == Line::inputs) {
@@ -182,16 +186,18 @@ class Serial final : public Component {
         if (!wrote) write_signals(ctx);
         wrote = true;
       }
-      if (got != Line::partial) continue;  // more bytes pending
-      if (read_more()) continue;
-      if (detached_) return;
-      const double left = seconds_between(now, deadline);
-      if (left <= 0) {  // nobody answered in time: a stopped robot, and no more waiting
+      // Nobody answered in time (a flood of other lines included): a stopped robot, and no
+      // more waiting.
+      if (!detached_ && now >= deadline) {
         lose_link(ctx);
         detached_ = true;
         return;
       }
+      if (got != Line::partial) continue;  // more bytes pending
+      if ((!detached_ || reads++ < kMaxReadsPerPeriod) && read_more()) continue;
+      if (detached_) return;
       pollfd device{master_, POLLIN, 0};
+      const double left = seconds_between(now, deadline);
       ::poll(&device, 1, static_cast<int>(std::ceil(left * 1000.0)));  // EINTR: loop again
     }
   }

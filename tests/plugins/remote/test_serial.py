@@ -220,6 +220,33 @@ def test_lockstep_wait_ends_in_a_counted_timeout_and_the_run_goes_on(tmp_path):
         os.close(fd)
 
 
+def flood(fd, stop):
+    """A broken device: lines the link drops, as fast as the terminal takes them."""
+    while not stop.is_set():
+        try:
+            os.write(fd, b"X garbage\n" * 400)
+        except BlockingIOError:
+            time.sleep(0.0005)
+
+
+def test_lockstep_a_flood_of_other_lines_ends_the_wait_in_a_timeout(tmp_path):
+    sim = s2sim.Simulation(serial_scene(tmp_path, "mode='lockstep' wait_s='0.2'"))
+    fd = open_device(sim)
+    os.set_blocking(fd, False)
+    stop = threading.Event()
+    device = threading.Thread(target=flood, args=(fd, stop))
+    device.start()
+    try:
+        sim.step(20)  # waits no longer than wait_s, however many lines come
+        assert sim.signal(UART + "timeouts") == 1 and sim.signal(UART + "dropped") > 0
+        sim.step(200)  # detached: a bounded read of the flood each period, no waiting
+        assert sim.signal(UART + "timeouts") == 1 and sim.signal(UART + "received") == 0
+    finally:
+        stop.set()
+        device.join()
+        os.close(fd)
+
+
 @pytest.mark.parametrize("attributes, attribute, says", [
     ("mode='lockstep' timeout_s='1'", "timeout_s", "applies in mode='realtime' only"),
     ("wait_s='1'", "wait_s", "applies in mode='lockstep' only"),
