@@ -26,7 +26,7 @@ mkdir "$tmp/scene"
 sed "s|link='/tmp/ttyS2SIM_blimp'|link='$tmp/tty'|" "$root/scenes/blimp_serial/scene.xml" \
   > "$tmp/scene/scene.xml"
 cp "$root/scenes/blimp_serial/blimp.xml" "$tmp/scene/"
-"$run" "$tmp/scene" --quiet --no-timing --duration 55 --log "$tmp/flight.csv" --log-period 0.1 \
+"$run" "$tmp/scene" --quiet --no-timing --duration 55 --define serial_wait_s=10 --log "$tmp/flight.csv" --log-period 0.1 \
   --signals robots/blimp/solids/gondola/x robots/blimp/solids/gondola/y \
   robots/blimp/solids/gondola/z 2> "$tmp/run.err" &
 runner=$!

@@ -66,7 +66,7 @@ def fly(work, pilot, name, seed=7, delay_s=0.0):
     err = open(os.path.join(work, name + ".err"), "w+")
     runner = subprocess.Popen(
         [os.path.join(BIN, "s2sim-run"), scene, "--duration", str(DURATION_S), "--seed",
-         str(seed), "--log", log, "--log-period", "0.02", "--signals"] + LOGGED,
+         str(seed), "--define", "serial_wait_s=10", "--log", log, "--log-period", "0.02", "--signals"] + LOGGED,
         stdout=subprocess.DEVNULL, stderr=err)
     try:
         # The link exists once the scene is loaded; the first control period waits for the pilot.
