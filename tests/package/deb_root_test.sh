@@ -64,7 +64,7 @@ status=0
 "$root/usr/bin/s2sim-run" defualt --quiet 2> misspelt.err || status=$?
 [ "$status" = 2 ] || fail "a misspelt scene: exit $status, not 2"
 grep -qF "$root/usr/share/s2sim/scenes/defualt" misspelt.err &&
-  grep -qF "scenes in $root/usr/share/s2sim/scenes: blimp boat" misspelt.err ||
+  grep -qF "scenes in $root/usr/share/s2sim/scenes: blimp blimp_serial boat" misspelt.err ||
   { cat misspelt.err; fail "the error does not say where it looked and what is there"; }
 cat misspelt.err
 
