@@ -17,6 +17,7 @@
 // timeout_s (real time) or does not answer within wait_s (lock-step) leaves the inputs zeroed. The
 // link's bookkeeping stays in members (see remote.cpp: connection, not world state).
 #include "kinds.hpp"
+#include "link_waits.hpp"
 #include "served_set.hpp"
 
 #include <s2sim/sdk.hpp>
@@ -42,7 +43,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxLine = 4096;
-constexpr double kMaxWait_s = 86400;  // a day: a longer wait is a hang
 // A flood must not hold the simulation: at most this many reads of the device a period (4 MiB)
 // unless a lock-step period is waiting, which its deadline bounds.
 constexpr int kMaxReadsPerPeriod = 1024;
@@ -75,9 +75,9 @@ class Serial final : public Component {
                       (lockstep_ ? "realtime" : "lockstep") + "' only (this link is mode='" +
                       (lockstep_ ? "lockstep" : "realtime") + "'); remove it");
     if (lockstep_)
-      wait_s_ = p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true});  // a clock's range
+      wait_s_ = p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true});
     else
-      timeout_s_ = p.number("timeout_s", 0.5, Range::positive());
+      timeout_s_ = p.number("timeout_s", 0.5, Range{0.0, kMaxWait_s, true});
     if (p.has("period_s"))
       ctx.set_schedule(Stage::control, p.number("period_s", Range::positive()));
 

@@ -179,11 +179,13 @@ Run run_on(const fs::path& dir, const Options& o, int threads) {
     s2sim::SimulationOptions so;
     so.plugin_path = o.plugin_path;
     so.threads = threads;
-    // A lock-step remote link waits for a client that never comes here: the shipped remote
-    // scenes name their port and wait in defines, which a case sets to a free port and 10 ms.
+    // A lock-step link waits for a client or a device that never comes here: the shipped
+    // lock-step scenes name their port and wait in defines, which a case sets to a free port
+    // and 10 ms.
     const std::string scene = read(dir / "scene.xml");
     for (const auto& [name, value] : {std::pair<const char*, double>{"remote_port", 0},
-                                      std::pair<const char*, double>{"remote_wait_s", 0.01}})
+                                      std::pair<const char*, double>{"remote_wait_s", 0.01},
+                                      std::pair<const char*, double>{"serial_wait_s", 0.01}})
       if (scene.find(std::string("name='") + name + "'") != std::string::npos)
         so.constants.emplace_back(name, value);
     auto sim = s2sim::Simulation::load(dir, so);

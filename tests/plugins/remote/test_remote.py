@@ -240,6 +240,21 @@ def test_non_local_address_is_refused_unless_allowed(tmp_path):
     s2sim.Simulation(str(tmp_path))
 
 
+@pytest.mark.parametrize("written, attributes, attribute", [
+    # Past a day: a hang, and a clock's overflow.
+    ("mode='realtime'", "mode='lockstep' wait_s='1e300'", "wait_s"),
+    ("timeout_s='timeout_s'", "timeout_s='1e300'", "timeout_s"),
+])
+def test_a_wait_past_a_day_is_a_located_error(tmp_path, written, attributes, attribute):
+    scene = open(os.path.join(REALTIME, "scene.xml")).read()
+    scene = scene.replace("../../../../../scenes", os.path.join(SOURCE, "scenes"))
+    assert written in scene
+    (tmp_path / "scene.xml").write_text(scene.replace(written, attributes))
+    with pytest.raises(s2sim.SceneError) as e:
+        s2sim.Simulation(str(tmp_path))
+    assert e.value.attribute == attribute and "86400" in e.value.message, str(e.value)
+
+
 def test_a_pattern_that_matches_nothing_is_a_located_error(tmp_path):
     scene = open(os.path.join(REALTIME, "scene.xml")).read()
     scene = scene.replace("../../../../../scenes", os.path.join(SOURCE, "scenes"))
