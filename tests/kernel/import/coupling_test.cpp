@@ -229,6 +229,19 @@ fs::path edited(const std::string& file, const std::string& from, const std::str
   return test::edited_copy(kCoupled, file, from, to) / file;
 }
 
+TEST(JointCoupling, ATransmissionOnAMimicJointIsWarnedAndGivesNoInput) {
+  const fs::path file = edited("gripper.urdf", R"(</transmission>)", R"(</transmission>
+  <transmission name="thumb_transmission">
+    <joint name="thumb_joint"><hardwareInterface>EffortJointInterface</hardwareInterface></joint>
+  </transmission>)");
+  auto sim = Simulation::load(file, options(false));
+  EXPECT_THAT(all_warnings(*sim),
+              HasSubstr("robot/joint[4]: joint 'thumb_joint' mimics 'left_finger_joint': its "
+                        "transmission is not applied"));
+  EXPECT_FALSE(sim->find_signal("robots/gripper/axes/thumb_joint/effort_applied").has_value());
+  EXPECT_TRUE(sim->find_signal("robots/gripper/axes/left_finger_joint/effort_applied").has_value());
+}
+
 TEST(JointCoupling, AMimicOfAMissingJointIsALocatedError) {
   const Error e =
       load_error(edited("gripper.urdf", R"(<mimic joint="left_finger_joint" multiplier="-1"/>)",
