@@ -65,10 +65,18 @@ void add_orientation(std::vector<LoopConstraints::Angle>& angles, int base,
 /// The loop constraints from Simbody's, or null when one is of a kind they do not know.
 std::unique_ptr<LoopConstraints> loops_of(const Multibody::Impl& m) {
   LoopConstraints::Spec spec;
+  const SimTK::State& s = m.initial_state;
   for (SimTK::ConstraintIndex c(0); c < m.matter.getNumConstraints(); ++c) {
     const SimTK::Constraint& constraint = m.matter.getConstraint(c);
     if (constraint.isDisabledByDefault()) continue;
-    if (SimTK::Constraint::Ball::isInstanceOf(constraint)) {
+    const auto coupler = std::find_if(m.couplers.begin(), m.couplers.end(),
+                                      [&](const auto& k) { return k.constraint == c; });
+    if (coupler != m.couplers.end()) {  // a joint coupling's CoordinateCoupler
+      const SimTK::MobilizedBody& f = m.matter.getMobilizedBody(coupler->follower);
+      const SimTK::MobilizedBody& l = m.matter.getMobilizedBody(coupler->leader);
+      spec.couplers.push_back({f.getFirstQIndex(s), f.getFirstUIndex(s), l.getFirstQIndex(s),
+                               l.getFirstUIndex(s), coupler->ratio, coupler->offset});
+    } else if (SimTK::Constraint::Ball::isInstanceOf(constraint)) {
       const auto& ball = SimTK::Constraint::Ball::downcast(constraint);
       spec.balls.push_back({ball.getBody1MobilizedBodyIndex(), ball.getBody2MobilizedBodyIndex(),
                             from_simtk(ball.getDefaultPointOnBody1()),

@@ -25,8 +25,9 @@ std::vector<PartPlan> plan_parts(const scene::Scene& scene, const Topology& topo
   if (parts <= 1) return whole();
   // A scene-wide policy of one Simbody system that a part would not share, so that its numbers
   // would differ in the last bits: with a loop anywhere the M^-1 columns are recomputed when any
-  // coordinate moves and the axis solve is one block. Such scenes keep one part.
-  if (!topology.loops.empty()) return whole();
+  // coordinate moves and the axis solve is one block. Such scenes keep one part, and so do
+  // scenes with joint couplings (constraints too).
+  if (!topology.loops.empty() || !scene.couplings.empty()) return whole();
 
   // Connected components over the scene bodies (the world joins nothing: robots standing on
   // the floor are separate islands).

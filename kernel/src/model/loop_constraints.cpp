@@ -40,9 +40,10 @@ LoopConstraints::LoopConstraints(Spec spec, int speeds)
     : balls_(std::move(spec.balls)),
       angles_(std::move(spec.angles)),
       lines_(std::move(spec.lines)),
+      couplers_(std::move(spec.couplers)),
       nu_(speeds) {
   rows_ = 3 * static_cast<int>(balls_.size()) + static_cast<int>(angles_.size()) +
-          2 * static_cast<int>(lines_.size());
+          2 * static_cast<int>(lines_.size()) + static_cast<int>(couplers_.size());
   for (const Line& l : lines_) {
     // Two normals of the line, fixed in its body: any pair spans the same errors.
     const Vec3& d = l.direction_B;
@@ -99,6 +100,9 @@ void LoopConstraints::place(const TreeDynamics& tree) {
       error_[static_cast<std::size_t>(row++)] = dot(at.s - at.p, at.n[k]);
     }
   }
+  const double* q = tree.coordinates();
+  for (const Coupler& c : couplers_)
+    error_[static_cast<std::size_t>(row++)] = q[c.follower_q] - c.ratio * q[c.leader_q] - c.offset;
 }
 
 double LoopConstraints::rms_position_error(const TreeDynamics& tree) {
@@ -151,6 +155,11 @@ void LoopConstraints::jacobian(const TreeDynamics& tree) {
       add_point_row(tree, row, lines_[i].follower, at.s, at.n[k], 1.0);
       add_point_row(tree, row, lines_[i].base, at.s, at.n[k], -1.0);
     }
+  for (const Coupler& c : couplers_) {  // e_f − ratio·e_l (the rows were zeroed above)
+    double* g = &G_[static_cast<std::size_t>(row++ * nu_)];
+    g[c.follower_u] += 1.0;
+    g[c.leader_u] -= c.ratio;
+  }
 }
 
 void LoopConstraints::solve_rows(const std::vector<double>& right, const double* weight) {
@@ -215,6 +224,8 @@ void LoopConstraints::constrain_accelerations(TreeDynamics& tree, double* udot) 
     for (int k = 0; k < 2; ++k)
       rhs_[static_cast<std::size_t>(row++)] = dot(a, at.n[k]) + dot(v, cross(w_B, at.n[k]));
   }
+  for (std::size_t i = 0; i < couplers_.size(); ++i)  // a constant G: Ġ·u = 0
+    rhs_[static_cast<std::size_t>(row++)] = 0.0;
   for (int r = 0; r < rows_; ++r) {
     const double* g = &G_[static_cast<std::size_t>(r * nu_)];
     double sum = 0;

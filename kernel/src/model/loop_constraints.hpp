@@ -45,17 +45,25 @@ class LoopConstraints {
     Vec3 direction_B, point_B;  // the line, base frame (direction unit)
     Vec3 point_F;               // follower frame
   };
+  /// Two one-speed coordinates (a Pin's or Slider's, q' = u) held in step (one equation):
+  /// q_follower − ratio·q_leader − offset = 0, G's row e_f − ratio·e_l, Ġ·u = 0. Simbody's
+  /// CoordinateCoupler with a linear function (a joint coupling).
+  struct Coupler {
+    int follower_q = 0, follower_u = 0, leader_q = 0, leader_u = 0;
+    double ratio = 1, offset = 0;
+  };
   struct Spec {
     std::vector<Ball> balls;
     std::vector<Angle> angles;
     std::vector<Line> lines;
+    std::vector<Coupler> couplers;
   };
 
   /// `speeds`: the tree's (TreeDynamics::speeds()).
   LoopConstraints(Spec spec, int speeds);
 
-  /// The RMS of the position errors (m for a ball or a line, the cosine's for an angle); after the
-  /// tree's kinematics().
+  /// The RMS of the position errors (m for a ball or a line, the cosine's for an angle, rad or
+  /// m for a coupler); after the tree's kinematics().
   double rms_position_error(const TreeDynamics& tree);
   /// Corrects the tree's accelerations `udot` (of its last accelerations(), whose mass matrix
   /// factor it uses) by the constraint forces.
@@ -77,6 +85,7 @@ class LoopConstraints {
   std::vector<Ball> balls_;
   std::vector<Angle> angles_;
   std::vector<Line> lines_;
+  std::vector<Coupler> couplers_;
   std::vector<Vec3> line_normals_;  // two per line, base frame
   std::vector<LinePlace> line_places_;
   int rows_ = 0, nu_ = 0;

@@ -244,6 +244,41 @@ void add_loop_constraints(Multibody::Impl& m, Build& b) {
   }
 }
 
+/// Joint couplings become CoordinateCouplers on the two mobilizer coordinates. In axis values
+/// a = s·q (s = ±1, the mobilizer's direction), a_f = k·a_l + c is q_f = s_f·s_l·k·q_l + s_f·c.
+void add_couplings(Multibody::Impl& m, const Build& b) {
+  for (const scene::JointCoupling& c : b.scene.couplings) {
+    const AxisPending* follower = nullptr;
+    const AxisPending* leader = nullptr;
+    for (const AxisPending& t : b.tree_axes) {
+      if (t.joint == c.follower) follower = &t;
+      if (t.joint == c.leader) leader = &t;
+    }
+    if (!follower || !leader) {
+      const int j = follower ? c.leader : c.follower;
+      throw scene_error(c.where, "joint coupling: joint '" + b.scene.joints[j].id +
+                                     "' closes a kinematic loop; only joints of the spanning "
+                                     "tree can be coupled");
+    }
+    Multibody::Impl::Coupler coupler;
+    coupler.follower = follower->mobod;
+    coupler.leader = leader->mobod;
+    coupler.ratio = follower->sign * leader->sign * c.multiplier;
+    coupler.offset = follower->sign * c.offset;
+    // f(q_f, q_l) = q_f − ratio·q_l − offset, held at zero.
+    SimTK::Vector coefficients(3);
+    coefficients[0] = 1.0;
+    coefficients[1] = -coupler.ratio;
+    coefficients[2] = -coupler.offset;
+    const SimTK::Constraint::CoordinateCoupler constraint(
+        m.matter, new SimTK::Function::Linear(coefficients),
+        std::vector<SimTK::MobilizedBodyIndex>{follower->mobod, leader->mobod},
+        std::vector<SimTK::MobilizerQIndex>{SimTK::MobilizerQIndex(0), SimTK::MobilizerQIndex(0)});
+    coupler.constraint = constraint.getConstraintIndex();
+    m.couplers.push_back(coupler);
+  }
+}
+
 /// The axis table of the plan with how each axis is realised: a mobilizer coordinate for a
 /// tree axis, the two bodies of a loop-closing one.
 void fill_axis_table(Multibody::Impl& m, const Build& b) {
@@ -282,6 +317,13 @@ void build_initial_state(Multibody::Impl& m, const Build& b, double tick_s, int 
     SimTK::State state = default_state(m);
     for (int body : b.free_bodies)
       m.mobod(kernel_index(body)).setQToFitTransform(state, pose_of(b.scene, body));
+    // A coupling's offset moves its follower off the pose it was written in: followers set
+    // from their leaders, as many passes as couplings (a chain of them has no cycle).
+    for (std::size_t pass = 0; pass < m.couplers.size(); ++pass)
+      for (const Multibody::Impl::Coupler& c : m.couplers)
+        m.matter.getMobilizedBody(c.follower)
+            .setOneQ(state, 0,
+                     c.ratio * m.matter.getMobilizedBody(c.leader).getOneQ(state, 0) + c.offset);
     m.system.realize(state, SimTK::Stage::Position);
     if (!m.stops.empty()) tune_stops(m, state, kStopRinging * substeps / tick_s);
     m.system.realize(state, SimTK::Stage::Velocity);
@@ -467,6 +509,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
                      const std::vector<double>& axis_inertia, double tick_s, int substeps,
                      std::int32_t drive_slots)
     : impl_(std::make_unique<Impl>()) {
+  scene::validate_couplings(scene);  // scenes built without the loader too
   Impl& m = *impl_;
   m.dynamics = &simbody_dynamics();  // the builder's, until select_dynamics chooses
   m.check.agreement = kDynamicsAgreement;
@@ -510,6 +553,7 @@ Multibody::Multibody(const scene::Scene& scene, const Topology& topology,
   m.joint_reactions_in_body1.assign(n_joints, Wrench{});
   add_tree_bodies(m, b);
   add_loop_constraints(m, b);
+  add_couplings(m, b);
   fill_axis_table(m, b);
   m.wrenches.assign(n_bodies + 1, Wrench{});
   m.axis_forces.assign(m.axes.size(), 0.0);

@@ -134,6 +134,14 @@ struct Multibody::Impl {
     double stiffness = 0, damping = 0;
   };
   std::vector<Stop> stops;
+  // The joint couplings (scene::JointCoupling) as Simbody CoordinateCouplers, in mobilizer
+  // coordinates (a Pin's or Slider's one q): q_follower = ratio·q_leader + offset.
+  struct Coupler {
+    SimTK::ConstraintIndex constraint;
+    SimTK::MobilizedBodyIndex follower, leader;
+    double ratio = 1, offset = 0;
+  };
+  std::vector<Coupler> couplers;
   std::vector<int> axis_u;          // per tree axis, its index in u (-1: loop axis)
   std::vector<int> axis_q;          // and in q (a Pin's, Slider's or Universal's q' = u)
   std::vector<char> q_shapes_mass;  // per q: whether M depends on it (axis_columns.cpp)

@@ -51,6 +51,8 @@ class TreeDynamics {
   /// Counts the configurations kinematics() has computed: what depends on q alone (a loop's
   /// Jacobian) is current while this is unchanged.
   long configuration() const { return configuration_; }
+  /// The coordinates q of the last kinematics().
+  const double* coordinates() const { return last_q_.data(); }
   /// A body's pose and velocity (index as Simbody's: 0 is Ground); after kinematics().
   const Pose& pose(int body) const { return pose_[body]; }
   const Twist& twist(int body) const { return twist_[body]; }

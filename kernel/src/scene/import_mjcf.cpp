@@ -39,6 +39,38 @@ std::string name_of(const mjModel* m, mjtObj type, int id, const char* fallback)
   return n && *n ? std::string(n) : std::string(fallback) + std::to_string(id);
 }
 
+/// MuJoCo's joint equalities that are linear, joint1 = polycoef[0] + polycoef[1]·joint2 (in
+/// the joints' values from their reference qpos0, S2Sim's axis values), as exact couplings;
+/// every other equality warned about.
+void read_joint_equalities(const mjModel* m, const std::string& display, ImportedModel& model) {
+  int unapplied = 0;
+  for (int e = 0; e < m->neq; ++e) {
+    const mjtNum* poly = m->eq_data + mjNEQDATA * e;
+    const bool linear = poly[2] == 0 && poly[3] == 0 && poly[4] == 0;
+    if (m->eq_type[e] != mjEQ_JOINT || m->eq_obj2id[e] < 0 || !linear || !m->eq_active[e]) {
+      if (m->eq_type[e] == mjEQ_JOINT)
+        model.warnings.push_back(
+            display + ": equality '" + name_of(m, mjOBJ_EQUALITY, e, "equality") + "' on joint '" +
+            name_of(m, mjOBJ_JOINT, m->eq_obj1id[e], "joint") + "' is not applied (" +
+            (m->eq_obj2id[e] < 0 ? "no joint2: the joint held at a constant"
+             : !linear           ? "a polycoef beyond the linear term"
+                                 : "inactive") +
+            "); S2Sim couples joint1 = c0 + c1·joint2 only");
+      else
+        ++unapplied;
+      continue;
+    }
+    model.couplings.push_back(
+        {name_of(m, mjOBJ_JOINT, m->eq_obj1id[e], "joint"),
+         name_of(m, mjOBJ_JOINT, m->eq_obj2id[e], "joint"), poly[1], poly[0],
+         Location{display, "equality '" + name_of(m, mjOBJ_EQUALITY, e, "equality") + "'",
+                  "polycoef"}});
+  }
+  if (unapplied > 0)
+    model.warnings.push_back(display + ": " + std::to_string(unapplied) +
+                             " equality constraints (other than joint equalities) are not applied");
+}
+
 }  // namespace
 
 ImportedModel read_mjcf(const fs::path& file, const std::string& display,
@@ -304,9 +336,7 @@ ImportedModel read_mjcf(const fs::path& file, const std::string& display,
   if (m->nsensor > 0)
     model.warnings.push_back(display + ": " + std::to_string(m->nsensor) +
                              " sensors are not imported");
-  if (m->neq > 0)
-    model.warnings.push_back(display + ": " + std::to_string(m->neq) +
-                             " equality constraints are not applied");
+  read_joint_equalities(m, display, model);
   if (m->ntendon > 0)
     model.warnings.push_back(display + ": " + std::to_string(m->ntendon) +
                              " tendons are not applied");

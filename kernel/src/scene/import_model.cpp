@@ -176,6 +176,32 @@ void check_joints_move_inertia(const Scene& scene, const Robot& rb) {
   }
 }
 
+/// The model's couplings on the robot's scene joints (named as the model's); a joint merged
+/// away (fixed) or not in the model is an error at the coupling.
+void add_imported_couplings(Scene& scene, const ImportedModel& model, const Robot& rb) {
+  for (const ImportedCoupling& ic : model.couplings) {
+    auto scene_joint = [&](const std::string& name) {
+      for (int j : rb.joints)
+        if (scene.joints[static_cast<std::size_t>(j)].id == name) return j;
+      const bool in_model = std::any_of(model.joints.begin(), model.joints.end(),
+                                        [&](const ImportedJoint& ij) { return ij.name == name; });
+      throw Error(ErrorKind::scene, ic.where,
+                  "joint '" + ic.follower + "' follows '" + ic.leader + "': joint '" + name +
+                      (in_model ? "' does not move (a fixed or floating joint); only hinges and "
+                                  "sliders can be coupled"
+                                : "' is not in the model"));
+    };
+    JointCoupling c;
+    c.follower = scene_joint(ic.follower);
+    c.leader = scene_joint(ic.leader);
+    c.multiplier = ic.multiplier;
+    c.offset = ic.offset;
+    c.where = ic.where;
+    scene.couplings.push_back(c);
+  }
+  validate_couplings(scene);
+}
+
 }  // namespace
 
 void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacement& placement) {
@@ -360,6 +386,7 @@ void add_imported_robot(LoadContext& ctx, ImportedModel model, const RobotPlacem
     scene.joints.push_back(std::move(j));
     rb.joints.push_back(static_cast<int>(scene.joints.size() - 1));
   }
+  add_imported_couplings(scene, model, rb);
   auto joints_text = [](const std::vector<std::string>& names) {
     return "joint '" + names.front() + "'" +
            (names.size() > 1 ? " and " + std::to_string(names.size() - 1) + " more"

@@ -54,6 +54,14 @@ struct ImportedJoint {
   Location where;
 };
 
+/// One joint following another, by name (URDF `<mimic>`, MJCF's linear joint equality):
+/// follower = multiplier · leader + offset, resolved to scene joints by add_imported_robot.
+struct ImportedCoupling {
+  std::string follower, leader;
+  double multiplier = 1, offset = 0;
+  Location where;
+};
+
 /// A sensor of the format, already in S2Sim's terms; `sensor.pose` in its link's frame.
 struct ImportedSensor {
   int link = -1;
@@ -68,6 +76,7 @@ struct ImportedModel {
   std::vector<ImportedJoint> joints;
   std::vector<Geom> world_geoms;  ///< static geometry, poses in the model frame
   std::vector<ImportedSensor> sensors;
+  std::vector<ImportedCoupling> couplings;
   std::vector<std::string> warnings;  ///< already located
 };
 

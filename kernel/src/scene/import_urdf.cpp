@@ -399,14 +399,23 @@ ImportedModel read_urdf(const fs::path& file, const std::string& display,
                     "joint '" + ij.name + "': damping and friction must be >= 0, got " +
                         format_number(ij.damping) + " and " + format_number(ij.friction));
     }
-    if (j->mimic)
-      model.warnings.push_back(ij.where.str() + ": joint '" + ij.name + "' mimics '" +
-                               j->mimic->joint_name + "': not applied, the joint moves freely");
+    if (j->mimic)  // urdfdom's defaults: multiplier 1, offset 0
+      model.couplings.push_back({ij.name, j->mimic->joint_name, j->mimic->multiplier,
+                                 j->mimic->offset,
+                                 at(nth_child(joint_el(*name), "mimic", 0), "joint")});
     if (j->safety)
       model.warnings.push_back(ij.where.str() + ": joint '" + ij.name +
                                "': <safety_controller> is not applied");
     ij.actuated = moving && (has_transmissions ? transmitted.count(ij.name) > 0
                                                : ij.effort_limit.has_value());
+    if (j->mimic) {  // its leader's input moves it
+      if (has_transmissions && transmitted.count(ij.name) > 0)
+        model.warnings.push_back(ij.where.str() + ": joint '" + ij.name + "' mimics '" +
+                                 j->mimic->joint_name +
+                                 "': its transmission is not applied (the joint has no effort "
+                                 "input of its own)");
+      ij.actuated = false;
+    }
     if (auto e = extensions.find(ij.name); e != extensions.end()) ij.s2sim_drive = e->second;
     if (planar) {
       add_joints_in_series(model, planar_joints(ij, frame.rotation * Vec3{1, 0, 0}));

@@ -454,7 +454,12 @@ TEST(Import, ARosStyleDescriptionLoadsWithItsPackageOnTheModelPathAndSaysWhatItI
   std::string warnings;
   for (const std::string& w : sim->warnings())
     warnings += w + "\n";
-  EXPECT_THAT(warnings, HasSubstr("joint 'flap2_joint' mimics 'flap_joint': not applied"));
+  EXPECT_THAT(warnings, Not(HasSubstr("mimic")));
+  ASSERT_EQ(s.couplings.size(), 1u);  // flap2_joint follows flap_joint, multiplier 1
+  EXPECT_EQ(s.joints[static_cast<std::size_t>(s.couplings[0].follower)].id, "flap2_joint");
+  EXPECT_EQ(s.joints[static_cast<std::size_t>(s.couplings[0].leader)].id, "flap_joint");
+  EXPECT_EQ(s.couplings[0].multiplier, 1.0);
+  EXPECT_EQ(s.couplings[0].offset, 0.0);
   EXPECT_THAT(warnings, HasSubstr("<gazebo> extension elements are ignored"));
   EXPECT_THAT(warnings, HasSubstr("velocity limits are not applied"));
   EXPECT_THAT(warnings, HasSubstr("effort limits of joints without an actuator bound nothing "

@@ -247,6 +247,16 @@ struct Joint {
   Location where;
 };
 
+/// Two joint axes held exactly in step (URDF `<mimic>`, MJCF's linear joint equality):
+/// q_follower = multiplier · q_leader + offset, in axis values (rad or m; a hinge's unwrapped
+/// angle), both joints hinges or sliders of one robot (docs/models/multibody.md).
+struct JointCoupling {
+  int follower = -1, leader = -1;  ///< joint indices
+  double multiplier = 1;
+  double offset = 0;  ///< rad or m
+  Location where;     ///< the element that asks for it (the follower's `<mimic>`, the equality)
+};
+
 /// Sensor beam (§4.11; several `<beam>` elements merge into one), noise and solenoid force:
 /// the SDK's types, so that the loader and the sensor plugins share one set of defaults and
 /// rules (s2sim/sensor.hpp).
@@ -382,6 +392,7 @@ struct Scene {
   /// (`reserve_runtime_things`); they are neither in `things` nor in any robot.
   std::vector<int> runtime_things;
   std::vector<Joint> joints;
+  std::vector<JointCoupling> couplings;
   std::vector<Geom> obstacles;  ///< static, poses in world
   std::vector<Sensor> sensors;
   std::vector<TrackPolygon> tracks;
@@ -400,6 +411,11 @@ struct LoadOptions {
   /// robots (then S2SIM_MODEL_PATH, ROS_PACKAGE_PATH, GZ_SIM_RESOURCE_PATH).
   std::vector<std::filesystem::path> model_path;
 };
+
+/// Checks the couplings: both joints hinges or sliders of one robot, a follower other than its
+/// leader and coupled once, no cycle of couplings, finite numbers. Throws a scene Error at the
+/// coupling's location naming the joints and the value.
+void validate_couplings(const Scene& scene);
 
 /// Appends `count` spare bodies for things added while running (Scene::runtime_things): each
 /// a free, weightless small sphere, parked apart below the world until a thing takes it.
