@@ -5,14 +5,8 @@
 #   scripts/plot-motor-validation.sh [BUILD_DIR]      (default: build)
 set -euo pipefail
 
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${1:-$root/build}"
-run="$build/bin/s2sim-run"
+source "$(dirname "${BASH_SOURCE[0]}")/plot-setup.sh" "$@"
 bench="$root/scenes/motor_bench"
-out="$root/docs/images"
-command -v gnuplot >/dev/null || { echo "gnuplot missing: apt-get install gnuplot-nox" >&2; exit 1; }
-[ -x "$run" ] || { echo "no runner at $run: build first" >&2; exit 1; }
-mkdir -p "$out"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 axis=robots/bench/axes/motor

@@ -10,14 +10,8 @@
 #   scripts/plot-omni-tour.sh [BUILD_DIR]      (default: build)
 set -euo pipefail
 
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${1:-$root/build}"
-run="$build/bin/s2sim-run"
-out="$root/docs/images"
+source "$(dirname "${BASH_SOURCE[0]}")/plot-setup.sh" "$@"
 python=/usr/bin/python3  # Debian's, with NumPy
-command -v gnuplot >/dev/null || { echo "gnuplot missing: apt-get install gnuplot-nox" >&2; exit 1; }
-[ -x "$run" ] || { echo "no runner at $run: build first" >&2; exit 1; }
-mkdir -p "$out"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"; [ -n "${sim:-}" ] && kill "$sim" 2>/dev/null || true' EXIT
 

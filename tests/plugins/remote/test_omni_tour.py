@@ -7,12 +7,13 @@ identical logs (docs/tutorials/omni-localisation.md)."""
 import filecmp
 import importlib.util
 import os
-import re
 import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
 import numpy as np
+
+from announced_runner import start_announced_runner
 
 SOURCE = os.environ.get("S2SIM_SOURCE_DIR", os.getcwd())
 BIN = os.environ.get("S2SIM_BIN_DIR", os.path.join(SOURCE, "build", "bin"))
@@ -44,21 +45,13 @@ DEPTH_M = 0.15
 def start_tour(tmp_path, tag):
     """s2sim-run and the client, both running; returns the two processes and the log paths."""
     sim_log, client_log = tmp_path / ("sim_%s.csv" % tag), tmp_path / ("client_%s.csv" % tag)
-    runner = subprocess.Popen(
+    runner, port = start_announced_runner(
         # A long wait: a client slowed by a loaded machine must not be taken for a lost one.
         [os.path.join(BIN, "s2sim-run"), SCENE, "--duration", str(DURATION_S),
          "--define", "remote_port=0", "--define", "remote_wait_s=120", "--log", str(sim_log),
-         "--log-period", "0.04", "--signals", ROBOT + "x", ROBOT + "y", ROBOT + "yaw", "--quiet"],
-        stderr=subprocess.PIPE, text=True)
-    port = None
-    for _ in range(100):  # the announce line, after any warning
-        line = runner.stderr.readline()
-        port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
-        if port or not line:
-            break
-    assert port, line
+         "--log-period", "0.04", "--signals", ROBOT + "x", ROBOT + "y", ROBOT + "yaw", "--quiet"])
     client = subprocess.Popen(
-        [sys.executable, CLIENT, "--port", port.group(1), "--seed", "7", "--log", str(client_log)],
+        [sys.executable, CLIENT, "--port", str(port), "--seed", "7", "--log", str(client_log)],
         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     return runner, client, sim_log, client_log
 

@@ -4,7 +4,6 @@ the runner with the cart-pole example (determinism), real-time with its timeout.
 
 import filecmp
 import os
-import re
 import socket
 import struct
 import subprocess
@@ -15,6 +14,7 @@ import time
 import pytest
 
 import s2sim
+from announced_runner import start_announced_runner
 from s2sim import remote
 
 SOURCE = os.environ.get("S2SIM_SOURCE_DIR", os.getcwd())
@@ -94,20 +94,12 @@ def test_lockstep_without_a_client_runs_on_with_zero_inputs():
 
 def run_cartpole_once(tmp_path, tag):
     sim_log, client_log = tmp_path / ("sim_%s.csv" % tag), tmp_path / ("client_%s.csv" % tag)
-    runner = subprocess.Popen(
+    runner, port = start_announced_runner(
         [os.path.join(BIN, "s2sim-run"), CARTPOLE, "--duration", "4", "--define",
-         "remote_port=0", "--log", str(sim_log), "--signals", "robots/cartpole/*", "--quiet"],
-        stderr=subprocess.PIPE, text=True)
-    port = None
-    for _ in range(100):  # the announce line, after any warning
-        line = runner.stderr.readline()
-        port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
-        if port or not line:
-            break
-    assert port, line
+         "remote_port=0", "--log", str(sim_log), "--signals", "robots/cartpole/*", "--quiet"])
     client = subprocess.run(
         [sys.executable, os.path.join(SOURCE, "python", "examples", "cartpole_remote.py"),
-         "--port", port.group(1), "--duration", "4", "--log", str(client_log)],
+         "--port", str(port), "--duration", "4", "--log", str(client_log)],
         capture_output=True, text=True, timeout=120)
     assert runner.wait(timeout=120) == 0, runner.stderr.read()
     assert client.returncode == 0, client.stdout + client.stderr  # balanced
@@ -124,16 +116,9 @@ def test_lockstep_runs_are_identical_and_balance_the_pole(tmp_path):
 
 def start_cartpole_runner(duration_s):
     """s2sim-run on the lock-step cart-pole with a port the system picks; (process, port)."""
-    runner = subprocess.Popen(
+    return start_announced_runner(
         [os.path.join(BIN, "s2sim-run"), CARTPOLE, "--duration", str(duration_s), "--define",
-         "remote_port=0", "--quiet"], stderr=subprocess.PIPE, text=True)
-    for _ in range(100):  # the announce line, after any warning
-        line = runner.stderr.readline()
-        port = re.search(r"udp 127\.0\.0\.1:(\d+)", line)
-        if port or not line:
-            break
-    assert port, line
-    return runner, int(port.group(1))
+         "remote_port=0", "--quiet"])
 
 
 def test_a_lockstep_client_sees_the_end_of_the_run_and_stops():
