@@ -71,11 +71,24 @@ class Servo final : public s2sim::Component {
       s[1] = move / T;
       const double q = ctx.axis_position(axis_), w = ctx.axis_velocity(axis_);
       // The servo's DC motor at full voltage bounds the torque by its torque-speed line:
-      // τ ∈ τ_max·[−1 − w/w0, 1 − w/w0], w0 = speed_max (the no-load speed).
+      // τ ∈ τ_max·[−1 − w/w0, 1 − w/w0], w0 = speed_max (the no-load speed), at the speed read.
+      // Back-driven, the line would ask more than the stall torque, i.e. more than the stall
+      // current, which the servo's driver does not give: |τ| ≤ τ_max. (Unbounded, that brake
+      // grew with the speed of the tick before and blew up a light foot.)
       const double u = kp_ * (s[0] - q) + kd_ * (s[1] - w);
-      s[2] = std::clamp(u, -torque_max_ * (1 + w / speed_max_), torque_max_ * (1 - w / speed_max_));
+      low_ = std::clamp(-torque_max_ * (1 + w / speed_max_), -torque_max_, torque_max_);
+      high_ = std::clamp(torque_max_ * (1 - w / speed_max_), -torque_max_, torque_max_);
+      law_ = u;
+      s[2] = std::clamp(u, low_, high_);
     }
-    ctx.apply_axis_force(axis_, s[2]);
+    // Updated every tick, the speed feedback goes to the kernel as a drive, solved implicitly
+    // with the step: applied explicitly it rings once kd·dt exceeds the axis's inertia and
+    // diverges past twice it (a foot or a head, 1e-4 kg·m², at kd 0.3 and 1 ms). A slower
+    // servo holds its torque over its period, as the real one does.
+    if (period_ticks_ == 1)
+      ctx.apply_axis_drive(axis_, law_, kd_, low_, high_);
+    else
+      ctx.apply_axis_force(axis_, s[2]);
     ctx.publish(torque_, s[2]);
     ctx.publish(setpoint_, s[0]);
   }
@@ -84,6 +97,7 @@ class Servo final : public s2sim::Component {
   s2sim::AxisHandle axis_;
   double kp_ = 0, kd_ = 0, torque_max_ = 0, speed_max_ = 0, min_ = 0, max_ = 0;
   long long period_ticks_ = 1;
+  double law_ = 0, low_ = 0, high_ = 0;  // this tick's law at the speed read, its bounds
   s2sim::InputHandle ref_pos_, ref_speed_;
   s2sim::SignalHandle torque_, setpoint_;
   s2sim::StateHandle state_;
