@@ -116,7 +116,7 @@ def robot_xml():
         gains = 'kp_leg' if name[:3] in ('hip', 'kne', 'ank') else 'kp_arm'
         kd = gains.replace('kp', 'kd')
         out.append(f"  <plugin kind='servo' id='{name}_servo' axis='{name}' kp='{gains}' kd='{kd}' "
-                   f"torque_max='{TORQUE_MAX}' speed_max='{SPEED_MAX}'/>")
+                   f"torque_max='{TORQUE_MAX}' speed_max='{SPEED_MAX}' armature='armature'/>")
     out.append('</robot>')
     return '\n'.join(out) + '\n'
 

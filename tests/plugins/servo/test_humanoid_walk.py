@@ -69,3 +69,30 @@ def test_walks_two_metres_in_a_minute_without_falling_and_repeats(tmp_path):
         assert math.isclose(pz, sz, rel_tol=1e-9, abs_tol=1e-12)
     assert path[-1][0] == final_x
     assert abs(py_distance - distance) < 1e-9 and abs(py_lowest - lowest) < 1e-9
+
+
+def test_an_elbow_step_follows_the_servos_speed_limit_and_settles(tmp_path):
+    """The plot of scripts/plot-humanoid-servo.sh (the paper's Figure 20): standing without
+    its script, the right elbow's goal steps from 0 to 60°; the angle follows the setpoint
+    that moves at the AX-12's 6.18 rad/s, never faster, and settles within 1° without ringing
+    (the forearm alone, 5e-5 kg·m², is light for 1 ms: the servo's torque is an implicit drive
+    and its gear adds the rotor's reflected inertia)."""
+    axis = "robots/humanoid/axes/elbow_r/"
+    log = tmp_path / "step.csv"
+    goal = math.radians(60)
+    subprocess.run([os.path.join(BIN, "s2sim-run"), SCENE, "--duration", "0.5", "--no-script",
+                    "--set", f"{axis}ref_pos={goal!r}", "--log", str(log),
+                    "--signals", axis + "pos", axis + "speed"],
+                   check=True, capture_output=True, text=True)
+    with open(log) as f:
+        rows = [[float(v) for v in r] for r in list(csv.reader(f))[1:]]
+    inside = [t for t, pos, _ in rows if abs(pos - goal) < math.radians(1)]
+    settled = next(t for t in inside if all(abs(p - goal) < math.radians(1)
+                                            for tt, p, _ in rows if tt >= t))
+    top_speed = max(abs(w) for _, _, w in rows)
+    print(f"elbow: within 1 deg from {settled:.3f} s (the speed-limited move alone "
+          f"{goal / 6.18:.3f} s), top speed {top_speed:.3f} rad/s, final "
+          f"{math.degrees(rows[-1][1]):.3f} deg")
+    assert settled < goal / 6.18 + 0.1
+    assert top_speed < 6.18 * 1.05
+    assert abs(rows[-1][2]) < 1e-3
