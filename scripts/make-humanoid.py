@@ -13,7 +13,7 @@ import math
 import re
 
 # --- Geometry (m). Forward is +x, left +y. Each body's mass stands for its servos (an AX-12
-# is 55 g) and brackets; the whole robot weighs 1.95 kg.
+# is 55 g) and brackets; the whole robot weighs 1.975 kg.
 HIP_Y = 0.037  # lateral offset of each leg
 ANKLE_Z, KNEE_Z, HIP_Z, YAW_Z = 0.03, 0.105, 0.18, 0.21
 THIGH = HIP_Z - KNEE_Z  # 0.075
@@ -82,7 +82,7 @@ def num(v):
 def robot_xml():
     out = ['<?xml version="1.0" ?>',
            '<!-- A Bioloid-like humanoid (SimTwo paper, section 4.2), written by',
-           '     scripts/make-humanoid.py: 1.95 kg, 0.385 m tall, 19 AX-12 servos (six per leg:',
+           '     scripts/make-humanoid.py: 1.975 kg, 0.385 m tall, 19 AX-12 servos (six per leg:',
            '     hip yaw, roll, pitch, knee, ankle pitch, roll; three per arm: shoulder pitch,',
            '     roll, elbow; one in the neck). Every body is a box whose mass stands for its',
            '     servos and brackets; the feet are flat boxes. Forward is +x, left +y. -->',
