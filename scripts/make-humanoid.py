@@ -194,13 +194,14 @@ def main():
     poses = [k[0] for k in keys]
     durations = [k[1] for k in keys]
     rows = ',\n'.join('    (' + ', '.join(f'{a:.2f}' for a in p) + ')' for p in poses)
+    listed = ', '.join(map(str, durations))
     pas = (f'const\n  PoseCount = {len(poses)};\n  LoopStart = {loop};\n'
-           f'  Durations: array[0..PoseCount - 1] of integer = ({", ".join(map(str, durations))});\n'
+           f'  Durations: array[0..PoseCount - 1] of integer = ({listed});\n'
            f'  Poses: array[0..PoseCount - 1, 0..AxisCount - 1] of double = (\n{rows});\n')
     patch('scenes/humanoid/control.pas', '// BEGIN key poses', '// END key poses', pas)
     py_rows = ',\n'.join('    (' + ', '.join(f'{a:.2f}' for a in p) + ')' for p in poses)
-    py = (f'AXES = (\n' + ''.join(f'    "{a}",\n' for a in AXES) + ')\n'
-          f'LOOP_START = {loop}\nDURATIONS = ({", ".join(map(str, durations))})\n'
+    py = ('AXES = (\n' + ''.join(f'    "{a}",\n' for a in AXES) + ')\n'
+          f'LOOP_START = {loop}\nDURATIONS = ({listed})\n'
           f'POSES = (\n{py_rows},\n)\n')
     patch('python/examples/humanoid_gait.py', '# BEGIN key poses', '# END key poses', py)
     print(f'{len(solids)} bodies, {sum(s[1] for s in solids):.3f} kg, {len(joints)} servos, '

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """The humanoid of scenes/humanoid walks with its key-pose gait driven from Python: the library
 does not run the scene's script (control.pas), and this loop sets the 19 servos' goals at the
-script's ticks (every control period, from one period less a physics step, docs/scripting.md "Timing"),
-with the same table (humanoid_gait.py) and the same arithmetic, so the walk is the script's,
-bit for bit.
+script's ticks (every control period, from one period less a physics step: docs/scripting.md,
+"Timing"), with the same table (humanoid_gait.py) and the same arithmetic, so the walk is the
+script's, bit for bit.
 
     PYTHONPATH=build/python python3 python/examples/humanoid_walk.py [--duration 60] [--log FILE]
 
