@@ -38,6 +38,8 @@ Options:
                  repeatable; every scene must have the input
   --json FILE    also write the results as JSON
   --threads N    step each scene's islands on N threads (SimulationOptions::threads)
+  --script       run each scene's SimTwo script when its project starts it, as s2sim-run
+                 does (the script's compile is not timed; default: physics only)
   --profile      after the timed repeats, one more run with per-stage timing: wall time per
                  tick pipeline stage (sense ... read out, docs/architecture.md) in us/step
   --help
@@ -51,7 +53,8 @@ struct Options {
   std::string json_file;
   std::vector<std::pair<std::string, double>> inputs;  ///< --set
   bool profile = false;
-  int threads = 1;  ///< --threads
+  int threads = 1;      ///< --threads
+  bool script = false;  ///< --script
 };
 
 struct Result {
@@ -124,6 +127,8 @@ Options parse_options(int argc, char** argv) {
       o.threads = static_cast<int>(n);
     } else if (a == "--profile") {
       o.profile = true;
+    } else if (a == "--script") {
+      o.script = true;
     } else if (a == "--help" || a == "-h") {
       std::fputs(kUsage, stdout);
       std::exit(0);
@@ -156,6 +161,7 @@ std::string scene_name(const fs::path& p) {
 Result measure(const fs::path& path, const Options& o) {
   s2sim::SimulationOptions options;
   options.threads = o.threads;
+  if (o.script) options.script_mode = s2sim::ScriptMode::control_block;
   auto sim = s2sim::Simulation::load(path, options);
   Result r;
   r.scene = scene_name(path);

@@ -70,3 +70,11 @@ def test_monte_carlo_stopping_sweep_writes_a_table_and_a_png(tmp_path):
     assert len({r["stopping_distance_m"] for r in rows}) == 8  # the parameters matter
     with open(tmp_path / "stopping.png", "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_humanoid_walk_from_python_as_a_user_runs_it():
+    # The full minute, against the script's walk, is tests/plugins/servo/test_humanoid_walk.py.
+    line = run("humanoid_walk.py", "--duration", "10")
+    distance = float(line.split("distance ")[1].split()[0])
+    lowest = float(line.split("lowest trunk height ")[1].split()[0])
+    assert distance > 0.2 and lowest > 70, line
