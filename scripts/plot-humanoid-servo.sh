@@ -7,13 +7,7 @@
 #   scripts/plot-humanoid-servo.sh [BUILD_DIR]      (default: build)
 set -euo pipefail
 
-root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${1:-$root/build}"
-run="$build/bin/s2sim-run"
-out="$root/docs/images"
-command -v gnuplot >/dev/null || { echo "gnuplot missing: apt-get install gnuplot-nox" >&2; exit 1; }
-[ -x "$run" ] || { echo "no runner at $run: build first" >&2; exit 1; }
-mkdir -p "$out"
+source "$(dirname "${BASH_SOURCE[0]}")/plot-setup.sh" "$@"
 tmp="$(mktemp -d)"
 trap 'rm -rf "$tmp"' EXIT
 
