@@ -53,7 +53,7 @@ class Remote final : public Component {
     served_.configure(ctx);  // before our own signals, which are not served
     lockstep_ = p.choice("mode", {"realtime", "lockstep"}, "realtime") == "lockstep";
     timeout_s_ = p.number("timeout_s", 0.5, Range{0.0, kMaxWait_s, true});
-    wait_s_ = p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true});
+    wait_s_ = applied_wait_s(p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true}));
     const std::string address = p.text("address", "127.0.0.1");
     const bool allow_remote = p.boolean("allow_remote", false);
     if (p.has("key_file")) key_.load(p.text("key_file"), p.where("key_file"));

@@ -75,7 +75,7 @@ class Serial final : public Component {
                       (lockstep_ ? "realtime" : "lockstep") + "' only (this link is mode='" +
                       (lockstep_ ? "lockstep" : "realtime") + "'); remove it");
     if (lockstep_)
-      wait_s_ = p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true});
+      wait_s_ = applied_wait_s(p.number("wait_s", 10.0, Range{0.0, kMaxWait_s, true}));
     else
       timeout_s_ = p.number("timeout_s", 0.5, Range{0.0, kMaxWait_s, true});
     if (p.has("period_s"))

@@ -92,6 +92,15 @@ def test_lockstep_without_a_client_runs_on_with_zero_inputs():
     assert sim.input(FORCE) == 0.0 and sim.signal(LINK + "link") == 0
 
 
+def test_an_unattended_run_caps_the_lockstep_wait(monkeypatch):
+    monkeypatch.setenv("S2SIM_LINK_WAIT_MAX_S", "0.05")
+    sim = lockstep_sim(wait_s=1000.0)  # without the cap, a thousand seconds for a client
+    start = time.perf_counter()
+    sim.run_until(1.0)
+    assert time.perf_counter() - start < 5.0
+    assert sim.signal(LINK + "link") == 0  # waited once, 50 ms, for no client
+
+
 def run_cartpole_once(tmp_path, tag):
     sim_log, client_log = tmp_path / ("sim_%s.csv" % tag), tmp_path / ("client_%s.csv" % tag)
     runner, port = start_announced_runner(

@@ -220,6 +220,23 @@ def test_lockstep_wait_ends_in_a_counted_timeout_and_the_run_goes_on(tmp_path):
         os.close(fd)
 
 
+def test_an_unattended_run_caps_the_wait_and_a_bad_cap_is_refused(tmp_path, monkeypatch):
+    # S2SIM_LINK_WAIT_MAX_S: a CI job's bound on the wait a scene asks for (here a thousand s).
+    folder = serial_scene(tmp_path, "mode='lockstep' wait_s='1000'")
+    monkeypatch.setenv("S2SIM_LINK_WAIT_MAX_S", "0.05")
+    sim = s2sim.Simulation(folder)
+    start = time.perf_counter()
+    sim.step(100)  # no device: one capped wait, then detached
+    assert time.perf_counter() - start < 5.0
+    assert sim.signal(UART + "timeouts") == 1 and sim.signal(UART + "link") == 0
+    del sim
+    for bad in ["0", "-1", "1e300", "nan", "soon"]:
+        monkeypatch.setenv("S2SIM_LINK_WAIT_MAX_S", bad)
+        with pytest.raises(s2sim.UsageError) as e:
+            s2sim.Simulation(folder)
+        assert "S2SIM_LINK_WAIT_MAX_S='%s'" % bad in str(e.value), str(e.value)
+
+
 def flood(fd, stop):
     """A broken device: lines the link drops, as fast as the terminal takes them."""
     while not stop.is_set():
