@@ -49,6 +49,20 @@ double restitution_of(double beta) {
   return std::max(0.0, -v);
 }
 
+/// A jointed body's overlap the spring leaves alone relaxes to zero as a critically damped
+/// second-order system, d'' = −2·d'/T − d/T², from rest: the body rises out of it with its
+/// contact force its weight plus m·a, a = d₀/T² at the start (2 m/s² for 5 mm), its speed
+/// within the scene's largest recovery speed. A spring that pushed at once would throw it at
+/// about ω·d₀, and a rest depth that moved at a speed from the start would still jerk it.
+void relax_overlap(PointState& state, const ForceLawSettings& law, double h) {
+  if (!(state.rest_depth_m > 0)) return;
+  const double T = law.jointed_recovery_time_s;
+  state.rest_rate_m_s += h * (-2 * state.rest_rate_m_s / T - state.rest_depth_m / (T * T));
+  state.rest_rate_m_s = std::max(state.rest_rate_m_s, -law.max_recovery_speed_m_s);
+  state.rest_depth_m += h * state.rest_rate_m_s;
+  if (!(state.rest_depth_m > 0)) state.rest_depth_m = state.rest_rate_m_s = 0;
+}
+
 }  // namespace
 
 // From a table of restitution_of over log-spaced beta, built once.
@@ -191,20 +205,33 @@ Vec3 contact_force(const ContactPoint& point, const PairMaterial& material,
   // Normal: Hunt–Crossley, F = k·d·(1 + alpha·v) with the damping capped at critical, alpha
   // from the restitution e and the approach speed v_in so that this very law rebounds at e·v_in
   // (restitution_beta); e = 0, or an approach slower than the threshold, is plastic. Never pulls.
+  // Overlap recovery of jointed bodies (docs/models/contact.md): a point born or gone deeper
+  // since the last step by a hold depth more than its closing explains was started, placed or
+  // grown inside; the spring pushes against what is deeper than that overlap, which relaxes
+  // (relax_overlap). Jointless bodies' overlaps are held instead (below, stop_graph.hpp).
+  relax_overlap(state, law, h);
+  const double moved_m = std::max(approach, 0.0) * h;
+  const double deeper_m = point.depth_m - (new_point ? 0.0 : state.last_depth_m);
+  if (!kin.bounded_recovery && deeper_m > law.hold_depth_m + 2 * moved_m) {
+    state.rest_depth_m += deeper_m - moved_m;
+    state.rest_rate_m_s = 0;
+  }
+  state.last_depth_m = point.depth_m;
   if (!impact_completed) {
+    const double depth = point.depth_m - state.rest_depth_m;
     const double critical = 2 * std::sqrt(k * m);
     if (new_point) state.approach_speed_m_s = std::max(approach, 1e-3);
     double damping = critical;
     const double e = material.restitution;
     if (e > 0 && state.approach_speed_m_s >= material.restitution_threshold_m_s) {
       const double alpha = material.restitution_beta / state.approach_speed_m_s;
-      damping = std::min(critical, k * alpha * point.depth_m);
+      damping = std::min(critical, k * alpha * std::max(depth, 0.0));
     }
     // The dampers of the points on one body act on its speed together: each takes at most its
     // share of it per step, or a box on four corners would overshoot every step and ring.
     const double damping_bound = m / (h * kin.points_sharing);
     damping = std::min(damping, damping_bound);
-    normal = std::max(0.0, k * point.depth_m + damping * approach);
+    normal = std::max(0.0, k * depth + damping * approach);
     // Overlap recovery (docs/models/contact.md): between jointless bodies (or one and a
     // static shape) a point deeper than the hold depth is held (stop_graph.hpp), and its row
     // carries the load and separates it at held_recovery_speed(). The spring, which would

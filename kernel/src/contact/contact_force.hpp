@@ -56,6 +56,10 @@ struct ForceLawSettings {
   double max_recovery_speed_m_s = 0.3;
   double min_recovery_speed_m_s = 0.1;
   double recovery_time_s = 0.1;
+  /// A jointed body's point born deeper than its motion explains (started or placed inside):
+  /// the spring leaves that overlap alone and the overlap relaxes to zero with this time
+  /// constant, critically damped (contact_force.cpp, relax_overlap).
+  double jointed_recovery_time_s = 0.05;
   double frequency_ratio = 0.3;        ///< omega_c·h of the stiffest contact
   double transition_speed_m_s = 0.05;  ///< Coulomb regularisation
   double reference_step_s = 1e-3;      ///< turns ODE's softness (CFM) into a stiffness
@@ -79,6 +83,11 @@ struct PointState {
   /// The normal force a hold or a stop's reach added to the point last step (stop_graph.hpp):
   /// part of the load the friction cone bounds, besides the spring's.
   double held_force_N = 0;
+  /// A jointed body's overlap the spring does not push against (born or gone deeper than the
+  /// point's motion explains), relaxing to zero, and its rate (m/s, never positive).
+  double rest_depth_m = 0;
+  double rest_rate_m_s = 0;
+  double last_depth_m = 0;  ///< the point's depth last step
 };
 
 /// What a point found by the narrow phase is this step (speculative contact).

@@ -9,7 +9,7 @@
 namespace s2sim::contact {
 
 void ContactWorld::declare_state(common::StateLayout& layout) {
-  constexpr std::size_t kPer = 10;
+  constexpr std::size_t kPer = 13;
   layout.add_variable(
       "contact/memory", kPer,
       [this] {
@@ -36,7 +36,10 @@ void ContactWorld::declare_state(common::StateLayout& layout) {
                                               p.local_point_m.y,
                                               p.local_point_m.z,
                                               p.impact_pending ? 1.0 : 0.0,
-                                              p.held_force_N};
+                                              p.held_force_N,
+                                              p.rest_depth_m,
+                                              p.rest_rate_m_s,
+                                              p.last_depth_m};
                       out = std::copy(v, v + kPer, out);
                     });
       },
@@ -51,6 +54,9 @@ void ContactWorld::declare_state(common::StateLayout& layout) {
           m.state.local_point_m = {in[5], in[6], in[7]};
           m.state.impact_pending = in[8] != 0;
           m.state.held_force_N = in[9];
+          m.state.rest_depth_m = in[10];
+          m.state.rest_rate_m_s = in[11];
+          m.state.last_depth_m = in[12];
           // A key names its first shape: its lane keeps it (a key from another scene: lane 0).
           const std::uint64_t shape = m.key >> 40;
           (shape < lane_of_shape_.size() ? lane_of(static_cast<std::int32_t>(shape)) : lanes_[0])

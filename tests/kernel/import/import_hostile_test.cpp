@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -24,21 +25,24 @@ using ::testing::HasSubstr;
 
 const fs::path kSeeds = fs::path(S2SIM_SOURCE_DIR) / "tests/fuzz/seeds/import";
 
-TEST(ImportHostile, AQuadrupedPlacedFarUnderTheFloorDivergesWithALocatedError) {
-  // Its hull feet 2e9 m under the floor: the contact of a state gone to NaN once picked hull
-  // vertices it never set, and the run crashed.
+TEST(ImportHostile, AQuadrupedPlacedFarUnderTheFloorRisesWithoutBlowingUp) {
+  // Its hull feet 2e9 m under the floor: the whole spring once sent the state to NaN, and the
+  // contact of that state picked hull vertices it never set, and the run crashed. Its points
+  // are born far deeper than any motion explains: the overlap relaxes, at the recovery speed
+  // at most (docs/models/contact.md, "Overlap recovery").
   const fs::path dir =
       test::edited_copy(kSeeds / "urdf_quadruped", "scene.xml", "<pos x='0' y='0' z='0.281'/>",
                         "<pos x='0' y='0' z='-2147483648'/>");
   auto sim = Simulation::load(dir, test::import_options());
-  try {
-    sim->run_until(0.05);
-    ADD_FAILURE() << "ran";
-  } catch (const Error& e) {
-    std::printf("%s\n", e.what());
-    EXPECT_EQ(e.kind(), ErrorKind::runtime);
-    EXPECT_THAT(e.message(), HasSubstr("diverged"));
+  sim->run_until(0.2);
+  double fastest = 0;
+  for (int b = 1; b < sim->body_count(); ++b) {
+    const Vec3& p = sim->body_pose(b).position;
+    ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << "body " << b;
+    fastest = std::max(fastest, norm(sim->body_twist(b).linear_m_s));
   }
+  std::printf("quadruped 2e9 m under the floor: fastest body after 0.2 s %.4f m/s\n", fastest);
+  EXPECT_LT(fastest, 0.5) << "thrown";
 }
 
 TEST(ImportHostile, AnSdfVersionThatIsNoNumberIsALocatedError) {
