@@ -10,8 +10,10 @@ Every run is scenes/nxt driven at its own voltages (sample i: right +V, left -V,
 cluster is started, warmed up (one untimed run per worker: the workers import s2sim and load
 the plugins once), then the sweep of --runs runs is timed, from the sweep() call on the
 cluster's address to its last row. Prints runs/s for each cluster and each one's ratio to the
-first; --csv writes those figures, --rows-csv every run's row for every cluster (the same rows
-whatever the workers: each run is deterministic).
+first, with the CPU time per run spent in the workers and in this process (the local
+scheduler and the client) and the ratio those CPU times allow on free cores (what the
+machine's other load does not change much); --csv writes those figures, --rows-csv every
+run's row for every cluster (the same rows whatever the workers: each run is deterministic).
 """
 
 import argparse
@@ -35,6 +37,7 @@ def samples(runs):
 
 
 def _process_cpu_s():
+    """This process's CPU time (run on each worker by client.run)."""
     return time.process_time()
 
 
