@@ -137,10 +137,16 @@ def test_the_throughput_benchmark_gives_the_same_rows_on_one_worker_and_on_two(t
     import csv
     import importlib.util
 
+    import sys
+
     spec = importlib.util.spec_from_file_location(
         "sweep_throughput", os.path.join(SOURCE, "bench", "sweep_throughput.py"))
     bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
+    writes_bytecode, sys.dont_write_bytecode = sys.dont_write_bytecode, True  # not in bench/
+    try:
+        spec.loader.exec_module(bench)
+    finally:
+        sys.dont_write_bytecode = writes_bytecode
     rows_csv, figures_csv = tmp_path / "rows.csv", tmp_path / "figures.csv"
     assert bench.main(["--runs", "6", "--duration", "0.1", "--workers", "1", "2",
                        "--rows-csv", str(rows_csv), "--csv", str(figures_csv)]) == 0
