@@ -8,13 +8,24 @@
 
 The numbers of the robot mirror diffbot.xml and bench/peers/peer_model.hpp (the ODE side); the
 benchmark compares the engines' outcomes, so a copy that drifted shows. Run from the
-repository root with /usr/bin/python3; the files it writes are committed."""
+repository root with /usr/bin/python3; the files it writes are committed.
+
+`--out DIR --robots N...` writes only robots_N, under DIR/scenes (with a copy of diffbot.xml)
+and DIR/mjcf: the build does this for the large counts (LARGE_ROBOT_COUNTS), whose files it
+would not pay to commit (1.4 MB for 1024 robots)."""
+import argparse
 import math
 import os
+import shutil
 import xml.etree.ElementTree as ET
 
-ROBOT_COUNTS = (1, 4, 16, 64)
+ROBOT_COUNTS = (1, 4, 16, 64)  # committed
+LARGE_ROBOT_COUNTS = (256, 1024)  # written into the build folder (bench/peers/CMakeLists.txt)
 SPACING_M = 1.5  # between robots of the grid: far enough never to touch
+# SimTwo's invisible walls stand at x, y = ±12 m unless a scene moves them (docs/format.md): a
+# robot placed beyond them is thrown back by a metres-deep contact. A grid that reaches within
+# one spacing of them moves them out, two spacings past its far corner.
+SIMTWO_WALLS_M = 12.0
 
 # diffbot.xml, in the robot frame (the robot's pos is its origin on the floor).
 BRICK = dict(mass=0.31, size=(0.112, 0.072, 0.040), pos=(-0.03, 0.0, 0.07))
@@ -48,7 +59,12 @@ def s2sim_robots_scene(count):
     lines = ["<?xml version='1.0' ?>",
              f"<!-- Made by bench/peers/make-peer-scenes.py; do not edit. {count} differential",
              "     robots (../diffbot.xml) on a grid, driven at fixed voltages by the benchmark. -->",
-             "<scene>", "  <s2sim>", "    <physics step_ms='1' substeps='1'/>", "  </s2sim>"]
+             "<scene>", "  <s2sim>", "    <physics step_ms='1' substeps='1'/>"]
+    cols = math.ceil(math.sqrt(count))
+    extent_m = (cols - 1) * SPACING_M
+    if extent_m + SPACING_M > SIMTWO_WALLS_M:
+        lines.append(f"    <walls active='1' distance='{extent_m + 2 * SPACING_M:g}'/>")
+    lines.append("  </s2sim>")
     for i in range(count):
         x, y = grid_position(i, count)
         lines += ["  <robot>", f"    <ID name='r{i}'/>", f"    <pos x='{x:g}' y='{y:g}' z='0'/>",
@@ -329,7 +345,28 @@ def ode_table(model):
     return "\n".join(lines) + "\n"
 
 
+def write_robots(out, counts):
+    here = os.path.dirname(os.path.abspath(__file__))
+    os.makedirs(os.path.join(out, "scenes"), exist_ok=True)
+    # The scenes name their robot as ../diffbot.xml, as the committed ones do.
+    shutil.copyfile(os.path.join(here, "scenes", "diffbot.xml"),
+                    os.path.join(out, "scenes", "diffbot.xml"))
+    for n in counts:
+        write(os.path.join(out, "scenes", f"robots_{n}", "scene.xml"), s2sim_robots_scene(n))
+        write(os.path.join(out, "mjcf", f"robots_{n}.xml"), mjcf_robots(n))
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", help="write only the robots_N of --robots, under this folder")
+    parser.add_argument("--robots", type=int, nargs="+", default=list(LARGE_ROBOT_COUNTS),
+                        metavar="N", help="robot counts for --out (default: %(default)s)")
+    args = parser.parse_args()
+    if args.out:
+        if any(n <= 0 for n in args.robots):
+            parser.error("--robots: counts must be positive")
+        write_robots(args.out, args.robots)
+        return
     for n in ROBOT_COUNTS:
         write(f"bench/peers/scenes/robots_{n}/scene.xml", s2sim_robots_scene(n))
         write(f"bench/peers/mjcf/robots_{n}.xml", mjcf_robots(n))

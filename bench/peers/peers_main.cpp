@@ -29,10 +29,24 @@
 
 namespace peers {
 
+namespace {
+/// `relative` under bench/peers of the source tree, or else under the build's generated folder
+/// (the large robots_N, bench/peers/CMakeLists.txt); the source tree's path if neither has it.
+std::filesystem::path committed_or_generated(const std::filesystem::path& source_dir,
+                                             const std::filesystem::path& relative) {
+  const auto committed = source_dir / "bench/peers" / relative;
+#ifdef S2SIM_PEERS_GENERATED_DIR
+  const auto generated = std::filesystem::path(S2SIM_PEERS_GENERATED_DIR) / relative;
+  if (!std::filesystem::exists(committed) && std::filesystem::exists(generated)) return generated;
+#endif
+  return committed;
+}
+}  // namespace
+
 std::filesystem::path SceneSpec::s2sim_scene() const {
   switch (kind) {
     case Kind::robots:
-      return source_dir / "bench/peers/scenes" / name;
+      return committed_or_generated(source_dir, std::filesystem::path("scenes") / name);
     case Kind::pile:
       return source_dir / "scenes/pile";
     default:
@@ -40,6 +54,8 @@ std::filesystem::path SceneSpec::s2sim_scene() const {
   }
 }
 std::filesystem::path SceneSpec::mjcf() const {
+  if (kind == Kind::robots)
+    return committed_or_generated(source_dir, std::filesystem::path("mjcf") / (name + ".xml"));
   return source_dir / "bench/peers/mjcf" / (name + ".xml");
 }
 std::filesystem::path SceneSpec::ode_table() const {

@@ -129,3 +129,34 @@ def test_a_scene_bundle_carries_the_folder_and_refuses_paths_that_leave_it(tmp_p
         scene_path({"name": "x", "entry": None, "files": {"../evil.xml": b""}})
     with pytest.raises(FileNotFoundError, match="no such folder"):
         scene_bundle(tmp_path / "missing")
+
+
+def test_the_throughput_benchmark_gives_the_same_rows_on_one_worker_and_on_two(tmp_path):
+    """bench/sweep_throughput.py: every run's row is the same whichever cluster ran it (its
+    timings are the benchmark's business, not checked here)."""
+    import csv
+    import importlib.util
+
+    import sys
+
+    spec = importlib.util.spec_from_file_location(
+        "sweep_throughput", os.path.join(SOURCE, "bench", "sweep_throughput.py"))
+    bench = importlib.util.module_from_spec(spec)
+    writes_bytecode, sys.dont_write_bytecode = sys.dont_write_bytecode, True  # not in bench/
+    try:
+        spec.loader.exec_module(bench)
+    finally:
+        sys.dont_write_bytecode = writes_bytecode
+    rows_csv, figures_csv = tmp_path / "rows.csv", tmp_path / "figures.csv"
+    assert bench.main(["--runs", "6", "--duration", "0.1", "--workers", "1", "2",
+                       "--rows-csv", str(rows_csv), "--csv", str(figures_csv)]) == 0
+    with open(rows_csv) as f:
+        rows = list(csv.DictReader(f))
+    by_workers = {w: [{k: v for k, v in r.items() if k != "workers"} for r in rows
+                      if r["workers"] == w] for w in ("1", "2")}
+    assert len(by_workers["1"]) == 6
+    assert by_workers["1"] == by_workers["2"]
+    assert [r["seed"] for r in by_workers["1"]] == [str(s) for s in range(1, 7)]
+    assert len({r["robots/nxt/x"] for r in by_workers["1"]}) == 6  # each run its own voltage
+    with open(figures_csv) as f:
+        assert [r["workers"] for r in csv.DictReader(f)] == ["1", "2"]

@@ -126,9 +126,14 @@ class TreePath final : public Dynamics {
 
   void tree_axis_column(Multibody::Impl& m, const SimTK::State&, int a) const override {
     // g: a unit load along the axis; M factored by this substep's accelerations, at this q.
+    // Solved in the axis's own tree alone: the column is zero in every other tree (from its
+    // allocation; nothing writes there), and a solve over every tree, once per axis, grew
+    // with the square of the robot count.
     double& g = m.unit_speed[static_cast<std::size_t>(m.axis_u[a])];
     g = m.axis_impl[a].sign;
-    m.tree->solve(m.unit_speed.data(), m.minv_column[a].updContiguousScalarData());
+    int u_begin = 0, u_end = 0;
+    m.tree->solve_tree_of(static_cast<int>(m.axis_impl[a].mobod), m.unit_speed.data(),
+                          m.minv_column[a].updContiguousScalarData(), u_begin, u_end);
     g = 0.0;
   }
 
