@@ -23,8 +23,8 @@
 // - a DC motor: the torque Ks/Ri·V − (Ks²/Ri + bv)·ω within ±Ks·imax set on the joint before
 //   every step (explicit, as Bullet's). DART's implicit joint damping would do, but it enters
 //   the unconstrained step and not the constraint impulses, which shifts the closed arm's rest
-//   by h·d/M, about 1 % (0.2015 m where every engine rests at 0.2032 m). Coulomb friction fc is
-//   the joint's own (DART's JointCoulombFrictionConstraint, an impulse bounded by fc·dt); the
+//   by h·d/M, about 1 % (0.2015 m where the others rest at 0.2032–0.2034 m). Coulomb friction
+//   fc is the joint's own (DART's JointCoulombFrictionConstraint, an impulse bounded by fc·dt); the
 //   rotor's J is added to the child's inertia (DART has no armature).
 // - collisions: only bodies joined by a hinge skip contact, as in ODE (DART's self-collision
 //   on, adjacent bodies off, the loop's pair black-listed).
