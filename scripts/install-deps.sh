@@ -4,7 +4,8 @@
 # SimTwo projects' control.pas scripts (docs/scripting.md); binutils' addr2line names the line
 # of a script's run-time error. libavcodec (with libavformat and libswscale) writes s2sim-view's
 # MP4 videos of a replay (docs/recording.md); without it the viewer builds without --video.
-# libmujoco-dev, libode-dev and libbullet-dev are the peers of s2sim-peers (docs/benchmarks.md).
+# libmujoco-dev, libode-dev, libbullet-dev and libdart-dev (with its ODE collision detector,
+# libdart-collision-ode-dev) are the peers of s2sim-peers (docs/benchmarks-peers.md).
 # libpng writes s2sim-run's --save-images frames.
 # libcairo2 (Cairo) rasterises the SimTwo scripts' canvases (docs/scripting.md, "Canvases").
 # libsodium computes the remote link's HMAC of each datagram (docs/remote.md).
@@ -24,7 +25,7 @@ packages=(
   libcairo2-dev
   libegl-dev libegl-mesa0 libgl1-mesa-dri
   libgtest-dev libbenchmark-dev
-  libmujoco-dev libode-dev libbullet-dev
+  libmujoco-dev libode-dev libbullet-dev libdart-dev libdart-collision-ode-dev
   xvfb xauth
   gnuplot-nox
   python3 pybind11-dev python3-dev python3-numpy python3-pytest python3-dask python3-distributed

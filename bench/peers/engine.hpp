@@ -1,7 +1,7 @@
 #pragma once
 // The peer benchmark's view of a physics engine (bench/peers, docs/benchmarks.md): S2Sim
-// through its façade, MuJoCo and ODE through their C APIs, Bullet through its C++ one, each
-// loaded with the same scene.
+// through its façade, MuJoCo and ODE through their C APIs, Bullet and DART through their C++
+// ones, each loaded with the same scene.
 
 #include <array>
 #include <filesystem>
@@ -78,6 +78,13 @@ std::unique_ptr<Engine> make_mujoco(const SceneSpec& scene);
 #ifdef S2SIM_PEERS_HAVE_BULLET
 /// Bullet's btMultiBody for the jointed scenes, rigid bodies for the pile (bullet_engine.cpp).
 std::unique_ptr<Engine> make_bullet(const SceneSpec& scene);
+#endif
+#ifdef S2SIM_PEERS_HAVE_DART
+/// DART's World with its default solver and DART's ODE collision detector; the arm's loop a
+/// ball joint constraint (dart_engine.cpp).
+std::unique_ptr<Engine> make_dart(const SceneSpec& scene);
+/// The same on DART's default collision detector, FCL, as DART sets it up (meshed primitives).
+std::unique_ptr<Engine> make_dart_fcl(const SceneSpec& scene);
 #endif
 #ifdef S2SIM_PEERS_HAVE_ODE
 std::unique_ptr<Engine> make_ode_quickstep(const SceneSpec& scene);

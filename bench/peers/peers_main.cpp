@@ -80,6 +80,10 @@ std::vector<EngineFactory> available_engines() {
 #ifdef S2SIM_PEERS_HAVE_BULLET
   engines.push_back({"bullet", &make_bullet});
 #endif
+#ifdef S2SIM_PEERS_HAVE_DART
+  engines.push_back({"dart", &make_dart});
+  engines.push_back({"dart-fcl", &make_dart_fcl});
+#endif
   return engines;
 }
 
@@ -356,6 +360,9 @@ int run(const Options& o) {
 #endif
 #ifndef S2SIM_PEERS_HAVE_BULLET
   std::printf("(Bullet skipped: libbullet-dev not found at configure time) ");
+#endif
+#ifndef S2SIM_PEERS_HAVE_DART
+  std::printf("(DART skipped: libdart-dev not found at configure time) ");
 #endif
   std::printf("\n");
 
