@@ -381,33 +381,11 @@ class BulletEngine final : public Engine {
 
   void add_articulated(const ArticulatedModel& model) {
     const int n = static_cast<int>(model.bodies.size());
-    // A spanning tree of the hinges, parents before children: a hinge whose child already has
-    // its joint closes a loop.
-    std::vector<int> joint_of(static_cast<std::size_t>(n), -1);  // the tree hinge of each body
-    std::vector<int> order;                                      // bodies, parents first
-    std::vector<bool> placed(static_cast<std::size_t>(n), false);
-    const bool fixed = std::any_of(model.hinges.begin(), model.hinges.end(),
-                                   [](const HingeSpec& h) { return h.parent < 0; });
-    int root = -1;  // the floating base's body; the world when a hinge is fixed to it
-    if (!fixed) {
-      root = 0;
-      placed[0] = true;
-    }
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (std::size_t k = 0; k < model.hinges.size(); ++k) {
-        const HingeSpec& h = model.hinges[k];
-        const auto child = static_cast<std::size_t>(h.child);
-        const bool parent_placed = h.parent < 0 || placed[static_cast<std::size_t>(h.parent)];
-        if (placed[child] || !parent_placed) continue;
-        placed[child] = true;
-        joint_of[child] = static_cast<int>(k);
-        order.push_back(h.child);
-        grew = true;
-      }
-    }
-    if (std::count(placed.begin(), placed.end(), true) != n)
-      throw std::runtime_error("Bullet: a body of " + scene_.name + " is not jointed to the tree");
+    const SpanningTree tree = spanning_tree(model, "Bullet: " + scene_.name);
+    const std::vector<int>& joint_of = tree.joint_of;  // the tree hinge of each body
+    const std::vector<int>& order = tree.order;        // bodies, parents first
+    const bool fixed = tree.fixed;
+    const int root = fixed ? -1 : 0;  // the floating base's body; the world when fixed to it
 
     std::vector<double> rotor_inertia(3 * static_cast<std::size_t>(n), 0.0);
     for (const HingeSpec& h : model.hinges)  // about the axis, on the child (axes are x, y or z)

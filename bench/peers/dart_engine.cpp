@@ -286,32 +286,10 @@ class DartEngine final : public Engine {
 
   void add_articulated(const ArticulatedModel& model) {
     const int n = static_cast<int>(model.bodies.size());
-    // A spanning tree of the hinges, parents before children: a hinge whose child already has
-    // its joint closes a loop. Without a hinge to the world, body 0 floats (the humanoid).
-    std::vector<int> joint_of(static_cast<std::size_t>(n), -1);
-    std::vector<int> order;
-    std::vector<bool> placed(static_cast<std::size_t>(n), false);
-    const bool fixed = std::any_of(model.hinges.begin(), model.hinges.end(),
-                                   [](const HingeSpec& h) { return h.parent < 0; });
-    if (!fixed) {
-      placed[0] = true;
-      order.push_back(0);
-    }
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (std::size_t k = 0; k < model.hinges.size(); ++k) {
-        const HingeSpec& h = model.hinges[k];
-        const auto child = static_cast<std::size_t>(h.child);
-        const bool parent_placed = h.parent < 0 || placed[static_cast<std::size_t>(h.parent)];
-        if (placed[child] || !parent_placed) continue;
-        placed[child] = true;
-        joint_of[child] = static_cast<int>(k);
-        order.push_back(h.child);
-        grew = true;
-      }
-    }
-    if (std::count(placed.begin(), placed.end(), true) != n)
-      throw std::runtime_error("DART: a body of " + scene_.name + " is not jointed to the tree");
+    const SpanningTree tree = spanning_tree(model, "DART: " + scene_.name);
+    const std::vector<int>& joint_of = tree.joint_of;
+    std::vector<int> order = tree.order;  // the floating base first
+    if (!tree.fixed) order.insert(order.begin(), 0);
 
     std::vector<Eigen::Matrix3d> inertia;
     for (const BoxBody& b : model.bodies)

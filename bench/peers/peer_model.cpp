@@ -1,5 +1,6 @@
 #include "peer_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -110,6 +111,32 @@ std::vector<PileBody> read_pile(const std::filesystem::path& mjcf) {
   }
   if (bodies.empty()) throw std::runtime_error(mjcf.string() + ": no <body> found");
   return bodies;
+}
+
+SpanningTree spanning_tree(const ArticulatedModel& model, const std::string& who) {
+  const auto n = model.bodies.size();
+  SpanningTree tree;
+  tree.joint_of.assign(n, -1);
+  std::vector<bool> placed(n, false);
+  tree.fixed = std::any_of(model.hinges.begin(), model.hinges.end(),
+                           [](const HingeSpec& h) { return h.parent < 0; });
+  if (!tree.fixed && n > 0) placed[0] = true;
+  for (bool grew = true; grew;) {
+    grew = false;
+    for (std::size_t k = 0; k < model.hinges.size(); ++k) {
+      const HingeSpec& h = model.hinges[k];
+      const auto child = static_cast<std::size_t>(h.child);
+      const bool parent_placed = h.parent < 0 || placed[static_cast<std::size_t>(h.parent)];
+      if (placed[child] || !parent_placed) continue;
+      placed[child] = true;
+      tree.joint_of[child] = static_cast<int>(k);
+      tree.order.push_back(h.child);
+      grew = true;
+    }
+  }
+  if (std::count(placed.begin(), placed.end(), true) != static_cast<std::ptrdiff_t>(n))
+    throw std::runtime_error(who + ": a body is not jointed to the tree");
+  return tree;
 }
 
 }  // namespace peers

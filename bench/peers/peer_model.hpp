@@ -69,6 +69,16 @@ struct ArticulatedModel {
 /// Reads a model.txt of make-peer-scenes.py; throws std::runtime_error naming file and line.
 ArticulatedModel read_articulated(const std::filesystem::path& table);
 
+/// A spanning tree of a model's hinges, parents before children: a hinge whose child already
+/// has its joint closes a loop. Without a hinge to the world, body 0 floats (the humanoid).
+struct SpanningTree {
+  bool fixed = false;         ///< some hinge joins the world
+  std::vector<int> order;     ///< the bodies a tree hinge joins, parents first
+  std::vector<int> joint_of;  ///< each body's tree hinge; −1 for the floating body 0
+};
+/// Throws std::runtime_error, naming `who`, when a body is not jointed to the tree.
+SpanningTree spanning_tree(const ArticulatedModel& model, const std::string& who);
+
 /// A free body of the pile: a box (half sizes) or a sphere (radius in half_size_m[0]).
 struct PileBody {
   std::string name;
