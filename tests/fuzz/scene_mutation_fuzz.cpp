@@ -19,8 +19,11 @@
 
 #include <s2sim/kernel/simulation.hpp>
 
+#include <arpa/inet.h>
 #include <fcntl.h>
+#include <netinet/in.h>
 #include <sys/resource.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -172,9 +175,27 @@ struct Run {
   std::vector<double> signals;
 };
 
+/// A UDP port on loopback that is free now (0 if none can be had): the case's remote links
+/// bind it, the same one in the run on one thread and in the run on several, whose `port`
+/// signals must agree.
+int free_udp_port() {
+  const int fd = ::socket(AF_INET, SOCK_DGRAM, 0);
+  if (fd < 0) return 0;
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t size = sizeof address;
+  int port = 0;
+  if (::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &size) == 0)
+    port = ntohs(address.sin_port);
+  ::close(fd);
+  return port;
+}
+
 /// Loads and runs the case on `threads` threads, as the runner would; with the differential
 /// check, every `ref_voltage` input first driven at its own value (the same in every run).
-Run run_on(const fs::path& dir, const Options& o, int threads) {
+Run run_on(const fs::path& dir, const Options& o, int threads, int remote_port) {
   Run run;
   try {
     s2sim::SimulationOptions so;
@@ -183,7 +204,7 @@ Run run_on(const fs::path& dir, const Options& o, int threads) {
     // The shipped remote scenes name their port in a define, which a case sets to a free one
     // (the child caps the links' waits, see run_case).
     if (read(dir / "scene.xml").find("name='remote_port'") != std::string::npos)
-      so.constants.emplace_back("remote_port", 0);
+      so.constants.emplace_back("remote_port", remote_port);
     auto sim = s2sim::Simulation::load(dir, so);
     if (o.threads > 1) {
       std::size_t k = 0;
@@ -250,10 +271,11 @@ std::string difference(const Run& serial, const Run& parallel) {
   // A lock-step link waits for a client or a device that never comes here, as long as the
   // (mutated) scene asks: 10 ms a period at most, so a long wait is not taken for a hang.
   ::setenv("S2SIM_LINK_WAIT_MAX_S", "0.01", 1);
-  Run serial = run_on(dir, o, 1);
+  const int remote_port = free_udp_port();
+  Run serial = run_on(dir, o, 1, remote_port);
   int code = serial.code;
   if (o.threads > 1 && code != 1) {
-    const Run parallel = run_on(dir, o, o.threads);
+    const Run parallel = run_on(dir, o, o.threads, remote_port);
     const std::string differs = difference(serial, parallel);
     if (!differs.empty()) {
       std::fprintf(stderr, "on %d threads: %s\n", o.threads, differs.c_str());
