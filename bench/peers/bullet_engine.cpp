@@ -268,35 +268,26 @@ class BulletEngine final : public Engine {
     // The chassis: brick and motor housings (massive), caster (massless), about their centre
     // of mass. btMultiBody takes principal inertias: the xz product (6 % of Iyy, principal
     // axes 10° about y) is left out.
-    struct Part {
-      double mass;
-      Vec3d size, centre;
-    };
-    const Part parts[] = {{kBrickMass_kg, kBrickSize_m, kBrickCentre_m},
-                          {kHousingMass_kg, kHousingSize_m, kHousingCentre_m},
-                          {kHousingMass_kg,
-                           kHousingSize_m,
-                           {kHousingCentre_m[0], -kHousingCentre_m[1], kHousingCentre_m[2]}}};
     double mass = 0;
     Vec3d com{};
-    for (const Part& p : parts) {
-      mass += p.mass;
+    for (const ChassisPart& p : kChassisParts) {
+      mass += p.mass_kg;
       for (int k = 0; k < 3; ++k)
-        com[k] += p.mass * p.centre[k];
+        com[k] += p.mass_kg * p.centre_m[k];
     }
     for (double& c : com)
       c /= mass;
     btVector3 inertia(0, 0, 0);
-    for (const Part& p : parts) {
-      const Vec3d d{p.centre[0] - com[0], p.centre[1] - com[1], p.centre[2] - com[2]};
-      const Vec3d& s = p.size;
-      inertia +=
-          btVector3(static_cast<btScalar>(
-                        p.mass * ((s[1] * s[1] + s[2] * s[2]) / 12 + d[1] * d[1] + d[2] * d[2])),
-                    static_cast<btScalar>(
-                        p.mass * ((s[0] * s[0] + s[2] * s[2]) / 12 + d[0] * d[0] + d[2] * d[2])),
-                    static_cast<btScalar>(
-                        p.mass * ((s[0] * s[0] + s[1] * s[1]) / 12 + d[0] * d[0] + d[1] * d[1])));
+    for (const ChassisPart& p : kChassisParts) {
+      const Vec3d d{p.centre_m[0] - com[0], p.centre_m[1] - com[1], p.centre_m[2] - com[2]};
+      const Vec3d& s = p.size_m;
+      inertia += btVector3(
+          static_cast<btScalar>(p.mass_kg *
+                                ((s[1] * s[1] + s[2] * s[2]) / 12 + d[1] * d[1] + d[2] * d[2])),
+          static_cast<btScalar>(p.mass_kg *
+                                ((s[0] * s[0] + s[2] * s[2]) / 12 + d[0] * d[0] + d[2] * d[2])),
+          static_cast<btScalar>(p.mass_kg *
+                                ((s[0] * s[0] + s[1] * s[1]) / 12 + d[0] * d[0] + d[1] * d[1])));
     }
     btMultiBody* mb = new_multibody(2, mass, inertia, false);
     const btVector3 base(static_cast<btScalar>(origin[0] + com[0]),
@@ -312,11 +303,11 @@ class BulletEngine final : public Engine {
                                    static_cast<btScalar>(centre[1] - com[1]),
                                    static_cast<btScalar>(centre[2] - com[2])));
     };
-    for (const Part& p : parts)
-      chassis->addChildShape(local(p.centre),
-                             keep(new btBoxShape(btVector3(static_cast<btScalar>(p.size[0] / 2),
-                                                           static_cast<btScalar>(p.size[1] / 2),
-                                                           static_cast<btScalar>(p.size[2] / 2))),
+    for (const ChassisPart& p : kChassisParts)
+      chassis->addChildShape(local(p.centre_m),
+                             keep(new btBoxShape(btVector3(static_cast<btScalar>(p.size_m[0] / 2),
+                                                           static_cast<btScalar>(p.size_m[1] / 2),
+                                                           static_cast<btScalar>(p.size_m[2] / 2))),
                                   -1, mass));
     chassis->addChildShape(
         local(kCasterCentre_m),

@@ -188,27 +188,18 @@ class DartEngine final : public Engine {
     using namespace diffbot;
     // The chassis: brick and motor housings (massive), caster (massless), its frame at their
     // centre of mass, with the full inertia (the xz product included).
-    struct Part {
-      double mass;
-      Vec3d size, centre;
-    };
-    const Part parts[] = {{kBrickMass_kg, kBrickSize_m, kBrickCentre_m},
-                          {kHousingMass_kg, kHousingSize_m, kHousingCentre_m},
-                          {kHousingMass_kg,
-                           kHousingSize_m,
-                           {kHousingCentre_m[0], -kHousingCentre_m[1], kHousingCentre_m[2]}}};
     double mass = 0;
     Eigen::Vector3d com = Eigen::Vector3d::Zero();
-    for (const Part& p : parts) {
-      mass += p.mass;
-      com += p.mass * vec(p.centre);
+    for (const ChassisPart& p : kChassisParts) {
+      mass += p.mass_kg;
+      com += p.mass_kg * vec(p.centre_m);
     }
     com /= mass;
     Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
-    for (const Part& p : parts) {
-      const Eigen::Vector3d d = vec(p.centre) - com;
-      inertia += box_inertia(p.mass, p.size) +
-                 p.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    for (const ChassisPart& p : kChassisParts) {
+      const Eigen::Vector3d d = vec(p.centre_m) - com;
+      inertia += box_inertia(p.mass_kg, p.size_m) +
+                 p.mass_kg * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
     }
 
     auto robot = Skeleton::create("robot" + std::to_string(world_->getNumSkeletons()));
@@ -220,9 +211,9 @@ class DartEngine final : public Engine {
         robot->createJointAndBodyNodePair<dart::dynamics::FreeJoint>(nullptr, free).second;
     chassis->setName("chassis");
     chassis->setInertia(dart::dynamics::Inertia(mass, Eigen::Vector3d::Zero(), inertia));
-    for (const Part& p : parts)
-      add_shape(chassis, std::make_shared<dart::dynamics::BoxShape>(vec(p.size)),
-                translation(vec(p.centre) - com), -1);
+    for (const ChassisPart& p : kChassisParts)
+      add_shape(chassis, std::make_shared<dart::dynamics::BoxShape>(vec(p.size_m)),
+                translation(vec(p.centre_m) - com), -1);
     add_shape(chassis, std::make_shared<dart::dynamics::SphereShape>(kCasterRadius_m),
               translation(vec(kCasterCentre_m) - com), 0.0);
     tracked_.push_back(chassis);

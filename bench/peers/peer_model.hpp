@@ -36,6 +36,17 @@ inline constexpr double kMotorImax_A = 2.0;
 inline constexpr double kFrictionBv_Nms = 1.92e-3;
 inline constexpr double kFrictionFc_Nm = 3.558e-4;
 inline constexpr double kRotorJ_kgm2 = 1e-5;
+/// The chassis's massive boxes (the brick and the two motor housings; the caster is massless).
+struct ChassisPart {
+  double mass_kg;
+  Vec3d size_m, centre_m;
+};
+inline constexpr std::array<ChassisPart, 3> kChassisParts = {
+    {{kBrickMass_kg, kBrickSize_m, kBrickCentre_m},
+     {kHousingMass_kg, kHousingSize_m, kHousingCentre_m},
+     {kHousingMass_kg,
+      kHousingSize_m,
+      {kHousingCentre_m[0], -kHousingCentre_m[1], kHousingCentre_m[2]}}}};
 }  // namespace diffbot
 
 /// Robot `index` of `count` stands at (x, y) on a grid 1.5 m apart (make-peer-scenes.py).
