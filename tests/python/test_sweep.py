@@ -54,6 +54,42 @@ def test_bad_arguments():
         s2sim.sweep(NXT, {"motor_ki": [1]})
     with pytest.raises(TypeError):
         s2sim.sweep(NXT, [1, 2], duration=0.1, signals="time")
+    for bad in (0, -2, 1.5, True, "3"):
+        with pytest.raises(ValueError, match="runs_per_task must be a whole number >= 1"):
+            s2sim.sweep(NXT, [{RIGHT: 1.0}], duration=0.1, signals="time", runs_per_task=bad)
+
+
+def test_runs_are_cut_into_four_tasks_a_worker_thread_unless_told():
+    from s2sim.sweeps import tasks_of
+
+    runs = list(range(200))
+    assert [len(t) for t in tasks_of(runs, 2)] == [25] * 8
+    assert [len(t) for t in tasks_of(runs, 1)] == [50] * 4
+    assert [len(t) for t in tasks_of(runs, 0)] == [50] * 4  # no worker yet: as one
+    assert [len(t) for t in tasks_of(runs[:7], 2)] == [1] * 7
+    assert [len(t) for t in tasks_of(runs[:7], 2, runs_per_task=3)] == [3, 3, 1]
+    assert [x for t in tasks_of(runs, 3) for x in t] == runs
+    assert tasks_of([], 2) == []
+
+
+def test_runs_grouped_into_tasks_give_the_same_rows_in_input_order():
+    """Seven runs one per task, three per task (the last task holds one) and as sweep() cuts
+    them: the same rows, in the samples' order, each run repeating from its row."""
+    from dask.distributed import LocalCluster
+
+    samples = [{RIGHT: 1.0 + i} for i in range(7)]
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                      dashboard_address=None) as cluster:
+        tables = [rows_of(s2sim.sweep(NXT, samples, duration=0.1, signals=["robots/nxt/x"],
+                                      scheduler=cluster.scheduler_address, runs_per_task=size))
+                  for size in (1, 3, None)]
+    assert [r[RIGHT] for r in tables[0]] == [1.0 + i for i in range(7)]
+    assert [r["seed"] for r in tables[0]] == list(range(1, 8))
+    assert tables[1] == tables[0] and tables[2] == tables[0]
+    assert len({r["robots/nxt/x"] for r in tables[0]}) == 7
+    again = run_one(NXT, {"seed": 7, RIGHT: 7.0}, s2sim.sweeps.final_signals(
+        ["robots/nxt/x"], 0.1))
+    assert again["robots/nxt/x"] == tables[2][6]["robots/nxt/x"]
 
 
 def where_and_how_far(sim, params):
