@@ -51,9 +51,9 @@ void rotate_with_root(Multibody::Impl& m, const SimTK::State& s, int a) {
   const SimTK::Rotation R_now(SimTK::Quaternion(q[0], q[1], q[2], q[3]));
   const SimTK::Rotation R_then(SimTK::Quaternion(then[0], then[1], then[2], then[3]));
   const SimTK::Rotation R = R_now * ~R_then;
-  double* column = m.minv_column[a].updContiguousScalarData();
+  double* column = m.minv_column.of(a);
   for (int part = 0; part < 2; ++part) {
-    const int i = r.u0 + 3 * part;
+    const int i = r.u0 + 3 * part - m.minv_column.u_begin[a];
     const SimTK::Vec3 v = R * SimTK::Vec3(column[i], column[i + 1], column[i + 2]);
     for (int k = 0; k < 3; ++k)
       column[i + k] = v[k];
@@ -81,7 +81,8 @@ void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector
       apply_axis_load(m, s, static_cast<std::size_t>(a), 1.0, m.unit_body_forces, m.unit_force);
       m.dynamics->loop_axis_column(m, s, a);
     }
-    m.axis_mobility[a] = axis_dot(m, static_cast<std::size_t>(a), m.minv_column[a]);
+    m.axis_mobility[a] =
+        axis_dot_column(m, static_cast<std::size_t>(a), static_cast<std::size_t>(a));
     m.column_valid[a] = 1;
     if (m.axis_root[a] >= 0) {
       const double* q =
@@ -108,6 +109,45 @@ double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x)
       sum += g[i] * x[i];
   }
   return sum;
+}
+
+double axis_dot_column(const Multibody::Impl& m, std::size_t a, std::size_t b) {
+  const AxisColumns& columns = m.minv_column;
+  if (!m.axes[a].loop) return m.axis_impl[a].sign * columns.at(b, m.axis_u[a]);
+  // g·column over the column's speeds: the terms elsewhere are exact zeros.
+  const double* pg = contiguous_data(m.loop_unit_force[a]) + columns.u_begin[b];
+  const double* pc = columns.of(b);
+  double sum = 0;
+  for (int i = 0, n = columns.size(b); i < n; ++i)
+    sum += pg[i] * pc[i];
+  return sum;
+}
+
+void keep_column(Multibody::Impl& m, std::size_t a, const double* solved, int u_begin, int u_end) {
+  AxisColumns& c = m.minv_column;
+  double* column = c.of(a);
+  for (int u = c.u_begin[a]; u < c.u_end[a]; ++u)
+    column[u - c.u_begin[a]] = u >= u_begin && u < u_end ? solved[u] : 0.0;
+}
+
+void allocate_axis_columns(Multibody::Impl& m) {
+  const std::size_t axes = m.axes.size();
+  AxisColumns& c = m.minv_column;
+  c.start.assign(axes, 0);
+  c.u_begin.assign(axes, 0);
+  c.u_end.assign(axes, 0);
+  std::size_t total = 0;
+  for (std::size_t a = 0; a < axes; ++a) {
+    const auto t = static_cast<std::size_t>(m.axis_tree[a]);
+    c.start[a] = total;
+    c.u_begin[a] = m.tree_u_begin[t];
+    c.u_end[a] = m.tree_u_end[t];
+    total += static_cast<std::size_t>(c.size(a));
+  }
+  c.values.assign(total, 0.0);
+  const int nu = m.initial_state.getNU();
+  m.column_scratch.assign(static_cast<std::size_t>(nu), 0.0);
+  m.column_scratch_vector.resize(nu);
 }
 
 bool turning_keeps_mass(const Multibody::Impl& m, SimTK::MobilizedBodyIndex i,

@@ -152,8 +152,6 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
     if (!kept) continue;
 
     // In its modes: each axis's forces from its laws at its new speed, and the speeds they give.
-    const int u_begin = m.tree_u_begin[static_cast<std::size_t>(tree)];
-    const int u_end = m.tree_u_end[static_cast<std::size_t>(tree)];
     for (int i = 0; i < n; ++i) {
       const auto a = static_cast<std::size_t>(axis[i]);
       const double rate = stuck[i] ? 0.0 : r[i];
@@ -166,7 +164,7 @@ bool solve_tree_in_modes(Multibody::Impl& m, SimTK::State& s, int tree, int begi
       m.axis_stuck[a] = stuck[i];
       m.friction_applied[a] = stuck[i] ? total[i] + x[i] - drives : friction[i];
       const double change = m.friction_applied[a] + drives - total[i];
-      if (change != 0.0) add_scaled(u, kick_s * change, m.minv_column[a], u_begin, u_end);
+      if (change != 0.0) add_column(u, kick_s * change, m.minv_column, a);
     }
     for (int i = 0; i < n; ++i)  // a stuck axis stands exactly still (no creep from rounding)
       if (stuck[i]) speeds[m.axis_u[static_cast<std::size_t>(axis[i])]] = 0.0;

@@ -56,10 +56,10 @@ class Dynamics {
   /// m.udot = M⁻¹·(f − c) under the substep's loads (add_applied_loads), constrained by the
   /// loops; the joint reactions too on the tick's last substep when they are read.
   virtual void accelerations(Multibody::Impl& m, bool last_substep) const = 0;
-  /// M⁻¹·g for a unit load on tree axis `a` into m.minv_column[a] (`s` at Position).
+  /// M⁻¹·g for a unit load on tree axis `a` into m.minv_column's column a (`s` at Position).
   virtual void tree_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const = 0;
   /// For loop axis `a`, whose unit load is m.unit_body_forces: its generalized force g = Jᵀ·F
-  /// into m.loop_unit_force[a], and M⁻¹·g into m.minv_column[a].
+  /// into m.loop_unit_force[a], and M⁻¹·g into m.minv_column's column a.
   virtual void loop_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const = 0;
   /// For unit forces along `directions` (two) at `point` (Ground) on mobilized body `body`:
   /// their generalized forces g_j = Jᵀ·F_j over the speeds [u_begin, u_end), which hold the

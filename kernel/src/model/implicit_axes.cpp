@@ -185,13 +185,15 @@ void build_tree_delassus(Multibody::Impl& m, int begin, int end) {
   double* W = m.tree_delassus.data();
   for (int q = 0; q < n; ++q) {
     const auto b = static_cast<std::size_t>(axis[q]);
-    const double* column = m.minv_column[b].getContiguousScalarData();
+    // (The tree's axes share its speeds, those of the column.)
+    const double* column = m.minv_column.of(b);
+    const int first = m.minv_column.u_begin[b];
     double* out = W + q;  // W's column q, row by row
     for (int p = 0; p < n; ++p, out += n) {
       const auto a = static_cast<std::size_t>(axis[p]);
-      // axis_dot(a, column), read raw for a tree axis: it is asked n² times.
-      *out = m.axes[a].loop ? axis_dot(m, a, m.minv_column[b])
-                            : m.axis_impl[a].sign * column[m.axis_u[a]];
+      // axis_dot_column(a, b), read raw for a tree axis: it is asked n² times.
+      *out = m.axes[a].loop ? axis_dot_column(m, a, b)
+                            : m.axis_impl[a].sign * column[m.axis_u[a] - first];
     }
   }
 }
@@ -259,8 +261,7 @@ void solve_tree_rows(Multibody::Impl& m, SimTK::Vector& u, std::size_t t, int ax
       change += f - row.applied;
       row.applied = f;
     }
-    if (change != 0.0)
-      add_scaled(u, kick_s * change, m.minv_column[a], m.tree_u_begin[t], m.tree_u_end[t]);
+    if (change != 0.0) add_column(u, kick_s * change, m.minv_column, a);
   }
 }
 
@@ -280,7 +281,7 @@ void sweep_tree(Multibody::Impl& m, SimTK::State& s, std::size_t tree, int begin
       if (!(w > 0)) continue;
       const double delta = solve_one_axis(m, a, axis_dot(m, axis, u), w, kick_s);
       if (delta == 0.0) continue;
-      add_scaled(u, kick_s * delta, m.minv_column[a], m.tree_u_begin[tree], m.tree_u_end[tree]);
+      add_column(u, kick_s * delta, m.minv_column, a);
       // A tree axis that sticks stands exactly still (no creep from rounding).
       if (m.friction_bound[a] > 0 && !m.axes[axis].loop && m.axis_stuck[axis])
         u.updContiguousScalarData()[m.axis_u[axis]] = 0.0;  // (a State's u is contiguous)
@@ -372,11 +373,15 @@ int couple_friction_to_drives(Multibody::Impl& m, const SimTK::Vector& u, int gr
       }
       common::cholesky_substitute(B, count, y, y);
       for (int l = 0; l < count; ++l) {
+        // Over the column's speeds within the point's range (the same speeds: its tree's).
         const auto a = static_cast<std::size_t>(axis[linear[l]]);
-        const double* column = m.minv_column[a].getContiguousScalarData() + u_begin;
+        const int from = std::max(u_begin, m.minv_column.u_begin[a]);
+        const int to = std::min(u_begin + span, m.minv_column.u_end[a]);
+        const double* column = m.minv_column.of(a) + (from - m.minv_column.u_begin[a]);
+        double* out = effective + (from - u_begin);
         const double k = kick_s * scale[l] * y[l];
-        for (int e = 0; e < span; ++e)
-          effective[e] -= k * column[e];
+        for (int e = 0; e < to - from; ++e)
+          out[e] -= k * column[e];
       }
     }
     const double* g = m.friction_g.data() + 2 * i * stride;

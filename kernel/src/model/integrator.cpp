@@ -23,6 +23,19 @@ void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, i
   }
 }
 
+void add_column(SimTK::Vector& v, double a, const AxisColumns& columns, std::size_t axis) {
+  const int begin = columns.u_begin[axis], n = columns.size(axis);
+  const double* px = columns.of(axis);
+  if (v.hasContiguousData()) {
+    double* pv = v.updContiguousScalarData() + begin;
+    for (int i = 0; i < n; ++i)
+      pv[i] += a * px[i];
+  } else {
+    for (int i = 0; i < n; ++i)
+      v[begin + i] += a * px[i];
+  }
+}
+
 /// q' = N(q)·u for Free mobilizers (q = quaternion of R_FM then p_FM, u = ω then v, both in
 /// F: q̇_quat = ½·(0, ω)⊗q, ṗ = v) and mobilizers whose q' = u (Pin, Slider, Universal).
 namespace {

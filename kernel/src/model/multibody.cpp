@@ -208,21 +208,22 @@ void for_each_column_number(M& m, F&& f) {
     f(v);
     valid = static_cast<char>(v != 0.0);
   }
-  for (auto* columns : {&m.minv_column, &m.loop_unit_force})
-    for (auto& column : *columns) {
-      // Through the data itself: an element access (and a size) per number is a call into
-      // SimTKcommon, which made a snapshot of 16 robots cost 25 µs (run_ahead.cpp takes one
-      // per stretch).
-      const int n = column.size();
-      if (n > 0 && column.hasContiguousData()) {
-        double* x = column.updContiguousScalarData();
-        for (int i = 0; i < n; ++i)
-          f(x[i]);
-      } else {
-        for (int i = 0; i < n; ++i)
-          f(column[i]);
-      }
+  for (auto& x : m.minv_column.values)
+    f(x);
+  for (auto& column : m.loop_unit_force) {
+    // Through the data itself: an element access (and a size) per number is a call into
+    // SimTKcommon, which made a snapshot of 16 robots cost 25 µs (run_ahead.cpp takes one
+    // per stretch).
+    const int n = column.size();
+    if (n > 0 && column.hasContiguousData()) {
+      double* x = column.updContiguousScalarData();
+      for (int i = 0; i < n; ++i)
+        f(x[i]);
+    } else {
+      for (int i = 0; i < n; ++i)
+        f(column[i]);
     }
+  }
   for (auto* values : {&m.columns_q, &m.column_root_quat, &m.axis_mobility})
     for (auto& x : *values)
       f(x);

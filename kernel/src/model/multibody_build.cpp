@@ -370,7 +370,6 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
   m.unit_force.resize(m.initial_state.getNU());
   m.unit_speed.assign(static_cast<std::size_t>(m.initial_state.getNU()), 0.0);
   m.columns_q.assign(static_cast<std::size_t>(m.initial_state.getNQ()), 0.0);
-  m.minv_column.assign(m.axes.size(), SimTK::Vector(m.initial_state.getNU(), 0.0));
   m.loop_unit_force.assign(m.axes.size(), SimTK::Vector());
   for (std::size_t a = 0; a < m.axes.size(); ++a)
     if (m.axes[a].loop) m.loop_unit_force[a].resize(m.initial_state.getNU());
@@ -403,6 +402,7 @@ void prepare_stepping(Multibody::Impl& m, std::size_t drive_slots) {
     m.axis_q[a] = mob.getFirstQIndex(m.initial_state) + m.axis_impl[a].coordinate;
   }
   find_axis_trees(m);
+  allocate_axis_columns(m);
   find_friction_ranges(m);
   m.qdot.resize(m.initial_state.getNQ());
   m.reactions_at_M.resize(m.matter.getNumBodies());

@@ -91,6 +91,25 @@ struct AxisImpl {
   SimTK::Vec3 anchor_in_body1;    // slider force application point
 };
 
+/// The axes' M⁻¹ columns, each kept over its axis tree's speeds only (axis_trees.cpp): a
+/// column is exactly zero in every other tree (M is block diagonal over them), so a scene's
+/// columns grow with its robots, not with their square. Axis a's number for speed u is
+/// of(a)[u − u_begin[a]], for u in [u_begin[a], u_end[a]).
+struct AxisColumns {
+  std::vector<double> values;
+  std::vector<std::size_t> start;   // per axis: its first number in values
+  std::vector<int> u_begin, u_end;  // per axis: its speeds
+  double* of(std::size_t a) { return values.data() + start[a]; }
+  const double* of(std::size_t a) const { return values.data() + start[a]; }
+  int size(std::size_t a) const { return u_end[a] - u_begin[a]; }
+  /// Axis a's number for speed u: zero outside its speeds.
+  double at(std::size_t a, int u) const {
+    return u >= u_begin[a] && u < u_end[a]
+               ? values[start[a] + static_cast<std::size_t>(u - u_begin[a])]
+               : 0.0;
+  }
+};
+
 /// Multibody's data in three groups: the model (built at load, then only read), the state (what
 /// a snapshot holds: every member of that group is reached by one of the segments that
 /// Multibody::declare_state registers, multibody.cpp) and the scratch (preallocated buffers,
@@ -209,8 +228,10 @@ struct Multibody::Impl {
   // implicit axis solve (axis_columns.cpp). A column is reused while the configuration stays
   // within 1e-7 of the one it was computed at (a robot at rest): M depends on q only.
   std::vector<char> column_valid;
-  std::vector<SimTK::Vector> minv_column;
+  AxisColumns minv_column;
   std::vector<SimTK::Vector> loop_unit_force;  // g of the loop axes (empty for tree axes)
+  std::vector<double> column_scratch;          // a column over every speed, being solved
+  SimTK::Vector column_scratch_vector;         // the same for Simbody's operators
   std::vector<double> columns_q;               // the q the valid columns were computed at
   std::vector<double> column_root_quat;        // per axis: its root's orientation for its column
   std::vector<double> axis_mobility;  // per axis, its (M^-1)_aa at its last solve (0: none)
@@ -354,6 +375,13 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x);
 /// v[i] += a·x[i] for i in [begin, end): a column over its tree's speeds.
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end);
+/// v += a·(axis a's M⁻¹ column) over the column's speeds.
+void add_column(SimTK::Vector& v, double a, const AxisColumns& columns, std::size_t axis);
+/// Axis a's column from `solved`, a column over every speed whose numbers for speeds
+/// [u_begin, u_end) were just written (the column's other speeds are zero).
+void keep_column(Multibody::Impl& m, std::size_t a, const double* solved, int u_begin, int u_end);
+/// The axes' columns sized by their axis trees, zero; after find_axis_trees.
+void allocate_axis_columns(Multibody::Impl& m);
 /// Partitions the axes into independent trees (axis_trees.cpp); after axis_u is known.
 void find_axis_trees(Multibody::Impl& m);
 /// Orders this substep's solve_list by tree (solve_order, tree_solve_start), stably.
@@ -402,12 +430,14 @@ void classify_sliding(Multibody::Impl& m, const SimTK::State& s, double h);
 /// The regularisation speed of a loop axis's Coulomb friction (a force, not a brake).
 double loop_friction_speed();
 
-/// M^-1 columns (axis_columns.cpp): makes minv_column[a] current for every axis in `axes`;
+/// M^-1 columns (axis_columns.cpp): makes minv_column's column a current for every axis in `axes`;
 /// `state` realized to Position.
 void update_columns(Multibody::Impl& m, const SimTK::State& s, const std::vector<int>& axes);
 /// g·x for axis a: the axis's rate for generalized speeds x, or its share of a generalized
 /// force x.
 double axis_dot(const Multibody::Impl& m, std::size_t a, const SimTK::Vector& x);
+/// axis_dot for axis `b`'s M⁻¹ column: (M⁻¹)_ab for a tree axis a.
+double axis_dot_column(const Multibody::Impl& m, std::size_t a, std::size_t b);
 /// Marks the coordinates M does not depend on (a root's translation, a symmetric wheel's
 /// angle): columns stay valid while only those change. After the initial state is built.
 void find_mass_matrix_coordinates(Multibody::Impl& m);

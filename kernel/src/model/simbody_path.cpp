@@ -68,13 +68,17 @@ class SimbodyPath final : public Dynamics {
   void tree_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const override {
     m.unit_force = 0.0;
     m.unit_force[m.axis_u[a]] = m.axis_impl[a].sign;
-    m.matter.multiplyByMInv(s, m.unit_force, m.minv_column[a]);
+    m.matter.multiplyByMInv(s, m.unit_force, m.column_scratch_vector);
+    keep_column(m, static_cast<std::size_t>(a), contiguous_data(m.column_scratch_vector), 0,
+                m.column_scratch_vector.size());
   }
 
   void loop_axis_column(Multibody::Impl& m, const SimTK::State& s, int a) const override {
     SimTK::Vector& g = m.loop_unit_force[a];
     m.matter.multiplyBySystemJacobianTranspose(s, m.unit_body_forces, g);
-    m.matter.multiplyByMInv(s, g, m.minv_column[a]);
+    m.matter.multiplyByMInv(s, g, m.column_scratch_vector);
+    keep_column(m, static_cast<std::size_t>(a), contiguous_data(m.column_scratch_vector), 0,
+                m.column_scratch_vector.size());
   }
 
   void point_forces(Multibody::Impl& m, const SimTK::State& s, SimTK::MobilizedBodyIndex body,

@@ -126,21 +126,23 @@ class TreePath final : public Dynamics {
 
   void tree_axis_column(Multibody::Impl& m, const SimTK::State&, int a) const override {
     // g: a unit load along the axis; M factored by this substep's accelerations, at this q.
-    // Solved in the axis's own tree alone: the column is zero in every other tree (from its
-    // allocation; nothing writes there), and a solve over every tree, once per axis, grew
-    // with the square of the robot count.
+    // Solved in the axis's own tree alone: the column is zero in every other tree, and a
+    // solve over every tree, once per axis, grew with the square of the robot count.
     double& g = m.unit_speed[static_cast<std::size_t>(m.axis_u[a])];
     g = m.axis_impl[a].sign;
     int u_begin = 0, u_end = 0;
     m.tree->solve_tree_of(static_cast<int>(m.axis_impl[a].mobod), m.unit_speed.data(),
-                          m.minv_column[a].updContiguousScalarData(), u_begin, u_end);
+                          m.column_scratch.data(), u_begin, u_end);
     g = 0.0;
+    keep_column(m, static_cast<std::size_t>(a), m.column_scratch.data(), u_begin, u_end);
   }
 
   void loop_axis_column(Multibody::Impl& m, const SimTK::State&, int a) const override {
     SimTK::Vector& g = m.loop_unit_force[a];
     m.tree->generalized_forces(&m.unit_body_forces[0][0][0], g.updContiguousScalarData());
-    m.tree->solve(g.getContiguousScalarData(), m.minv_column[a].updContiguousScalarData());
+    m.tree->solve(g.getContiguousScalarData(), m.column_scratch.data());
+    keep_column(m, static_cast<std::size_t>(a), m.column_scratch.data(), 0,
+                static_cast<int>(m.column_scratch.size()));
   }
 
   void point_forces(Multibody::Impl& m, const SimTK::State&, SimTK::MobilizedBodyIndex body,

@@ -138,3 +138,26 @@ TEST(StateAccess, ResetWithASeedKeepsItAndRepeats) {
 
 }  // namespace
 }  // namespace s2sim
+
+namespace s2sim {
+namespace {
+
+// The M⁻¹ column cache holds each axis's column over its own robot's speeds: 4 and 16 robots
+// keep 4 and 16 times one robot's numbers (over every speed of the scene, 16 robots kept 64
+// times as many as 4 robots' quarter would).
+TEST(StateAccess, TheColumnCacheGrowsWithTheRobotsNotTheirSquare) {
+  const fs::path robots4 = fs::path(S2SIM_SOURCE_DIR) / "bench/peers/scenes/robots_4";
+  std::size_t size[2] = {};
+  int i = 0;
+  for (const fs::path& scene : {robots4, kRobots16}) {
+    auto sim = load(scene);
+    sim->step(0.01);  // the columns in use
+    const auto snapshot = sim->save();
+    size[i++] = snapshot.find("multibody/columns").size;
+  }
+  ASSERT_GT(size[0], 0u);
+  EXPECT_EQ(size[1], 4 * size[0]) << "4 robots: " << size[0] << ", 16 robots: " << size[1];
+}
+
+}  // namespace
+}  // namespace s2sim
