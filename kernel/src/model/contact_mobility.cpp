@@ -9,17 +9,24 @@ namespace s2sim::model {
 LoadResponse::LoadResponse(const Multibody::Impl& m)
     : m_(m), load_(m.matter.getNumBodies()), accel_(m.matter.getNumBodies()) {}
 
-std::pair<SimTK::Vec3, SimTK::Vec3> LoadResponse::at_com(const SimTK::State& s,
-                                                         const SimTK::MobilizedBody& body,
-                                                         const SimTK::Vec3& com_G,
-                                                         const SimTK::Vec3& torque,
-                                                         const SimTK::Vec3& force) {
+void LoadResponse::clear() {
   load_.setToZero();
+}
+
+void LoadResponse::add(const SimTK::MobilizedBody& body, const SimTK::Vec3& com_G,
+                       const SimTK::Vec3& torque, const SimTK::Vec3& force) {
   load_[body.getMobilizedBodyIndex()] =
       SimTK::SpatialVec(torque + SimTK::cross(com_G, force), force);  // about the body origin
+}
+
+void LoadResponse::solve(const SimTK::State& s) {
   m_.matter.multiplyBySystemJacobianTranspose(s, load_, f_);
   m_.matter.multiplyByMInv(s, f_, udot_);
   m_.matter.multiplyBySystemJacobian(s, udot_, accel_);
+}
+
+std::pair<SimTK::Vec3, SimTK::Vec3> LoadResponse::at_com(const SimTK::MobilizedBody& body,
+                                                         const SimTK::Vec3& com_G) const {
   const SimTK::SpatialVec& A = accel_[body.getMobilizedBodyIndex()];
   return {A[0], A[1] + SimTK::cross(A[0], com_G)};
 }
@@ -33,35 +40,51 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
     if (m.mobod_of_body[b].isValid()) kernel_of_mobod[m.mobod_of_body[b]] = static_cast<int>(b);
   LoadResponse response(m);
-  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-    if (!m.mobod_of_body[b].isValid()) continue;  // loose
-    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
-    const auto& base = mob.getBaseMobilizedBody();
-    const int root = kernel_of_mobod[base.getMobilizedBodyIndex()];
-    // Only trees whose base is free: a base jointed to the world answers some pushes not at
-    // all (an infinite effective mass); those keep the apparent mass and their own inertia.
-    if (root <= 0 || base.getNumU(s) != 6) continue;
-    const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
-    const SimTK::Rotation& R = base.getBodyRotation(s);  // root axes -> ground
-    Mobility& out_b = out[b];
-    out_b.root = root;
-    bool finite = true;
+  auto mob = [&](std::size_t b) -> const SimTK::MobilizedBody& {
+    return m.matter.getMobilizedBody(m.mobod_of_body[b]);
+  };
+  auto com_of = [&](std::size_t b) {
+    return mob(b).getBodyRotation(s) * mob(b).getBodyMassProperties(s).getMassCenter();
+  };
+  // Only trees whose base is free: a base jointed to the world answers some pushes not at
+  // all (an infinite effective mass); those keep the apparent mass and their own inertia.
+  const auto rounds = response.rounds([&](std::size_t b) {
+    const auto& base = mob(b).getBaseMobilizedBody();
+    return kernel_of_mobod[base.getMobilizedBodyIndex()] > 0 && base.getNumU(s) == 6;
+  });
+  for (const auto& bodies : rounds) {
     for (int column = 0; column < 6; ++column) {
       // A unit torque (columns 0-2) or a unit force at the COM (3-5), along a root axis.
       SimTK::Vec3 unit(0);
       unit[column % 3] = 1;
-      const SimTK::Vec3 along = R * unit, zero(0);
-      const auto [alpha, a_com] =
-          response.at_com(s, mob, com_G, column < 3 ? along : zero, column < 3 ? zero : along);
-      const SimTK::Vec3 angular = ~R * alpha;
-      const SimTK::Vec3 linear = ~R * a_com;
-      for (int row = 0; row < 3; ++row) {
-        out_b.phi[row][column] = angular[row];
-        out_b.phi[row + 3][column] = linear[row];
-        finite = finite && std::isfinite(angular[row]) && std::isfinite(linear[row]);
+      const SimTK::Vec3 zero(0);
+      response.clear();
+      for (std::size_t b : bodies) {
+        const SimTK::Vec3 along = mob(b).getBaseMobilizedBody().getBodyRotation(s) * unit;
+        response.add(mob(b), com_of(b), column < 3 ? along : zero, column < 3 ? zero : along);
+      }
+      response.solve(s);
+      for (std::size_t b : bodies) {
+        const SimTK::Rotation& R = mob(b).getBaseMobilizedBody().getBodyRotation(s);
+        const auto [alpha, a_com] = response.at_com(mob(b), com_of(b));
+        const SimTK::Vec3 angular = ~R * alpha;
+        const SimTK::Vec3 linear = ~R * a_com;
+        Mobility& out_b = out[b];
+        for (int row = 0; row < 3; ++row) {
+          out_b.phi[row][column] = angular[row];
+          out_b.phi[row + 3][column] = linear[row];
+        }
       }
     }
-    if (!finite) out_b = Mobility{};
+    for (std::size_t b : bodies) {
+      Mobility& out_b = out[b];
+      out_b.root = kernel_of_mobod[mob(b).getBaseMobilizedBody().getMobilizedBodyIndex()];
+      bool finite = true;
+      for (const auto& row : out_b.phi)
+        for (double x : row)
+          finite = finite && std::isfinite(x);
+      if (!finite) out_b = Mobility{};
+    }
   }
   return out;
 }

@@ -82,22 +82,30 @@ std::vector<double> Multibody::apparent_mass_kg() const {
   const SimTK::State& s = m.initial_state;
   m.system.realize(s, SimTK::Stage::Position);
   std::vector<double> out(m.mobod_of_body.size(), 0.0);
+  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
+    if (!m.mobod_of_body[b].isValid()) out[b] = m.loose.mass_kg(static_cast<int>(b));  // its own
   LoadResponse response(m);
-  for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b) {
-    if (!m.mobod_of_body[b].isValid()) {  // a loose body: its own mass
-      out[b] = m.loose.mass_kg(static_cast<int>(b));
-      continue;
-    }
-    const auto& mob = m.matter.getMobilizedBody(m.mobod_of_body[b]);
-    const SimTK::Vec3 com_G = mob.getBodyRotation(s) * mob.getBodyMassProperties(s).getMassCenter();
-    double smallest = SimTK::Infinity;
+  auto mob = [&](std::size_t b) -> const SimTK::MobilizedBody& {
+    return m.matter.getMobilizedBody(m.mobod_of_body[b]);
+  };
+  auto com_of = [&](std::size_t b) {
+    return mob(b).getBodyRotation(s) * mob(b).getBodyMassProperties(s).getMassCenter();
+  };
+  for (const auto& bodies : response.rounds([](std::size_t) { return true; })) {
+    for (std::size_t b : bodies)
+      out[b] = SimTK::Infinity;
     for (int axis = 0; axis < 3; ++axis) {
       SimTK::Vec3 force(0);
       force[axis] = 1;
-      const double a = response.at_com(s, mob, com_G, SimTK::Vec3(0), force).second[axis];
-      if (a > 1e-12) smallest = std::min(smallest, 1 / a);
+      response.clear();
+      for (std::size_t b : bodies)
+        response.add(mob(b), com_of(b), SimTK::Vec3(0), force);
+      response.solve(s);
+      for (std::size_t b : bodies) {
+        const double a = response.at_com(mob(b), com_of(b)).second[axis];
+        if (a > 1e-12) out[b] = std::min(out[b], 1 / a);
+      }
     }
-    out[b] = smallest;
   }
   return out;
 }

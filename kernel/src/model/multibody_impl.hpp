@@ -521,23 +521,50 @@ void compute_tree_joint_reactions(Multibody::Impl& m);
 /// The reactions carried with body1 to its pose at the step's end.
 void carry_joint_reactions(Multibody::Impl& m, const Pose* poses);
 
-/// How one body answers a wrench at its centre of mass with every joint free, from rest in a
-/// state realized to Position: J M⁻¹ Jᵀ on one load (apparent_mass_kg, contact_mobility; at
-/// load only, its buffers are its own). Defined in contact_mobility.cpp.
+/// How bodies answer a wrench at their centre of mass with every joint free, from rest in a
+/// state realized to Position: J M⁻¹ Jᵀ on the loads (apparent_mass_kg, contact_mobility; at
+/// load only, its buffers are its own). Bodies of different trees (hanging from Ground) are
+/// loaded at once: a tree answers its own loads only, with the same numbers as alone, so a
+/// scene of n robots costs as much as its largest robot, n times over, not n² times. Defined
+/// in contact_mobility.cpp.
 class LoadResponse {
  public:
   explicit LoadResponse(const Multibody::Impl& m);
-  /// `torque` and `force` (ground axes) at the COM `com_G` (from the body origin, ground axes):
-  /// the body's angular acceleration and its COM's acceleration, ground axes.
-  std::pair<SimTK::Vec3, SimTK::Vec3> at_com(const SimTK::State& s,
-                                             const SimTK::MobilizedBody& body,
-                                             const SimTK::Vec3& com_G, const SimTK::Vec3& torque,
-                                             const SimTK::Vec3& force);
+  /// The jointed bodies `wanted(b)` takes (kernel bodies), in rounds of at most one per tree:
+  /// round r holds each tree's r-th such body, in body order.
+  template <class Wanted>
+  std::vector<std::vector<std::size_t>> rounds(Wanted&& wanted) const;
+  /// No load.
+  void clear();
+  /// Adds `torque` and `force` (ground axes) at the COM `com_G` (from the body origin, ground
+  /// axes) of `body`, the only loaded body of its tree.
+  void add(const SimTK::MobilizedBody& body, const SimTK::Vec3& com_G, const SimTK::Vec3& torque,
+           const SimTK::Vec3& force);
+  /// The accelerations the loads give.
+  void solve(const SimTK::State& s);
+  /// After solve(): `body`'s angular acceleration and its COM's acceleration, ground axes.
+  std::pair<SimTK::Vec3, SimTK::Vec3> at_com(const SimTK::MobilizedBody& body,
+                                             const SimTK::Vec3& com_G) const;
 
  private:
   const Multibody::Impl& m_;
   SimTK::Vector_<SimTK::SpatialVec> load_, accel_;
   SimTK::Vector f_, udot_;
 };
+
+template <class Wanted>
+std::vector<std::vector<std::size_t>> LoadResponse::rounds(Wanted&& wanted) const {
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<std::size_t> taken(static_cast<std::size_t>(m_.matter.getNumBodies()), 0);
+  for (std::size_t b = 1; b < m_.mobod_of_body.size(); ++b) {
+    if (!m_.mobod_of_body[b].isValid() || !wanted(b)) continue;
+    const auto& mob = m_.matter.getMobilizedBody(m_.mobod_of_body[b]);
+    const auto tree = static_cast<std::size_t>(mob.getBaseMobilizedBody().getMobilizedBodyIndex());
+    const std::size_t r = taken[tree]++;
+    if (r == out.size()) out.emplace_back();
+    out[r].push_back(b);
+  }
+  return out;
+}
 
 }  // namespace s2sim::model

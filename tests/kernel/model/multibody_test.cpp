@@ -380,3 +380,49 @@ TEST(ContactMobility, AWheelHingedToAFreeChassisAnswersAsTheTreeItDrags) {
 
 }  // namespace
 }  // namespace s2sim::model
+
+namespace s2sim::model {
+namespace {
+
+// contact_mobility and apparent_mass_kg load one body of every tree at once: each tree answers
+// its own loads only, so two carts side by side (one heavier, turned, farther) give each cart's
+// numbers exactly as the cart alone gives them.
+TEST(ContactMobility, TreesLoadedTogetherAnswerBitForBitAsAlone) {
+  auto cart = [](scene::Scene& s, const std::string& id, double mass_kg, Vec3 centre, Vec3 axle) {
+    const int first = static_cast<int>(s.bodies.size());
+    s.bodies.push_back(test::box(id + "_chassis", mass_kg, {0.2, 0.3, 0.1}, centre));
+    s.bodies.push_back(test::box(id + "_wheel", 0.1, {0.1, 0.02, 0.1}, centre + Vec3{0.05, 0, 0}));
+    s.joints.push_back(test::joint(id + "_axle", JointType::hinge, first + 1, first,
+                                   centre + Vec3{0.05, 0, 0}, axle));
+  };
+  scene::Scene both, first_alone, second_alone;
+  cart(both, "a", 1.0, {0, 0, 0.5}, {0, 1, 0});
+  cart(both, "b", 3.0, {2, 1, 0.5}, {1, 1, 0});
+  cart(first_alone, "a", 1.0, {0, 0, 0.5}, {0, 1, 0});
+  cart(second_alone, "b", 3.0, {2, 1, 0.5}, {1, 1, 0});
+  for (scene::Scene* s : {&both, &first_alone, &second_alone})
+    test::add_robot(*s, "carts");
+  Runner together(both), a(first_alone), b(second_alone);
+  const auto mobility = together.mb.contact_mobility();
+  const auto mass = together.mb.apparent_mass_kg();
+  ASSERT_EQ(mobility.size(), 5u);
+  const std::vector<Multibody::Mobility> alone[2] = {a.mb.contact_mobility(),
+                                                     b.mb.contact_mobility()};
+  const std::vector<double> alone_mass[2] = {a.mb.apparent_mass_kg(), b.mb.apparent_mass_kg()};
+  for (int cart_index = 0; cart_index < 2; ++cart_index)
+    for (int body = 1; body <= 2; ++body) {
+      const auto& together_phi = mobility[static_cast<std::size_t>(2 * cart_index + body)];
+      const auto& alone_phi = alone[cart_index][static_cast<std::size_t>(body)];
+      EXPECT_EQ(together_phi.root, alone_phi.root + 2 * cart_index);
+      for (int i = 0; i < 6; ++i)
+        for (int j = 0; j < 6; ++j)
+          EXPECT_EQ(together_phi.phi[i][j], alone_phi.phi[i][j])
+              << "cart " << cart_index << " body " << body << " (" << i << ", " << j << ")";
+      EXPECT_EQ(mass[static_cast<std::size_t>(2 * cart_index + body)],
+                alone_mass[cart_index][static_cast<std::size_t>(body)]);
+    }
+  EXPECT_NE(mobility[1].phi[3][3], mobility[3].phi[3][3]) << "the carts differ";
+}
+
+}  // namespace
+}  // namespace s2sim::model
