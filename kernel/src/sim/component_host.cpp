@@ -94,7 +94,14 @@ class ConfigureContextImpl final : public ConfigureContext {
 
   AxisHandle axis(std::string_view name) override {
     const std::string n(name);
-    std::vector<std::string> names;
+    if (n.find('/') != std::string::npos) {
+      const auto found = sim_.axis_of_path.find(n);
+      if (found != sim_.axis_of_path.end()) {
+        slot().footprint.axes.push_back(found->second);
+        return AxisHandle{found->second};
+      }
+    }
+    std::vector<std::string> names;  // the own robot's axes, or every path: for the error
     for (std::size_t a = 0; a < sim_.axis_views.size(); ++a) {
       const auto& ax = sim_.axis_views[a];
       if (n.find('/') == std::string::npos) {

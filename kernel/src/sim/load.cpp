@@ -58,6 +58,8 @@ std::unique_ptr<Simulation> Simulation::load(const std::filesystem::path& scene_
   m.shapes = std::make_unique<collision::ShapeTable>(m.scene);
   for (const auto& ax : m.topology.axes)
     m.axis_views.push_back({ax.name, ax.robot, ax.joint, ax.linear});
+  for (std::size_t a = 0; a < m.axis_views.size(); ++a)  // the first of a repeated path
+    m.axis_of_path.emplace(m.axis_prefix(static_cast<int>(a)), static_cast<int>(a));
   m.poses.resize(m.scene.bodies.size() + 1);  // body 0 is the world
   m.twists.resize(m.poses.size());
   m.axis_position.assign(m.axis_views.size(), 0.0);

@@ -123,6 +123,9 @@ struct Simulation::Impl {
   std::unique_ptr<collision::ShapeTable> shapes;
   std::unique_ptr<contact::ContactWorld> contacts;
   std::vector<AxisView> axis_views;
+  /// Each axis's full path (axis_prefix) to its index: components look their axes up by name,
+  /// and a search that built every path per lookup grew with the square of the robot count.
+  std::unordered_map<std::string, int> axis_of_path;
 
   // Per-tick buffers the components see through detail::WorldView.
   std::vector<Pose> poses;
