@@ -13,10 +13,10 @@ void LoadResponse::clear() {
   load_.setToZero();
 }
 
-void LoadResponse::add(const SimTK::MobilizedBody& body, const SimTK::Vec3& com_G,
-                       const SimTK::Vec3& torque, const SimTK::Vec3& force) {
-  load_[body.getMobilizedBodyIndex()] =
-      SimTK::SpatialVec(torque + SimTK::cross(com_G, force), force);  // about the body origin
+void LoadResponse::add(const SimTK::State& s, std::size_t b, const SimTK::Vec3& torque,
+                       const SimTK::Vec3& force) {
+  load_[mobod(b).getMobilizedBodyIndex()] =
+      SimTK::SpatialVec(torque + SimTK::cross(com_G(s, b), force), force);  // about the origin
 }
 
 void LoadResponse::solve(const SimTK::State& s) {
@@ -25,10 +25,10 @@ void LoadResponse::solve(const SimTK::State& s) {
   m_.matter.multiplyBySystemJacobian(s, udot_, accel_);
 }
 
-std::pair<SimTK::Vec3, SimTK::Vec3> LoadResponse::at_com(const SimTK::MobilizedBody& body,
-                                                         const SimTK::Vec3& com_G) const {
-  const SimTK::SpatialVec& A = accel_[body.getMobilizedBodyIndex()];
-  return {A[0], A[1] + SimTK::cross(A[0], com_G)};
+std::pair<SimTK::Vec3, SimTK::Vec3> LoadResponse::at_com(const SimTK::State& s,
+                                                         std::size_t b) const {
+  const SimTK::SpatialVec& A = accel_[mobod(b).getMobilizedBodyIndex()];
+  return {A[0], A[1] + SimTK::cross(A[0], com_G(s, b))};
 }
 
 std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
@@ -40,17 +40,13 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
     if (m.mobod_of_body[b].isValid()) kernel_of_mobod[m.mobod_of_body[b]] = static_cast<int>(b);
   LoadResponse response(m);
-  auto mob = [&](std::size_t b) -> const SimTK::MobilizedBody& {
-    return m.matter.getMobilizedBody(m.mobod_of_body[b]);
-  };
-  auto com_of = [&](std::size_t b) {
-    return mob(b).getBodyRotation(s) * mob(b).getBodyMassProperties(s).getMassCenter();
+  auto base = [&](std::size_t b) -> const SimTK::MobilizedBody& {
+    return response.mobod(b).getBaseMobilizedBody();
   };
   // Only trees whose base is free: a base jointed to the world answers some pushes not at
   // all (an infinite effective mass); those keep the apparent mass and their own inertia.
   const auto rounds = response.rounds([&](std::size_t b) {
-    const auto& base = mob(b).getBaseMobilizedBody();
-    return kernel_of_mobod[base.getMobilizedBodyIndex()] > 0 && base.getNumU(s) == 6;
+    return kernel_of_mobod[base(b).getMobilizedBodyIndex()] > 0 && base(b).getNumU(s) == 6;
   });
   for (const auto& bodies : rounds) {
     for (int column = 0; column < 6; ++column) {
@@ -60,13 +56,13 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
       const SimTK::Vec3 zero(0);
       response.clear();
       for (std::size_t b : bodies) {
-        const SimTK::Vec3 along = mob(b).getBaseMobilizedBody().getBodyRotation(s) * unit;
-        response.add(mob(b), com_of(b), column < 3 ? along : zero, column < 3 ? zero : along);
+        const SimTK::Vec3 along = base(b).getBodyRotation(s) * unit;
+        response.add(s, b, column < 3 ? along : zero, column < 3 ? zero : along);
       }
       response.solve(s);
       for (std::size_t b : bodies) {
-        const SimTK::Rotation& R = mob(b).getBaseMobilizedBody().getBodyRotation(s);
-        const auto [alpha, a_com] = response.at_com(mob(b), com_of(b));
+        const SimTK::Rotation& R = base(b).getBodyRotation(s);  // root axes -> ground
+        const auto [alpha, a_com] = response.at_com(s, b);
         const SimTK::Vec3 angular = ~R * alpha;
         const SimTK::Vec3 linear = ~R * a_com;
         Mobility& out_b = out[b];
@@ -78,7 +74,7 @@ std::vector<Multibody::Mobility> Multibody::contact_mobility() const {
     }
     for (std::size_t b : bodies) {
       Mobility& out_b = out[b];
-      out_b.root = kernel_of_mobod[mob(b).getBaseMobilizedBody().getMobilizedBodyIndex()];
+      out_b.root = kernel_of_mobod[base(b).getMobilizedBodyIndex()];
       bool finite = true;
       for (const auto& row : out_b.phi)
         for (double x : row)

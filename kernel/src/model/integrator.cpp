@@ -8,17 +8,14 @@
 namespace s2sim::model {
 
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x) {
-  add_scaled(v, a, x, 0, v.size());
-}
-
-void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end) {
+  const int n = v.size();
   if (v.hasContiguousData() && x.hasContiguousData()) {
     double* pv = v.updContiguousScalarData();
     const double* px = x.getContiguousScalarData();
-    for (int i = begin; i < end; ++i)
+    for (int i = 0; i < n; ++i)
       pv[i] += a * px[i];
   } else {
-    for (int i = begin; i < end; ++i)
+    for (int i = 0; i < n; ++i)
       v[i] += a * x[i];
   }
 }

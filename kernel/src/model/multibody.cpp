@@ -85,12 +85,6 @@ std::vector<double> Multibody::apparent_mass_kg() const {
   for (std::size_t b = 1; b < m.mobod_of_body.size(); ++b)
     if (!m.mobod_of_body[b].isValid()) out[b] = m.loose.mass_kg(static_cast<int>(b));  // its own
   LoadResponse response(m);
-  auto mob = [&](std::size_t b) -> const SimTK::MobilizedBody& {
-    return m.matter.getMobilizedBody(m.mobod_of_body[b]);
-  };
-  auto com_of = [&](std::size_t b) {
-    return mob(b).getBodyRotation(s) * mob(b).getBodyMassProperties(s).getMassCenter();
-  };
   for (const auto& bodies : response.rounds([](std::size_t) { return true; })) {
     for (std::size_t b : bodies)
       out[b] = SimTK::Infinity;
@@ -99,10 +93,10 @@ std::vector<double> Multibody::apparent_mass_kg() const {
       force[axis] = 1;
       response.clear();
       for (std::size_t b : bodies)
-        response.add(mob(b), com_of(b), SimTK::Vec3(0), force);
+        response.add(s, b, SimTK::Vec3(0), force);
       response.solve(s);
       for (std::size_t b : bodies) {
-        const double a = response.at_com(mob(b), com_of(b)).second[axis];
+        const double a = response.at_com(s, b).second[axis];
         if (a > 1e-12) out[b] = std::min(out[b], 1 / a);
       }
     }

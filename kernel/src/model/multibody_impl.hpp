@@ -373,8 +373,6 @@ void read_bodies(const Multibody::Impl& m, const SimTK::State& s, Pose* poses, T
 /// v += a·x, through raw storage where it is contiguous (element access goes through a
 /// non-inline helper, and Vector expressions allocate).
 void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x);
-/// v[i] += a·x[i] for i in [begin, end): a column over its tree's speeds.
-void add_scaled(SimTK::Vector& v, double a, const SimTK::Vector& x, int begin, int end);
 /// v += a·(axis a's M⁻¹ column) over the column's speeds.
 void add_column(SimTK::Vector& v, double a, const AxisColumns& columns, std::size_t axis);
 /// Axis a's column from `solved`, a column over every speed whose numbers for speeds
@@ -534,22 +532,30 @@ class LoadResponse {
   /// round r holds each tree's r-th such body, in body order.
   template <class Wanted>
   std::vector<std::vector<std::size_t>> rounds(Wanted&& wanted) const;
+  /// Kernel body b's mobilized body.
+  const SimTK::MobilizedBody& mobod(std::size_t b) const {
+    return m_.matter.getMobilizedBody(m_.mobod_of_body[b]);
+  }
   /// No load.
   void clear();
-  /// Adds `torque` and `force` (ground axes) at the COM `com_G` (from the body origin, ground
-  /// axes) of `body`, the only loaded body of its tree.
-  void add(const SimTK::MobilizedBody& body, const SimTK::Vec3& com_G, const SimTK::Vec3& torque,
+  /// Adds `torque` and `force` (ground axes) at the COM of kernel body `b`, the only loaded
+  /// body of its tree.
+  void add(const SimTK::State& s, std::size_t b, const SimTK::Vec3& torque,
            const SimTK::Vec3& force);
   /// The accelerations the loads give.
   void solve(const SimTK::State& s);
-  /// After solve(): `body`'s angular acceleration and its COM's acceleration, ground axes.
-  std::pair<SimTK::Vec3, SimTK::Vec3> at_com(const SimTK::MobilizedBody& body,
-                                             const SimTK::Vec3& com_G) const;
+  /// After solve(): body b's angular acceleration and its COM's acceleration, ground axes.
+  std::pair<SimTK::Vec3, SimTK::Vec3> at_com(const SimTK::State& s, std::size_t b) const;
 
  private:
   const Multibody::Impl& m_;
   SimTK::Vector_<SimTK::SpatialVec> load_, accel_;
   SimTK::Vector f_, udot_;
+
+  /// Body b's COM from its origin, ground axes.
+  SimTK::Vec3 com_G(const SimTK::State& s, std::size_t b) const {
+    return mobod(b).getBodyRotation(s) * mobod(b).getBodyMassProperties(s).getMassCenter();
+  }
 };
 
 template <class Wanted>
@@ -558,8 +564,8 @@ std::vector<std::vector<std::size_t>> LoadResponse::rounds(Wanted&& wanted) cons
   std::vector<std::size_t> taken(static_cast<std::size_t>(m_.matter.getNumBodies()), 0);
   for (std::size_t b = 1; b < m_.mobod_of_body.size(); ++b) {
     if (!m_.mobod_of_body[b].isValid() || !wanted(b)) continue;
-    const auto& mob = m_.matter.getMobilizedBody(m_.mobod_of_body[b]);
-    const auto tree = static_cast<std::size_t>(mob.getBaseMobilizedBody().getMobilizedBodyIndex());
+    const auto tree =
+        static_cast<std::size_t>(mobod(b).getBaseMobilizedBody().getMobilizedBodyIndex());
     const std::size_t r = taken[tree]++;
     if (r == out.size()) out.emplace_back();
     out[r].push_back(b);
